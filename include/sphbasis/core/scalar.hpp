@@ -1,0 +1,57 @@
+// sphbasis: scalar traits. Kernels are templates on a value type V, which is float, double or
+// a SIMD batch (core/simd.hpp). This header gives the operations kernels use on V for the
+// arithmetic types; simd.hpp adds the same names for batches.
+#pragma once
+
+#include <cmath>
+
+#include "../config.hpp"
+#include <type_traits>
+
+namespace sphbasis {
+
+template <class V, class = void>
+struct scalar_traits;
+
+template <class T>
+struct scalar_traits<T, std::enable_if_t<std::is_floating_point_v<T>>> {
+    using scalar = T;
+    using mask = bool;
+    static constexpr int size = 1;
+};
+
+/// The scalar type of a value type: float for float and for a batch of floats.
+template <class V>
+using scalar_t = typename scalar_traits<V>::scalar;
+template <class V>
+using mask_t = typename scalar_traits<V>::mask;
+
+template <class T, std::enable_if_t<std::is_floating_point_v<T>, int> = 0>
+inline T select(bool m, T a, T b) noexcept {
+    return m ? a : b;
+}
+template <class T, std::enable_if_t<std::is_floating_point_v<T>, int> = 0>
+inline T vsqrt(T a) noexcept {
+    return std::sqrt(a);
+}
+template <class T, std::enable_if_t<std::is_floating_point_v<T>, int> = 0>
+inline T vabs(T a) noexcept {
+    return std::fabs(a);
+}
+template <class T, std::enable_if_t<std::is_floating_point_v<T>, int> = 0>
+inline T vfma(T a, T b, T c) noexcept {
+    return a * b + c;  // contracted to an FMA where the target has one
+}
+template <class T, std::enable_if_t<std::is_floating_point_v<T>, int> = 0>
+inline T vmax(T a, T b) noexcept {
+    return a > b ? a : b;
+}
+template <class T, std::enable_if_t<std::is_floating_point_v<T>, int> = 0>
+inline T vmin(T a, T b) noexcept {
+    return a < b ? a : b;
+}
+/// All lanes true (for bool: the value itself).
+inline bool all(bool m) noexcept { return m; }
+inline bool any(bool m) noexcept { return m; }
+
+}  // namespace sphbasis

@@ -1,0 +1,91 @@
+// sphbasis: a minimal 3-vector and the direction conventions shared by every basis.
+//
+// Directions are (x, y, z) with z the pole ("up", the surface normal of the hemispherical
+// bases): x = sin(theta) cos(phi), y = sin(theta) sin(phi), z = cos(theta).
+//
+// Any type with members .x .y .z (glm::vec3, glm::dvec3, sphbasis::vec3), with x() y() z()
+// (Eigen::Vector3f/d) or with operator[] can be passed where the API takes a direction;
+// component() reads it without this header including GLM or Eigen.
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <type_traits>
+#include <utility>
+
+#include "../config.hpp"
+#include "scalar.hpp"
+
+namespace sphbasis {
+
+template <class T>
+struct vec3 {
+    T x, y, z;
+};
+
+template <class T>
+constexpr T dot(const vec3<T>& a, const vec3<T>& b) noexcept {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class T>
+constexpr vec3<T> cross(const vec3<T>& a, const vec3<T>& b) noexcept {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+namespace detail {
+template <class D, class = void>
+struct has_member_xyz : std::false_type {};
+template <class D>
+struct has_member_xyz<D, std::void_t<decltype(std::declval<const D&>().x),
+                                     decltype(std::declval<const D&>().z)>> : std::true_type {};
+template <class D, class = void>
+struct has_call_xyz : std::false_type {};
+template <class D>
+struct has_call_xyz<D, std::void_t<decltype(std::declval<const D&>().x()),
+                                   decltype(std::declval<const D&>().z())>> : std::true_type {};
+}  // namespace detail
+
+/// Component i (0, 1, 2) of any 3-vector type: .x/.y/.z members, x()/y()/z() or operator[].
+template <int I, class D>
+constexpr auto component(const D& d) noexcept {
+    static_assert(I >= 0 && I < 3, "sphbasis::component: a direction has components 0, 1, 2.");
+    if constexpr (detail::has_member_xyz<D>::value) {
+        if constexpr (I == 0) return d.x;
+        else if constexpr (I == 1) return d.y;
+        else return d.z;
+    } else if constexpr (detail::has_call_xyz<D>::value) {
+        if constexpr (I == 0) return d.x();
+        else if constexpr (I == 1) return d.y();
+        else return d.z();
+    } else {
+        return d[I];
+    }
+}
+
+/// The scalar type of a direction type (float for glm::vec3, double for Eigen::Vector3d).
+template <class D>
+using direction_scalar_t =
+    std::remove_cv_t<std::remove_reference_t<decltype(component<0>(std::declval<const D&>()))>>;
+
+/// Normalises (x, y, z) in place. The documented outcome for input that has no direction:
+/// a zero vector or a vector with a NaN or infinite component becomes the pole (0, 0, 1).
+/// Vectors of any finite non-zero length, denormal or near overflow included, are scaled to
+/// unit length (components are first divided by the largest magnitude, so nothing under- or
+/// overflows). Cost: one sqrt, two divisions, a few selects. float, double and batches.
+template <class V>
+SPHBASIS_FORCEINLINE void normalize_or_pole(V& x, V& y, V& z) noexcept {
+    using S = scalar_t<V>;
+    const V one(S(1));
+    V big = vmax(vabs(x), vmax(vabs(y), vabs(z)));
+    auto finite_nonzero = (big > V(S(0))) & (big <= V(std::numeric_limits<S>::max()));
+    V s = one / select(finite_nonzero, big, one);
+    V px = x * s, py = y * s, pz = z * s;
+    V r2 = px * px + py * py + pz * pz;  // in [1, 3] for usable input; NaN if any was NaN
+    auto ok = finite_nonzero & (r2 < V(S(4)));
+    V inv = one / vsqrt(select(ok, r2, one));
+    x = select(ok, px * inv, V(S(0)));
+    y = select(ok, py * inv, V(S(0)));
+    z = select(ok, pz * inv, one);
+}
+
+}  // namespace sphbasis

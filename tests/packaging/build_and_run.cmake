@@ -1,0 +1,16 @@
+# Configures, builds and runs a consumer project: cmake -DSRC= -DBIN= -DEXTRA= -DCXX= -P this
+file(REMOVE_RECURSE ${BIN})
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${SRC} -B ${BIN} ${EXTRA} -DCMAKE_CXX_COMPILER=${CXX}
+                RESULT_VARIABLE r)
+if(r)
+  message(FATAL_ERROR "configure failed: ${r}")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} --build ${BIN} RESULT_VARIABLE r)
+if(r)
+  message(FATAL_ERROR "build failed: ${r}")
+endif()
+execute_process(COMMAND ${BIN}/consumer RESULT_VARIABLE r OUTPUT_VARIABLE out)
+message(STATUS "${out}")
+if(r)
+  message(FATAL_ERROR "consumer failed: ${r}")
+endif()
