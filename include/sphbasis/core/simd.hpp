@@ -78,7 +78,10 @@ struct batch {
 
     batch() noexcept = default;
     SPHBASIS_FORCEINLINE batch(native_type n) noexcept : v(n) {}
-    SPHBASIS_FORCEINLINE batch(T s) noexcept : v(native_type{} + s) {}
+    SPHBASIS_FORCEINLINE batch(T s) noexcept {
+        // Lane by lane (compiles to a broadcast): `native_type{} + s` would turn -0 into +0.
+        for (int i = 0; i < size; ++i) v[i] = s;
+    }
 
     static SPHBASIS_FORCEINLINE batch load(const T* p) noexcept {
         batch r;

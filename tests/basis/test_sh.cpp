@@ -1,0 +1,290 @@
+// Tests for basis/sh.hpp: conventions, orthonormality, references, kernels, bad input.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <sphbasis/basis/sh.hpp>
+#include <sphbasis/core/quadrature.hpp>
+
+using namespace sphbasis;
+
+namespace {
+
+std::vector<double> eval_d(int bands, double x, double y, double z) {
+    std::vector<double> v(static_cast<std::size_t>(bands * bands));
+    sh::eval(bands, x, y, z, v.data());
+    return v;
+}
+
+std::vector<std::array<double, 3>> random_dirs(int n, unsigned seed) {
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> g;
+    std::vector<std::array<double, 3>> d;
+    while (static_cast<int>(d.size()) < n) {
+        double x = g(rng), y = g(rng), z = g(rng);
+        const double r = std::sqrt(x * x + y * y + z * z);
+        if (r < 1e-3) continue;
+        d.push_back({x / r, y / r, z / r});
+    }
+    return d;
+}
+
+double norm_s(int l) { return std::sqrt((2 * l + 1) / (4 * constants::pi)); }
+
+}  // namespace
+
+TEST_CASE("sh: band 0-2 values and signs pin the convention (no Condon-Shortley phase)", "[sh]") {
+    const double x = 0.48, y = -0.6, z = 0.64;  // unit
+    const auto v = eval_d(3, x, y, z);
+    const double c1 = 0.48860251190291992;  // sqrt(3/(4 pi))
+    const double c2 = 1.0925484305920792;   // sqrt(15/(4 pi))
+    CHECK(v[0] == Approx(0.28209479177387814).epsilon(1e-15));
+    CHECK(v[1] == Approx(c1 * y).epsilon(1e-15));  // y_1-1 = +c y
+    CHECK(v[2] == Approx(c1 * z).epsilon(1e-15));  // y_10 = +c z
+    CHECK(v[3] == Approx(c1 * x).epsilon(1e-15));  // y_11 = +c x
+    CHECK(v[4] == Approx(c2 * x * y).epsilon(1e-15));
+    CHECK(v[5] == Approx(c2 * y * z).epsilon(1e-15));
+    CHECK(v[6] == Approx(0.31539156525252001 * (3 * z * z - 1)).epsilon(1e-15));
+    CHECK(v[7] == Approx(c2 * x * z).epsilon(1e-15));
+    CHECK(v[8] == Approx(0.54627421529603959 * (x * x - y * y)).epsilon(1e-15));
+    CHECK(sh::index(2, -1) == 5);
+    CHECK(sh::count(4) == 16);
+}
+
+TEST_CASE("sh: Gram matrix is the identity by exact quadrature", "[sh]") {
+    for (int bands : {1, 3, 8, 9, 20, 40}) {
+        const auto rule = sphere_rule(2 * (bands - 1));
+        const int n = bands * bands;
+        std::vector<double> g(static_cast<std::size_t>(n * n), 0.0), y(static_cast<std::size_t>(n));
+        for (std::size_t i = 0; i < rule.size(); ++i) {
+            sh::eval_unit(bands, rule.x[i], rule.y[i], rule.z[i], y.data());
+            for (int a = 0; a < n; ++a)
+                for (int b = 0; b <= a; ++b)
+                    g[static_cast<std::size_t>(a * n + b)] +=
+                        rule.w[i] * y[static_cast<std::size_t>(a)] * y[static_cast<std::size_t>(b)];
+        }
+        double worst = 0;
+        for (int a = 0; a < n; ++a)
+            for (int b = 0; b <= a; ++b)
+                worst = std::max(worst, std::fabs(g[static_cast<std::size_t>(a * n + b)] - (a == b)));
+        INFO("bands " << bands);
+        CHECK(worst < 1e-12);
+    }
+}
+
+TEST_CASE("sh: addition theorem sum_m y_lm^2 = (2l+1)/(4 pi) to 100 bands", "[sh]") {
+    for (const auto& d : random_dirs(20, 7)) {
+        const auto v = eval_d(100, d[0], d[1], d[2]);
+        for (int l = 0; l < 100; ++l) {
+            double s = 0;
+            for (int m = -l; m <= l; ++m) s += v[static_cast<std::size_t>(sh::index(l, m))] *
+                                                v[static_cast<std::size_t>(sh::index(l, m))];
+            REQUIRE(std::fabs(s - norm_s(l) * norm_s(l)) <= 1e-13 * norm_s(l) * norm_s(l) * (l + 1));
+        }
+    }
+}
+
+TEST_CASE("sh: unrolled kernels, row recurrence and column recurrence agree", "[sh]") {
+    auto dirs = random_dirs(200, 11);
+    dirs.push_back({0, 0, 1});
+    dirs.push_back({0, 0, -1});
+    dirs.push_back({1, 0, 0});
+    dirs.push_back({std::sqrt(0.5), -std::sqrt(0.5), 0});
+    for (int bands = 1; bands <= 8; ++bands) {
+        const int n = bands * bands;
+        for (const auto& d : dirs) {
+            std::vector<double> fixed(static_cast<std::size_t>(n)), rows(fixed), cols(fixed);
+            auto put = [](std::vector<double>& v) { return [&v](int k, double x) { v[static_cast<std::size_t>(k)] = x; }; };
+            sh::detail::with_kernel(bands, [&](auto k) { k(d[0], d[1], d[2], put(fixed)); });
+            sh::detail::eval_rows(bands, d[0], d[1], d[2], put(rows));
+            sh::detail::eval_columns(bands, d[0], d[1], d[2], put(cols));
+            for (int k = 0; k < n; ++k) {
+                const int l = sh::degree_of(k);
+                const double tol = 8 * std::numeric_limits<double>::epsilon() * norm_s(l);
+                REQUIRE(std::fabs(fixed[static_cast<std::size_t>(k)] - rows[static_cast<std::size_t>(k)]) <= tol);
+                REQUIRE(std::fabs(fixed[static_cast<std::size_t>(k)] - cols[static_cast<std::size_t>(k)]) <= tol);
+            }
+        }
+    }
+    // Row (<= 64 bands) against column recurrence at the switch-over.
+    for (const auto& d : random_dirs(20, 12)) {
+        std::vector<double> rows(64 * 64), cols(64 * 64);
+        sh::detail::eval_rows(64, d[0], d[1], d[2], [&](int k, double x) { rows[static_cast<std::size_t>(k)] = x; });
+        sh::detail::eval_columns(64, d[0], d[1], d[2], [&](int k, double x) { cols[static_cast<std::size_t>(k)] = x; });
+        for (int k = 0; k < 64 * 64; ++k)
+            REQUIRE(std::fabs(rows[static_cast<std::size_t>(k)] - cols[static_cast<std::size_t>(k)]) <=
+                    1e-13 * norm_s(sh::degree_of(k)));
+    }
+}
+
+TEST_CASE("sh: prefix property and eval_lm", "[sh]") {
+    const auto d = random_dirs(1, 3)[0];
+    const auto big = eval_d(70, d[0], d[1], d[2]);
+    for (int k : {1, 2, 3, 8, 9, 31, 64, 65}) {
+        const auto small = eval_d(k, d[0], d[1], d[2]);
+        for (int i = 0; i < k * k; ++i)
+            REQUIRE(std::fabs(small[static_cast<std::size_t>(i)] - big[static_cast<std::size_t>(i)]) <= 1e-13 * norm_s(sh::degree_of(i)));
+    }
+    for (int l : {0, 1, 5, 33, 69})
+        for (int m : {-l, -l / 2, 0, l / 3, l})
+            REQUIRE(std::fabs(sh::eval_lm(l, m, d[0], d[1], d[2]) -
+                              big[static_cast<std::size_t>(sh::index(l, m))]) <= 1e-13 * norm_s(l));
+}
+
+TEST_CASE("sh: compile-time band count and vector adapters", "[sh]") {
+    float a[16], b[16];
+    sh::eval<4>(0.3f, -0.2f, 0.9f, a);
+    sh::eval(4, glm::vec3(0.3f, -0.2f, 0.9f), b);
+    // Same kernels, but inlining may contract different products into FMAs: a few ulp.
+    for (int k = 0; k < 16; ++k) CHECK(std::fabs(a[k] - b[k]) <= 4e-7f);
+    double c[100], e[100];
+    sh::eval<10>(0.3, -0.2, 0.9, c);
+    sh::eval(10, vec3<double>{0.3, -0.2, 0.9}, e);
+    for (int k = 0; k < 100; ++k) CHECK(std::fabs(c[k] - e[k]) <= 1e-14);
+}
+
+TEMPLATE_TEST_CASE("sh: batch path equals scalar path", "[sh]", float, double) {
+    using T = TestType;
+    const auto dirs = random_dirs(37, 5);  // not a multiple of any SIMD width
+    std::vector<T> xs, ys, zs;
+    for (const auto& d : dirs) {
+        xs.push_back(T(d[0] * 3));  // non-unit on purpose: both paths normalise
+        ys.push_back(T(d[1] * 3));
+        zs.push_back(T(d[2] * 3));
+    }
+    const std::size_t n = dirs.size();
+    for (int bands : {1, 2, 3, 5, 8, 9, 17, 64, 66}) {
+        const std::size_t nf = static_cast<std::size_t>(bands * bands);
+        std::vector<T> out(nf * n), one(nf), coeffs(nf), sums(n);
+        for (std::size_t k = 0; k < nf; ++k) coeffs[k] = T(std::sin(double(k) + 1));
+        sh::eval_batch(bands, n, xs.data(), ys.data(), zs.data(), out.data(), n);
+        sh::eval_sum_batch(bands, coeffs.data(), n, xs.data(), ys.data(), zs.data(), sums.data());
+        for (std::size_t i = 0; i < n; ++i) {
+            sh::eval(bands, xs[i], ys[i], zs[i], one.data());
+            T dot = 0;
+            for (std::size_t k = 0; k < nf; ++k) {
+                const int l = sh::degree_of(int(k));
+                const T tol = T(2 * (l + 1)) * std::numeric_limits<T>::epsilon() * T(norm_s(l));
+                REQUIRE(std::fabs(out[k * n + i] - one[k]) <= tol);
+                dot += coeffs[k] * one[k];
+            }
+            const T s1 = sh::eval_sum(bands, coeffs.data(), xs[i], ys[i], zs[i]);
+            const T tol = T(64) * std::numeric_limits<T>::epsilon() * T(bands * bands);
+            REQUIRE(std::fabs(s1 - dot) <= tol);
+            REQUIRE(std::fabs(sums[i] - dot) <= tol);
+        }
+    }
+}
+
+TEST_CASE("sh: float is within a stated bound of double", "[sh]") {
+    // Bound: |float - double| <= 8 (l + 1) ulp(float) * S_l, measured worst ~2(l+1) ulp.
+    for (const auto& d : random_dirs(100, 9)) {
+        for (int bands : {3, 8, 31}) {
+            std::vector<float> f(static_cast<std::size_t>(bands * bands));
+            std::vector<double> dd(f.size());
+            sh::eval(bands, float(d[0]), float(d[1]), float(d[2]), f.data());
+            sh::eval(bands, double(float(d[0])), double(float(d[1])), double(float(d[2])), dd.data());
+            for (std::size_t k = 0; k < f.size(); ++k) {
+                const int l = sh::degree_of(int(k));
+                REQUIRE(std::fabs(double(f[k]) - dd[k]) <=
+                        8.0 * (l + 1) * std::numeric_limits<float>::epsilon() * norm_s(l));
+            }
+        }
+    }
+}
+
+TEST_CASE("sh: Condon-Shortley conversion", "[sh]") {
+    // f = sum c_k y_k must equal sum c'_k y'_k with y' the Condon-Shortley functions
+    // (y'_lm = (-1)^m y_lm for the real basis), e.g. google's y'_11 = -sqrt(3/4pi) x.
+    std::vector<double> c(16), cs(16);
+    for (int k = 0; k < 16; ++k) c[static_cast<std::size_t>(k)] = cs[static_cast<std::size_t>(k)] = 0.1 * (k + 1);
+    sh::to_condon_shortley(4, cs.data());
+    const auto v = eval_d(4, 0.2, 0.3, 0.9327379053088815);
+    double f = 0, fcs = 0;
+    for (int l = 0; l < 4; ++l)
+        for (int m = -l; m <= l; ++m) {
+            const std::size_t k = static_cast<std::size_t>(sh::index(l, m));
+            f += c[k] * v[k];
+            fcs += cs[k] * ((m & 1) ? -v[k] : v[k]);
+        }
+    CHECK(fcs == Approx(f).epsilon(1e-14));
+    CHECK(cs[3] == -c[3]);
+    CHECK(cs[2] == c[2]);
+    sh::from_condon_shortley(4, cs.data());
+    CHECK(cs == c);
+}
+
+TEST_CASE("sh: hard directions stay finite and accurate", "[sh]") {
+    // Poles, x = y = 0, equator, within 1e-12 of the poles, non-unit and denormal input.
+    const double e = 1e-12;
+    const std::vector<std::array<double, 3>> hard = {
+        {0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {0, 1, 0}, {e, 0, 1}, {0, -e, -1}, {e, e, 1},
+        {1e-300, 0, 1}, {0.5, 0.5, 0}, {3e-310, 2e-310, 1e-310}, {1e300, 1e300, 1e300}};
+    for (int bands : {3, 31, 200, 2001}) {
+        std::vector<double> v(static_cast<std::size_t>(bands * bands));
+        for (const auto& d : hard) {
+            sh::eval(bands, d[0], d[1], d[2], v.data());
+            for (double x : v) REQUIRE(std::isfinite(x));
+        }
+    }
+    // At the north pole only m = 0 survives: y_l0 = S_l, within the bound.
+    const auto v = eval_d(300, 0, 0, 1);
+    for (int l = 0; l < 300; ++l)
+        for (int m = -l; m <= l; ++m)
+            REQUIRE(std::fabs(v[static_cast<std::size_t>(sh::index(l, m))] - (m == 0 ? norm_s(l) : 0.0)) <=
+                    (1e-12 + l * double(l) * 1.1e-16) * norm_s(l));
+}
+
+TEST_CASE("sh: bad input has its documented outcome", "[sh]") {
+    double v[9], pole[9];
+    sh::eval(3, 0.0, 0.0, 1.0, pole);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double inf = std::numeric_limits<double>::infinity();
+    for (auto d : std::vector<std::array<double, 3>>{{0, 0, 0}, {nan, 0, 1}, {0, inf, 0}, {nan, nan, nan}}) {
+        sh::eval(3, d[0], d[1], d[2], v);
+        for (int k = 0; k < 9; ++k) REQUIRE(v[k] == pole[k]);
+    }
+    REQUIRE_THROWS_WITH(sh::eval(-1, 0.0, 0.0, 1.0, v), Catch::Contains("expected 0 <= bands"));
+    REQUIRE_THROWS_WITH(sh::eval(sh::max_bands + 1, 0.0, 0.0, 1.0, v), Catch::Contains("bands"));
+    REQUIRE_THROWS_AS(sh::eval_lm(2, 3, 0.0, 0.0, 1.0), std::invalid_argument);
+    REQUIRE_THROWS_AS(sh::eval_lm(-1, 0, 0.0, 0.0, 1.0), std::invalid_argument);
+    float xs[2] = {0, 1}, out[2];
+    REQUIRE_THROWS_WITH(sh::eval_batch(1, 2, xs, xs, xs, out, 1), Catch::Contains("stride"));
+    sh::eval(0, 0.0, 0.0, 1.0, v);  // zero bands: nothing to do, no throw
+}
+
+TEST_CASE("sh: values against the mpmath reference (l <= 2000)", "[sh][reference]") {
+    std::ifstream in(SPHBASIS_TEST_DATA_DIR "/sh_reference.txt");
+    REQUIRE(in.good());
+    std::string line;
+    long count = 0;
+    double worst = 0;
+    while (std::getline(in, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream is(line);
+        int l, m;
+        double x, y, z, ref;
+        REQUIRE(static_cast<bool>(is >> l >> m >> x >> y >> z >> ref));
+        const double s = norm_s(l);
+        const double bound = l <= 100 ? 1e-12 * s : (1e-12 + l * double(l) * 1.1e-16) * s;
+        const double got = sh::eval_lm(l, m, x, y, z);
+        // The full evaluation path too (cheap below 64 bands; all paths above via eval_lm).
+        if (l < 13) {
+            const auto v = eval_d(l + 1, x, y, z);
+            REQUIRE(std::fabs(v[static_cast<std::size_t>(sh::index(l, m))] - ref) <= bound);
+        }
+        INFO("l=" << l << " m=" << m << " dir=" << x << "," << y << "," << z);
+        REQUIRE(std::fabs(got - ref) <= bound);
+        worst = std::max(worst, std::fabs(got - ref) / s);
+        ++count;
+    }
+    CHECK(count > 1000);
+    WARN("sh reference: " << count << " values, worst |error|/S = " << worst);
+}
