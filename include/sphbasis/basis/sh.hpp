@@ -357,6 +357,19 @@ void eval(int bands, const D& dir, T* out) {
     eval(bands, T(component<0>(dir)), T(component<1>(dir)), T(component<2>(dir)), out);
 }
 
+/// Compile-time band count for a direction already of unit length: eval<N> without the
+/// normalisation (the cheapest call, as a shader would do it). Precondition and outcome for
+/// other input as for eval_unit(); SPHBASIS_ASSERT checks |d| in debug builds. noexcept.
+template <int N, class T>
+SPHBASIS_FORCEINLINE void eval_unit(T x, T y, T z, T* out) noexcept {
+    static_assert(N >= 1 && N <= detail::max_row_bands,
+                  "sphbasis::sh::eval_unit<N>: compile-time band counts are 1..64.");
+    SPHBASIS_ASSERT(std::fabs(x * x + y * y + z * z - T(1)) <= T(1e-3));
+    auto st = [&](int k, T v) { out[k] = v; };
+    if constexpr (N <= detail::max_fixed_bands) detail::eval_fixed<N>(x, y, z, st);
+    else detail::eval_rows(N, x, y, z, st);
+}
+
 /// Compile-time band count: unrolled code for N <= 8 (no allocation, no dispatch), the row
 /// recurrence above. Input normalised as by eval(). noexcept.
 template <int N, class T>
@@ -364,9 +377,7 @@ SPHBASIS_FORCEINLINE void eval(T x, T y, T z, T* out) noexcept {
     static_assert(N >= 1 && N <= detail::max_row_bands,
                   "sphbasis::sh::eval<N>: compile-time band counts are 1..64.");
     normalize_or_pole(x, y, z);
-    auto st = [&](int k, T v) { out[k] = v; };
-    if constexpr (N <= detail::max_fixed_bands) detail::eval_fixed<N>(x, y, z, st);
-    else detail::eval_rows(N, x, y, z, st);
+    eval_unit<N>(x, y, z, out);
 }
 
 /// One function y_lm at direction (x, y, z) (normalised as by eval()). Cost O(l) with square

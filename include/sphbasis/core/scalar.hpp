@@ -50,8 +50,15 @@ template <class T, std::enable_if_t<std::is_floating_point_v<T>, int> = 0>
 inline T vmin(T a, T b) noexcept {
     return a < b ? a : b;
 }
-/// All lanes true (for bool: the value itself).
-inline bool all(bool m) noexcept { return m; }
-inline bool any(bool m) noexcept { return m; }
+/// All lanes true / any lane true; for scalar masks (bool, or the int of `bool & bool`) the
+/// value itself.
+template <class M, std::enable_if_t<std::is_arithmetic_v<M>, int> = 0>
+inline bool all(M m) noexcept {
+    return m != 0;
+}
+template <class M, std::enable_if_t<std::is_arithmetic_v<M>, int> = 0>
+inline bool any(M m) noexcept {
+    return m != 0;
+}
 
 }  // namespace sphbasis

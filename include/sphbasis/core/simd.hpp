@@ -160,13 +160,13 @@ template <class T>
 SPHBASIS_FORCEINLINE batch<T> vmin(batch<T> a, batch<T> b) noexcept {
     return select(a < b, a, b);
 }
-template <class M, std::enable_if_t<!std::is_same_v<M, bool>, int> = 0>
+template <class M, std::enable_if_t<!std::is_arithmetic_v<M>, int> = 0>
 SPHBASIS_FORCEINLINE bool all(M m) noexcept {
     for (std::size_t i = 0; i < sizeof(M) / sizeof(m[0]); ++i)
         if (!m[i]) return false;
     return true;
 }
-template <class M, std::enable_if_t<!std::is_same_v<M, bool>, int> = 0>
+template <class M, std::enable_if_t<!std::is_arithmetic_v<M>, int> = 0>
 SPHBASIS_FORCEINLINE bool any(M m) noexcept {
     for (std::size_t i = 0; i < sizeof(M) / sizeof(m[0]); ++i)
         if (m[i]) return true;

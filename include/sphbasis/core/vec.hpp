@@ -70,19 +70,31 @@ using direction_scalar_t =
 /// Normalises (x, y, z) in place. The documented outcome for input that has no direction:
 /// a zero vector or a vector with a NaN or infinite component becomes the pole (0, 0, 1).
 /// Vectors of any finite non-zero length, denormal or near overflow included, are scaled to
-/// unit length (components are first divided by the largest magnitude, so nothing under- or
-/// overflows). Cost: one sqrt, two divisions, a few selects. float, double and batches.
+/// unit length (when the squared length is outside [1e-30, 1e30] the components are first
+/// divided by the largest magnitude, so nothing under- or overflows). Cost: one sqrt and one
+/// division on the common path. float, double and batches (lane-wise).
 template <class V>
 SPHBASIS_FORCEINLINE void normalize_or_pole(V& x, V& y, V& z) noexcept {
     using S = scalar_t<V>;
     const V one(S(1));
+    // Fast path: the squared length is a normal number far from under- and overflow (NaN
+    // fails the comparisons): one sqrt and one division.
+    const V r2 = x * x + y * y + z * z;
+    const auto fine = (r2 > V(S(1e-30))) & (r2 < V(S(1e30)));
+    if (all(fine)) {
+        const V inv = one / vsqrt(r2);
+        x = x * inv;
+        y = y * inv;
+        z = z * inv;
+        return;
+    }
     V big = vmax(vabs(x), vmax(vabs(y), vabs(z)));
     auto finite_nonzero = (big > V(S(0))) & (big <= V(std::numeric_limits<S>::max()));
     V s = one / select(finite_nonzero, big, one);
     V px = x * s, py = y * s, pz = z * s;
-    V r2 = px * px + py * py + pz * pz;  // in [1, 3] for usable input; NaN if any was NaN
-    auto ok = finite_nonzero & (r2 < V(S(4)));
-    V inv = one / vsqrt(select(ok, r2, one));
+    V q2 = px * px + py * py + pz * pz;  // in [1, 3] for usable input; NaN if any was NaN
+    auto ok = finite_nonzero & (q2 < V(S(4)));
+    V inv = one / vsqrt(select(ok, q2, one));
     x = select(ok, px * inv, V(S(0)));
     y = select(ok, py * inv, V(S(0)));
     z = select(ok, pz * inv, one);
