@@ -154,7 +154,12 @@ template <class F>
 double squared_error(const BasisFunctions& b, const Eigen::VectorXd& c, F&& f,
                      const DirectionalRule& rule) {
     const Eigen::VectorXd r = evaluation_matrix(b, rule) * c - detail::sample(f, rule);
-    return r.dot(detail::weights_of(rule).asDiagonal() * r);
+    double s = 0;
+    for (std::size_t i = 0; i < rule.size(); ++i) {
+        const double ri = r(static_cast<Eigen::Index>(i));
+        s += rule.w[i] * ri * ri;
+    }
+    return s;
 }
 
 }  // namespace sphbasis
