@@ -144,7 +144,7 @@ TEST_CASE("cube map: DX10 seam texels are the nearest texels across the edge", "
                     for (int t = 0; t < 4; ++t) {
                         if (fp.weight[t] <= 1e-3) continue;
                         const std::size_t idx = fp.index[t];
-                        if (idx / (std::size_t(n) * n) == std::size_t(face)) continue;
+                        if (idx / (std::size_t(n) * std::size_t(n)) == std::size_t(face)) continue;
                         CHECK(idx == best);
                         ++found;
                     }
@@ -169,8 +169,9 @@ TEST_CASE("cube map: DX10 corner averages the three corner texels", "[param][cub
                         for (int t = 0; t < 4; ++t)
                             if (fp.index[t] == idx) w += fp.weight[t];
                         CHECK(w == Approx(1.0 / 3));
-                        const int f = int(idx / (std::size_t(n) * n));
-                        const int r = int(idx % (std::size_t(n) * n)) / n, c = int(idx % n);
+                        const std::size_t nn = std::size_t(n) * std::size_t(n);
+                        const int f = int(idx / nn);
+                        const int r = int(idx % nn) / n, c = int(idx % std::size_t(n));
                         const double a = angle_between(p.texel_direction(f, c, r),
                                                        normalized<double>(sx, sy, sz));
                         CHECK(a < 1.6 / n);  // one of the texels touching the corner
