@@ -1,8 +1,77 @@
-// sphbasis CLI: `sphbasis rotate` (placeholder until its issue lands; exits non-zero).
+// sphbasis CLI: `sphbasis rotate --bands N --quat W,X,Y,Z --coeffs C0,C1,...`
+//
+// Rotates a real SH coefficient vector (this library's convention: no Condon-Shortley phase,
+// ACN order, N bands = N^2 coefficients) by the rotation of the quaternion (w, x, y, z): the
+// rotated function is g(v) = f(R^T v), so a lobe at direction d moves to R d
+// (ops/sh_rotation.hpp). A non-unit quaternion is normalised; a zero one is an error. Prints one
+// JSON line, numbers with 17 significant digits, "quat" echoing the input:
+//   $ sphbasis rotate --bands 2 --quat 0.70710678118654752,0,0,0.70710678118654752 --coeffs 1,0,0,1
+//   {"bands":2,"quat":[0.70710678118654757,0,0,0.70710678118654757],"coeffs":[1,1,0,2.2204460492503131e-16]}
+// Both `--bands 3` and `--bands=3` work, and lists may hold negative numbers (`--coeffs -1,2`).
+// Bad input (missing or repeated options, a wrong number of coefficients, non-numbers, a zero
+// quaternion, bands outside 1..8192) exits with status 2 and a one-line message.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
 #include "cli.hpp"
+#include "sphbasis/ops/sh_rotation.hpp"
 
 namespace sphbasis::cli {
 
-int cmd_rotate(const Args&) { throw std::runtime_error("'rotate' is not implemented yet"); }
+int cmd_rotate(const Args& args) {
+    Options o(args, {"--bands", "--quat", "--coeffs"}, {"--help"});
+    if (o.has("--help")) {
+        std::printf(
+            "usage: sphbasis rotate --bands N --quat W,X,Y,Z --coeffs C0,C1,...\n"
+            "rotates N^2 real SH coefficients (no Condon-Shortley phase, ACN order) by the\n"
+            "quaternion (normalised if not unit); prints {\"bands\":N,\"quat\":[...],"
+            "\"coeffs\":[...]}\n");
+        return 0;
+    }
+    if (!o.positional().empty())
+        throw UsageError("unexpected argument '" + o.positional()[0] + "'");
+    for (const char* req : {"--bands", "--quat", "--coeffs"})
+        if (!o.has(req)) throw UsageError(std::string(req) + " is required");
+
+    const long long bands = parse_int(o.get("--bands"), "--bands");
+    if (bands < 1 || bands > sh::max_bands)
+        throw UsageError("--bands: expected 1 <= N <= " + std::to_string(sh::max_bands) + ", got " +
+                         std::to_string(bands));
+    const std::vector<double> q = parse_doubles(o.get("--quat"), "--quat");
+    if (q.size() != 4)
+        throw UsageError("--quat: expected four numbers W,X,Y,Z, got " + std::to_string(q.size()));
+    const double big = std::max(std::max(std::fabs(q[0]), std::fabs(q[1])),
+                                std::max(std::fabs(q[2]), std::fabs(q[3])));
+    if (!(big > 0)) throw UsageError("--quat: expected a non-zero quaternion");
+    std::vector<double> c = parse_doubles(o.get("--coeffs"), "--coeffs");
+    const std::size_t want = static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands);
+    if (c.size() != want)
+        throw UsageError("--coeffs: expected N^2 = " + std::to_string(want) +
+                         " coefficients for --bands " + std::to_string(bands) + ", got " +
+                         std::to_string(c.size()));
+
+    // Scale by the largest component first so that tiny or huge quaternions normalise cleanly.
+    const int n = static_cast<int>(bands);
+    try {
+        sh::rotate_quaternion(n, q[0] / big, q[1] / big, q[2] / big, q[3] / big, c.data(),
+                              c.data());
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+
+    std::string out = "{\"bands\":" + std::to_string(n) + ",\"quat\":[";
+    for (std::size_t i = 0; i < 4; ++i) out += (i ? "," : "") + json_number(q[i]);
+    out += "],\"coeffs\":[";
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        if (i) out += ',';
+        out += json_number(c[i]);
+    }
+    out += "]}\n";
+    std::fwrite(out.data(), 1, out.size(), stdout);
+    return 0;
+}
 
 }  // namespace sphbasis::cli

@@ -66,25 +66,53 @@
 
 namespace sphbasis::sh {
 
-namespace detail {
-
-/// The scalar that multiplies a coefficient type: C for float/double, C::value_type for
-/// vector types (glm::vec3 -> float), double otherwise.
+/// The scalar a coefficient type C is multiplied by: C itself for float and double, else
+/// C::value_type (glm::vec3, Eigen vectors), else the type of a member `r` or `x` (RGB-like
+/// structs), else double. Specialise it for other types.
 template <class C, class = void>
-struct coeff_scalar {
+struct coefficient_scalar {
     using type = double;
 };
+
+namespace detail {
+template <class C, class = void>
+struct has_value_type : std::false_type {};
 template <class C>
-struct coeff_scalar<C, std::enable_if_t<std::is_floating_point_v<C>>> {
-    using type = C;
+struct has_value_type<C, std::void_t<typename C::value_type>> : std::true_type {};
+template <class C, class = void>
+struct has_member_r : std::false_type {};
+template <class C>
+struct has_member_r<C, std::void_t<decltype(std::declval<const C&>().r)>> : std::true_type {};
+template <class C, class = void>
+struct has_member_x : std::false_type {};
+template <class C>
+struct has_member_x<C, std::void_t<decltype(std::declval<const C&>().x)>> : std::true_type {};
+template <class C>
+constexpr auto coefficient_scalar_probe() {
+    if constexpr (std::is_floating_point_v<C>)
+        return C{};
+    else if constexpr (has_value_type<C>::value)
+        return typename C::value_type{};
+    else if constexpr (has_member_r<C>::value)
+        return std::decay_t<decltype(std::declval<const C&>().r)>{};
+    else if constexpr (has_member_x<C>::value)
+        return std::decay_t<decltype(std::declval<const C&>().x)>{};
+    else
+        return double{};
+}
+}  // namespace detail
+
+template <class C>
+struct coefficient_scalar<
+    C,
+    std::enable_if_t<std::is_floating_point_v<decltype(detail::coefficient_scalar_probe<C>())>>> {
+    using type = decltype(detail::coefficient_scalar_probe<C>());
 };
+
+namespace detail {
+
 template <class C>
-struct coeff_scalar<
-    C, std::enable_if_t<!std::is_floating_point_v<C>, std::void_t<typename C::value_type>>> {
-    using type = typename C::value_type;
-};
-template <class C>
-using coeff_scalar_t = typename coeff_scalar<C>::type;
+using coeff_scalar_t = typename coefficient_scalar<C>::type;
 
 /// Small buffer of doubles: on the stack up to 8 bands.
 class LightBuf {
@@ -139,6 +167,25 @@ void zonal_out(int bands, T x, T y, T z, const double* a, const C& colour, C* ou
     for (int l = 0; l < bands; ++l)
         for (int k = l * l; k < (l + 1) * (l + 1); ++k)
             out[k] = colour * static_cast<S>(a[l] * yv[static_cast<std::size_t>(k)]);
+}
+
+/// sum_i v[i] * w[i] over n >= 1 terms with eight independent partial sums: a single running
+/// sum is a chain of dependent additions that the compiler may not reorder (no -ffast-math),
+/// and it is the bottleneck of the projections.
+template <class C, class S>
+C dot_accumulate(std::size_t n, const C* v, const S* w) {
+    if (n < 8) {
+        C s = v[0] * w[0];
+        for (std::size_t i = 1; i < n; ++i) s = s + v[i] * w[i];
+        return s;
+    }
+    C s[8];
+    for (std::size_t j = 0; j < 8; ++j) s[j] = v[j] * w[j];
+    std::size_t i = 8;
+    for (; i + 8 <= n; i += 8)
+        for (std::size_t j = 0; j < 8; ++j) s[j] = s[j] + v[i + j] * w[i + j];
+    for (; i < n; ++i) s[0] = s[0] + v[i] * w[i];
+    return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
 }
 
 }  // namespace detail
@@ -407,43 +454,94 @@ void project_cubemap_fn(int bands, int size, F&& texel, C* out, int supersample 
     const int nf = size * supersample;  // fine texels per face edge
     const std::size_t n2 = static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands);
     const param::CubeMap<double> cube(nf, param::CubeFilter::dx9_clamped);
-    // Solid angles are the same on every face.
+    // Solid angles are the same on every face and symmetric under c -> nf-1-c, r -> nf-1-r
+    // and c <-> r: one octant is computed (each value costs four atan2).
     std::vector<double> omega(static_cast<std::size_t>(nf) * static_cast<std::size_t>(nf));
-    for (int r = 0; r < nf; ++r)
-        for (int c = 0; c < nf; ++c)
-            omega[static_cast<std::size_t>(r) * static_cast<std::size_t>(nf) +
-                  static_cast<std::size_t>(c)] = cube.texel_solid_angle(0, c, r);
+    {
+        const std::size_t N = static_cast<std::size_t>(nf);
+        for (int r = 0; r < (nf + 1) / 2; ++r)
+            for (int c = r; c < (nf + 1) / 2; ++c) {
+                const double w = cube.texel_solid_angle(0, c, r);
+                const std::size_t cs[2] = {static_cast<std::size_t>(c),
+                                           N - 1 - static_cast<std::size_t>(c)};
+                const std::size_t rs[2] = {static_cast<std::size_t>(r),
+                                           N - 1 - static_cast<std::size_t>(r)};
+                for (std::size_t a : cs)
+                    for (std::size_t b : rs) {
+                        omega[b * N + a] = w;
+                        omega[a * N + b] = w;
+                    }
+            }
+    }
     // Residual of the texel rule on y_k (needed where the cube's symmetry does not make it
     // vanish: l >= 4).
     const bool need_residual = bands >= 5;
     std::vector<double> resid(need_residual ? n2 : 1, 0.0);
     double wsum = 0;
-    std::vector<C> acc(n2, C{}), row(n2);
-    std::vector<double> ydir(n2);
-    detail::with_kernel(bands, [&](auto kernel) {
-        for (int face = 0; face < 6; ++face)
-            for (int r = 0; r < nf; ++r) {
-                std::fill(row.begin(), row.end(), C{});
-                double rw = 0;
-                for (int c = 0; c < nf; ++c) {
-                    const double w =
-                        omega[static_cast<std::size_t>(r) * static_cast<std::size_t>(nf) +
-                              static_cast<std::size_t>(c)];
-                    const vec3<double> d = cube.texel_direction(face, c, r);
-                    const C v = texel(face, c / supersample, r / supersample);
-                    kernel(d.x, d.y, d.z, [&](int k, double y) {
-                        ydir[static_cast<std::size_t>(k)] = y;
-                        row[static_cast<std::size_t>(k)] =
-                            row[static_cast<std::size_t>(k)] + v * static_cast<S>(w * y);
-                    });
-                    if (need_residual)
-                        for (std::size_t k = 0; k < n2; ++k) resid[k] += w * ydir[k];
-                    rw += w;
-                }
-                wsum += rw;
-                for (std::size_t k = 0; k < n2; ++k) acc[k] = acc[k] + row[k];
+    std::vector<C> acc(n2, C{});
+    const std::size_t nn = static_cast<std::size_t>(nf);
+    // Face f's texel directions are a fixed signed permutation of face 0's (each face is
+    // (+-1, +-s, +-t) in some order); read it off param::square_to_cube at a point whose
+    // components differ in magnitude, so the convention stays the one of param/cubemap.hpp.
+    int perm[6][3];
+    double sign[6][3];
+    {
+        const vec3<double> p0 = param::square_to_cube(0, 0.3, 0.8);
+        const double a0[3] = {p0.x, p0.y, p0.z};
+        for (int f = 0; f < 6; ++f) {
+            const vec3<double> pf = param::square_to_cube(f, 0.3, 0.8);
+            const double af[3] = {pf.x, pf.y, pf.z};
+            for (int i = 0; i < 3; ++i) {
+                int best = 0;
+                for (int j = 1; j < 3; ++j)
+                    if (std::fabs(std::fabs(af[i]) - std::fabs(a0[j])) <
+                        std::fabs(std::fabs(af[i]) - std::fabs(a0[best])))
+                        best = j;
+                perm[f][i] = best;
+                sign[f][i] = (af[i] < 0) == (a0[best] < 0) ? 1.0 : -1.0;
             }
-    });
+        }
+    }
+    // One row of fine texels at a time: face-0 directions once, then per face the permuted
+    // directions, all n^2 functions by the SIMD batch kernel (function-major), weights, sums.
+    std::vector<double> d0(3 * nn), xs(nn), ys(nn), zs(nn), yb(n2 * nn);
+    std::vector<S> wy(nn);
+    std::vector<C> vals(nn);
+    for (int r = 0; r < nf; ++r) {
+        for (int c = 0; c < nf; ++c) {
+            const vec3<double> d = cube.texel_direction(0, c, r);
+            d0[3 * static_cast<std::size_t>(c)] = d.x;
+            d0[3 * static_cast<std::size_t>(c) + 1] = d.y;
+            d0[3 * static_cast<std::size_t>(c) + 2] = d.z;
+        }
+        const double* om = omega.data() + static_cast<std::size_t>(r) * nn;
+        double rw = 0;
+        for (std::size_t c = 0; c < nn; ++c) rw += om[c];
+        for (int face = 0; face < 6; ++face) {
+            double* out3[3] = {xs.data(), ys.data(), zs.data()};
+            for (int i = 0; i < 3; ++i) {
+                const int j = perm[face][i];
+                const double sg = sign[face][i];
+                for (std::size_t c = 0; c < nn; ++c)
+                    out3[i][c] = sg * d0[3 * c + static_cast<std::size_t>(j)];
+            }
+            for (int c = 0; c < nf; ++c)
+                vals[static_cast<std::size_t>(c)] = texel(face, c / supersample, r / supersample);
+            eval_batch(bands, nn, xs.data(), ys.data(), zs.data(), yb.data(), nn);
+            wsum += rw;
+            for (std::size_t k = 0; k < n2; ++k) {
+                const double* yk = yb.data() + k * nn;
+                double rk = 0;
+                for (std::size_t c = 0; c < nn; ++c) {
+                    const double v = om[c] * yk[c];
+                    wy[c] = static_cast<S>(v);
+                    rk += v;
+                }
+                if (need_residual) resid[k] += rk;
+                acc[k] = acc[k] + detail::dot_accumulate(nn, vals.data(), wy.data());
+            }
+        }
+    }
     // Control variate: f_k = S_k - mean (r_k - sqrt(4 pi) delta_k0), mean = S_0 / (y_00 W).
     // For k = 0 that is S_0 (4 pi / W); for k > 0 with bands <= 4, r_k = 0 by symmetry.
     const double y00 = constants::inv_sqrt_four_pi;

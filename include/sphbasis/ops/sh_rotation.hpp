@@ -80,7 +80,7 @@ class Scratch {
     T& operator[](std::size_t i) noexcept { return p_[i]; }
 
   private:
-    std::array<T, N> stack_{};
+    std::array<T, N> stack_;  // not value-initialised: always written before it is read
     std::vector<T> heap_;
     T* p_;
 };
@@ -136,71 +136,128 @@ std::array<T, 9> band1(const Mat3<T>& r) noexcept {
     return b;
 }
 
-/// Number of scratch values ir_band needs for band l.
-constexpr std::size_t ir_scratch_size(int l) noexcept {
-    return 4 * static_cast<std::size_t>(2 * l + 1);
-}
+/// Band counts up to this use the Ivanic-Ruedenberg recurrence; above it Risbo's recursion.
+inline constexpr int ir_max_bands = 24;
 
-/// One step of the Ivanic-Ruedenberg recurrence: band l >= 2 into cur ((2l+1)^2, row-major,
-/// entry (m, n) at (m+l)(2l+1) + n+l) from band l-1 in prev and band 1 in b1.
-/// scratch holds ir_scratch_size(l) values.
-template <class T>
-void ir_band(int l, const std::array<T, 9>& b1, const T* SPHBASIS_RESTRICT prev,
-             T* SPHBASIS_RESTRICT cur, T* SPHBASIS_RESTRICT scratch) noexcept {
-    const int w = 2 * l + 1, pw = 2 * l - 1;
-    T* invd = scratch;  // per column n: 1/sqrt(denominator)
-    T* us = scratch + w;
-    T* vs = scratch + 2 * w;
-    T* ws = scratch + 3 * w;
-    const T dl = T(l);
+/// The Ivanic-Ruedenberg factors of band l (in double): per column n, 1/sqrt(denominator);
+/// per row m, the row parts of u, v and w (u = us[m] invd[n], ...). Four runs of 2l+1 values.
+inline void ir_factors(int l, double* f) noexcept {
+    const int w = 2 * l + 1;
+    double* invd = f;
+    double* us = f + w;
+    double* vs = f + 2 * w;
+    double* ws = f + 3 * w;
+    const double dl = l;
     for (int n = -l; n <= l; ++n) {
-        const T dn = T(n);
-        const T den = (n > -l && n < l) ? (dl + dn) * (dl - dn) : (2 * dl) * (2 * dl - 1);
-        invd[n + l] = T(1) / std::sqrt(den);
+        const double dn = n;
+        const double den = (n > -l && n < l) ? (dl + dn) * (dl - dn) : (2 * dl) * (2 * dl - 1);
+        invd[n + l] = 1 / std::sqrt(den);
     }
     for (int m = -l; m <= l; ++m) {
         const int am = m < 0 ? -m : m;
-        const T dm = T(m), dam = T(am);
-        const T d0 = m == 0 ? T(1) : T(0);
+        const double dm = m, dam = am;
+        const double d0 = m == 0 ? 1 : 0;
         us[m + l] = std::sqrt((dl + dm) * (dl - dm));
-        vs[m + l] = T(0.5) * std::sqrt((1 + d0) * (dl + dam - 1) * (dl + dam)) * (1 - 2 * d0);
-        ws[m + l] =
-            (m != 0 && am < l - 1) ? T(-0.5) * std::sqrt((dl - dam - 1) * (dl - dam)) : T(0);
+        vs[m + l] = 0.5 * std::sqrt((1 + d0) * (dl + dam - 1) * (dl + dam)) * (1 - 2 * d0);
+        ws[m + l] = (m != 0 && am < l - 1) ? -0.5 * std::sqrt((dl - dam - 1) * (dl - dam)) : 0.0;
     }
+}
+
+/// All factors for bands 2 <= l < ir_max_bands, built once per type (thread-safe static).
+template <class T>
+struct IrTable {
+    std::vector<T> f;
+    std::array<std::size_t, ir_max_bands + 1> off{};
+    IrTable() {
+        std::size_t n = 0;
+        for (int l = 2; l < ir_max_bands; ++l) {
+            off[static_cast<std::size_t>(l)] = n;
+            n += 4 * static_cast<std::size_t>(2 * l + 1);
+        }
+        f.resize(n);
+        std::vector<double> tmp(4 * static_cast<std::size_t>(2 * ir_max_bands + 1));
+        for (int l = 2; l < ir_max_bands; ++l) {
+            ir_factors(l, tmp.data());
+            for (std::size_t i = 0; i < 4 * static_cast<std::size_t>(2 * l + 1); ++i)
+                f[off[static_cast<std::size_t>(l)] + i] = static_cast<T>(tmp[i]);
+        }
+    }
+    const T* band(int l) const noexcept { return f.data() + off[static_cast<std::size_t>(l)]; }
+};
+template <class T>
+const IrTable<T>& ir_table() {
+    static const IrTable<T> t;
+    return t;
+}
+
+/// Scratch values ir_band needs for band l: the three tables P(i, a, .), i = -1, 0, 1.
+constexpr std::size_t ir_scratch_size(int l) noexcept {
+    return 3 * static_cast<std::size_t>(2 * l - 1) * static_cast<std::size_t>(2 * l + 1);
+}
+
+/// One step of the Ivanic-Ruedenberg recurrence: band 2 <= l < ir_max_bands into cur
+/// ((2l+1)^2, row-major, entry (m, n) at (m+l)(2l+1) + n+l) from band l-1 in prev and band 1
+/// in b1, with the factors of ir_table() and ir_scratch_size(l) values of scratch.
+/// The functions P(i, a, b) of Ivanic-Ruedenberg Table 2 are tabulated first (row a, column
+/// b), so that every entry is a branch-free sum of five table rows times per-row factors.
+template <class T>
+void ir_band(int l, const std::array<T, 9>& b1, const T* SPHBASIS_RESTRICT prev,
+             T* SPHBASIS_RESTRICT cur, const IrTable<T>& table,
+             T* SPHBASIS_RESTRICT scratch) noexcept {
+    SPHBASIS_ASSERT(l >= 2 && l < ir_max_bands);
+    const int w = 2 * l + 1, pw = 2 * l - 1;
+    const T* invd = table.band(l);
+    const T* us = invd + w;
+    const T* vs = invd + 2 * w;
+    const T* ws = invd + 3 * w;
     auto R = [&](int i, int j) { return b1[static_cast<std::size_t>(3 * (i + 1) + (j + 1))]; };
-    auto M = [&](int a, int b) { return prev[(a + l - 1) * pw + (b + l - 1)]; };
-    // P(i, a, b) of Ivanic-Ruedenberg Table 2.
-    auto P = [&](int i, int a, int b) -> T {
-        if (b == l) return R(i, 1) * M(a, l - 1) - R(i, -1) * M(a, 1 - l);
-        if (b == -l) return R(i, 1) * M(a, 1 - l) + R(i, -1) * M(a, l - 1);
-        return R(i, 0) * M(a, b);
-    };
+    // P tables: ptab(i, a) points to the 2l+1 values P(i, a, b), b = -l..l.
+    auto ptab = [&](int i, int a) { return scratch + ((i + 1) * pw + (a + l - 1)) * w; };
+    for (int i = -1; i <= 1; ++i) {
+        const T r0 = R(i, 0), rp = R(i, 1), rm = R(i, -1);
+        for (int a = 1 - l; a <= l - 1; ++a) {
+            const T* mrow = prev + (a + l - 1) * pw;
+            T* p = ptab(i, a);
+            for (int b = 0; b < pw; ++b) p[b + 1] = r0 * mrow[b];
+            p[w - 1] = rp * mrow[pw - 1] - rm * mrow[0];
+            p[0] = rp * mrow[0] + rm * mrow[pw - 1];
+        }
+    }
     const T s2 = T(1.4142135623730951);  // sqrt(2)
     for (int m = -l; m <= l; ++m) {
         const int am = m < 0 ? -m : m;
-        T* row = cur + (m + l) * w;
-        for (int n = -l; n <= l; ++n) {
-            T acc = 0;
-            if (am < l) acc = us[m + l] * P(0, m, n);
-            T V;
-            if (m == 0)
-                V = P(1, 1, n) + P(-1, -1, n);
-            else if (m == 1)
-                V = P(1, 0, n) * s2;
-            else if (m == -1)
-                V = P(-1, 0, n) * s2;
-            else if (m > 0)
-                V = P(1, m - 1, n) - P(-1, 1 - m, n);
-            else
-                V = P(1, m + 1, n) + P(-1, -m - 1, n);
-            acc += vs[m + l] * V;
-            if (m != 0 && am < l - 1) {
-                const T W =
-                    m > 0 ? P(1, m + 1, n) + P(-1, -m - 1, n) : P(1, m - 1, n) - P(-1, 1 - m, n);
-                acc += ws[m + l] * W;
-            }
-            row[n + l] = acc * invd[n + l];
+        const T u = us[m + l], v = vs[m + l], wf = ws[m + l];
+        // U: P(0, m, .); V and W: rows of P(1, ., .) and P(-1, ., .) with signed factors.
+        const T* pu = ptab(0, am < l ? m : 0);
+        const T cu = am < l ? u : T(0);
+        const T *pa = ptab(1, 0), *pb = ptab(-1, 0), *pc = ptab(1, 0), *pd = ptab(-1, 0);
+        T ca = 0, cb = 0, cc = 0, cd = 0;
+        if (m == 0) {
+            pa = ptab(1, 1), ca = v;
+            pb = ptab(-1, -1), cb = v;
+        } else if (m == 1) {
+            pa = ptab(1, 0), ca = v * s2;
+        } else if (m == -1) {
+            pb = ptab(-1, 0), cb = v * s2;
+        } else if (m > 0) {
+            pa = ptab(1, m - 1), ca = v;
+            pb = ptab(-1, 1 - m), cb = -v;
+        } else {
+            pa = ptab(1, m + 1), ca = v;
+            pb = ptab(-1, -m - 1), cb = v;
         }
+        if (m != 0 && am < l - 1) {
+            if (m > 0) {
+                pc = ptab(1, m + 1), cc = wf;
+                pd = ptab(-1, -m - 1), cd = wf;
+            } else {
+                pc = ptab(1, m - 1), cc = wf;
+                pd = ptab(-1, 1 - m), cd = -wf;
+            }
+        }
+        T* row = cur + (m + l) * w;
+        for (int n = 0; n < w; ++n)
+            row[n] = (cu * pu[n] + ca * pa[n] + cb * pb[n] + cc * pc[n] + cd * pd[n]) * invd[n];
     }
 }
 
@@ -229,9 +286,6 @@ void check_pointers(const T* in, const C* out, const char* fn) {
     if (!in || !out)
         throw std::invalid_argument(fn_name(fn) + ": expected non-null coefficient arrays");
 }
-
-/// Band counts up to this use the Ivanic-Ruedenberg recurrence; above it Risbo's recursion.
-inline constexpr int ir_max_bands = 24;
 
 /// A unit quaternion (w, x, y, z) in double.
 struct Quatd {
@@ -569,6 +623,18 @@ class Rotation {
                                 T tolerance = detail::default_orthonormal_tolerance<T>()) {
         detail::check_rotation_bands(bands, max_rotation_matrix_bands, "sh::Rotation::from_matrix");
         detail::check_orthonormal(r, tolerance, "sh::Rotation::from_matrix");
+        return build(bands, r);
+    }
+
+    /// D of the quaternion (w, x, y, z): normalised if not unit; zero or non-finite throws.
+    static Rotation from_quaternion(int bands, T w, T x, T y, T z) {
+        detail::check_rotation_bands(bands, max_rotation_matrix_bands,
+                                     "sh::Rotation::from_quaternion");
+        return build(bands, matrix_from_quaternion(w, x, y, z));
+    }
+
+  private:
+    static Rotation build(int bands, const Mat3<T>& r) {
         Rotation out;
         out.bands_ = bands;
         out.data_.assign(offset(bands), T(0));
@@ -588,13 +654,15 @@ class Rotation {
         }
         const std::array<T, 9> b1 = detail::band1(r);
         std::copy(b1.begin(), b1.end(), out.data_.begin() + static_cast<std::ptrdiff_t>(offset(1)));
-        detail::Scratch<T, 64> scratch(detail::ir_scratch_size(bands - 1));
+        const detail::IrTable<T>& table = detail::ir_table<T>();
+        detail::Scratch<T, 512> scratch(detail::ir_scratch_size(bands - 1));
         for (int l = 2; l < bands; ++l)
             detail::ir_band(l, b1, out.data_.data() + offset(l - 1), out.data_.data() + offset(l),
-                            scratch.data());
+                            table, scratch.data());
         return out;
     }
 
+  public:
     int bands() const noexcept { return bands_; }
     /// Number of stored values, n(4n^2 - 1)/3.
     std::size_t size() const noexcept { return data_.size(); }
@@ -649,7 +717,7 @@ class Rotation {
         if (bands_ == 0) return;
         detail::check_pointers(in, out, fn);
         out[0] = in[0] * data_[0];
-        detail::Scratch<C, 64> buf(static_cast<std::size_t>(2 * bands_ - 1));
+        detail::Scratch<C, 16> buf(static_cast<std::size_t>(2 * bands_ - 1));
         for (int l = 1; l < bands_; ++l) {
             const int w = 2 * l + 1, k0 = l * l;
             for (int j = 0; j < w; ++j) buf[static_cast<std::size_t>(j)] = in[k0 + j];
@@ -675,7 +743,7 @@ Rotation<T> rotation_from_matrix(int bands, const Mat3<T>& r,
 /// non-finite one throws std::invalid_argument.
 template <class T>
 Rotation<T> rotation_from_quaternion(int bands, T w, T x, T y, T z) {
-    return Rotation<T>::from_matrix(bands, matrix_from_quaternion(w, x, y, z));
+    return Rotation<T>::from_quaternion(bands, w, x, y, z);
 }
 
 /// D of the ZYZ Euler angles: R = Rz(alpha) Ry(beta) Rz(gamma) (matrix_from_euler_zyz).
@@ -700,6 +768,11 @@ Rotation<T> rotation_90(int bands, int axis, int quarter_turns) {
 // ---------------------------------------------------------------------------------------------
 // Applying rotations without storing the matrix
 
+namespace detail {
+template <class T, class C>
+void rotate_checked(int bands, const Mat3<T>& r, const C* in, C* out);
+}  // namespace detail
+
 /// out = D(R) in for `bands` bands without storing D: each band is built from the previous
 /// one and applied at once (O(n^2) scratch memory, O(n^3) time, up to max_bands bands). C is
 /// any type with C + C and C * T (RGB coefficients rotate with one matrix build). in == out is
@@ -712,6 +785,24 @@ void rotate(int bands, const Mat3<T>& r, const C* in, C* out,
     detail::check_orthonormal(r, tolerance, "sh::rotate");
     if (bands == 0) return;
     detail::check_pointers(in, out, "sh::rotate");
+    detail::rotate_checked(bands, r, in, out);
+}
+
+/// rotate() by the quaternion (w, x, y, z) (normalised if not unit; zero/non-finite throws).
+/// The matrix of a quaternion is orthonormal by construction, so it is not checked again.
+template <class T, class C>
+void rotate_quaternion(int bands, T w, T x, T y, T z, const C* in, C* out) {
+    detail::check_rotation_bands(bands, max_bands, "sh::rotate_quaternion");
+    const Mat3<T> r = matrix_from_quaternion(w, x, y, z);
+    if (bands == 0) return;
+    detail::check_pointers(in, out, "sh::rotate_quaternion");
+    detail::rotate_checked(bands, r, in, out);
+}
+
+namespace detail {
+/// rotate() after its checks: bands >= 1, r orthogonal, in and out non-null.
+template <class T, class C>
+void rotate_checked(int bands, const Mat3<T>& r, const C* in, C* out) {
     out[0] = in[0] * T(1);
     if (bands == 1) return;
     const std::size_t wmax = static_cast<std::size_t>(2 * bands - 1);
@@ -731,28 +822,24 @@ void rotate(int bands, const Mat3<T>& r, const C* in, C* out,
         return;
     }
     const std::array<T, 9> b1 = detail::band1(r);
-    detail::Scratch<T, 2 * 121 + 44> mats(2 * wmax * wmax + detail::ir_scratch_size(bands - 1));
+    detail::Scratch<T, 1024> mats(2 * wmax * wmax + detail::ir_scratch_size(bands - 1));
     T* prev = mats.data();
     T* cur = prev + wmax * wmax;
     T* scratch = cur + wmax * wmax;
-    detail::Scratch<C, 64> buf(wmax);
+    const detail::IrTable<T>& table = detail::ir_table<T>();
+    detail::Scratch<C, 16> buf(wmax);
     std::copy(b1.begin(), b1.end(), prev);
     for (int j = 0; j < 3; ++j) buf[static_cast<std::size_t>(j)] = in[1 + j];
     detail::apply_block(3, prev, buf.data(), out + 1);
     for (int l = 2; l < bands; ++l) {
-        detail::ir_band(l, b1, prev, cur, scratch);
+        detail::ir_band(l, b1, prev, cur, table, scratch);
         const int w = 2 * l + 1, k0 = l * l;
         for (int j = 0; j < w; ++j) buf[static_cast<std::size_t>(j)] = in[k0 + j];
         detail::apply_block(w, cur, buf.data(), out + k0);
         std::swap(prev, cur);
     }
 }
-
-/// rotate() by the quaternion (w, x, y, z) (normalised if not unit; zero/non-finite throws).
-template <class T, class C>
-void rotate_quaternion(int bands, T w, T x, T y, T z, const C* in, C* out) {
-    rotate(bands, matrix_from_quaternion(w, x, y, z), in, out);
-}
+}  // namespace detail
 
 /// Rotation by `angle` radians about z, O(n^2): for each m > 0 the pair (c = coefficient of
 /// y_lm ~ cos(m phi), s = coefficient of y_l,-m ~ sin(m phi)) becomes

@@ -1,0 +1,245 @@
+// Benchmarks of the SH operators (ops/sh_rotation, sh_convolution, sh_lights), float.
+// Items are what the name says: rotations (one coefficient vector rotated), lights (one light
+// turned into coefficients), texels (of a projected environment map) or normals (irradiance
+// evaluations); ns per item = 1e9 / items_per_second.
+//   rotation_build_apply<N>: Rotation::from_matrix(quaternion) + apply, N bands
+//   rotate_streaming<N>:     sh::rotate (band by band, matrix never stored)
+//   rotation_apply<N>:       apply of a prebuilt rotation (one channel, and RGB)
+//   rotate_z<N>:             rotation about z (cos/sin of m phi), for comparison
+//   *_light<3>:              the analytic lights at 3 bands, float RGB
+//   cubemap_project:         6 x 64 x 64 cube map (float RGB) to 3 bands
+//   latlong_project:         128 x 64 lat-long map (float RGB) to 3 bands
+//   irradiance_rh / irradiance_convolve: E(n) from 9 coefficients, RH quadratic form vs
+//                            clamped-cosine convolution + eval_sum
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <random>
+#include <sphbasis/ops/sh_convolution.hpp>
+#include <sphbasis/ops/sh_lights.hpp>
+#include <sphbasis/ops/sh_rotation.hpp>
+#include <vector>
+
+namespace sh = sphbasis::sh;
+
+namespace {
+
+struct RGB {
+    float r = 0, g = 0, b = 0;
+};
+inline RGB operator+(const RGB& a, const RGB& b) { return {a.r + b.r, a.g + b.g, a.b + b.b}; }
+inline RGB operator*(const RGB& a, float s) { return {a.r * s, a.g * s, a.b * s}; }
+
+constexpr std::size_t kCount = 256;
+
+std::vector<std::array<float, 4>> quaternions() {
+    std::mt19937 rng(1);
+    std::normal_distribution<float> g;
+    std::vector<std::array<float, 4>> q(kCount);
+    for (auto& v : q) v = {g(rng), g(rng), g(rng), g(rng)};
+    return q;
+}
+
+std::vector<sphbasis::vec3<float>> directions() {
+    std::mt19937 rng(2);
+    std::normal_distribution<float> g;
+    std::vector<sphbasis::vec3<float>> d(kCount);
+    for (auto& v : d) {
+        float x = g(rng), y = g(rng), z = g(rng);
+        const float r = std::sqrt(x * x + y * y + z * z);
+        v = {x / r, y / r, z / r};
+    }
+    return d;
+}
+
+template <int N>
+void rotation_build_apply(benchmark::State& st) {
+    const auto q = quaternions();
+    std::vector<float> in(N * N, 0.5f), out(N * N);
+    for (auto _ : st) {
+        for (const auto& v : q) {
+            const auto d = sh::rotation_from_quaternion(N, v[0], v[1], v[2], v[3]);
+            d.apply(in.data(), out.data());
+            benchmark::DoNotOptimize(out.data());
+        }
+    }
+    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+}
+
+template <int N>
+void rotate_streaming(benchmark::State& st) {
+    const auto q = quaternions();
+    std::vector<float> in(N * N, 0.5f), out(N * N);
+    for (auto _ : st) {
+        for (const auto& v : q) {
+            sh::rotate_quaternion(N, v[0], v[1], v[2], v[3], in.data(), out.data());
+            benchmark::DoNotOptimize(out.data());
+        }
+    }
+    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+}
+
+template <int N>
+void rotate_streaming_rgb(benchmark::State& st) {
+    const auto q = quaternions();
+    std::vector<RGB> in(N * N, RGB{0.5f, 0.25f, 1.0f}), out(N * N);
+    for (auto _ : st) {
+        for (const auto& v : q) {
+            sh::rotate_quaternion(N, v[0], v[1], v[2], v[3], in.data(), out.data());
+            benchmark::DoNotOptimize(out.data());
+        }
+    }
+    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+}
+
+template <int N>
+void rotation_apply(benchmark::State& st) {
+    const auto q = quaternions();
+    const auto d = sh::rotation_from_quaternion(N, q[0][0], q[0][1], q[0][2], q[0][3]);
+    std::vector<float> in(N * N * kCount, 0.5f), out(N * N * kCount);
+    for (auto _ : st) {
+        for (std::size_t i = 0; i < kCount; ++i)
+            d.apply(in.data() + i * N * N, out.data() + i * N * N);
+        benchmark::DoNotOptimize(out.data());
+    }
+    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+}
+
+template <int N>
+void rotation_apply_rgb(benchmark::State& st) {
+    const auto q = quaternions();
+    const auto d = sh::rotation_from_quaternion(N, q[0][0], q[0][1], q[0][2], q[0][3]);
+    std::vector<RGB> in(N * N * kCount, RGB{0.5f, 0.25f, 1.0f}), out(N * N * kCount);
+    for (auto _ : st) {
+        for (std::size_t i = 0; i < kCount; ++i)
+            d.apply(in.data() + i * N * N, out.data() + i * N * N);
+        benchmark::DoNotOptimize(out.data());
+    }
+    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+}
+
+template <int N>
+void rotate_z(benchmark::State& st) {
+    std::vector<float> in(N * N, 0.5f), out(N * N);
+    float a = 0.1f;
+    for (auto _ : st) {
+        for (std::size_t i = 0; i < kCount; ++i) {
+            sh::rotate_z(N, a, in.data(), out.data());
+            a += 0.01f;
+            benchmark::DoNotOptimize(out.data());
+        }
+    }
+    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+}
+
+template <class Light>
+void light_bench(benchmark::State& st, Light&& light) {
+    const auto d = directions();
+    RGB out[9];
+    for (auto _ : st) {
+        for (const auto& v : d) {
+            light(v, out);
+            benchmark::DoNotOptimize(out);
+        }
+    }
+    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+}
+
+void directional_light(benchmark::State& st) {
+    light_bench(st, [](const sphbasis::vec3<float>& v, RGB* out) {
+        sh::directional_light(3, v.x, v.y, v.z, RGB{1, 2, 3}, out);
+    });
+}
+void cone_light(benchmark::State& st) {
+    light_bench(st, [](const sphbasis::vec3<float>& v, RGB* out) {
+        sh::cone_light(3, v.x, v.y, v.z, 0.3f, RGB{1, 2, 3}, out);
+    });
+}
+void spherical_light(benchmark::State& st) {
+    light_bench(st, [](const sphbasis::vec3<float>& v, RGB* out) {
+        sh::spherical_light(3, 4 * v.x, 4 * v.y, 4 * v.z, 1.0f, RGB{1, 2, 3}, out);
+    });
+}
+void hemisphere_light(benchmark::State& st) {
+    light_bench(st, [](const sphbasis::vec3<float>& v, RGB* out) {
+        sh::hemisphere_light(3, v.x, v.y, v.z, RGB{1, 2, 3}, RGB{0.1f, 0.2f, 0.3f}, out);
+    });
+}
+
+void cubemap_project(benchmark::State& st) {
+    const int n = 64;
+    std::vector<RGB> tex(6 * n * n);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(0, 1);
+    for (auto& t : tex) t = {u(rng), u(rng), u(rng)};
+    RGB out[9];
+    for (auto _ : st) {
+        sh::project_cubemap(3, n, tex.data(), out);
+        benchmark::DoNotOptimize(out);
+    }
+    st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations()) * 6 * n * n);
+}
+
+void latlong_project(benchmark::State& st) {
+    const int w = 128, h = 64;
+    std::vector<RGB> tex(static_cast<std::size_t>(w * h));
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<float> u(0, 1);
+    for (auto& t : tex) t = {u(rng), u(rng), u(rng)};
+    RGB out[9];
+    for (auto _ : st) {
+        sh::project_latlong(3, w, h, tex.data(), out);
+        benchmark::DoNotOptimize(out);
+    }
+    st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations()) * w * h);
+}
+
+void irradiance_rh(benchmark::State& st) {
+    const auto d = directions();
+    float L[9] = {1, 0.2f, 0.3f, -0.1f, 0.05f, 0.1f, -0.2f, 0.02f, 0.03f};
+    const auto M = sh::irradiance_matrix<float>(L);
+    float acc = 0;
+    for (auto _ : st) {
+        for (const auto& v : d) acc += sh::eval_irradiance_matrix(M, v.x, v.y, v.z);
+        benchmark::DoNotOptimize(acc);
+    }
+    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+}
+
+void irradiance_convolve(benchmark::State& st) {
+    const auto d = directions();
+    float L[9] = {1, 0.2f, 0.3f, -0.1f, 0.05f, 0.1f, -0.2f, 0.02f, 0.03f}, E[9];
+    const auto a = sh::clamped_cosine_kernel<float>(3);
+    sh::convolve(3, a.data(), L, E);
+    float acc = 0;
+    for (auto _ : st) {
+        for (const auto& v : d) acc += sh::eval_sum(3, E, v.x, v.y, v.z);
+        benchmark::DoNotOptimize(acc);
+    }
+    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+}
+
+}  // namespace
+
+BENCHMARK_TEMPLATE(rotation_build_apply, 3);
+BENCHMARK_TEMPLATE(rotation_build_apply, 6);
+BENCHMARK_TEMPLATE(rotate_streaming, 3);
+BENCHMARK_TEMPLATE(rotate_streaming, 6);
+BENCHMARK_TEMPLATE(rotate_streaming_rgb, 3);
+BENCHMARK_TEMPLATE(rotate_streaming_rgb, 6);
+BENCHMARK_TEMPLATE(rotation_apply, 3);
+BENCHMARK_TEMPLATE(rotation_apply, 6);
+BENCHMARK_TEMPLATE(rotation_apply_rgb, 3);
+BENCHMARK_TEMPLATE(rotation_apply_rgb, 6);
+BENCHMARK_TEMPLATE(rotate_z, 3);
+BENCHMARK_TEMPLATE(rotate_z, 6);
+BENCHMARK(directional_light);
+BENCHMARK(cone_light);
+BENCHMARK(spherical_light);
+BENCHMARK(hemisphere_light);
+BENCHMARK(cubemap_project);
+BENCHMARK(latlong_project);
+BENCHMARK(irradiance_rh);
+BENCHMARK(irradiance_convolve);
+
+BENCHMARK_MAIN();
