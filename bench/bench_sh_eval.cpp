@@ -8,9 +8,8 @@
 #include <benchmark/benchmark.h>
 
 #include <random>
-#include <vector>
-
 #include <sphbasis/basis/sh.hpp>
+#include <vector>
 
 namespace {
 

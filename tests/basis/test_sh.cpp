@@ -1,17 +1,15 @@
 // Tests for basis/sh.hpp: conventions, orthonormality, references, kernels, bad input.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <fstream>
+#include <glm/vec3.hpp>
 #include <limits>
 #include <random>
+#include <sphbasis/basis/sh.hpp>
+#include <sphbasis/core/quadrature.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <glm/vec3.hpp>
-#include <sphbasis/basis/sh.hpp>
-#include <sphbasis/core/quadrature.hpp>
 
 using namespace sphbasis;
 
@@ -51,7 +49,8 @@ TEST_CASE("sh: band 0-2 values and signs pin the convention (no Condon-Shortley 
     CHECK(v[3] == Approx(c1 * x).epsilon(1e-15));  // y_11 = +c x
     CHECK(v[4] == Approx(c2 * x * y).epsilon(1e-15));
     CHECK(v[5] == Approx(c2 * y * z).epsilon(1e-15));
-    CHECK(v[6] == Approx(0.31539156525252001 * (3 * z * z - 1)).margin(4e-16));  // cancellation in 3z^2-1: absolute
+    CHECK(v[6] == Approx(0.31539156525252001 * (3 * z * z - 1))
+                      .margin(4e-16));  // cancellation in 3z^2-1: absolute
     CHECK(v[7] == Approx(c2 * x * z).epsilon(1e-15));
     CHECK(v[8] == Approx(0.54627421529603959 * (x * x - y * y)).epsilon(1e-15));
     CHECK(sh::index(2, -1) == 5);
@@ -73,7 +72,8 @@ TEST_CASE("sh: Gram matrix is the identity by exact quadrature", "[sh]") {
         double worst = 0;
         for (int a = 0; a < n; ++a)
             for (int b = 0; b <= a; ++b)
-                worst = std::max(worst, std::fabs(g[static_cast<std::size_t>(a * n + b)] - (a == b)));
+                worst =
+                    std::max(worst, std::fabs(g[static_cast<std::size_t>(a * n + b)] - (a == b)));
         INFO("bands " << bands);
         CHECK(worst < 1e-12);
     }
@@ -84,9 +84,11 @@ TEST_CASE("sh: addition theorem sum_m y_lm^2 = (2l+1)/(4 pi) to 100 bands", "[sh
         const auto v = eval_d(100, d[0], d[1], d[2]);
         for (int l = 0; l < 100; ++l) {
             double s = 0;
-            for (int m = -l; m <= l; ++m) s += v[static_cast<std::size_t>(sh::index(l, m))] *
-                                                v[static_cast<std::size_t>(sh::index(l, m))];
-            REQUIRE(std::fabs(s - norm_s(l) * norm_s(l)) <= 1e-13 * norm_s(l) * norm_s(l) * (l + 1));
+            for (int m = -l; m <= l; ++m)
+                s += v[static_cast<std::size_t>(sh::index(l, m))] *
+                     v[static_cast<std::size_t>(sh::index(l, m))];
+            REQUIRE(std::fabs(s - norm_s(l) * norm_s(l)) <=
+                    1e-13 * norm_s(l) * norm_s(l) * (l + 1));
         }
     }
 }
@@ -101,26 +103,33 @@ TEST_CASE("sh: unrolled kernels, row recurrence and column recurrence agree", "[
         const int n = bands * bands;
         for (const auto& d : dirs) {
             std::vector<double> fixed(static_cast<std::size_t>(n)), rows(fixed), cols(fixed);
-            auto put = [](std::vector<double>& v) { return [&v](int k, double x) { v[static_cast<std::size_t>(k)] = x; }; };
+            auto put = [](std::vector<double>& v) {
+                return [&v](int k, double x) { v[static_cast<std::size_t>(k)] = x; };
+            };
             sh::detail::with_kernel(bands, [&](auto k) { k(d[0], d[1], d[2], put(fixed)); });
             sh::detail::eval_rows(bands, d[0], d[1], d[2], put(rows));
             sh::detail::eval_columns(bands, d[0], d[1], d[2], put(cols));
             for (int k = 0; k < n; ++k) {
                 const int l = sh::degree_of(k);
                 const double tol = 8 * std::numeric_limits<double>::epsilon() * norm_s(l);
-                REQUIRE(std::fabs(fixed[static_cast<std::size_t>(k)] - rows[static_cast<std::size_t>(k)]) <= tol);
-                REQUIRE(std::fabs(fixed[static_cast<std::size_t>(k)] - cols[static_cast<std::size_t>(k)]) <= tol);
+                REQUIRE(std::fabs(fixed[static_cast<std::size_t>(k)] -
+                                  rows[static_cast<std::size_t>(k)]) <= tol);
+                REQUIRE(std::fabs(fixed[static_cast<std::size_t>(k)] -
+                                  cols[static_cast<std::size_t>(k)]) <= tol);
             }
         }
     }
     // Row (<= 64 bands) against column recurrence at the switch-over.
     for (const auto& d : random_dirs(20, 12)) {
         std::vector<double> rows(64 * 64), cols(64 * 64);
-        sh::detail::eval_rows(64, d[0], d[1], d[2], [&](int k, double x) { rows[static_cast<std::size_t>(k)] = x; });
-        sh::detail::eval_columns(64, d[0], d[1], d[2], [&](int k, double x) { cols[static_cast<std::size_t>(k)] = x; });
+        sh::detail::eval_rows(64, d[0], d[1], d[2],
+                              [&](int k, double x) { rows[static_cast<std::size_t>(k)] = x; });
+        sh::detail::eval_columns(64, d[0], d[1], d[2],
+                                 [&](int k, double x) { cols[static_cast<std::size_t>(k)] = x; });
         for (int k = 0; k < 64 * 64; ++k)
-            REQUIRE(std::fabs(rows[static_cast<std::size_t>(k)] - cols[static_cast<std::size_t>(k)]) <=
-                    1e-13 * norm_s(sh::degree_of(k)));
+            REQUIRE(
+                std::fabs(rows[static_cast<std::size_t>(k)] - cols[static_cast<std::size_t>(k)]) <=
+                1e-13 * norm_s(sh::degree_of(k)));
     }
 }
 
@@ -130,7 +139,9 @@ TEST_CASE("sh: prefix property and eval_lm", "[sh]") {
     for (int k : {1, 2, 3, 8, 9, 31, 64, 65}) {
         const auto small = eval_d(k, d[0], d[1], d[2]);
         for (int i = 0; i < k * k; ++i)
-            REQUIRE(std::fabs(small[static_cast<std::size_t>(i)] - big[static_cast<std::size_t>(i)]) <= 1e-13 * norm_s(sh::degree_of(i)));
+            REQUIRE(
+                std::fabs(small[static_cast<std::size_t>(i)] - big[static_cast<std::size_t>(i)]) <=
+                1e-13 * norm_s(sh::degree_of(i)));
     }
     for (int l : {0, 1, 5, 33, 69})
         for (int m : {-l, -l / 2, 0, l / 3, l})
@@ -190,7 +201,8 @@ TEST_CASE("sh: float is within a stated bound of double", "[sh]") {
             std::vector<float> f(static_cast<std::size_t>(bands * bands));
             std::vector<double> dd(f.size());
             sh::eval(bands, float(d[0]), float(d[1]), float(d[2]), f.data());
-            sh::eval(bands, double(float(d[0])), double(float(d[1])), double(float(d[2])), dd.data());
+            sh::eval(bands, double(float(d[0])), double(float(d[1])), double(float(d[2])),
+                     dd.data());
             for (std::size_t k = 0; k < f.size(); ++k) {
                 const int l = sh::degree_of(int(k));
                 REQUIRE(std::fabs(double(f[k]) - dd[k]) <=
@@ -204,7 +216,8 @@ TEST_CASE("sh: Condon-Shortley conversion", "[sh]") {
     // f = sum c_k y_k must equal sum c'_k y'_k with y' the Condon-Shortley functions
     // (y'_lm = (-1)^m y_lm for the real basis), e.g. google's y'_11 = -sqrt(3/4pi) x.
     std::vector<double> c(16), cs(16);
-    for (int k = 0; k < 16; ++k) c[static_cast<std::size_t>(k)] = cs[static_cast<std::size_t>(k)] = 0.1 * (k + 1);
+    for (int k = 0; k < 16; ++k)
+        c[static_cast<std::size_t>(k)] = cs[static_cast<std::size_t>(k)] = 0.1 * (k + 1);
     sh::to_condon_shortley(4, cs.data());
     const auto v = eval_d(4, 0.2, 0.3, 0.9327379053088815);
     double f = 0, fcs = 0;
@@ -224,9 +237,17 @@ TEST_CASE("sh: Condon-Shortley conversion", "[sh]") {
 TEST_CASE("sh: hard directions stay finite and accurate", "[sh]") {
     // Poles, x = y = 0, equator, within 1e-12 of the poles, non-unit and denormal input.
     const double e = 1e-12;
-    const std::vector<std::array<double, 3>> hard = {
-        {0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {0, 1, 0}, {e, 0, 1}, {0, -e, -1}, {e, e, 1},
-        {1e-300, 0, 1}, {0.5, 0.5, 0}, {3e-310, 2e-310, 1e-310}, {1e300, 1e300, 1e300}};
+    const std::vector<std::array<double, 3>> hard = {{0, 0, 1},
+                                                     {0, 0, -1},
+                                                     {1, 0, 0},
+                                                     {0, 1, 0},
+                                                     {e, 0, 1},
+                                                     {0, -e, -1},
+                                                     {e, e, 1},
+                                                     {1e-300, 0, 1},
+                                                     {0.5, 0.5, 0},
+                                                     {3e-310, 2e-310, 1e-310},
+                                                     {1e300, 1e300, 1e300}};
     for (int bands : {3, 31, 200, 2001}) {
         std::vector<double> v(static_cast<std::size_t>(bands * bands));
         for (const auto& d : hard) {
@@ -238,7 +259,8 @@ TEST_CASE("sh: hard directions stay finite and accurate", "[sh]") {
     const auto v = eval_d(300, 0, 0, 1);
     for (int l = 0; l < 300; ++l)
         for (int m = -l; m <= l; ++m)
-            REQUIRE(std::fabs(v[static_cast<std::size_t>(sh::index(l, m))] - (m == 0 ? norm_s(l) : 0.0)) <=
+            REQUIRE(std::fabs(v[static_cast<std::size_t>(sh::index(l, m))] -
+                              (m == 0 ? norm_s(l) : 0.0)) <=
                     (1e-12 + l * double(l) * 1.1e-16) * norm_s(l));
 }
 
@@ -247,7 +269,8 @@ TEST_CASE("sh: bad input has its documented outcome", "[sh]") {
     sh::eval(3, 0.0, 0.0, 1.0, pole);
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const double inf = std::numeric_limits<double>::infinity();
-    for (auto d : std::vector<std::array<double, 3>>{{0, 0, 0}, {nan, 0, 1}, {0, inf, 0}, {nan, nan, nan}}) {
+    for (auto d :
+         std::vector<std::array<double, 3>>{{0, 0, 0}, {nan, 0, 1}, {0, inf, 0}, {nan, nan, nan}}) {
         sh::eval(3, d[0], d[1], d[2], v);
         for (int k = 0; k < 9; ++k) REQUIRE(v[k] == pole[k]);
     }

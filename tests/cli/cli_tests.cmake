@@ -32,3 +32,15 @@ set_tests_properties(cli_eval_stdin PROPERTIES LABELS cli
 add_test(NAME cli_eval_stdin_malformed
          COMMAND sh -c "printf '0 0\\n' | \"$<TARGET_FILE:sphbasis_cli>\" eval --basis sh --coeffs 4 --dirs -")
 set_tests_properties(cli_eval_stdin_malformed PROPERTIES LABELS cli WILL_FAIL TRUE)
+
+# params (issue 5): a small run lists the DX10 cube map; bad options fail.
+sphbasis_cli_test(params_small "cube_dx10" params --points 2000)
+sphbasis_cli_fails(params_bad_points params --points 0)
+sphbasis_cli_fails(params_bad_option params --bogus 1)
+# eval for the hemispherical bases and their sizes.
+sphbasis_cli_test(eval_hbasis_pole "\"values\":\\[0.398942280401432[0-9]*,0,0.69098829894267[0-9]*,0,0,0\\]"
+                  eval --basis hbasis --coeffs 6 --dir 0,0,1)
+sphbasis_cli_test(eval_zernike_lm "\"values\":\\[" eval --basis zernike --lm 2,-2 --dir 0.3,0.2,0.9)
+sphbasis_cli_fails(eval_zernike_bad_size eval --basis zernike --coeffs 4 --dir 0,0,1)
+sphbasis_cli_fails(eval_hl2_lm eval --basis hl2 --lm 1,0 --dir 0,0,1)
+sphbasis_cli_fails(eval_hbasis_bad_size eval --basis hbasis --coeffs 5 --dir 0,0,1)

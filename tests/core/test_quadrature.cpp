@@ -1,12 +1,10 @@
 // Tests for core/quadrature.hpp and core/sampling.hpp.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <random>
-#include <vector>
-
 #include <sphbasis/core/quadrature.hpp>
 #include <sphbasis/core/sampling.hpp>
+#include <vector>
 
 using namespace sphbasis;
 
@@ -16,7 +14,8 @@ namespace {
 double sphere_monomial(int a, int b, int c) {
     if (a % 2 || b % 2 || c % 2) return 0;
     const double b1 = (a + 1) / 2.0, b2 = (b + 1) / 2.0, b3 = (c + 1) / 2.0;
-    return 2 * std::exp(std::lgamma(b1) + std::lgamma(b2) + std::lgamma(b3) - std::lgamma(b1 + b2 + b3));
+    return 2 * std::exp(std::lgamma(b1) + std::lgamma(b2) + std::lgamma(b3) -
+                        std::lgamma(b1 + b2 + b3));
 }
 // Over the upper hemisphere: half of the sphere's for even c; for odd c (a, b even), the
 // integral of z^c over z >= 0 doubles what symmetry would cancel: computed by the 1-D formula
@@ -26,13 +25,16 @@ double hemisphere_monomial(int a, int b, int c) {
     if (c % 2 == 0) return 0.5 * sphere_monomial(a, b, c);
     // Beta function B((c+1)/2, (a+b)/2 + 1) / 2 times the phi integral.
     const double p = (a + b) / 2.0;
-    const double zint = 0.5 * std::exp(std::lgamma((c + 1) / 2.0) + std::lgamma(p + 1) - std::lgamma((c + 1) / 2.0 + p + 1));
-    const double phint = 2 * std::exp(std::lgamma((a + 1) / 2.0) + std::lgamma((b + 1) / 2.0) - std::lgamma((a + b) / 2.0 + 1));
+    const double zint = 0.5 * std::exp(std::lgamma((c + 1) / 2.0) + std::lgamma(p + 1) -
+                                       std::lgamma((c + 1) / 2.0 + p + 1));
+    const double phint = 2 * std::exp(std::lgamma((a + 1) / 2.0) + std::lgamma((b + 1) / 2.0) -
+                                      std::lgamma((a + b) / 2.0 + 1));
     return zint * phint;
 }
 }  // namespace
 
-TEST_CASE("quadrature: Gauss-Legendre integrates polynomials of degree 2n-1 exactly", "[quadrature]") {
+TEST_CASE("quadrature: Gauss-Legendre integrates polynomials of degree 2n-1 exactly",
+          "[quadrature]") {
     for (int n : {1, 2, 3, 7, 20, 100, 1000}) {
         std::vector<double> t, w;
         gauss_legendre(n, t, w);
@@ -56,9 +58,11 @@ TEST_CASE("quadrature: sphere and hemisphere rules are exact to their degree", "
                 for (int c = 0; a + b + c <= degree; ++c) {
                     double qs = 0, qh = 0;
                     for (std::size_t i = 0; i < s.size(); ++i)
-                        qs += s.w[i] * std::pow(s.x[i], a) * std::pow(s.y[i], b) * std::pow(s.z[i], c);
+                        qs += s.w[i] * std::pow(s.x[i], a) * std::pow(s.y[i], b) *
+                              std::pow(s.z[i], c);
                     for (std::size_t i = 0; i < h.size(); ++i)
-                        qh += h.w[i] * std::pow(h.x[i], a) * std::pow(h.y[i], b) * std::pow(h.z[i], c);
+                        qh += h.w[i] * std::pow(h.x[i], a) * std::pow(h.y[i], b) *
+                              std::pow(h.z[i], c);
                     INFO("degree " << degree << " monomial " << a << " " << b << " " << c);
                     REQUIRE(std::fabs(qs - sphere_monomial(a, b, c)) <= 1e-13);
                     REQUIRE(std::fabs(qh - hemisphere_monomial(a, b, c)) <= 1e-13);
@@ -93,7 +97,7 @@ TEST_CASE("sampling: warps land on their domain and pdfs integrate to one", "[sa
     const double n = double(u.size());
     CHECK(mean_z_sphere / n == Approx(0.0).margin(2e-3));
     CHECK(mean_z_hemi / n == Approx(0.5).margin(2e-3));
-    CHECK(mean_z_cos / n == Approx(2.0 / 3.0).margin(2e-3));  // E[z] under z/pi
+    CHECK(mean_z_cos / n == Approx(2.0 / 3.0).margin(2e-3));       // E[z] under z/pi
     CHECK(inv_pdf_cos / n == Approx(constants::pi).margin(1e-9));  // int z dw = pi
     // Low-discrepancy sets: Hammersley and R2 cover the square evenly.
     double su = 0, sv = 0;

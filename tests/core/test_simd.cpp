@@ -1,9 +1,7 @@
 // Tests for core/simd.hpp and core/vec.hpp: batch lanes match scalar operations.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <limits>
-
 #include <sphbasis/core/simd.hpp>
 #include <sphbasis/core/vec.hpp>
 
@@ -36,8 +34,8 @@ TEMPLATE_TEST_CASE("vec: normalize_or_pole, scalar and batch", "[simd]", float, 
     using V = batch<T>;
     const T nan = std::numeric_limits<T>::quiet_NaN(), inf = std::numeric_limits<T>::infinity();
     const T dn = std::numeric_limits<T>::denorm_min(), big = std::numeric_limits<T>::max();
-    const T in[][3] = {{0, 0, 0},   {nan, 0, 1}, {0, inf, 0}, {3, 4, 0},  {dn, 0, 0},
-                       {big, big, big}, {0, -2, 0}, {-0.2f, 0.3f, -0.5f}};
+    const T in[][3] = {{0, 0, 0},  {nan, 0, 1},     {0, inf, 0}, {3, 4, 0},
+                       {dn, 0, 0}, {big, big, big}, {0, -2, 0},  {-0.2f, 0.3f, -0.5f}};
     const int n = sizeof in / sizeof in[0];
     for (int i = 0; i < n; ++i) {
         T x = in[i][0], y = in[i][1], z = in[i][2];

@@ -1,10 +1,8 @@
 // Tests for ops/projection.hpp: projection, Monte Carlo projection, least squares, conversion
 // matrices (including the thesis's SH -> modified H-basis matrix, Listing 2.1).
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <random>
-
 #include <sphbasis/basis/hbasis.hpp>
 #include <sphbasis/basis/sh.hpp>
 #include <sphbasis/core/sampling.hpp>
@@ -66,10 +64,12 @@ TEST_CASE("projection: least squares on the hemisphere for a non-orthogonal set"
     CHECK(squared_error(sh3, p, f, rule) > 1e-3);
 }
 
-TEST_CASE("projection: SH -> modified H-basis matrix reproduces thesis Listing 2.1", "[projection]") {
+TEST_CASE("projection: SH -> modified H-basis matrix reproduces thesis Listing 2.1",
+          "[projection]") {
     // Least squares over the upper hemisphere of 3-band SH (irradiance) into the 6-function
     // modified H-basis. Listing 2.1 prints the nonzeros to 5 significant digits.
-    const Eigen::MatrixXd t = conversion(evaluator<SH>(9), evaluator<HBasisMod>(6), hemisphere_rule(8));
+    const Eigen::MatrixXd t =
+        conversion(evaluator<SH>(9), evaluator<HBasisMod>(6), hemisphere_rule(8));
     auto printed = [](double v) { return Approx(v).margin(0.5e-4 * std::max(1.0, std::fabs(v))); };
     CHECK(t(0, 0) == printed(0.70711));
     CHECK(t(0, 2) == printed(1.2247));
@@ -91,7 +91,7 @@ TEST_CASE("projection: SH -> modified H-basis matrix reproduces thesis Listing 2
     double h[6];
     basis_eval<HBasisMod>(6, 0.0, 0.0, 1.0, h);
     CHECK(h[0] == Approx(0.39894).margin(0.5e-5));  // 1/sqrt(2 pi)
-    CHECK(h[2] == Approx(0.0).margin(1e-15));         // (1 - z) = 0 at the pole
+    CHECK(h[2] == Approx(0.0).margin(1e-15));       // (1 - z) = 0 at the pole
 }
 
 TEST_CASE("projection: conversion between spans that contain each other is exact", "[projection]") {
@@ -103,6 +103,11 @@ TEST_CASE("projection: conversion between spans that contain each other is exact
     CHECK(((b * a) - Eigen::MatrixXd::Identity(4, 4)).cwiseAbs().maxCoeff() < 1e-12);
     REQUIRE_THROWS_AS(evaluator<SH>(5), std::invalid_argument);
     // Linearly dependent functions: the Gram solve refuses.
-    BasisFunctions dup{2, [](double, double, double z, double* o) { o[0] = z; o[1] = 2 * z; }};
-    REQUIRE_THROWS_AS(fit(dup, [](double, double, double z) { return z; }, rule), std::runtime_error);
+    BasisFunctions dup{2, [](double, double, double z, double* o) {
+                           o[0] = z;
+                           o[1] = 2 * z;
+                       }};
+    REQUIRE_THROWS_AS(fit(
+                          dup, [](double, double, double z) { return z; }, rule),
+                      std::runtime_error);
 }

@@ -1,8 +1,7 @@
 // A user program: evaluates SH and checks a value, proving the headers are found and usable.
-#include <sphbasis/sphbasis.hpp>
-
 #include <cmath>
 #include <cstdio>
+#include <sphbasis/sphbasis.hpp>
 
 int main() {
     double y[9];

@@ -26,7 +26,7 @@ struct UsageError : std::runtime_error {
 /// Command-line options in the forms `--name value` and `--name=value`. A value may start with
 /// '-' (negative numbers: `--dir -0.6,0,0.8`); anything else starting with "--" is an option.
 class Options {
-public:
+  public:
     /// Parses args; `flags` are the option names that take no value (e.g. "--help").
     Options(const Args& args, const std::vector<std::string>& known,
             const std::vector<std::string>& flags = {});
@@ -38,7 +38,7 @@ public:
     /// Arguments that belong to no option.
     const std::vector<std::string>& positional() const { return positional_; }
 
-private:
+  private:
     std::vector<std::pair<std::string, std::vector<std::string>>> opts_;
     std::vector<std::string> positional_;
 };

@@ -8,11 +8,10 @@
 // standard input (blank lines and lines starting with '#' are skipped).
 #include <cmath>
 #include <iostream>
+#include <sphbasis/basis/registry.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <sphbasis/basis/registry.hpp>
 
 #include "cli.hpp"
 
@@ -39,7 +38,8 @@ int cmd_eval(const Args& args) {
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
-    if (o.has("--coeffs") == o.has("--lm")) throw UsageError("give exactly one of --coeffs N or --lm L,M");
+    if (o.has("--coeffs") == o.has("--lm"))
+        throw UsageError("give exactly one of --coeffs N or --lm L,M");
 
     int size = 0, pick = -1;
     int lm_l = 0, lm_m = 0;
@@ -69,22 +69,25 @@ int cmd_eval(const Args& args) {
     }
 
     std::vector<std::vector<double>> dirs;
-    for (const auto& s : o.values("--dir")) dirs.push_back(check_direction(parse_doubles(s, "--dir"), "--dir"));
+    for (const auto& s : o.values("--dir"))
+        dirs.push_back(check_direction(parse_doubles(s, "--dir"), "--dir"));
     for (const auto& s : o.positional()) {
         // `--dir X,Y,Z X,Y,Z ...`: further directions follow as plain arguments.
         if (!o.has("--dir")) throw UsageError("unexpected argument '" + s + "'");
         dirs.push_back(check_direction(parse_doubles(s, "--dir"), "--dir"));
     }
     const bool from_stdin = o.has("--dirs");
-    if (from_stdin && o.get("--dirs") != "-") throw UsageError("--dirs: only '-' (standard input) is supported");
-    if (from_stdin == o.has("--dir")) throw UsageError("give directions with --dir X,Y,Z or --dirs -");
+    if (from_stdin && o.get("--dirs") != "-")
+        throw UsageError("--dirs: only '-' (standard input) is supported");
+    if (from_stdin == o.has("--dir"))
+        throw UsageError("give directions with --dir X,Y,Z or --dirs -");
 
     const bool sh_single = pick >= 0 && std::string(basis->name) == "sh";
     std::vector<double> values(static_cast<std::size_t>(size));
     std::string out;
     auto emit = [&](const std::vector<double>& d) {
-        out = std::string("{\"basis\":\"") + basis->name + "\",\"dir\":[" + json_number(d[0]) + "," +
-              json_number(d[1]) + "," + json_number(d[2]) + "],\"values\":[";
+        out = std::string("{\"basis\":\"") + basis->name + "\",\"dir\":[" + json_number(d[0]) +
+              "," + json_number(d[1]) + "," + json_number(d[2]) + "],\"values\":[";
         if (sh_single) {
             // One SH function of any degree: O(l) column recurrence, no n^2 table.
             out += json_number(sh::eval_lm(lm_l, lm_m, d[0], d[1], d[2]));

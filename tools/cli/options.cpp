@@ -9,9 +9,7 @@
 namespace sphbasis::cli {
 
 namespace {
-bool looks_like_option(const std::string& a) {
-    return a.size() > 2 && a[0] == '-' && a[1] == '-';
-}
+bool looks_like_option(const std::string& a) { return a.size() > 2 && a[0] == '-' && a[1] == '-'; }
 }  // namespace
 
 Options::Options(const Args& args, const std::vector<std::string>& known,

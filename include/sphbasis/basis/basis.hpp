@@ -62,9 +62,7 @@ template <class V>
 struct SumStore {
     const scalar_t<V>* c;
     V* acc;
-    SPHBASIS_FORCEINLINE void operator()(int k, const V& v) const noexcept {
-        *acc += V(c[k]) * v;
-    }
+    SPHBASIS_FORCEINLINE void operator()(int k, const V& v) const noexcept { *acc += V(c[k]) * v; }
     SPHBASIS_FORCEINLINE void lane(int k, int j, scalar_t<V> v) const noexcept {
         acc->v[j] += c[k] * v;
     }
@@ -73,8 +71,8 @@ struct SumStore {
 /// Runs kernel over n SoA directions: whole SIMD batches, then a scalar tail.
 /// body(V x, V y, V z, std::size_t i) for batches, tail(T x, T y, T z, std::size_t i).
 template <class T, class Body, class Tail>
-SPHBASIS_FORCEINLINE void for_each_direction(std::size_t n, const T* xs, const T* ys,
-                                             const T* zs, Body&& body, Tail&& tail) {
+SPHBASIS_FORCEINLINE void for_each_direction(std::size_t n, const T* xs, const T* ys, const T* zs,
+                                             Body&& body, Tail&& tail) {
     using V = batch<T>;
     constexpr std::size_t W = static_cast<std::size_t>(V::size);
     std::size_t i = 0;
@@ -127,7 +125,8 @@ void basis_eval_batch(int n, std::size_t count, const T* xs, const T* ys, const 
                 kernel(x, y, z, detail::SoaStore<T>{out, stride, i});
             },
             [&](T x, T y, T z, std::size_t i) {
-                kernel(x, y, z, [&](int k, T v) { out[static_cast<std::size_t>(k) * stride + i] = v; });
+                kernel(x, y, z,
+                       [&](int k, T v) { out[static_cast<std::size_t>(k) * stride + i] = v; });
             });
     });
 }
@@ -140,9 +139,8 @@ C basis_eval_sum(int n, const C* coeffs, T x, T y, T z) {
     check_count<B>(n, "basis_eval_sum");
     normalize_or_pole(x, y, z);
     C acc = C{};
-    B::with_kernel(n, [&](auto kernel) {
-        kernel(x, y, z, [&](int k, T v) { acc = acc + coeffs[k] * v; });
-    });
+    B::with_kernel(
+        n, [&](auto kernel) { kernel(x, y, z, [&](int k, T v) { acc = acc + coeffs[k] * v; }); });
     return acc;
 }
 

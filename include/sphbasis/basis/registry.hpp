@@ -11,7 +11,12 @@
 
 #include "../ops/projection.hpp"
 #include "basis.hpp"
+#include "hbasis.hpp"
+#include "hl2.hpp"
+#include "hsh.hpp"
+#include "makhotkin.hpp"
 #include "sh.hpp"
+#include "zernike.hpp"
 
 namespace sphbasis {
 
@@ -35,8 +40,8 @@ struct BasisInfo {
     BasisFunctions functions(int n) const {
         if (!valid_count(n))
             throw std::invalid_argument(std::string("sphbasis::BasisInfo::functions(): expected ") +
-                                        count_rule() + " functions for basis '" + name +
-                                        "', got " + std::to_string(n));
+                                        count_rule() + " functions for basis '" + name + "', got " +
+                                        std::to_string(n));
         auto f = eval_d;
         return {n, [f, n](double x, double y, double z, double* out) { f(n, x, y, z, out); }};
     }
@@ -67,8 +72,8 @@ BasisInfo make_info(std::pair<int, int> (*lm)(int, int)) {
         [](int n, float x, float y, float z, float* out) { basis_eval<B>(n, x, y, z, out); },
         [](int n, std::size_t c, const float* xs, const float* ys, const float* zs, float* out,
            std::size_t stride) { basis_eval_batch<B>(n, c, xs, ys, zs, out, stride); },
-        [](int n, const float* co, std::size_t c, const float* xs, const float* ys,
-           const float* zs, float* out) { basis_eval_sum_batch<B>(n, co, c, xs, ys, zs, out); },
+        [](int n, const float* co, std::size_t c, const float* xs, const float* ys, const float* zs,
+           float* out) { basis_eval_sum_batch<B>(n, co, c, xs, ys, zs, out); },
         lm};
 }
 }  // namespace detail
@@ -77,6 +82,20 @@ BasisInfo make_info(std::pair<int, int> (*lm)(int, int)) {
 inline const std::vector<BasisInfo>& all_bases() {
     static const std::vector<BasisInfo> v = {
         detail::make_info<SH>(detail::banded_lm),
+        detail::make_info<HSH>(detail::banded_lm),
+        detail::make_info<Makhotkin>(detail::banded_lm),
+        // Zernike: band n holds m = -n, -n+2, ..., n; n + 1 bands = (n+1)(n+2)/2 functions.
+        detail::make_info<Zernike>([](int n, int m) -> std::pair<int, int> {
+            if (n < 0 || m < -n || m > n || (n - m) % 2 != 0)
+                throw std::invalid_argument(
+                    "sphbasis::lm_index(): expected n >= 0, |m| <= n and n - m even for "
+                    "zernike, got n = " +
+                    std::to_string(n) + ", m = " + std::to_string(m));
+            return {zernike::index(n, m), (n + 1) * (n + 2) / 2};
+        }),
+        detail::make_info<HBasis>(detail::no_lm),
+        detail::make_info<HBasisMod>(detail::no_lm),
+        detail::make_info<HL2>(detail::no_lm),
     };
     return v;
 }

@@ -63,9 +63,8 @@ inline int degree_of(int k) noexcept {
 /// Throws std::invalid_argument unless 0 <= bands <= max_bands.
 inline void check_bands(int bands, const char* fn) {
     if (bands < 0 || bands > max_bands)
-        throw std::invalid_argument(std::string("sphbasis::") + fn +
-                                    "(): expected 0 <= bands <= " + std::to_string(max_bands) +
-                                    ", got " + std::to_string(bands));
+        throw std::invalid_argument(std::string("sphbasis::") + fn + "(): expected 0 <= bands <= " +
+                                    std::to_string(max_bands) + ", got " + std::to_string(bands));
 }
 
 namespace detail {
@@ -74,25 +73,31 @@ namespace detail {
 /// stays below 1e13 here, so it cannot overflow even in float.
 inline constexpr int max_row_bands = 64;
 
+/// Rows of the recurrence are processed in chunks of row_chunk values (one AVX-512 register
+/// of doubles): the tables are zero-padded to whole chunks, so the inner loop has a fixed
+/// trip count and no scalar epilogue.
+inline constexpr int row_chunk = 8;
+
 /// Constants of the normalised recurrence for up to `bands` bands, in precision T.
-/// Row layout: for degree l >= 2 the pairs (a_lm, a_lm b_lm), m = 0..l-2, are contiguous.
+/// Row layout: for degree l >= 2 the pairs (a_lm, a_lm b_lm), m = 0..l-2, are contiguous and
+/// zero-padded to a multiple of row_chunk.
 template <class T>
 struct RowTable {
     int bands = 0;
-    std::vector<T> a, ab;       // row recurrence coefficients
-    std::vector<int> row;       // offset of degree l in a/ab
-    std::vector<T> diag;        // Q_m^m (sqrt(2) folded in for m > 0)
-    std::vector<T> sub;         // sqrt(2m+3): Q_{m+1}^m = sub[m] z Q_m^m
+    std::vector<T> a, ab;  // row recurrence coefficients
+    std::vector<int> row;  // offset of degree l in a/ab
+    std::vector<T> diag;   // Q_m^m (sqrt(2) folded in for m > 0)
+    std::vector<T> sub;    // sqrt(2m+3): Q_{m+1}^m = sub[m] z Q_m^m
 
     explicit RowTable(int n) : bands(n) {
         row.assign(static_cast<std::size_t>(std::max(n, 1)), 0);
         std::size_t off = 0;
         for (int l = 2; l < n; ++l) {
             row[static_cast<std::size_t>(l)] = static_cast<int>(off);
-            off += static_cast<std::size_t>(l - 1);
+            off += static_cast<std::size_t>((l - 1 + row_chunk - 1) / row_chunk * row_chunk);
         }
-        a.resize(off);
-        ab.resize(off);
+        a.assign(off, T(0));
+        ab.assign(off, T(0));
         for (int l = 2; l < n; ++l) {
             const double dl = l;
             for (int m = 0; m <= l - 2; ++m) {
@@ -100,7 +105,8 @@ struct RowTable {
                 const double al = std::sqrt((4 * dl * dl - 1) / (dl * dl - dm * dm));
                 const double bl =
                     std::sqrt(((dl - 1) * (dl - 1) - dm * dm) / (4 * (dl - 1) * (dl - 1) - 1));
-                const std::size_t i = static_cast<std::size_t>(row[static_cast<std::size_t>(l)] + m);
+                const std::size_t i =
+                    static_cast<std::size_t>(row[static_cast<std::size_t>(l)] + m);
                 a[i] = static_cast<T>(al);
                 ab[i] = static_cast<T>(al * bl);
             }
@@ -130,7 +136,11 @@ SPHBASIS_FORCEINLINE void eval_rows(int bands, const V& x, const V& y, const V& 
     using S = scalar_t<V>;
     const RowTable<S>& t = row_table<S>();
     SPHBASIS_ASSERT(bands <= max_row_bands);
-    V cm[max_row_bands], sm[max_row_bands], buf[3][max_row_bands];
+    V cm[max_row_bands], sm[max_row_bands];
+    // Rows padded by a chunk: the chunked loop reads and writes (zero-weighted) past l - 2.
+    V buf[3][max_row_bands + row_chunk];
+    for (auto& r : buf)
+        for (auto& v : r) v = V(S(0));
     cm[0] = V(S(1));
     sm[0] = V(S(0));
     for (int m = 1; m < bands; ++m) {
@@ -146,7 +156,15 @@ SPHBASIS_FORCEINLINE void eval_rows(int bands, const V& x, const V& y, const V& 
     for (int l = 1; l < bands; ++l) {
         const S* a = t.a.data() + (l >= 2 ? t.row[static_cast<std::size_t>(l)] : 0);
         const S* ab = t.ab.data() + (l >= 2 ? t.row[static_cast<std::size_t>(l)] : 0);
-        for (int m = 0; m <= l - 2; ++m) p0[m] = V(a[m]) * z * p1[m] - V(ab[m]) * p2[m];
+        {
+            // The three rows never overlap: say so, or the rotating pointers block SIMD.
+            V* SPHBASIS_RESTRICT q0 = p0;
+            const V* SPHBASIS_RESTRICT q1 = p1;
+            const V* SPHBASIS_RESTRICT q2 = p2;
+            for (int m0 = 0; m0 <= l - 2; m0 += row_chunk)
+                for (int j = m0; j < m0 + row_chunk; ++j)
+                    q0[j] = V(a[j]) * z * q1[j] - V(ab[j]) * q2[j];
+        }
         p0[l - 1] = V(t.sub[static_cast<std::size_t>(l - 1)]) * z * p1[l - 1];
         p0[l] = V(t.diag[static_cast<std::size_t>(l)]);
         const int k = l * (l + 1);
@@ -189,7 +207,8 @@ inline void column(int bands, int m, Scaled pmm, double z, Out&& out) {
     for (int l = m + 2; l < bands; ++l) {
         const double dl = l;
         const double al = std::sqrt((4 * dl * dl - 1) / ((dl - dm) * (dl + dm)));
-        const double bl = std::sqrt(((dl - 1 - dm) * (dl - 1 + dm)) / (4 * (dl - 1) * (dl - 1) - 1));
+        const double bl =
+            std::sqrt(((dl - 1 - dm) * (dl - 1 + dm)) / (4 * (dl - 1) * (dl - 1) - 1));
         p0 = al * (z * p1 - bl * p2);
         if (e < 0 && std::fabs(p0) > std::ldexp(1.0, rescale_bits)) {
             // Move magnitude from the mantissas into the exponent, but never above 2^0.
@@ -338,7 +357,8 @@ void eval_unit(int bands, T x, T y, T z, T* out) {
     static_assert(std::is_floating_point_v<T>, "sphbasis::sh::eval_unit: T is float or double.");
     check_bands(bands, "sh::eval_unit");
     if (bands == 0) return;
-    detail::with_kernel(bands, [&](auto kernel) { kernel(x, y, z, [&](int k, T v) { out[k] = v; }); });
+    detail::with_kernel(bands,
+                        [&](auto kernel) { kernel(x, y, z, [&](int k, T v) { out[k] = v; }); });
 }
 
 /// Evaluates the n*n functions of `bands` bands at direction (x, y, z), ACN order, into out.
@@ -366,8 +386,10 @@ SPHBASIS_FORCEINLINE void eval_unit(T x, T y, T z, T* out) noexcept {
                   "sphbasis::sh::eval_unit<N>: compile-time band counts are 1..64.");
     SPHBASIS_ASSERT(std::fabs(x * x + y * y + z * z - T(1)) <= T(1e-3));
     auto st = [&](int k, T v) { out[k] = v; };
-    if constexpr (N <= detail::max_fixed_bands) detail::eval_fixed<N>(x, y, z, st);
-    else detail::eval_rows(N, x, y, z, st);
+    if constexpr (N <= detail::max_fixed_bands)
+        detail::eval_fixed<N>(x, y, z, st);
+    else
+        detail::eval_rows(N, x, y, z, st);
 }
 
 /// Compile-time band count: unrolled code for N <= 8 (no allocation, no dispatch), the row
@@ -386,9 +408,9 @@ SPHBASIS_FORCEINLINE void eval(T x, T y, T z, T* out) noexcept {
 template <class T>
 T eval_lm(int l, int m, T x, T y, T z) {
     if (l < 0 || l >= max_bands || m < -l || m > l)
-        throw std::invalid_argument("sphbasis::sh::eval_lm(): expected 0 <= l < " +
-                                    std::to_string(max_bands) + " and |m| <= l, got l = " +
-                                    std::to_string(l) + ", m = " + std::to_string(m));
+        throw std::invalid_argument(
+            "sphbasis::sh::eval_lm(): expected 0 <= l < " + std::to_string(max_bands) +
+            " and |m| <= l, got l = " + std::to_string(l) + ", m = " + std::to_string(m));
     normalize_or_pole(x, y, z);
     const int am = m < 0 ? -m : m;
     double s, cp, sp;
@@ -468,7 +490,9 @@ struct SH {
         const int b = bands_of(n);
         return b >= 1 && b <= sh::max_bands;
     }
-    static const char* count_rule() noexcept { return "a square number (bands^2, bands <= 8192) of"; }
+    static const char* count_rule() noexcept {
+        return "a square number (bands^2, bands <= 8192) of";
+    }
     static int max_count() noexcept { return sh::max_bands * sh::max_bands; }
     template <class F>
     static decltype(auto) with_kernel(int n, F&& f) {
@@ -495,8 +519,10 @@ template <class T>
 void eval_sum_batch(int bands, const T* coeffs, std::size_t n, const T* xs, const T* ys,
                     const T* zs, T* out) {
     check_bands(bands, "sh::eval_sum_batch");
-    if (bands > 0) basis_eval_sum_batch<SH>(bands * bands, coeffs, n, xs, ys, zs, out);
-    else std::fill(out, out + n, T(0));
+    if (bands > 0)
+        basis_eval_sum_batch<SH>(bands * bands, coeffs, n, xs, ys, zs, out);
+    else
+        std::fill(out, out + n, T(0));
 }
 
 }  // namespace sh

@@ -86,7 +86,8 @@ inline void r2_sequence(std::uint64_t i, double& u, double& v) noexcept {
 /// k*k jittered-stratified points in the unit square (one per stratum), seeded.
 /// Throws std::invalid_argument for k < 1.
 inline void stratified(int k, std::uint64_t seed, std::vector<double>& u, std::vector<double>& v) {
-    if (k < 1) throw std::invalid_argument("sphbasis::stratified(): expected k >= 1 strata per axis");
+    if (k < 1)
+        throw std::invalid_argument("sphbasis::stratified(): expected k >= 1 strata per axis");
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> uni(0.0, 1.0);
     u.clear();

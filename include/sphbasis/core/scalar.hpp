@@ -4,9 +4,9 @@
 #pragma once
 
 #include <cmath>
+#include <type_traits>
 
 #include "../config.hpp"
-#include <type_traits>
 
 namespace sphbasis {
 

@@ -88,7 +88,9 @@ struct batch {
         std::memcpy(&r.v, p, sizeof(native_type));
         return r;
     }
-    SPHBASIS_FORCEINLINE void store(T* p) const noexcept { std::memcpy(p, &v, sizeof(native_type)); }
+    SPHBASIS_FORCEINLINE void store(T* p) const noexcept {
+        std::memcpy(p, &v, sizeof(native_type));
+    }
     SPHBASIS_FORCEINLINE T operator[](int i) const noexcept { return v[i]; }
 
     friend SPHBASIS_FORCEINLINE batch operator+(batch a, batch b) noexcept { return a.v + b.v; }
@@ -128,14 +130,20 @@ SPHBASIS_FORCEINLINE batch<T> select(typename batch<T>::mask_type m, batch<T> a,
 template <class T>
 SPHBASIS_FORCEINLINE batch<T> vsqrt(batch<T> a) noexcept {
 #if defined(__AVX512F__)
-    if constexpr (std::is_same_v<T, float>) return batch<T>(_mm512_maskz_sqrt_ps(__mmask16(0xFFFF), a.v));
-    else return batch<T>(_mm512_maskz_sqrt_pd(__mmask8(0xFF), a.v));
+    if constexpr (std::is_same_v<T, float>)
+        return batch<T>(_mm512_maskz_sqrt_ps(__mmask16(0xFFFF), a.v));
+    else
+        return batch<T>(_mm512_maskz_sqrt_pd(__mmask8(0xFF), a.v));
 #elif defined(__AVX__)
-    if constexpr (std::is_same_v<T, float>) return batch<T>(_mm256_sqrt_ps(a.v));
-    else return batch<T>(_mm256_sqrt_pd(a.v));
+    if constexpr (std::is_same_v<T, float>)
+        return batch<T>(_mm256_sqrt_ps(a.v));
+    else
+        return batch<T>(_mm256_sqrt_pd(a.v));
 #elif defined(__SSE2__)
-    if constexpr (std::is_same_v<T, float>) return batch<T>(_mm_sqrt_ps(a.v));
-    else return batch<T>(_mm_sqrt_pd(a.v));
+    if constexpr (std::is_same_v<T, float>)
+        return batch<T>(_mm_sqrt_ps(a.v));
+    else
+        return batch<T>(_mm_sqrt_pd(a.v));
 #else
     batch<T> r;
     for (int i = 0; i < batch<T>::size; ++i) r.v[i] = std::sqrt(a.v[i]);

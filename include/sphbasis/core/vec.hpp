@@ -36,13 +36,15 @@ namespace detail {
 template <class D, class = void>
 struct has_member_xyz : std::false_type {};
 template <class D>
-struct has_member_xyz<D, std::void_t<decltype(std::declval<const D&>().x),
-                                     decltype(std::declval<const D&>().z)>> : std::true_type {};
+struct has_member_xyz<
+    D, std::void_t<decltype(std::declval<const D&>().x), decltype(std::declval<const D&>().z)>>
+    : std::true_type {};
 template <class D, class = void>
 struct has_call_xyz : std::false_type {};
 template <class D>
-struct has_call_xyz<D, std::void_t<decltype(std::declval<const D&>().x()),
-                                   decltype(std::declval<const D&>().z())>> : std::true_type {};
+struct has_call_xyz<
+    D, std::void_t<decltype(std::declval<const D&>().x()), decltype(std::declval<const D&>().z())>>
+    : std::true_type {};
 }  // namespace detail
 
 /// Component i (0, 1, 2) of any 3-vector type: .x/.y/.z members, x()/y()/z() or operator[].
@@ -50,13 +52,19 @@ template <int I, class D>
 constexpr auto component(const D& d) noexcept {
     static_assert(I >= 0 && I < 3, "sphbasis::component: a direction has components 0, 1, 2.");
     if constexpr (detail::has_member_xyz<D>::value) {
-        if constexpr (I == 0) return d.x;
-        else if constexpr (I == 1) return d.y;
-        else return d.z;
+        if constexpr (I == 0)
+            return d.x;
+        else if constexpr (I == 1)
+            return d.y;
+        else
+            return d.z;
     } else if constexpr (detail::has_call_xyz<D>::value) {
-        if constexpr (I == 0) return d.x();
-        else if constexpr (I == 1) return d.y();
-        else return d.z();
+        if constexpr (I == 0)
+            return d.x();
+        else if constexpr (I == 1)
+            return d.y();
+        else
+            return d.z();
     } else {
         return d[I];
     }

@@ -20,9 +20,9 @@
 #pragma once
 
 #include <Eigen/Dense>
-#include <functional>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -52,7 +52,8 @@ inline Eigen::MatrixXd evaluation_matrix(const BasisFunctions& b, const Directio
     std::vector<double> row(static_cast<std::size_t>(b.n));
     for (std::size_t i = 0; i < rule.size(); ++i) {
         b.eval(rule.x[i], rule.y[i], rule.z[i], row.data());
-        for (int k = 0; k < b.n; ++k) a(static_cast<Eigen::Index>(i), k) = row[static_cast<std::size_t>(k)];
+        for (int k = 0; k < b.n; ++k)
+            a(static_cast<Eigen::Index>(i), k) = row[static_cast<std::size_t>(k)];
     }
     return a;
 }
@@ -115,7 +116,7 @@ inline Eigen::VectorXd project_mc(const BasisFunctions& b, const std::vector<vec
 /// A factorised Gram matrix: solves G c = r. Throws std::runtime_error if G is not positive
 /// definite to working precision (the functions are linearly dependent on the domain).
 class GramSolver {
-public:
+  public:
     explicit GramSolver(const Eigen::MatrixXd& g) : llt_(g) {
         if (llt_.info() != Eigen::Success)
             throw std::runtime_error(
@@ -130,7 +131,7 @@ public:
     Eigen::VectorXd solve(const Eigen::VectorXd& r) const { return llt_.solve(r); }
     Eigen::MatrixXd solve(const Eigen::MatrixXd& r) const { return llt_.solve(r); }
 
-private:
+  private:
     Eigen::LLT<Eigen::MatrixXd> llt_;
 };
 

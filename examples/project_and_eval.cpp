@@ -1,0 +1,25 @@
+// Example: project a function of direction onto SH, convert it to the modified H-basis over the
+// hemisphere (thesis Listing 2.1), and evaluate both at a normal, as a shader's CPU mirror would.
+#include <cmath>
+#include <cstdio>
+#include <sphbasis/sphbasis.hpp>
+
+int main() {
+    using namespace sphbasis;
+    // Radiance: a sky brighter towards +z and +x.
+    auto sky = [](double x, double, double z) { return 1.0 + 0.8 * z + 0.3 * x; };
+    const auto rule = sphere_rule(16);                               // exact for degree <= 16
+    const Eigen::VectorXd L = project(evaluator<SH>(9), sky, rule);  // 3 bands, 9 coefficients
+    Eigen::VectorXd E = L;  // irradiance / pi: clamped cosine
+    E(0) *= 1.0;
+    E.segment(1, 3) *= 2.0 / 3.0;
+    E.segment(4, 5) *= 1.0 / 4.0;
+    const Eigen::MatrixXd T =
+        conversion(evaluator<SH>(9), evaluator<HBasisMod>(6), hemisphere_rule(8));
+    const Eigen::VectorXd H = T * E;       // 6 modified H-basis coefficients
+    const double n[3] = {0.3, 0.1, 0.95};  // a tangent-space normal
+    std::printf("SH-9 irradiance %.6f, modified H-basis-6 %.6f\n",
+                sh::eval_sum(3, E.data(), n[0], n[1], n[2]),
+                basis_eval_sum<HBasisMod>(6, H.data(), n[0], n[1], n[2]));
+    return 0;
+}

@@ -1,0 +1,218 @@
+// sphbasis: Zernike polynomials adapted to the hemisphere (Koenderink), of any degree.
+//
+// References: F. Zernike, Physica 1, 1934 (the disk polynomials); J. J. Koenderink, A. J. van
+// Doorn, M. Stavridi, "Bidirectional reflection distribution function expressed in terms of
+// surface scattering modes", ECCV 1996 (the hemispherical adaptation); G. J. Kintner, Optica Acta
+// 23, 1976 and the Jacobi form below (the recurrence); the source thesis (Ishmukhametov,
+// "Irradiance Normal Mapping") section 1.8.5, whose printed forms (1.46)-(1.51) are only a
+// cross-check (see "Misprints" below).
+//
+// Definition. The hemisphere is mapped onto the unit disk by rho = sqrt(1 - cos t) (pole -> centre,
+// horizon -> rim) keeping the azimuth phi. Since rho^2 = 1 - z, dOmega = sin t dt dphi =
+// d(rho^2) dphi = 2 rho drho dphi, i.e. twice the disk's area element, so the disk's orthonormal
+// Zernike functions divided by sqrt(2) are orthonormal on the hemisphere:
+//   Z_n^m = sqrt((n+1) (2 - delta_m0) / (2 pi)) R_n^|m|(rho) trig(m phi),
+//   R_n^m(rho) = sum_s (-1)^s (n-s)! / (s! ((n+m)/2-s)! ((n-m)/2-s)!) rho^(n-2s),  R_n^m(1) = 1,
+// n >= 0, m = -n, -n+2, ..., n; trig = cos(m phi) for m > 0, sin(|m| phi) for m < 0, 1 for m = 0.
+// (Disk: int R_n^m R_n'^m rho drho = delta_nn' / (2(n+1)), int trig^2 dphi = pi (1 + delta_m0).)
+// In Cartesian form rho cos(phi) = x / sqrt(1+z), rho sin(phi) = y / sqrt(1+z), so
+// rho^|m| trig(m phi) = Re/Im ((x + iy) / sqrt(1+z))^|m| and the functions are polynomials in
+// x/sqrt(1+z), y/sqrt(1+z) (rho^2 = 1 - z). Sign convention as SH: cos(m phi) functions (m > 0)
+// are positive multiples of x-like terms, sin(|m| phi) functions (m < 0) of y-like terms. Bands
+// 0..2:
+//   Z_00 = 1/sqrt(2 pi)
+//   Z_1-1 = sqrt(2/pi) y / sqrt(1+z)          Z_11 = sqrt(2/pi) x / sqrt(1+z)
+//   Z_2-2 = 2 sqrt(3/pi) x y / (1+z)          Z_20 = sqrt(3/(2 pi)) (1 - 2z)
+//   Z_22 = sqrt(3/pi) (x^2 - y^2) / (1+z)
+//
+// Ordering: band n holds the n+1 functions m = -n, -n+2, ..., n; functions are ordered by n, then
+// m ascending: index(n, m) = n(n+1)/2 + (n+m)/2. n bands (n <= bands-1) = bands(bands+1)/2
+// functions (1, 3, 6, 10, 15, ...); 1 <= bands <= zernike::max_bands.
+// Domain: the upper hemisphere z >= 0. BELOW THE HORIZON (z < 0) every function is 0: such
+// directions map outside the unit disk (rho > 1), where the polynomials are not the basis. The
+// pole z = 1 (rho = 0) and the horizon z = 0 (rho = 1, where the functions still vary with phi)
+// are regular points.
+//
+// Misprints in the thesis' printed forms (derive, do not transcribe):
+//   (1.48) Z_11 = (2/sqrt(pi)) cos(phi) sin(t/2) = -sqrt(2/pi) x / sqrt(1+z): spurious minus on
+//          the right side (2 sin(t/2) cos(phi) / sqrt(2) = rho cos(phi) = x / sqrt(1+z) > 0 for
+//          x > 0);
+//   (1.47), (1.49) print the sin functions Z_1-1, Z_2-2 with a minus sign on both sides: a
+//          Condon-Shortley-like phase; with this library's convention they are positive multiples
+//          of y and xy.
+//
+// Evaluation: R_n^m(rho) = rho^m P_k^(0,m)(2 rho^2 - 1), k = (n-m)/2, and 2 rho^2 - 1 = 1 - 2z, so
+//   Z_n^m = sqrt((2 - delta_m0)/pi) 2^(m/2) rho^m p_k^(0,m)(1 - 2z) trig(m phi)
+// with p_k the orthonormal Jacobi polynomials (the normalisation no longer depends on n), by the
+// shared normalised three-term recurrence of hsh.hpp (detail::hemi, advanced in z itself): a row
+// recurrence for bands <= 64 (any value type), the exponent-carrying column recurrence in double
+// above. No factorial sums, no pow. Cost: one square root and one division per direction, then
+// ~bands^2/2 multiply-adds (plus as many square roots and divisions above 64 bands).
+// Accuracy: ~1e-13 of the functions' scale sqrt((n+1)/pi) up to max_bands (measured against
+// mpmath's factorial sums; tests/basis/test_zernike.cpp).
+#pragma once
+
+#include <cmath>
+#include <type_traits>
+#include <utility>
+
+#include "../config.hpp"
+#include "../core/scalar.hpp"
+#include "../core/simd.hpp"
+#include "basis.hpp"
+#include "hsh.hpp"  // detail::hemi: the shared Jacobi recurrence
+
+namespace sphbasis::zernike {
+
+/// Largest supported band count (degree n = 2047, 2098176 functions).
+inline constexpr int max_bands = 2048;
+
+/// Index of (n, m), |m| <= n, n - m even: n(n+1)/2 + (n+m)/2.
+constexpr int index(int n, int m) noexcept { return n * (n + 1) / 2 + (n + m) / 2; }
+/// Number of functions in `bands` bands: bands(bands+1)/2.
+constexpr int count(int bands) noexcept { return bands * (bands + 1) / 2; }
+
+namespace detail {
+
+struct ZernikeFamily {
+    static constexpr sphbasis::detail::hemi::Family family{-1, 2, 0, 0, 0, 1,
+                                                           0.39894228040143268,  // 1/sqrt(2 pi)
+                                                           0.79788456080286536,  // sqrt(2/pi)
+                                                           1};
+};
+
+/// zc = max(z, 0), (X, Y) = (x, y) / sqrt(1 + zc) = rho (cos phi, sin phi), E = [z >= 0].
+template <class V>
+SPHBASIS_FORCEINLINE void prep(const V& x, const V& y, const V& z, V& zc, V& X, V& Y,
+                               V& E) noexcept {
+    using S = scalar_t<V>;
+    zc = vmax(z, V(S(0)));
+    const V h = V(S(1)) / vsqrt(V(S(1)) + zc);
+    X = x * h;
+    Y = y * h;
+    E = sphbasis::detail::hemi::upper(z);
+}
+
+/// Row recurrence, bands <= 64: order n then m ascending. Each order m advances every second
+/// band, so the state is kept per m.
+template <class V, class Store>
+SPHBASIS_FORCEINLINE void rows(int bands, const V& zc, const V& X, const V& Y, const V& E,
+                               Store&& store) noexcept {
+    namespace hemi = sphbasis::detail::hemi;
+    using S = scalar_t<V>;
+    SPHBASIS_ASSERT(bands >= 1 && bands <= hemi::max_row_bands);
+    const hemi::RowTable<S>& t = hemi::row_table<S, ZernikeFamily>();
+    V cm[hemi::max_row_bands], sm[hemi::max_row_bands], cur[hemi::max_row_bands],
+        prev[hemi::max_row_bands];
+    hemi::powers(bands, X, Y, cm, sm);
+    for (int n = 0; n < bands; ++n) {
+        const std::size_t o = t.row[static_cast<std::size_t>(n)];
+        const S* pz = t.pz.data() + o;
+        const S* d = t.d.data() + o;
+        const S* c = t.c.data() + o;
+        const int par = n % 2;
+        for (int m = par, j = 0; m + 2 <= n; m += 2, ++j) {
+            const V v = (V(pz[j]) * zc - V(d[j])) * cur[m] - V(c[j]) * prev[m];
+            prev[m] = cur[m];
+            cur[m] = v;
+        }
+        cur[n] = V(t.start[static_cast<std::size_t>(n)]) * E;
+        prev[n] = V(S(0));
+        const int base = n * (n + 1) / 2;
+        for (int m = n; m > 0; m -= 2) store(base + (n - m) / 2, cur[m] * sm[m]);
+        if (par == 0) store(base + n / 2, cur[0]);
+        for (int m = 2 - par; m <= n; m += 2) store(base + (n + m) / 2, cur[m] * cm[m]);
+    }
+}
+
+template <int N>
+struct FixedKernel {
+    template <class V, class Store>
+    SPHBASIS_FORCEINLINE void operator()(const V& x, const V& y, const V& z,
+                                         Store&& store) const noexcept {
+        V zc, X, Y, E;
+        prep(x, y, z, zc, X, Y, E);
+        rows(N, zc, X, Y, E, store);
+    }
+};
+struct RowKernel {
+    int bands;
+    template <class V, class Store>
+    SPHBASIS_FORCEINLINE void operator()(const V& x, const V& y, const V& z,
+                                         Store&& store) const noexcept {
+        V zc, X, Y, E;
+        prep(x, y, z, zc, X, Y, E);
+        rows(bands, zc, X, Y, E, store);
+    }
+};
+struct ColumnKernel {
+    int bands;
+    template <class V, class Store>
+    void operator()(const V& x, const V& y, const V& z, Store&& store) const {
+        sphbasis::detail::hemi::columns_any(
+            ZernikeFamily::family, bands, x, y, z, store,
+            [](sphbasis::detail::hemi::wide dx, sphbasis::detail::hemi::wide dy,
+               sphbasis::detail::hemi::wide dz, sphbasis::detail::hemi::wide& zc,
+               sphbasis::detail::hemi::wide& X, sphbasis::detail::hemi::wide& Y,
+               sphbasis::detail::hemi::wide& E) { prep(dx, dy, dz, zc, X, Y, E); },
+            [](int n, int m) { return index(n, m); });
+    }
+};
+
+/// Calls f(kernel) for 1 <= bands <= max_bands: compile-time band counts (fully unrolled by
+/// the compiler) up to 8, the row recurrence up to 64, the column recurrence above.
+template <class F>
+inline decltype(auto) with_kernel(int bands, F&& f) {
+    switch (bands) {
+        case 1: return f(FixedKernel<1>{});
+        case 2: return f(FixedKernel<2>{});
+        case 3: return f(FixedKernel<3>{});
+        case 4: return f(FixedKernel<4>{});
+        case 5: return f(FixedKernel<5>{});
+        case 6: return f(FixedKernel<6>{});
+        case 7: return f(FixedKernel<7>{});
+        case 8: return f(FixedKernel<8>{});
+        default: break;
+    }
+    if (bands <= sphbasis::detail::hemi::max_row_bands) return f(RowKernel{bands});
+    return f(ColumnKernel{bands});
+}
+
+}  // namespace detail
+}  // namespace sphbasis::zernike
+
+namespace sphbasis {
+
+/// Koenderink's hemispherical Zernike basis as a basis (basis/basis.hpp): n = bands(bands+1)/2
+/// functions ordered by band then m, orthonormal on the upper hemisphere, 0 below the horizon.
+struct Zernike {
+    static constexpr const char* name = "zernike";
+    static constexpr Domain domain = Domain::hemisphere;
+    static constexpr bool orthonormal = true;
+    /// Number of functions in `bands` bands: bands(bands+1)/2.
+    static constexpr int count(int bands) noexcept { return bands * (bands + 1) / 2; }
+    /// The band count of n functions, or -1 if n is not a triangular number >= 1.
+    static int bands_of(int n) noexcept {
+        if (n < 1) return -1;
+        auto tri = [](long long b) { return b * (b + 1) / 2; };
+        long long b = static_cast<long long>(std::sqrt(2.0 * n));
+        while (b > 0 && tri(b) > n) --b;
+        while (tri(b + 1) <= n) ++b;
+        return tri(b) == n ? static_cast<int>(b) : -1;
+    }
+    static bool valid_count(int n) noexcept {
+        const int b = bands_of(n);
+        return b >= 1 && b <= zernike::max_bands;
+    }
+    static const char* count_rule() noexcept {
+        return "a triangular number (bands(bands+1)/2, bands <= 2048) of";
+    }
+    static int max_count() noexcept { return count(zernike::max_bands); }
+    /// Precondition: valid_count(n). Batch stores need lane(k, i, v) above 64 bands.
+    template <class F>
+    static decltype(auto) with_kernel(int n, F&& f) {
+        return zernike::detail::with_kernel(bands_of(n), std::forward<F>(f));
+    }
+};
+
+}  // namespace sphbasis

@@ -1,0 +1,198 @@
+// Tests for basis/hl2.hpp: the Half-Life 2 basis.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sphbasis/basis/hl2.hpp>
+#include <sphbasis/basis/sh.hpp>
+#include <sphbasis/core/quadrature.hpp>
+
+using namespace sphbasis;
+
+namespace {
+
+using Dir = std::array<double, 3>;
+constexpr double pi = constants::pi;
+constexpr double eps = std::numeric_limits<double>::epsilon();
+
+std::vector<Dir> random_dirs(int n, unsigned seed, bool upper = true) {
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> g;
+    std::vector<Dir> d;
+    while (static_cast<int>(d.size()) < n) {
+        double x = g(rng), y = g(rng), z = g(rng);
+        const double r = std::sqrt(x * x + y * y + z * z);
+        if (r < 1e-3) continue;
+        if (upper) z = std::fabs(z);
+        d.push_back({x / r, y / r, z / r});
+    }
+    return d;
+}
+
+/// The basis vectors (1.18)-(1.20).
+std::array<Dir, 3> vectors() {
+    return {Dir{-1 / std::sqrt(6.0), -1 / std::sqrt(2.0), 1 / std::sqrt(3.0)},
+            Dir{-1 / std::sqrt(6.0), 1 / std::sqrt(2.0), 1 / std::sqrt(3.0)},
+            Dir{std::sqrt(2.0 / 3.0), 0, 1 / std::sqrt(3.0)}};
+}
+
+std::array<double, 3> eval_d(double x, double y, double z) {
+    std::array<double, 3> v;
+    basis_eval<HL2>(3, x, y, z, v.data());
+    return v;
+}
+
+/// Gram matrix by a product rule of degree 2 (exact for products of linear functions).
+std::array<std::array<double, 3>, 3> gram(const DirectionalRule& r) {
+    std::array<std::array<double, 3>, 3> g{};
+    for (std::size_t i = 0; i < r.size(); ++i) {
+        const auto v = eval_d(r.x[i], r.y[i], r.z[i]);
+        for (std::size_t a = 0; a < 3; ++a)
+            for (std::size_t b = 0; b < 3; ++b) g[a][b] += r.w[i] * v[a] * v[b];
+    }
+    return g;
+}
+
+}  // namespace
+
+TEST_CASE("hl2: values are sqrt(3/(2 pi)) n . h_i", "[hl2]") {
+    const auto h = vectors();
+    for (std::size_t i = 0; i < 3; ++i)
+        for (std::size_t j = 0; j < 3; ++j)
+            CHECK(std::fabs(h[i][0] * h[j][0] + h[i][1] * h[j][1] + h[i][2] * h[j][2] -
+                            (i == j ? 1.0 : 0.0)) < 4 * eps);
+    const double c = std::sqrt(3 / (2 * pi));
+    auto dirs = random_dirs(100, 1, false);
+    dirs.push_back({0, 0, 1});
+    dirs.push_back({1, 0, 0});
+    for (const auto& d : dirs) {
+        const auto v = eval_d(d[0], d[1], d[2]);
+        for (std::size_t i = 0; i < 3; ++i) {
+            const double e = c * (d[0] * h[i][0] + d[1] * h[i][1] + d[2] * h[i][2]);
+            REQUIRE(std::fabs(v[i] - e) <= 4 * eps);
+        }
+    }
+    // HL2_i(h_j) = sqrt(3/(2 pi)) delta_ij; at the normal all three are 1/sqrt(2 pi).
+    for (std::size_t j = 0; j < 3; ++j) {
+        const auto v = eval_d(h[j][0], h[j][1], h[j][2]);
+        for (std::size_t i = 0; i < 3; ++i) CHECK(std::fabs(v[i] - (i == j ? c : 0.0)) <= 4 * eps);
+    }
+    for (double x : eval_d(0, 0, 1)) CHECK(x == Approx(1 / std::sqrt(2 * pi)).epsilon(1e-15));
+    // h_3 lies in the +x half-plane, h_1 at y < 0, h_2 at y > 0.
+    CHECK(eval_d(1, 0, 0)[2] > 0);
+    CHECK(eval_d(0, -1, 0)[0] > 0);
+    CHECK(eval_d(0, 1, 0)[1] > 0);
+    CHECK(std::string(HL2::name) == "hl2");
+    CHECK(HL2::domain == Domain::hemisphere);
+    CHECK(HL2::orthonormal);
+    CHECK(HL2::max_count() == 3);
+}
+
+TEST_CASE("hl2: a rotation of the linear SH band, renormalised to the hemisphere", "[hl2]") {
+    // HL2_i = sqrt(2) (h_iy y_1-1 + h_iz y_10 + h_ix y_11): sqrt(3/(2 pi)) = sqrt(2) sqrt(3/(4 pi)).
+    const auto h = vectors();
+    for (const auto& d : random_dirs(50, 2, false)) {
+        double y[4];
+        sh::eval(2, d[0], d[1], d[2], y);
+        const auto v = eval_d(d[0], d[1], d[2]);
+        for (std::size_t i = 0; i < 3; ++i)
+            CHECK(std::fabs(v[i] - std::sqrt(2.0) * (h[i][1] * y[1] + h[i][2] * y[2] + h[i][0] * y[3])) <=
+                  8 * eps);
+    }
+}
+
+TEST_CASE("hl2: orthonormal on the hemisphere, orthogonal with norm^2 = 2 on the sphere", "[hl2]") {
+    // int_hemisphere n n^T = (2 pi/3) I, so the Gram matrix is h_i . h_j = delta_ij; on the whole
+    // sphere it is 2 delta_ij (the thesis' "orthonormal ... as well as full sphere" holds for
+    // orthogonality only).
+    const auto gh = gram(hemisphere_rule(2));
+    const auto gs = gram(sphere_rule(2));
+    for (std::size_t a = 0; a < 3; ++a)
+        for (std::size_t b = 0; b < 3; ++b) {
+            CHECK(std::fabs(gh[a][b] - (a == b ? 1.0 : 0.0)) < 1e-14);
+            CHECK(std::fabs(gs[a][b] - (a == b ? 2.0 : 0.0)) < 1e-14);
+        }
+}
+
+TEST_CASE("hl2: values against the mpmath reference", "[hl2][reference]") {
+    std::ifstream in(SPHBASIS_TEST_DATA_DIR "/hemi_reference.txt");
+    REQUIRE(in.good());
+    std::string line, basis;
+    int count = 0;
+    while (std::getline(in, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream is(line);
+        int k, l, m;
+        double x, y, z, ref;
+        REQUIRE(static_cast<bool>(is >> basis));
+        if (basis != "hl2") continue;
+        REQUIRE(static_cast<bool>(is >> k >> l >> m >> x >> y >> z >> ref));
+        const auto v = eval_d(x, y, z);
+        INFO("k=" << k << " dir=" << x << "," << y << "," << z);
+        REQUIRE(std::fabs(v[static_cast<std::size_t>(k)] - ref) <= 4 * eps);
+        ++count;
+    }
+    CHECK(count == 3 * 26);
+}
+
+TEST_CASE("hl2: below the horizon the linear polynomials are returned", "[hl2]") {
+    const auto h = vectors();
+    const double c = std::sqrt(3 / (2 * pi));
+    for (const auto& d : random_dirs(50, 3, false)) {
+        if (d[2] >= 0) continue;
+        const auto v = eval_d(d[0], d[1], d[2]);
+        for (std::size_t i = 0; i < 3; ++i)
+            CHECK(std::fabs(v[i] - c * (d[0] * h[i][0] + d[1] * h[i][1] + d[2] * h[i][2])) <= 4 * eps);
+    }
+    for (double x : eval_d(0, 0, -1)) CHECK(x == Approx(-1 / std::sqrt(2 * pi)).epsilon(1e-15));
+}
+
+TEMPLATE_TEST_CASE("hl2: batch path equals scalar path, float within 4 ulp of double", "[hl2]", float,
+                   double) {
+    using T = TestType;
+    const auto dirs = random_dirs(37, 5, false);  // not a multiple of any SIMD width
+    std::vector<T> xs, ys, zs;
+    for (const auto& d : dirs) {
+        xs.push_back(T(d[0] * 3));  // non-unit on purpose: both paths normalise
+        ys.push_back(T(d[1] * 3));
+        zs.push_back(T(d[2] * 3));
+    }
+    const std::size_t n = dirs.size();
+    const T et = std::numeric_limits<T>::epsilon();
+    std::vector<T> out(3 * n), sums(n);
+    const T coeffs[3] = {T(0.5), T(-1.25), T(2)};
+    basis_eval_batch<HL2>(3, n, xs.data(), ys.data(), zs.data(), out.data(), n);
+    basis_eval_sum_batch<HL2>(3, coeffs, n, xs.data(), ys.data(), zs.data(), sums.data());
+    for (std::size_t i = 0; i < n; ++i) {
+        T one[3];
+        double dd[3];
+        basis_eval<HL2>(3, xs[i], ys[i], zs[i], one);
+        basis_eval<HL2>(3, double(xs[i]), double(ys[i]), double(zs[i]), dd);
+        T dot = 0;
+        for (std::size_t k = 0; k < 3; ++k) {
+            REQUIRE(std::fabs(out[k * n + i] - one[k]) <= 2 * et);
+            REQUIRE(std::fabs(double(one[k]) - dd[k]) <= 4 * double(et));
+            dot += coeffs[k] * one[k];
+        }
+        REQUIRE(std::fabs(basis_eval_sum<HL2>(3, coeffs, xs[i], ys[i], zs[i]) - dot) <= 8 * et);
+        REQUIRE(std::fabs(sums[i] - dot) <= 8 * et);
+    }
+}
+
+TEST_CASE("hl2: bad sizes throw", "[hl2]") {
+    double v[4];
+    REQUIRE_THROWS_WITH(basis_eval<HL2>(4, 0.0, 0.0, 1.0, v),
+                        "sphbasis::basis_eval(): expected 3 functions for basis 'hl2', got 4");
+    REQUIRE_THROWS_WITH(basis_eval<HL2>(0, 0.0, 0.0, 1.0, v), Catch::Contains("got 0"));
+    REQUIRE_THROWS_WITH(basis_eval_sum<HL2>(9, v, 0.0, 0.0, 1.0), Catch::Contains("basis_eval_sum"));
+    CHECK(HL2::valid_count(3));
+    CHECK_FALSE(HL2::valid_count(-3));
+}
