@@ -12,13 +12,12 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
-#include <vector>
-
 #include <sphbasis/basis/hbasis.hpp>
 #include <sphbasis/basis/hl2.hpp>
 #include <sphbasis/basis/hsh.hpp>
 #include <sphbasis/basis/makhotkin.hpp>
 #include <sphbasis/basis/zernike.hpp>
+#include <vector>
 
 namespace {
 

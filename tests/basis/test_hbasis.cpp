@@ -1,18 +1,16 @@
 // Tests for basis/hbasis.hpp: the H-basis and the modified H-basis.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
 #include <array>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
 #include <limits>
 #include <random>
+#include <sphbasis/basis/hbasis.hpp>
+#include <sphbasis/core/quadrature.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <sphbasis/basis/hbasis.hpp>
-#include <sphbasis/core/quadrature.hpp>
 
 using namespace sphbasis;
 
@@ -39,8 +37,12 @@ std::vector<Dir> random_dirs(int n, unsigned seed, bool upper = true) {
 /// The six functions from their definitions (Habel & Wimmer 2010; thesis 1.52-1.58).
 std::array<double, 6> defined(bool mod, double x, double y, double z) {
     const double c3 = std::sqrt(3 / (2 * pi)), c15 = std::sqrt(15 / (2 * pi));
-    return {1 / std::sqrt(2 * pi), c3 * y, mod ? c3 * (1 - z) : c3 * (2 * z - 1),
-            c3 * x,                c15 * x * y, c15 / 2 * (x * x - y * y)};
+    return {1 / std::sqrt(2 * pi),
+            c3 * y,
+            mod ? c3 * (1 - z) : c3 * (2 * z - 1),
+            c3 * x,
+            c15 * x * y,
+            c15 / 2 * (x * x - y * y)};
 }
 
 template <class B>
@@ -107,7 +109,8 @@ TEST_CASE("hbasis: values are the definitions, signs pinned", "[hbasis]") {
 TEST_CASE("hbasis: the thesis' Listing 2.2 shader constants", "[hbasis]") {
     // 0.39894 = 1/sqrt(2 pi), 0.69099 = sqrt(3/(2 pi)), 1.54509 = sqrt(15/(2 pi)),
     // 0.77255 = sqrt(15/(2 pi))/2, the modified H-basis' normalisations rounded to 5 digits, except
-    // that 1.54509 is truncated (sqrt(15/(2 pi)) = 1.5450968...): within one unit of the last digit.
+    // that 1.54509 is truncated (sqrt(15/(2 pi)) = 1.5450968...): within one unit of the last
+    // digit.
     const double x = 0.48, y = -0.6, z = 0.64;
     const auto v = eval_d<HBasisMod>(6, x, y, z);
     CHECK(std::fabs(v[0] - 0.39894) < 5e-6);
@@ -185,7 +188,8 @@ TEST_CASE("hbasis: values against the mpmath reference", "[hbasis][reference]") 
         REQUIRE(static_cast<bool>(is >> basis));
         if (basis != "hbasis" && basis != "hbasis-mod") continue;
         REQUIRE(static_cast<bool>(is >> k >> l >> m >> x >> y >> z >> ref));
-        const auto v = basis == "hbasis" ? eval_d<HBasis>(6, x, y, z) : eval_d<HBasisMod>(6, x, y, z);
+        const auto v =
+            basis == "hbasis" ? eval_d<HBasis>(6, x, y, z) : eval_d<HBasisMod>(6, x, y, z);
         INFO(basis << " k=" << k << " dir=" << x << "," << y << "," << z);
         REQUIRE(std::fabs(v[static_cast<std::size_t>(k)] - ref) <= 4 * eps);
         worst = std::max(worst, std::fabs(v[static_cast<std::size_t>(k)] - ref));
@@ -198,8 +202,10 @@ TEST_CASE("hbasis: values against the mpmath reference", "[hbasis][reference]") 
 TEST_CASE("hbasis: prefix, below the horizon, pole and horizon", "[hbasis]") {
     for (const auto& d : random_dirs(50, 3, false)) {
         for (bool mod : {false, true}) {
-            const auto six = mod ? eval_d<HBasisMod>(6, d[0], d[1], d[2]) : eval_d<HBasis>(6, d[0], d[1], d[2]);
-            const auto four = mod ? eval_d<HBasisMod>(4, d[0], d[1], d[2]) : eval_d<HBasis>(4, d[0], d[1], d[2]);
+            const auto six =
+                mod ? eval_d<HBasisMod>(6, d[0], d[1], d[2]) : eval_d<HBasis>(6, d[0], d[1], d[2]);
+            const auto four =
+                mod ? eval_d<HBasisMod>(4, d[0], d[1], d[2]) : eval_d<HBasis>(4, d[0], d[1], d[2]);
             CHECK(std::equal(four.begin(), four.end(), six.begin()));
             // Below the horizon the polynomials are returned (they extend to the whole sphere).
             const auto e = defined(mod, d[0], d[1], d[2]);
@@ -222,8 +228,8 @@ TEST_CASE("hbasis: prefix, below the horizon, pole and horizon", "[hbasis]") {
     CHECK(eval_d<HBasisMod>(6, 0, 0, -1)[2] == Approx(2 * c3).epsilon(1e-15));
 }
 
-TEMPLATE_TEST_CASE("hbasis: batch path equals scalar path, float within 4 ulp of double", "[hbasis]",
-                   float, double) {
+TEMPLATE_TEST_CASE("hbasis: batch path equals scalar path, float within 4 ulp of double",
+                   "[hbasis]", float, double) {
     using T = TestType;
     const auto dirs = random_dirs(37, 5, false);  // not a multiple of any SIMD width
     std::vector<T> xs, ys, zs;
@@ -251,7 +257,8 @@ TEMPLATE_TEST_CASE("hbasis: batch path equals scalar path, float within 4 ulp of
                 REQUIRE(std::fabs(double(one[k]) - dd[k]) <= 4 * double(et) * 1.6);
                 dot += coeffs[k] * one[k];
             }
-            REQUIRE(std::fabs(basis_eval_sum<B>(nf, coeffs.data(), xs[i], ys[i], zs[i]) - dot) <= 16 * et);
+            REQUIRE(std::fabs(basis_eval_sum<B>(nf, coeffs.data(), xs[i], ys[i], zs[i]) - dot) <=
+                    16 * et);
             REQUIRE(std::fabs(sums[i] - dot) <= 16 * et);
         }
     };
@@ -263,8 +270,9 @@ TEMPLATE_TEST_CASE("hbasis: batch path equals scalar path, float within 4 ulp of
 
 TEST_CASE("hbasis: bad sizes throw", "[hbasis]") {
     double v[9];
-    REQUIRE_THROWS_WITH(basis_eval<HBasis>(5, 0.0, 0.0, 1.0, v),
-                        "sphbasis::basis_eval(): expected 4 or 6 functions for basis 'hbasis', got 5");
+    REQUIRE_THROWS_WITH(
+        basis_eval<HBasis>(5, 0.0, 0.0, 1.0, v),
+        "sphbasis::basis_eval(): expected 4 or 6 functions for basis 'hbasis', got 5");
     REQUIRE_THROWS_WITH(basis_eval<HBasisMod>(9, 0.0, 0.0, 1.0, v),
                         "sphbasis::basis_eval(): expected 4 or 6 functions for basis 'hbasis-mod', "
                         "got 9");

@@ -1,19 +1,17 @@
 // Tests for basis/hl2.hpp: the Half-Life 2 basis.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
 #include <array>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
 #include <limits>
 #include <random>
-#include <sstream>
-#include <string>
-#include <vector>
-
 #include <sphbasis/basis/hl2.hpp>
 #include <sphbasis/basis/sh.hpp>
 #include <sphbasis/core/quadrature.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
 
 using namespace sphbasis;
 
@@ -97,15 +95,16 @@ TEST_CASE("hl2: values are sqrt(3/(2 pi)) n . h_i", "[hl2]") {
 }
 
 TEST_CASE("hl2: a rotation of the linear SH band, renormalised to the hemisphere", "[hl2]") {
-    // HL2_i = sqrt(2) (h_iy y_1-1 + h_iz y_10 + h_ix y_11): sqrt(3/(2 pi)) = sqrt(2) sqrt(3/(4 pi)).
+    // HL2_i = sqrt(2) (h_iy y_1-1 + h_iz y_10 + h_ix y_11): sqrt(3/(2 pi)) = sqrt(2) sqrt(3/(4
+    // pi)).
     const auto h = vectors();
     for (const auto& d : random_dirs(50, 2, false)) {
         double y[4];
         sh::eval(2, d[0], d[1], d[2], y);
         const auto v = eval_d(d[0], d[1], d[2]);
         for (std::size_t i = 0; i < 3; ++i)
-            CHECK(std::fabs(v[i] - std::sqrt(2.0) * (h[i][1] * y[1] + h[i][2] * y[2] + h[i][0] * y[3])) <=
-                  8 * eps);
+            CHECK(std::fabs(v[i] - std::sqrt(2.0) * (h[i][1] * y[1] + h[i][2] * y[2] +
+                                                     h[i][0] * y[3])) <= 8 * eps);
     }
 }
 
@@ -150,13 +149,14 @@ TEST_CASE("hl2: below the horizon the linear polynomials are returned", "[hl2]")
         if (d[2] >= 0) continue;
         const auto v = eval_d(d[0], d[1], d[2]);
         for (std::size_t i = 0; i < 3; ++i)
-            CHECK(std::fabs(v[i] - c * (d[0] * h[i][0] + d[1] * h[i][1] + d[2] * h[i][2])) <= 4 * eps);
+            CHECK(std::fabs(v[i] - c * (d[0] * h[i][0] + d[1] * h[i][1] + d[2] * h[i][2])) <=
+                  4 * eps);
     }
     for (double x : eval_d(0, 0, -1)) CHECK(x == Approx(-1 / std::sqrt(2 * pi)).epsilon(1e-15));
 }
 
-TEMPLATE_TEST_CASE("hl2: batch path equals scalar path, float within 4 ulp of double", "[hl2]", float,
-                   double) {
+TEMPLATE_TEST_CASE("hl2: batch path equals scalar path, float within 4 ulp of double", "[hl2]",
+                   float, double) {
     using T = TestType;
     const auto dirs = random_dirs(37, 5, false);  // not a multiple of any SIMD width
     std::vector<T> xs, ys, zs;
@@ -192,7 +192,8 @@ TEST_CASE("hl2: bad sizes throw", "[hl2]") {
     REQUIRE_THROWS_WITH(basis_eval<HL2>(4, 0.0, 0.0, 1.0, v),
                         "sphbasis::basis_eval(): expected 3 functions for basis 'hl2', got 4");
     REQUIRE_THROWS_WITH(basis_eval<HL2>(0, 0.0, 0.0, 1.0, v), Catch::Contains("got 0"));
-    REQUIRE_THROWS_WITH(basis_eval_sum<HL2>(9, v, 0.0, 0.0, 1.0), Catch::Contains("basis_eval_sum"));
+    REQUIRE_THROWS_WITH(basis_eval_sum<HL2>(9, v, 0.0, 0.0, 1.0),
+                        Catch::Contains("basis_eval_sum"));
     CHECK(HL2::valid_count(3));
     CHECK_FALSE(HL2::valid_count(-3));
 }

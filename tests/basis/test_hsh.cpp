@@ -1,20 +1,18 @@
 // Tests for basis/hsh.hpp: convention, orthonormality, references, kernels, bad input.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
 #include <array>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
 #include <limits>
 #include <map>
 #include <random>
+#include <sphbasis/basis/hsh.hpp>
+#include <sphbasis/core/quadrature.hpp>
 #include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
-
-#include <sphbasis/basis/hsh.hpp>
-#include <sphbasis/core/quadrature.hpp>
 
 using namespace sphbasis;
 
@@ -84,7 +82,8 @@ double gram_residual(int n, int degree) {
     double worst = 0;
     for (std::size_t a = 0; a < un; ++a)
         for (std::size_t b = 0; b <= a; ++b)
-            worst = std::max(worst, std::fabs(dot(&f[a * np], &f[b * np], np) - (a == b ? 1.0 : 0.0)));
+            worst =
+                std::max(worst, std::fabs(dot(&f[a * np], &f[b * np], np) - (a == b ? 1.0 : 0.0)));
     return worst;
 }
 
@@ -140,7 +139,8 @@ void check_reference(int max_l) {
         }
     }
     CHECK(count > 500);
-    WARN("hsh reference (l <= " << max_l << "): " << count << " values, worst |error|/S = " << worst);
+    WARN("hsh reference (l <= " << max_l << "): " << count
+                                << " values, worst |error|/S = " << worst);
 }
 
 }  // namespace
@@ -225,9 +225,8 @@ TEST_CASE("hsh: column recurrence is orthonormal per order to 512 bands", "[hsh]
     for (std::size_t i = 0; i < t.size(); ++i) {
         const double z = 0.5 * (t[i] + 1);
         const double s = std::sqrt((1 - z) * (1 + z));
-        hsh::detail::ColumnKernel{bands}(s, 0.0, z, [&](int k, double x) {
-            v[static_cast<std::size_t>(k)] = x;
-        });
+        hsh::detail::ColumnKernel{bands}(
+            s, 0.0, z, [&](int k, double x) { v[static_cast<std::size_t>(k)] = x; });
         for (std::size_t j = 0; j < orders.size(); ++j)
             for (int l = orders[j]; l < bands; ++l)
                 g[j].push_back(v[static_cast<std::size_t>(hsh::index(l, orders[j]))]);
@@ -240,7 +239,8 @@ TEST_CASE("hsh: column recurrence is orthonormal per order to 512 bands", "[hsh]
             for (int b = 0; b <= a; ++b) {
                 double s = 0;
                 for (std::size_t i = 0; i < t.size(); ++i)
-                    s += 0.5 * w[i] * g[j][i * static_cast<std::size_t>(nl) + static_cast<std::size_t>(a)] *
+                    s += 0.5 * w[i] *
+                         g[j][i * static_cast<std::size_t>(nl) + static_cast<std::size_t>(a)] *
                          g[j][i * static_cast<std::size_t>(nl) + static_cast<std::size_t>(b)];
                 worst = std::max(worst, std::fabs(c * s - (a == b ? 1.0 : 0.0)));
             }
@@ -332,7 +332,8 @@ TEMPLATE_TEST_CASE("hsh: batch path equals scalar path", "[hsh]", float, double)
         std::vector<T> out(unf * n), one(unf), coeffs(unf), sums(n);
         for (std::size_t k = 0; k < unf; ++k) coeffs[k] = T(std::sin(double(k) + 1));
         basis_eval_batch<HSH>(nf, n, xs.data(), ys.data(), zs.data(), out.data(), n);
-        basis_eval_sum_batch<HSH>(nf, coeffs.data(), n, xs.data(), ys.data(), zs.data(), sums.data());
+        basis_eval_sum_batch<HSH>(nf, coeffs.data(), n, xs.data(), ys.data(), zs.data(),
+                                  sums.data());
         double worst = 0, worst_sum = 0;
         for (std::size_t i = 0; i < n; ++i) {
             basis_eval<HSH>(nf, xs[i], ys[i], zs[i], one.data());
@@ -367,7 +368,8 @@ TEST_CASE("hsh: float is within a stated bound of double", "[hsh]") {
         for (int bands : {3, 8, 31, 64, 70}) {
             std::vector<float> f(static_cast<std::size_t>(HSH::count(bands)));
             basis_eval<HSH>(HSH::count(bands), float(d[0]), float(d[1]), float(d[2]), f.data());
-            const auto dd = eval_d(bands, double(float(d[0])), double(float(d[1])), double(float(d[2])));
+            const auto dd =
+                eval_d(bands, double(float(d[0])), double(float(d[1])), double(float(d[2])));
             for (std::size_t k = 0; k < f.size(); ++k) {
                 const int l = sh::degree_of(int(k));
                 worst = std::max(worst, std::fabs(double(f[k]) - dd[k]) /
@@ -416,9 +418,9 @@ TEST_CASE("hsh: pole and horizon are finite and exact", "[hsh]") {
 
 TEST_CASE("hsh: hard directions stay finite", "[hsh]") {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    const std::vector<Dir> hard = {{0, 0, 1},       {1e-300, 0, 1}, {3e-310, 2e-310, 1e-310},
-                                   {1e300, 1e300, 1e300}, {1, 1e-300, 0}, {0, 0, 0},
-                                   {nan, 0, 1},     {1e-20, -1e-20, 1}};
+    const std::vector<Dir> hard = {
+        {0, 0, 1}, {1e-300, 0, 1}, {3e-310, 2e-310, 1e-310}, {1e300, 1e300, 1e300}, {1, 1e-300, 0},
+        {0, 0, 0}, {nan, 0, 1},    {1e-20, -1e-20, 1}};
     double pole[16];
     basis_eval<HSH>(16, 0.0, 0.0, 1.0, pole);
     for (int bands : {4, 9, 64, 200}) {

@@ -1,20 +1,18 @@
 // Tests for basis/makhotkin.hpp: convention, orthonormality, references, kernels, bad input.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
 #include <array>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
 #include <limits>
 #include <map>
 #include <random>
+#include <sphbasis/basis/makhotkin.hpp>
+#include <sphbasis/core/quadrature.hpp>
 #include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
-
-#include <sphbasis/basis/makhotkin.hpp>
-#include <sphbasis/core/quadrature.hpp>
 
 using namespace sphbasis;
 
@@ -85,7 +83,8 @@ double gram_residual(int n, int degree) {
     double worst = 0;
     for (std::size_t a = 0; a < un; ++a)
         for (std::size_t b = 0; b <= a; ++b)
-            worst = std::max(worst, std::fabs(dot(&f[a * np], &f[b * np], np) - (a == b ? 1.0 : 0.0)));
+            worst =
+                std::max(worst, std::fabs(dot(&f[a * np], &f[b * np], np) - (a == b ? 1.0 : 0.0)));
     return worst;
 }
 
@@ -141,7 +140,8 @@ void check_reference(int max_l) {
         }
     }
     CHECK(count > 500);
-    WARN("makhotkin reference (l <= " << max_l << "): " << count << " values, worst |error|/S = " << worst);
+    WARN("makhotkin reference (l <= " << max_l << "): " << count
+                                      << " values, worst |error|/S = " << worst);
 }
 
 }  // namespace
@@ -179,8 +179,10 @@ TEST_CASE("makhotkin: bands 0-2 closed forms and band-1 signs pin the convention
     CHECK(b[1] > 0);
     CHECK(std::fabs(b[3]) < 1e-16);
     CHECK(a[3] == Approx(2 * std::sqrt(3 / pi) * 0.6 * 0.8 / std::sqrt(1.8)).epsilon(1e-15));
-    // The thesis' (1.42) M_20 = sqrt(3/pi) sqrt(z) (1 + 16(z-1) + 10(z-1)^2) is a misprint: 8, not 16.
-    const double z = 0.8, m20 = std::sqrt(3 / pi) * std::sqrt(z) * (1 + 8 * (z - 1) + 10 * (z - 1) * (z - 1));
+    // The thesis' (1.42) M_20 = sqrt(3/pi) sqrt(z) (1 + 16(z-1) + 10(z-1)^2) is a misprint: 8,
+    // not 16.
+    const double z = 0.8, m20 = std::sqrt(3 / pi) * std::sqrt(z) *
+                                (1 + 8 * (z - 1) + 10 * (z - 1) * (z - 1));
     CHECK(a[0] == Approx(std::sqrt(z / pi)).epsilon(1e-15));  // (1.33) prints z, not sqrt(z)
     CHECK(eval_d(3, 0.6, 0.0, 0.8)[6] == Approx(m20).epsilon(1e-14));
     CHECK(makhotkin::index(2, -1) == 5);
@@ -193,14 +195,15 @@ TEST_CASE("makhotkin: bands 0-2 closed forms and band-1 signs pin the convention
     CHECK(Makhotkin::max_count() == 2048 * 2048);
 }
 
-// Why the product rule is exact: M_l^m = N sqrt(z) (1-u^2)^(|m|/2) P_{l-|m|}(u) trig(m phi), u = 2z-1.
-// For two functions of orders m, m' the product is z (1-u^2)^((|m|+|m'|)/2) times a polynomial in u
-// times trig(m phi) trig(m' phi). If |m| + |m'| is even, (1-u^2)^(...) = (4z(1-z))^(...) is a
-// polynomial and the product is a polynomial in z of degree <= 1 + l + l' <= 2 bands - 1, integrated
-// exactly by the (bands)-point Gauss-Legendre rule in z; the phi factor is a trigonometric
-// polynomial of degree <= 2(bands-1) < the 2 bands uniform points in phi. If |m| + |m'| is odd then
-// m != m' and the uniform phi rule sums cos/sin((m -+ m') phi), 0 < |m -+ m'| < 2 bands, to exactly
-// 0 at every z node. Hence hemisphere_rule(2 bands - 1) gives the exact Gram matrix.
+// Why the product rule is exact: M_l^m = N sqrt(z) (1-u^2)^(|m|/2) P_{l-|m|}(u) trig(m phi), u =
+// 2z-1. For two functions of orders m, m' the product is z (1-u^2)^((|m|+|m'|)/2) times a
+// polynomial in u times trig(m phi) trig(m' phi). If |m| + |m'| is even, (1-u^2)^(...) =
+// (4z(1-z))^(...) is a polynomial and the product is a polynomial in z of degree <= 1 + l + l' <= 2
+// bands - 1, integrated exactly by the (bands)-point Gauss-Legendre rule in z; the phi factor is a
+// trigonometric polynomial of degree <= 2(bands-1) < the 2 bands uniform points in phi. If |m| +
+// |m'| is odd then m != m' and the uniform phi rule sums cos/sin((m -+ m') phi), 0 < |m -+ m'| < 2
+// bands, to exactly 0 at every z node. Hence hemisphere_rule(2 bands - 1) gives the exact Gram
+// matrix.
 TEST_CASE("makhotkin: Gram matrix is the identity by exact quadrature", "[makhotkin]") {
     for (int bands = 1; bands <= 10; ++bands) {
         const double r = gram_residual(Makhotkin::count(bands), 2 * bands - 1);
@@ -209,7 +212,8 @@ TEST_CASE("makhotkin: Gram matrix is the identity by exact quadrature", "[makhot
     }
 }
 
-TEST_CASE("makhotkin: Gram matrix is the identity by exact quadrature, 16 to 33 bands", "[makhotkin][slow]") {
+TEST_CASE("makhotkin: Gram matrix is the identity by exact quadrature, 16 to 33 bands",
+          "[makhotkin][slow]") {
     for (int bands : {16, 24, 33}) {
         const double r = gram_residual(Makhotkin::count(bands), 2 * bands - 1);
         INFO("bands " << bands << " residual " << r);
@@ -218,7 +222,8 @@ TEST_CASE("makhotkin: Gram matrix is the identity by exact quadrature, 16 to 33 
     }
 }
 
-TEST_CASE("makhotkin: column recurrence is orthonormal per order to 512 bands", "[makhotkin][slow]") {
+TEST_CASE("makhotkin: column recurrence is orthonormal per order to 512 bands",
+          "[makhotkin][slow]") {
     // At phi = 0 the m >= 0 functions are g_lm(z) cos(0) = g_lm(z), and the hemisphere integral of
     // M_lm M_l'm is pi (1 + delta_m0) int_0^1 g_lm g_l'm dz: a polynomial of degree <= 2 bands - 1
     // in z (as in the Gram test), exact with `bands` Gauss-Legendre nodes.
@@ -231,9 +236,8 @@ TEST_CASE("makhotkin: column recurrence is orthonormal per order to 512 bands", 
     for (std::size_t i = 0; i < t.size(); ++i) {
         const double z = 0.5 * (t[i] + 1);
         const double s = std::sqrt((1 - z) * (1 + z));
-        makhotkin::detail::ColumnKernel{bands}(s, 0.0, z, [&](int k, double x) {
-            v[static_cast<std::size_t>(k)] = x;
-        });
+        makhotkin::detail::ColumnKernel{bands}(
+            s, 0.0, z, [&](int k, double x) { v[static_cast<std::size_t>(k)] = x; });
         for (std::size_t j = 0; j < orders.size(); ++j)
             for (int l = orders[j]; l < bands; ++l)
                 g[j].push_back(v[static_cast<std::size_t>(makhotkin::index(l, orders[j]))]);
@@ -246,7 +250,8 @@ TEST_CASE("makhotkin: column recurrence is orthonormal per order to 512 bands", 
             for (int b = 0; b <= a; ++b) {
                 double s = 0;
                 for (std::size_t i = 0; i < t.size(); ++i)
-                    s += 0.5 * w[i] * g[j][i * static_cast<std::size_t>(nl) + static_cast<std::size_t>(a)] *
+                    s += 0.5 * w[i] *
+                         g[j][i * static_cast<std::size_t>(nl) + static_cast<std::size_t>(a)] *
                          g[j][i * static_cast<std::size_t>(nl) + static_cast<std::size_t>(b)];
                 worst = std::max(worst, std::fabs(c * s - (a == b ? 1.0 : 0.0)));
             }
@@ -259,11 +264,13 @@ TEST_CASE("makhotkin: values against the mpmath reference (l <= 255)", "[makhotk
     check_reference(255);
 }
 
-TEST_CASE("makhotkin: values against the mpmath reference (l <= 2047)", "[makhotkin][reference][slow]") {
+TEST_CASE("makhotkin: values against the mpmath reference (l <= 2047)",
+          "[makhotkin][reference][slow]") {
     check_reference(2047);
 }
 
-TEST_CASE("makhotkin: unrolled kernels, row recurrence and column recurrence agree", "[makhotkin]") {
+TEST_CASE("makhotkin: unrolled kernels, row recurrence and column recurrence agree",
+          "[makhotkin]") {
     auto dirs = random_dirs(100, 2);
     for (Dir d : {Dir{0, 0, 1}, Dir{1, 0, 0}, Dir{0, -1, 0}, Dir{0.6, 0.8, 1e-9}, Dir{1e-9, 0, 1},
                   Dir{0, 0, -1}, Dir{0.6, 0, -0.8}})
@@ -338,7 +345,8 @@ TEMPLATE_TEST_CASE("makhotkin: batch path equals scalar path", "[makhotkin]", fl
         std::vector<T> out(unf * n), one(unf), coeffs(unf), sums(n);
         for (std::size_t k = 0; k < unf; ++k) coeffs[k] = T(std::sin(double(k) + 1));
         basis_eval_batch<Makhotkin>(nf, n, xs.data(), ys.data(), zs.data(), out.data(), n);
-        basis_eval_sum_batch<Makhotkin>(nf, coeffs.data(), n, xs.data(), ys.data(), zs.data(), sums.data());
+        basis_eval_sum_batch<Makhotkin>(nf, coeffs.data(), n, xs.data(), ys.data(), zs.data(),
+                                        sums.data());
         double worst = 0, worst_sum = 0;
         for (std::size_t i = 0; i < n; ++i) {
             basis_eval<Makhotkin>(nf, xs[i], ys[i], zs[i], one.data());
@@ -372,8 +380,10 @@ TEST_CASE("makhotkin: float is within a stated bound of double", "[makhotkin]") 
     for (const auto& d : dirs) {
         for (int bands : {3, 8, 31, 64, 70}) {
             std::vector<float> f(static_cast<std::size_t>(Makhotkin::count(bands)));
-            basis_eval<Makhotkin>(Makhotkin::count(bands), float(d[0]), float(d[1]), float(d[2]), f.data());
-            const auto dd = eval_d(bands, double(float(d[0])), double(float(d[1])), double(float(d[2])));
+            basis_eval<Makhotkin>(Makhotkin::count(bands), float(d[0]), float(d[1]), float(d[2]),
+                                  f.data());
+            const auto dd =
+                eval_d(bands, double(float(d[0])), double(float(d[1])), double(float(d[2])));
             for (std::size_t k = 0; k < f.size(); ++k) {
                 const int l = sh::degree_of(int(k));
                 worst = std::max(worst, std::fabs(double(f[k]) - dd[k]) /
@@ -422,9 +432,9 @@ TEST_CASE("makhotkin: pole and horizon are finite and exact", "[makhotkin]") {
 
 TEST_CASE("makhotkin: hard directions stay finite", "[makhotkin]") {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    const std::vector<Dir> hard = {{0, 0, 1},       {1e-300, 0, 1}, {3e-310, 2e-310, 1e-310},
-                                   {1e300, 1e300, 1e300}, {1, 1e-300, 0}, {0, 0, 0},
-                                   {nan, 0, 1},     {1e-20, -1e-20, 1}};
+    const std::vector<Dir> hard = {
+        {0, 0, 1}, {1e-300, 0, 1}, {3e-310, 2e-310, 1e-310}, {1e300, 1e300, 1e300}, {1, 1e-300, 0},
+        {0, 0, 0}, {nan, 0, 1},    {1e-20, -1e-20, 1}};
     double pole[16];
     basis_eval<Makhotkin>(16, 0.0, 0.0, 1.0, pole);
     for (int bands : {4, 9, 64, 200}) {
@@ -432,7 +442,8 @@ TEST_CASE("makhotkin: hard directions stay finite", "[makhotkin]") {
         std::vector<float> f(v.size());
         for (const auto& d : hard) {
             basis_eval<Makhotkin>(Makhotkin::count(bands), d[0], d[1], d[2], v.data());
-            basis_eval<Makhotkin>(Makhotkin::count(bands), float(d[0]), float(d[1]), float(d[2]), f.data());
+            basis_eval<Makhotkin>(Makhotkin::count(bands), float(d[0]), float(d[1]), float(d[2]),
+                                  f.data());
             for (double x : v) REQUIRE(std::isfinite(x));
             for (float x : f) REQUIRE(std::isfinite(x));
         }
@@ -452,7 +463,8 @@ TEST_CASE("makhotkin: bad sizes throw", "[makhotkin]") {
     REQUIRE_THROWS_WITH(basis_eval<Makhotkin>(-4, 0.0, 0.0, 1.0, v), Catch::Contains("got -4"));
     REQUIRE_THROWS_WITH(basis_eval<Makhotkin>(2049 * 2049, 0.0, 0.0, 1.0, v),
                         Catch::Contains("bands <= 2048"));
-    REQUIRE_THROWS_WITH(basis_eval_batch<Makhotkin>(4, 2, f, f, f, f, 1), Catch::Contains("stride"));
+    REQUIRE_THROWS_WITH(basis_eval_batch<Makhotkin>(4, 2, f, f, f, f, 1),
+                        Catch::Contains("stride"));
     REQUIRE_THROWS_WITH(basis_eval_sum<Makhotkin>(3, f, 0.f, 0.f, 1.f),
                         Catch::Contains("sphbasis::basis_eval_sum(): expected a square number"));
     CHECK(Makhotkin::valid_count(2048 * 2048));

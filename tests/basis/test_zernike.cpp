@@ -1,20 +1,18 @@
 // Tests for basis/zernike.hpp: convention, orthonormality, references, kernels, bad input.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
 #include <array>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
 #include <limits>
 #include <map>
 #include <random>
+#include <sphbasis/basis/zernike.hpp>
+#include <sphbasis/core/quadrature.hpp>
 #include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
-
-#include <sphbasis/basis/zernike.hpp>
-#include <sphbasis/core/quadrature.hpp>
 
 using namespace sphbasis;
 
@@ -93,7 +91,8 @@ double gram_residual(int n, int degree) {
     double worst = 0;
     for (std::size_t a = 0; a < un; ++a)
         for (std::size_t b = 0; b <= a; ++b)
-            worst = std::max(worst, std::fabs(dot(&f[a * np], &f[b * np], np) - (a == b ? 1.0 : 0.0)));
+            worst =
+                std::max(worst, std::fabs(dot(&f[a * np], &f[b * np], np) - (a == b ? 1.0 : 0.0)));
     return worst;
 }
 
@@ -149,7 +148,8 @@ void check_reference(int max_l) {
         }
     }
     CHECK(count > 500);
-    WARN("zernike reference (l <= " << max_l << "): " << count << " values, worst |error|/S = " << worst);
+    WARN("zernike reference (l <= " << max_l << "): " << count
+                                    << " values, worst |error|/S = " << worst);
 }
 
 }  // namespace
@@ -210,8 +210,8 @@ TEST_CASE("zernike: bands 0-2 closed forms and band-1 signs pin the convention",
 // integrated exactly by the (bands)-point Gauss-Legendre rule in z; the phi factor is a
 // trigonometric polynomial of degree <= 2(bands-1) < the 2 bands - 1 uniform points in phi. If
 // |m| + |m'| is odd then m != m' and the uniform phi rule sums cos/sin((m -+ m') phi),
-// 0 < |m -+ m'| < 2 bands - 1, to exactly 0 at every z node. Hence hemisphere_rule(2(bands-1)) (even
-// hemisphere_rule(bands - 1) for the z part) gives the exact Gram matrix.
+// 0 < |m -+ m'| < 2 bands - 1, to exactly 0 at every z node. Hence hemisphere_rule(2(bands-1))
+// (even hemisphere_rule(bands - 1) for the z part) gives the exact Gram matrix.
 TEST_CASE("zernike: Gram matrix is the identity by exact quadrature", "[zernike]") {
     for (int bands = 1; bands <= 10; ++bands) {
         const double r = gram_residual(Zernike::count(bands), 2 * (bands - 1));
@@ -220,7 +220,8 @@ TEST_CASE("zernike: Gram matrix is the identity by exact quadrature", "[zernike]
     }
 }
 
-TEST_CASE("zernike: Gram matrix is the identity by exact quadrature, 16 to 48 bands", "[zernike][slow]") {
+TEST_CASE("zernike: Gram matrix is the identity by exact quadrature, 16 to 48 bands",
+          "[zernike][slow]") {
     for (int bands : {16, 32, 48}) {
         const double r = gram_residual(Zernike::count(bands), 2 * (bands - 1));
         INFO("bands " << bands << " residual " << r);
@@ -242,9 +243,8 @@ TEST_CASE("zernike: column recurrence is orthonormal per order to 512 bands", "[
     for (std::size_t i = 0; i < t.size(); ++i) {
         const double z = 0.5 * (t[i] + 1);
         const double s = std::sqrt((1 - z) * (1 + z));
-        zernike::detail::ColumnKernel{bands}(s, 0.0, z, [&](int k, double x) {
-            v[static_cast<std::size_t>(k)] = x;
-        });
+        zernike::detail::ColumnKernel{bands}(
+            s, 0.0, z, [&](int k, double x) { v[static_cast<std::size_t>(k)] = x; });
         for (std::size_t j = 0; j < orders.size(); ++j)
             for (int n = orders[j]; n < bands; n += 2)
                 g[j].push_back(v[static_cast<std::size_t>(zernike::index(n, orders[j]))]);
@@ -270,7 +270,8 @@ TEST_CASE("zernike: values against the mpmath reference (l <= 255)", "[zernike][
     check_reference(255);
 }
 
-TEST_CASE("zernike: values against the mpmath reference (l <= 2047)", "[zernike][reference][slow]") {
+TEST_CASE("zernike: values against the mpmath reference (l <= 2047)",
+          "[zernike][reference][slow]") {
     check_reference(2047);
 }
 
@@ -349,7 +350,8 @@ TEMPLATE_TEST_CASE("zernike: batch path equals scalar path", "[zernike]", float,
         std::vector<T> out(unf * n), one(unf), coeffs(unf), sums(n);
         for (std::size_t k = 0; k < unf; ++k) coeffs[k] = T(std::sin(double(k) + 1));
         basis_eval_batch<Zernike>(nf, n, xs.data(), ys.data(), zs.data(), out.data(), n);
-        basis_eval_sum_batch<Zernike>(nf, coeffs.data(), n, xs.data(), ys.data(), zs.data(), sums.data());
+        basis_eval_sum_batch<Zernike>(nf, coeffs.data(), n, xs.data(), ys.data(), zs.data(),
+                                      sums.data());
         double worst = 0, worst_sum = 0;
         for (std::size_t i = 0; i < n; ++i) {
             basis_eval<Zernike>(nf, xs[i], ys[i], zs[i], one.data());
@@ -383,8 +385,10 @@ TEST_CASE("zernike: float is within a stated bound of double", "[zernike]") {
     for (const auto& d : dirs) {
         for (int bands : {3, 8, 31, 64, 70}) {
             std::vector<float> f(static_cast<std::size_t>(Zernike::count(bands)));
-            basis_eval<Zernike>(Zernike::count(bands), float(d[0]), float(d[1]), float(d[2]), f.data());
-            const auto dd = eval_d(bands, double(float(d[0])), double(float(d[1])), double(float(d[2])));
+            basis_eval<Zernike>(Zernike::count(bands), float(d[0]), float(d[1]), float(d[2]),
+                                f.data());
+            const auto dd =
+                eval_d(bands, double(float(d[0])), double(float(d[1])), double(float(d[2])));
             for (std::size_t k = 0; k < f.size(); ++k) {
                 const int l = band_of(int(k));
                 worst = std::max(worst, std::fabs(double(f[k]) - dd[k]) /
@@ -426,7 +430,9 @@ TEST_CASE("zernike: pole and horizon are finite and exact", "[zernike]") {
                 REQUIRE(std::isfinite(h[k]));
                 const double c = std::sqrt((n + 1) * (m == 0 ? 1.0 : 2.0) / (2 * pi));
                 const double pole = m == 0 ? ((n / 2) % 2 ? -c : c) : 0.0;
-                const double rim = c * (m > 0 ? std::cos(m * phi) : m < 0 ? std::sin(-m * phi) : 1.0);
+                const double rim = c * (m > 0   ? std::cos(m * phi)
+                                        : m < 0 ? std::sin(-m * phi)
+                                                : 1.0);
                 worst = std::max(worst, std::fabs(p[k] - pole) / s);
                 worst = std::max(worst, std::fabs(h[k] - rim) / s);
                 REQUIRE(hz[k] == h[k]);
@@ -438,9 +444,9 @@ TEST_CASE("zernike: pole and horizon are finite and exact", "[zernike]") {
 
 TEST_CASE("zernike: hard directions stay finite", "[zernike]") {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    const std::vector<Dir> hard = {{0, 0, 1},       {1e-300, 0, 1}, {3e-310, 2e-310, 1e-310},
-                                   {1e300, 1e300, 1e300}, {1, 1e-300, 0}, {0, 0, 0},
-                                   {nan, 0, 1},     {1e-20, -1e-20, 1}};
+    const std::vector<Dir> hard = {
+        {0, 0, 1}, {1e-300, 0, 1}, {3e-310, 2e-310, 1e-310}, {1e300, 1e300, 1e300}, {1, 1e-300, 0},
+        {0, 0, 0}, {nan, 0, 1},    {1e-20, -1e-20, 1}};
     double pole[15];
     basis_eval<Zernike>(15, 0.0, 0.0, 1.0, pole);
     for (int bands : {4, 9, 64, 200}) {
@@ -448,7 +454,8 @@ TEST_CASE("zernike: hard directions stay finite", "[zernike]") {
         std::vector<float> f(v.size());
         for (const auto& d : hard) {
             basis_eval<Zernike>(Zernike::count(bands), d[0], d[1], d[2], v.data());
-            basis_eval<Zernike>(Zernike::count(bands), float(d[0]), float(d[1]), float(d[2]), f.data());
+            basis_eval<Zernike>(Zernike::count(bands), float(d[0]), float(d[1]), float(d[2]),
+                                f.data());
             for (double x : v) REQUIRE(std::isfinite(x));
             for (float x : f) REQUIRE(std::isfinite(x));
         }
@@ -470,8 +477,9 @@ TEST_CASE("zernike: bad sizes throw", "[zernike]") {
     REQUIRE_THROWS_WITH(basis_eval<Zernike>(2049 * 2050 / 2, 0.0, 0.0, 1.0, v),
                         Catch::Contains("bands <= 2048"));
     REQUIRE_THROWS_WITH(basis_eval_batch<Zernike>(3, 2, f, f, f, f, 1), Catch::Contains("stride"));
-    REQUIRE_THROWS_WITH(basis_eval_sum<Zernike>(4, f, 0.f, 0.f, 1.f),
-                        Catch::Contains("sphbasis::basis_eval_sum(): expected a triangular number"));
+    REQUIRE_THROWS_WITH(
+        basis_eval_sum<Zernike>(4, f, 0.f, 0.f, 1.f),
+        Catch::Contains("sphbasis::basis_eval_sum(): expected a triangular number"));
     CHECK(Zernike::valid_count(2048 * 2049 / 2));
     CHECK_FALSE(Zernike::valid_count(2049 * 2050 / 2));
     CHECK_FALSE(Zernike::valid_count(2147483647));

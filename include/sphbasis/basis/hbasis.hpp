@@ -51,14 +51,16 @@ struct Kernel {
     SPHBASIS_FORCEINLINE void operator()(const V& x, const V& y, const V& z,
                                          Store&& store) const noexcept {
         using S = scalar_t<V>;
-        const V c1(S(0.69098829894267096));  // sqrt(3/(2 pi))
+        const V c1(S(0.69098829894267096));   // sqrt(3/(2 pi))
         store(0, V(S(0.39894228040143268)));  // 1/sqrt(2 pi)
         store(1, c1 * y);
-        if constexpr (Mod) store(2, c1 - c1 * z);  // sqrt(3/(2 pi)) (1 - z)
-        else store(2, V(S(1.3819765978853419)) * z - c1);  // sqrt(3/(2 pi)) (2z - 1)
+        if constexpr (Mod)
+            store(2, c1 - c1 * z);  // sqrt(3/(2 pi)) (1 - z)
+        else
+            store(2, V(S(1.3819765978853419)) * z - c1);  // sqrt(3/(2 pi)) (2z - 1)
         store(3, c1 * x);
         if constexpr (N == 6) {
-            store(4, V(S(1.5450968080927583)) * x * y);                // sqrt(15/(2 pi))
+            store(4, V(S(1.5450968080927583)) * x * y);             // sqrt(15/(2 pi))
             store(5, V(S(0.77254840404637916)) * (x * x - y * y));  // sqrt(15/(2 pi))/2
         }
     }

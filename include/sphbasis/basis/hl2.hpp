@@ -17,9 +17,9 @@
 // Orthonormality on the hemisphere: <n.a, n.b> = a^T M b with M = int_hemisphere n n^T dOmega =
 // (2 pi/3) I (int x z = int y z = int x y = 0 by the phi symmetry, int x^2 = int y^2 = int z^2 =
 // 2 pi/3), so the Gram matrix is 3/(2 pi) (2 pi/3) h_i . h_j = delta_ij. (On the whole sphere
-// M = (4 pi/3) I and the Gram matrix is 2 I: orthogonal but not normalised; the thesis' "orthonormal
-// over the upper hemisphere as well as full sphere" holds for orthogonality only.) The three
-// functions are a rotation of the linear SH band, renormalised to the hemisphere.
+// M = (4 pi/3) I and the Gram matrix is 2 I: orthogonal but not normalised; the thesis'
+// "orthonormal over the upper hemisphere as well as full sphere" holds for orthogonality only.) The
+// three functions are a rotation of the linear SH band, renormalised to the hemisphere.
 //
 // Domain: the upper hemisphere z >= 0. BELOW THE HORIZON (z < 0) the linear polynomials are
 // returned (they extend to the whole sphere); they are negative wherever n . h_i < 0, above the
@@ -40,7 +40,7 @@ struct Kernel {
     SPHBASIS_FORCEINLINE void operator()(const V& x, const V& y, const V& z,
                                          Store&& store) const noexcept {
         using S = scalar_t<V>;
-        const V a = V(S(0.39894228040143268)) * z;   // z/sqrt(2 pi)
+        const V a = V(S(0.39894228040143268)) * z;      // z/sqrt(2 pi)
         const V b = a - V(S(0.28209479177387814)) * x;  // 1/(2 sqrt(pi))
         const V c = V(S(0.48860251190291992)) * y;      // sqrt(3/(4 pi))
         store(0, b - c);

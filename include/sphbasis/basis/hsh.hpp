@@ -8,7 +8,8 @@
 //
 // Definition. The SH construction with cos(t) replaced by u = 2 cos(t) - 1, which maps the upper
 // hemisphere z = cos(t) in [0, 1] onto u in [-1, 1] (the horizon onto the SH south pole):
-//   H_l^m = K_lm P_l^|m|(u) trig(m phi),  K_lm^2 = (2l+1)(l-|m|)! / (2 pi (l+|m|)!) (x 2 if m != 0),
+//   H_l^m = K_lm P_l^|m|(u) trig(m phi),
+//   K_lm^2 = (2l+1) (l-|m|)! / (2 pi (l+|m|)!)  (times 2 if m != 0),
 // trig = cos(m phi) for m > 0, sin(|m| phi) for m < 0, 1 for m = 0, P_l^m WITHOUT the
 // Condon-Shortley phase (P_1^1(u) = +sqrt(1 - u^2)). Orthonormal on the hemisphere: dz = du/2
 // halves the SH normalisation integral, whence 2 pi where SH has 4 pi. Equivalently
@@ -88,7 +89,8 @@ inline constexpr int max_row_bands = 64;
 /// every rounding of a coefficient into a perturbation of the argument, which degree-l functions
 /// amplify ~l^1.5 times (slope ~l^2 at the ends): 2e-11 of the scale at l = 2047 in double,
 /// ~1e-14 in extended precision, for ~1.4x the time of the (scalar, division-bound) loop.
-using wide = std::conditional_t<std::numeric_limits<long double>::digits == 64, long double, double>;
+using wide =
+    std::conditional_t<std::numeric_limits<long double>::digits == 64, long double, double>;
 
 /// A family of hemispherical functions f = E(z) q_m p_k^(alpha, beta)(w) Re/Im (X + iY)^|m| with
 /// w = sigma (2z - 1), alpha = a0 + am |m|, beta = b0 + bm |m|, band = |m| + step k.
@@ -288,7 +290,8 @@ inline void columns(const Family& f, int bands, wide zc, wide X, wide Y, wide E,
         emit(m, p1);
         for (int k = 1, b = m + f.step; b < bands; ++k, b += f.step) {
             const R ak = jacobi_a<R>(k, al, be);
-            R p0 = ((two_sigma_z - sigma_plus_b<R>(k - 1, al, be, f.sigma)) * p1 - a_prev * p2) / ak;
+            R p0 =
+                ((two_sigma_z - sigma_plus_b<R>(k - 1, al, be, f.sigma)) * p1 - a_prev * p2) / ak;
             a_prev = ak;
             if (e < 0 && std::fabs(p0) > big) {
                 // Move magnitude from the mantissas into the exponent, but never above 2^0.
@@ -352,10 +355,14 @@ namespace detail {
 namespace hemi = sphbasis::detail::hemi;
 
 struct HshFamily {
-    static constexpr hemi::Family family{1, 1, 0, 1, 0, 1,
-                                         0.39894228040143268,  // 1/sqrt(2 pi)
-                                         0.69098829894267096,  // sqrt(3/(2 pi))
-                                         0};
+    // clang-format off
+    static constexpr hemi::Family family{
+        1, 1,                 // sigma, step: w = 2z - 1, band l = |m| + k
+        0, 1, 0, 1,           // alpha = |m|, beta = |m|
+        0.39894228040143268,  // q0 = 1/sqrt(2 pi)
+        0.69098829894267096,  // q1 = sqrt(3/(2 pi))
+        0};                   // q_m = q_{m-1} sqrt((2m+1)/(2m)), m >= 2
+    // clang-format on
 };
 
 /// zc = max(z, 0), (X, Y) = 2 sqrt(zc/(1+zc)) (x, y) = sin' (cos phi, sin phi), E = [z >= 0].
@@ -410,15 +417,24 @@ struct ColumnKernel {
 template <class F>
 inline decltype(auto) with_kernel(int bands, F&& f) {
     switch (bands) {
-        case 1: return f(FixedKernel<1>{});
-        case 2: return f(FixedKernel<2>{});
-        case 3: return f(FixedKernel<3>{});
-        case 4: return f(FixedKernel<4>{});
-        case 5: return f(FixedKernel<5>{});
-        case 6: return f(FixedKernel<6>{});
-        case 7: return f(FixedKernel<7>{});
-        case 8: return f(FixedKernel<8>{});
-        default: break;
+        case 1:
+            return f(FixedKernel<1>{});
+        case 2:
+            return f(FixedKernel<2>{});
+        case 3:
+            return f(FixedKernel<3>{});
+        case 4:
+            return f(FixedKernel<4>{});
+        case 5:
+            return f(FixedKernel<5>{});
+        case 6:
+            return f(FixedKernel<6>{});
+        case 7:
+            return f(FixedKernel<7>{});
+        case 8:
+            return f(FixedKernel<8>{});
+        default:
+            break;
     }
     if (bands <= hemi::max_row_bands) return f(RowKernel{bands});
     return f(ColumnKernel{bands});

@@ -68,10 +68,14 @@ constexpr int count(int bands) noexcept { return bands * bands; }
 namespace detail {
 
 struct MakhotkinFamily {
-    static constexpr sphbasis::detail::hemi::Family family{1, 1, 0, 1, 1, 1,
-                                                           0.56418958354775629,  // 1/sqrt(pi)
-                                                           0.97720502380583984,  // sqrt(3/pi)
-                                                           0};
+    // clang-format off
+    static constexpr sphbasis::detail::hemi::Family family{
+        1, 1,                 // sigma, step: w = 2z - 1, band l = |m| + k
+        0, 1, 1, 1,           // alpha = |m|, beta = |m| + 1
+        0.56418958354775629,  // q0 = 1/sqrt(pi)
+        0.97720502380583984,  // q1 = sqrt(3/pi)
+        0};                   // q_m = q_{m-1} sqrt((2m+1)/(2m)), m >= 2
+    // clang-format on
 };
 
 /// zc = max(z, 0), (X, Y) = 2 sqrt(zc/(1+zc)) (x, y), E = sqrt(zc) (0 below the horizon).
@@ -125,15 +129,24 @@ struct ColumnKernel {
 template <class F>
 inline decltype(auto) with_kernel(int bands, F&& f) {
     switch (bands) {
-        case 1: return f(FixedKernel<1>{});
-        case 2: return f(FixedKernel<2>{});
-        case 3: return f(FixedKernel<3>{});
-        case 4: return f(FixedKernel<4>{});
-        case 5: return f(FixedKernel<5>{});
-        case 6: return f(FixedKernel<6>{});
-        case 7: return f(FixedKernel<7>{});
-        case 8: return f(FixedKernel<8>{});
-        default: break;
+        case 1:
+            return f(FixedKernel<1>{});
+        case 2:
+            return f(FixedKernel<2>{});
+        case 3:
+            return f(FixedKernel<3>{});
+        case 4:
+            return f(FixedKernel<4>{});
+        case 5:
+            return f(FixedKernel<5>{});
+        case 6:
+            return f(FixedKernel<6>{});
+        case 7:
+            return f(FixedKernel<7>{});
+        case 8:
+            return f(FixedKernel<8>{});
+        default:
+            break;
     }
     if (bands <= sphbasis::detail::hemi::max_row_bands) return f(RowKernel{bands});
     return f(ColumnKernel{bands});

@@ -75,10 +75,14 @@ constexpr int count(int bands) noexcept { return bands * (bands + 1) / 2; }
 namespace detail {
 
 struct ZernikeFamily {
-    static constexpr sphbasis::detail::hemi::Family family{-1, 2, 0, 0, 0, 1,
-                                                           0.39894228040143268,  // 1/sqrt(2 pi)
-                                                           0.79788456080286536,  // sqrt(2/pi)
-                                                           1};
+    // clang-format off
+    static constexpr sphbasis::detail::hemi::Family family{
+        -1, 2,                // sigma, step: w = 1 - 2z = 2 rho^2 - 1, band n = |m| + 2k
+        0, 0, 0, 1,           // alpha = 0, beta = |m|
+        0.39894228040143268,  // q0 = 1/sqrt(2 pi)
+        0.79788456080286536,  // q1 = sqrt(2/pi)
+        1};                   // q_m = q_{m-1} sqrt((m+1)/m), m >= 2
+    // clang-format on
 };
 
 /// zc = max(z, 0), (X, Y) = (x, y) / sqrt(1 + zc) = rho (cos phi, sin phi), E = [z >= 0].
@@ -164,15 +168,24 @@ struct ColumnKernel {
 template <class F>
 inline decltype(auto) with_kernel(int bands, F&& f) {
     switch (bands) {
-        case 1: return f(FixedKernel<1>{});
-        case 2: return f(FixedKernel<2>{});
-        case 3: return f(FixedKernel<3>{});
-        case 4: return f(FixedKernel<4>{});
-        case 5: return f(FixedKernel<5>{});
-        case 6: return f(FixedKernel<6>{});
-        case 7: return f(FixedKernel<7>{});
-        case 8: return f(FixedKernel<8>{});
-        default: break;
+        case 1:
+            return f(FixedKernel<1>{});
+        case 2:
+            return f(FixedKernel<2>{});
+        case 3:
+            return f(FixedKernel<3>{});
+        case 4:
+            return f(FixedKernel<4>{});
+        case 5:
+            return f(FixedKernel<5>{});
+        case 6:
+            return f(FixedKernel<6>{});
+        case 7:
+            return f(FixedKernel<7>{});
+        case 8:
+            return f(FixedKernel<8>{});
+        default:
+            break;
     }
     if (bands <= sphbasis::detail::hemi::max_row_bands) return f(RowKernel{bands});
     return f(ColumnKernel{bands});
