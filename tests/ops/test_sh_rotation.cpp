@@ -6,8 +6,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <limits>
 #include <random>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "sphbasis/ops/sh_rotation.hpp"
@@ -467,3 +470,65 @@ TEST_CASE("rotation: bad input throws with the function name", "[rotation]") {
     CHECK_NOTHROW(sh::rotate(0, id, c.data(), o.data()));
     CHECK(sh::rotation_from_matrix(0, id).size() == 0);
 }
+
+#if defined(SPHBASIS_BINARY_DIR) && (defined(__unix__) || defined(__APPLE__))
+TEST_CASE("rotation: the sphbasis rotate command", "[rotation][cli]") {
+    // One JSON line {"bands":N,"quat":[...],"coeffs":[...]} with 17 significant digits (so the
+    // numbers round-trip to what sh::rotate_quaternion computes); both option spellings and
+    // negative numbers; bad input exits non-zero with one line. Runs only when the tool was
+    // built beside the tests.
+    const std::string exe = std::string(SPHBASIS_BINARY_DIR) + "/bin/sphbasis";
+    if (!std::ifstream(exe)) {
+        WARN("sphbasis tool not built; skipping");
+        return;
+    }
+    auto run = [&](const std::string& args, int& status) {
+        std::string out;
+        FILE* p = popen((exe + " rotate " + args + " 2>&1").c_str(), "r");
+        REQUIRE(p != nullptr);
+        char buf[4096];
+        while (std::fgets(buf, sizeof buf, p)) out += buf;
+        status = pclose(p);
+        return out;
+    };
+    auto coeffs_of = [](const std::string& out) {
+        std::vector<double> v;
+        const auto at = out.find("\"coeffs\":[");
+        REQUIRE(at != std::string::npos);
+        std::stringstream ss(out.substr(at + 10));
+        double x;
+        char sep;
+        while (ss >> x) {
+            v.push_back(x);
+            if (!(ss >> sep) || sep != ',') break;
+        }
+        return v;
+    };
+    int st = 0;
+    std::string out = run("--bands 3 --quat 0.9,-0.3,0.2,-0.1 --coeffs 1,-2,3,-4,5,-6,7,-8,9", st);
+    CHECK(st == 0);
+    CHECK(out.rfind("{\"bands\":3,\"quat\":[0.90000000000000002,-0.29999999999999999,", 0) == 0);
+    CHECK(std::count(out.begin(), out.end(), '\n') == 1);
+    std::vector<double> expect = {1, -2, 3, -4, 5, -6, 7, -8, 9};
+    sh::rotate_quaternion(3, 0.9, -0.3, 0.2, -0.1, expect.data(), expect.data());
+    const auto got = coeffs_of(out);
+    REQUIRE(got.size() == 9);
+    for (std::size_t k = 0; k < 9; ++k) CHECK(got[k] == Approx(expect[k]).margin(1e-15));
+    const std::string out2 =
+        run("--bands=3 --quat=0.9,-0.3,0.2,-0.1 --coeffs=1,-2,3,-4,5,-6,7,-8,9", st);
+    CHECK(st == 0);
+    CHECK(out2 == out);
+    for (const char* bad :
+         {"--bands 2 --quat 0,0,0,0 --coeffs 1,0,0,1", "--bands 2 --quat 1,0,0 --coeffs 1,0,0,1",
+          "--bands 2 --quat 1,0,0,0 --coeffs 1,0,0", "--bands x --quat 1,0,0,0 --coeffs 1",
+          "--quat 1,0,0,0 --coeffs 1", "--bands 0 --quat 1,0,0,0 --coeffs 1",
+          "--bands 1 --quat 1,0,0,0 --coeffs 1 extra", "--bands 1 --quat 1,nan,0,0 --coeffs 1",
+          "--bands 1 --bands 1 --quat 1,0,0,0 --coeffs 1",
+          "--bands 1 --quat 1,0,0,0 --coeffs 1,"}) {
+        out = run(bad, st);
+        INFO(bad << " -> " << out);
+        CHECK(st != 0);
+        CHECK(std::count(out.begin(), out.end(), '\n') == 1);
+    }
+}
+#endif

@@ -125,7 +125,7 @@ class LightBuf {
     double& operator[](std::size_t i) noexcept { return p_[i]; }
 
   private:
-    std::array<double, 64> stack_{};
+    std::array<double, 64> stack_;  // not value-initialised: always written before it is read
     std::vector<double> heap_;
     double* p_;
 };
@@ -181,10 +181,10 @@ C dot_accumulate(std::size_t n, const C* v, const S* w) {
     }
     C s[8];
     for (std::size_t j = 0; j < 8; ++j) s[j] = v[j] * w[j];
-    std::size_t i = 8;
-    for (; i + 8 <= n; i += 8)
-        for (std::size_t j = 0; j < 8; ++j) s[j] = s[j] + v[i + j] * w[i + j];
-    for (; i < n; ++i) s[0] = s[0] + v[i] * w[i];
+    const std::size_t blocks = n / 8;
+    for (std::size_t b = 1; b < blocks; ++b)
+        for (std::size_t j = 0; j < 8; ++j) s[j] = s[j] + v[8 * b + j] * w[8 * b + j];
+    for (std::size_t i = 8 * blocks; i < n; ++i) s[0] = s[0] + v[i] * w[i];
     return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
 }
 
