@@ -216,6 +216,14 @@ TEST_CASE("convolution: certified minimum on known functions", "[convolution]") 
     r = sh::minimum(3, c1.data());
     CHECK(r.lower_bound <= 2 / (2 * std::sqrt(pi)));
     CHECK(r.lower_bound == Approx(2 / (2 * std::sqrt(pi))).epsilon(1e-13));
+    // Huge and tiny scales: the same answer, scaled.
+    for (double scale : {1e300, 1e-300}) {
+        std::vector<double> big(e);
+        for (double& v : big) v *= scale;
+        const auto rb = sh::minimum(3, big.data(), 1e-6);
+        CHECK(rb.lower_bound <= -19.0 / 480 * scale);
+        CHECK(rb.value == Approx(-19.0 / 480 * scale).epsilon(1e-5));
+    }
     // A ring of minima (y_20 is smallest on the whole equator): still a valid bound.
     std::vector<double> y20(9, 0.0);
     y20[6] = 1;

@@ -251,6 +251,14 @@ TEST_CASE("lights: lat-long projection", "[lights]") {
     sh::project_latlong(bands, 64, 32, ones.data(), c.data());
     CHECK(c[0] == Approx(2 * std::sqrt(4 * pi)).epsilon(1e-14));
     for (std::size_t k = 1; k < c.size(); ++k) CHECK(c[k] == Approx(0).margin(1e-14));
+    // Tiny maps at many bands: still exact for a constant.
+    for (auto wh : {std::pair<int, int>{1, 1}, {3, 2}, {2, 7}}) {
+        const int b = 20;
+        std::vector<double> tiny(std::size_t(wh.first * wh.second), 1.0), ct(std::size_t(b * b));
+        sh::project_latlong(b, wh.first, wh.second, tiny.data(), ct.data());
+        CHECK(ct[0] == Approx(std::sqrt(4 * pi)).epsilon(1e-14));
+        for (std::size_t k = 1; k < ct.size(); ++k) CHECK(ct[k] == Approx(0).margin(1e-13));
+    }
     // Piecewise constant: rows 5..9 of 32 set to 1 is the zone between two caps about +z.
     std::vector<double> zone(64 * 32, 0.0);
     for (int j = 5; j < 10; ++j)

@@ -327,12 +327,19 @@ MinimumBound<T> minimum(int bands, const T* coeffs, double rel_tolerance = 1e-6,
     const int n = bands, L = bands - 1;
     const std::size_t nc = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
     std::vector<double> c(nc);
-    double norm2 = 0, norm2_ac = 0;
+    // Work on coefficients scaled to max |c| = 1 (so no square overflows), scale back at the end.
+    double cmax = 0;
     for (std::size_t k = 0; k < nc; ++k) {
         c[k] = static_cast<double>(coeffs[k]);
         if (!std::isfinite(c[k]))
             throw std::invalid_argument(
                 "sphbasis::sh::minimum(): expected finite coefficients, got a NaN or Inf");
+        cmax = std::max(cmax, std::fabs(c[k]));
+    }
+    const double cscale = cmax > 0 ? cmax : 1.0;
+    double norm2 = 0, norm2_ac = 0;
+    for (std::size_t k = 0; k < nc; ++k) {
+        c[k] /= cscale;
         norm2 += c[k] * c[k];
         if (k > 0) norm2_ac += c[k] * c[k];
     }
@@ -345,6 +352,8 @@ MinimumBound<T> minimum(int bands, const T* coeffs, double rel_tolerance = 1e-6,
 
     auto finish = [&](double lb, double val, vec3<double> dir, long long evals, bool conv) {
         MinimumBound<T> r;
+        lb *= cscale;
+        val *= cscale;
         T l = static_cast<T>(lb);
         if (static_cast<double>(l) > lb) l = std::nextafter(l, -std::numeric_limits<T>::infinity());
         r.lower_bound = l;

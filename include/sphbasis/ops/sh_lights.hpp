@@ -369,7 +369,7 @@ void project_latlong_fn(int bands, int width, int height, F&& texel, C* out) {
     }
     // theta: Gauss-Legendre nodes per row, enough for the trigonometric degree L + 1.
     const double dth = constants::pi / height;
-    const int q = std::min(64, 6 + static_cast<int>(std::ceil(1.5 * (L + 2) * dth)));
+    const int q = std::min(1024, 6 + static_cast<int>(std::ceil(1.5 * (L + 2) * dth)));
     std::vector<double> gt, gw;
     gauss_legendre(q, gt, gw);
     std::vector<double> theta_int(n2), yv(n2);
