@@ -26,8 +26,9 @@
 //   white diffuse surface facing it reflects 1 at that order; directional_light_peak(n) is
 //   that sum). These functions keep physical units; to_condon_shortley converts the signs.
 //
-// Environment maps (C is any texel type with C + C and C * S, S = float for float and for
-// types whose value_type is float, else double):
+// Lights and maps take any coefficient/texel type C with C + C and C * S, where
+// S = coefficient_scalar<C>::type (C for float/double, C::value_type, else the type of a member
+// r or x, else double; specialise it for other types). Environment maps:
 //   * latitude-longitude, W x H texels, row-major, texel (col, row) covering
 //     phi in [2 pi col/W, 2 pi (col+1)/W], theta in [pi row/H, pi (row+1)/H] from +z (row 0 at
 //     the north pole), phi = atan2(y, x): param/latlong.hpp's convention (which uses W = 2H).
