@@ -43,14 +43,18 @@
 //   * bands <= 8: sh.hpp's unrolled kernels at the mapped direction (X, Y, u), times sqrt(2);
 //   * bands <= 64: a normalised row recurrence (below, detail::hemi) on Q = H / sin'^m, times
 //     Re/Im (X + iY)^m; any value type (float, double, batch);
-//   * more bands: the column recurrence in double with a binary exponent carried beside each
-//     sectoral start (nothing underflows), lane by lane for batches.
+//   * more bands: the column recurrence in extended precision (detail::hemi::wide) with a binary
+//     exponent carried beside each sectoral start (nothing underflows), lane by lane for batches.
 // The recurrences use z itself, never a rounded u = 2z - 1, so that the accuracy near the
 // horizon (u -> -1, where degree-l functions have slope ~ l^2) is that of z. Cost: one division
 // and one square root per direction, then ~n^2 multiply-adds (~n^2 divisions and square roots
-// more above 64 bands, where the coefficients are computed on the fly). Accuracy: ~1e-13
-// relative to the function's scale sqrt((2l+1)/(2 pi)) in double up to max_bands (measured
-// against mpmath; see tests/basis/test_hsh.cpp).
+// more above 64 bands, where the coefficients are computed on the fly: ~10 ns per function).
+// Accuracy (double, against mpmath; tests/basis/test_hsh.cpp), relative to the scale
+// S_l = sqrt((2l+1)/(2 pi)) of degree l: <= 2e-15 below 64 bands, <= 3e-14 at l = 2047, except
+// within ~0.01 of the pole, where the input's own rounding dominates (slope ~l^2 S_l in z: one
+// ulp of z moves a degree-l function by up to ~l^2 1e-16 S_l; measured 1.3e-11 S_l at l = 2047,
+// t = 1e-3). Where long double is double, the column recurrence loses up to ~2e-11 S_l at the
+// horizon and pole at l = 2047 (see detail::hemi::wide).
 //
 // detail::hemi: the orthonormal Jacobi polynomials p_k^(a,b)(w), weight (1-w)^a (1+w)^b on
 // [-1, 1], by their three-term recurrence (Szego; Gautschi, "Orthogonal Polynomials", 2004, tables
@@ -179,6 +183,19 @@ const RowTable<T>& row_table() {
     return t;
 }
 
+/// s in every lane of V. For batches written as one vector operation (s - 0 is s for every s,
+/// -0 included), which compilers emit as a single broadcast even inside unrolled loops, where the
+/// lane-by-lane batch(T) constructor can turn into one masked broadcast per lane (GCC 12).
+template <class V>
+SPHBASIS_FORCEINLINE V splat(scalar_t<V> s) noexcept {
+    if constexpr (std::is_floating_point_v<V>) {
+        return s;
+    } else {
+        using N = typename V::native_type;
+        return V(N(s - N{}));
+    }
+}
+
 /// cos(m phi) and sin(m phi) scaled by S^m: Re/Im (X + iY)^m, m = 0..bands-1.
 template <class V>
 SPHBASIS_FORCEINLINE void powers(int bands, const V& X, const V& Y, V* cm, V* sm) noexcept {
@@ -191,15 +208,18 @@ SPHBASIS_FORCEINLINE void powers(int bands, const V& X, const V& Y, V* cm, V* sm
     }
 }
 
-/// Row recurrence for families with step 1 (HSH, Makhotkin): ACN order, bands <= max_row_bands.
-/// zc = max(z, 0); E multiplies every function (the family's E(z) and the below-horizon mask).
-template <class Fam, class V, class Store>
+/// Row recurrence for families with step 1 (HSH, Makhotkin): ACN order, bands <= Cap <=
+/// max_row_bands. zc = max(z, 0); E multiplies every function (the family's E(z) and the
+/// below-horizon mask). A compile-time Cap = bands lets the compiler unroll everything and keep
+/// the state in registers (the small-size kernels).
+template <class Fam, int Cap = max_row_bands, class V, class Store>
 SPHBASIS_FORCEINLINE void rows_acn(int bands, const V& zc, const V& X, const V& Y, const V& E,
                                    Store&& store) noexcept {
+    static_assert(Cap >= 1 && Cap <= max_row_bands, "sphbasis: row recurrence up to 64 bands.");
     using S = scalar_t<V>;
-    SPHBASIS_ASSERT(bands >= 1 && bands <= max_row_bands);
+    SPHBASIS_ASSERT(bands >= 1 && bands <= Cap);
     const RowTable<S>& t = row_table<S, Fam>();
-    V cm[max_row_bands], sm[max_row_bands], cur[max_row_bands], prev[max_row_bands];
+    V cm[Cap], sm[Cap], cur[Cap], prev[Cap];
     powers(bands, X, Y, cm, sm);
     for (int l = 0; l < bands; ++l) {
         const std::size_t o = t.row[static_cast<std::size_t>(l)];
@@ -207,11 +227,11 @@ SPHBASIS_FORCEINLINE void rows_acn(int bands, const V& zc, const V& X, const V& 
         const S* d = t.d.data() + o;
         const S* c = t.c.data() + o;
         for (int m = 0; m < l; ++m) {
-            const V v = (V(pz[m]) * zc - V(d[m])) * cur[m] - V(c[m]) * prev[m];
+            const V v = (splat<V>(pz[m]) * zc - splat<V>(d[m])) * cur[m] - splat<V>(c[m]) * prev[m];
             prev[m] = cur[m];
             cur[m] = v;
         }
-        cur[l] = V(t.start[static_cast<std::size_t>(l)]) * E;
+        cur[l] = splat<V>(t.start[static_cast<std::size_t>(l)]) * E;
         prev[l] = V(S(0));
         const int k = l * (l + 1);
         store(k, cur[0]);
@@ -340,9 +360,9 @@ SPHBASIS_FORCEINLINE V upper(const V& z) noexcept {
 
 namespace sphbasis::hsh {
 
-/// Largest supported band count (degree 2047, 4194304 functions). The column recurrence is
-/// accurate to ~1e-13 of the functions' scale there; the bound keeps one direction's cost
-/// (~n^2 square roots) and the index range reasonable.
+/// Largest supported band count (degree 2047, 4194304 functions): the range verified against
+/// mpmath (~3e-14 of the functions' scale away from the pole). The bound also keeps one
+/// direction's cost (~n^2 square roots, ~45 ms at 2048 bands) and the index range reasonable.
 inline constexpr int max_bands = 2048;
 
 /// ACN index of (l, m), |m| <= l.
