@@ -1,0 +1,31 @@
+# Tests of `sphbasis imse` (label "cli"). Included by tests/CMakeLists.txt after cli_tests.cmake,
+# whose helpers sphbasis_cli_test / sphbasis_cli_fails it uses.
+
+# A small paper run: prints the table with its seed; SH 9 spans the signal exactly.
+sphbasis_cli_test(imse_paper_small "protocol paper: 200 signals, seed 7.*\nsh +9 +0 \\(<1e-13\\)"
+                  imse --signals 200 --seed 7)
+sphbasis_cli_test(imse_paper_closed_form "closed form vs sample mean: largest \\|mean - expected\\| = [0-4]\\.[0-9]+ standard errors\n"
+                  imse --protocol=paper --signals 2000)
+# Files: JSON with the issue's schema, CSV and Markdown.
+add_test(NAME cli_imse_files
+         COMMAND sh -c "\"$<TARGET_FILE:sphbasis_cli>\" imse --signals 50 --seed 3 --json imse_test.json --csv imse_test.csv --md imse_test.md >/dev/null && grep -q '\"protocol\":\"paper\",\"signals\":50,\"seed\":3' imse_test.json && grep -q '{\"basis\":\"sh\",\"coeffs\":4,\"imse\":' imse_test.json && grep -q 'bytes_per_texel_rgb8\":12' imse_test.json && grep -q '^paper,hl2,3,' imse_test.csv && grep -q '^| hbasis | 6 |' imse_test.md && echo files-ok")
+set_tests_properties(cli_imse_files PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "files-ok")
+# Same seed, same numbers: two runs write identical CSV apart from the timing columns.
+add_test(NAME cli_imse_stable
+         COMMAND sh -c "b=\"$<TARGET_FILE:sphbasis_cli>\"; $b imse --signals 100 --seed 9 --csv s1.csv >/dev/null && $b imse --signals 100 --seed 9 --csv s2.csv >/dev/null && cut -d, -f1-8 s1.csv > s1.cut && cut -d, -f1-8 s2.csv > s2.cut && cmp s1.cut s2.cut && echo stable-ok")
+set_tests_properties(cli_imse_stable PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "stable-ok")
+# The hdri protocol on a few signals (needs OpenEXR and data/envmaps).
+sphbasis_cli_test(imse_hdri_small "protocol hdri: 16 signals, seed 1" imse --protocol hdri --signals 16)
+
+# Bad options exit non-zero with a message.
+sphbasis_cli_fails(imse_bad_protocol imse --protocol nope)
+sphbasis_cli_fails(imse_bad_signals imse --signals abc)
+sphbasis_cli_fails(imse_zero_signals imse --signals 0)
+sphbasis_cli_fails(imse_one_signal imse --signals 1)
+sphbasis_cli_fails(imse_negative_seed imse --seed -3)
+sphbasis_cli_fails(imse_unknown_option imse --bogus 1)
+sphbasis_cli_fails(imse_missing_value imse --signals)
+sphbasis_cli_fails(imse_positional imse paper)
+sphbasis_cli_fails(imse_twice imse --seed 1 --seed 2)
+sphbasis_cli_fails(imse_unwritable imse --signals 10 --json /nonexistent-dir/x.json)
+sphbasis_cli_test(imse_bad_protocol_message "expected paper, hdri or all" imse --protocol nope)
