@@ -17,6 +17,7 @@
 #include "core/simd.hpp"
 #include "core/vec.hpp"
 #include "ops/projection.hpp"
+#include "ops/imse.hpp"
 #include "ops/sh_convolution.hpp"
 #include "ops/sh_lights.hpp"
 #include "ops/sh_product.hpp"
