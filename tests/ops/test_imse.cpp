@@ -120,7 +120,8 @@ TEST_CASE("paper signal in the span: SH 9, 16, 25 fit it exactly", "[imse]") {
     for (int n : {9, 16, 25}) {
         const imse::Fit fit(sh->functions(n), false, rule);
         const Eigen::VectorXd v = fit.imse(e);
-        CHECK(v.maxCoeff() <= 1e-24 * energy);
+        INFO("SH " << n << ": max IMSE " << v.maxCoeff() << ", energy " << energy);
+        CHECK(v.maxCoeff() <= 1e-20 * energy);  // rounding: cond(G) ~ 1e5 for SH 25
         CHECK(v.minCoeff() >= 0);
         const Eigen::MatrixXd q = imse::residual_form(*sh, n);
         CHECK(q.cwiseAbs().maxCoeff() <= 1e-13);
