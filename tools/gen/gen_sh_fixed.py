@@ -97,6 +97,7 @@ def main():
     print("// The value type V is float, double or sphbasis::batch<T>.")
     print("#pragma once")
     print()
+    print("// clang-format off")
     print('#include "../config.hpp"')
     print('#include "../core/scalar.hpp"')
     print()
@@ -116,6 +117,7 @@ def main():
     print("}")
     print()
     print("}  // namespace sphbasis::sh::detail")
+    print("// clang-format on")
 
 
 if __name__ == "__main__":

@@ -7,6 +7,7 @@
 // The value type V is float, double or sphbasis::batch<T>.
 #pragma once
 
+// clang-format off
 #include "../config.hpp"
 #include "../core/scalar.hpp"
 
@@ -437,3 +438,4 @@ SPHBASIS_FORCEINLINE void eval_fixed(const V& x, const V& y, const V& z, Store&&
 }
 
 }  // namespace sphbasis::sh::detail
+// clang-format on
