@@ -44,13 +44,15 @@ TEMPLATE_TEST_CASE("vec: normalize_or_pole, scalar and batch", "[simd]", float, 
         REQUIRE(std::isfinite(y));
         REQUIRE(std::isfinite(z));
         CHECK(std::fabs(x * x + y * y + z * z - 1) <= 4 * std::numeric_limits<T>::epsilon());
-        // The same through every lane of a batch.
+        // The same through every lane of a batch, which uses a refined reciprocal-sqrt
+        // estimate: within 2 ulp of the scalar result (documented in vec.hpp).
         V bx(in[i][0]), by(in[i][1]), bz(in[i][2]);
         normalize_or_pole(bx, by, bz);
+        const T tol = 2 * std::numeric_limits<T>::epsilon();
         for (int j = 0; j < V::size; ++j) {
-            CHECK(bx[j] == x);
-            CHECK(by[j] == y);
-            CHECK(bz[j] == z);
+            CHECK(std::fabs(bx[j] - x) <= tol);
+            CHECK(std::fabs(by[j] - y) <= tol);
+            CHECK(std::fabs(bz[j] - z) <= tol);
         }
     }
     T x = 0, y = 0, z = 0;

@@ -34,6 +34,11 @@ template <class T, std::enable_if_t<std::is_floating_point_v<T>, int> = 0>
 inline T vsqrt(T a) noexcept {
     return std::sqrt(a);
 }
+/// 1/sqrt(a); batches use a refined hardware estimate (core/simd.hpp).
+template <class T, std::enable_if_t<std::is_floating_point_v<T>, int> = 0>
+inline T vrsqrt(T a) noexcept {
+    return T(1) / std::sqrt(a);
+}
 template <class T, std::enable_if_t<std::is_floating_point_v<T>, int> = 0>
 inline T vabs(T a) noexcept {
     return std::fabs(a);

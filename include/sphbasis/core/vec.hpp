@@ -79,18 +79,19 @@ using direction_scalar_t =
 /// a zero vector or a vector with a NaN or infinite component becomes the pole (0, 0, 1).
 /// Vectors of any finite non-zero length, denormal or near overflow included, are scaled to
 /// unit length (when the squared length is outside [1e-30, 1e30] the components are first
-/// divided by the largest magnitude, so nothing under- or overflows). Cost: one sqrt and one
-/// division on the common path. float, double and batches (lane-wise).
+/// divided by the largest magnitude, so nothing under- or overflows). Cost on the common path:
+/// one sqrt and one division for float/double; for batches a hardware reciprocal-sqrt estimate
+/// refined by Newton steps (within ~2 ulp of 1/sqrt). float, double and batches (lane-wise).
 template <class V>
 SPHBASIS_FORCEINLINE void normalize_or_pole(V& x, V& y, V& z) noexcept {
     using S = scalar_t<V>;
     const V one(S(1));
     // Fast path: the squared length is a normal number far from under- and overflow (NaN
-    // fails the comparisons): one sqrt and one division.
+    // fails the comparisons): one reciprocal square root (for batches a refined estimate).
     const V r2 = x * x + y * y + z * z;
     const auto fine = (r2 > V(S(1e-30))) & (r2 < V(S(1e30)));
     if (all(fine)) {
-        const V inv = one / vsqrt(r2);
+        const V inv = vrsqrt(r2);
         x = x * inv;
         y = y * inv;
         z = z * inv;
