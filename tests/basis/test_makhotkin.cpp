@@ -1,24 +1,22 @@
 // Tests for basis/makhotkin.hpp: convention, orthonormality, references, kernels, bad input.
 #include <algorithm>
-#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <fstream>
 #include <limits>
-#include <map>
-#include <random>
 #include <sphbasis/basis/makhotkin.hpp>
 #include <sphbasis/core/quadrature.hpp>
-#include <sstream>
 #include <string>
-#include <tuple>
+#include <utility>
 #include <vector>
+
+#include "../support/basis_checks.hpp"
 
 using namespace sphbasis;
 
 namespace {
 
-using Dir = std::array<double, 3>;
+using test::Dir;
+using test::random_dirs;
 constexpr double pi = constants::pi;
 constexpr double eps = std::numeric_limits<double>::epsilon();
 
@@ -27,122 +25,22 @@ constexpr double eps = std::numeric_limits<double>::epsilon();
 double scale(int l) { return std::sqrt((l + 1) / pi); }
 
 std::vector<double> eval_d(int bands, double x, double y, double z) {
-    std::vector<double> v(static_cast<std::size_t>(Makhotkin::count(bands)));
-    basis_eval<Makhotkin>(Makhotkin::count(bands), x, y, z, v.data());
-    return v;
+    return test::eval_bands<Makhotkin>(bands, x, y, z);
 }
 
-std::vector<Dir> random_dirs(int n, unsigned seed, bool upper = true) {
-    std::mt19937_64 rng(seed);
-    std::normal_distribution<double> g;
-    std::vector<Dir> d;
-    while (static_cast<int>(d.size()) < n) {
-        double x = g(rng), y = g(rng), z = g(rng);
-        const double r = std::sqrt(x * x + y * y + z * z);
-        if (r < 1e-3) continue;
-        if (upper) z = std::fabs(z);
-        d.push_back({x / r, y / r, z / r});
+/// What the shared checks (tests/support/basis_checks.hpp) need to know of Makhotkin.
+struct Traits {
+    using Basis = Makhotkin;
+    using RowKernel = makhotkin::detail::RowKernel;
+    using ColumnKernel = makhotkin::detail::ColumnKernel;
+    static double scale(int l) { return ::scale(l); }
+    static int degree_of(int k) { return sh::degree_of(k); }
+    static int index(int l, int m) { return makhotkin::index(l, m); }
+    template <class F>
+    static void with_kernel(int bands, F&& f) {
+        makhotkin::detail::with_kernel(bands, std::forward<F>(f));
     }
-    return d;
-}
-
-/// Calls the kernel k at d and returns its n values.
-template <class K>
-std::vector<double> run(const K& k, int n, const Dir& d) {
-    std::vector<double> v(static_cast<std::size_t>(n), std::numeric_limits<double>::quiet_NaN());
-    k(d[0], d[1], d[2], [&](int i, double x) { v[static_cast<std::size_t>(i)] = x; });
-    return v;
-}
-
-/// sum_i a[i] b[i], SIMD across i.
-double dot(const double* a, const double* b, std::size_t n) {
-    using V = batch<double>;
-    constexpr std::size_t w = static_cast<std::size_t>(native_width<double>);
-    V acc0(0.0), acc1(0.0);
-    std::size_t i = 0;
-    for (; i + 2 * w <= n; i += 2 * w) {
-        acc0 += V::load(a + i) * V::load(b + i);
-        acc1 += V::load(a + i + w) * V::load(b + i + w);
-    }
-    double lanes[native_width<double>];
-    (acc0 + acc1).store(lanes);
-    double s = 0;
-    for (double x : lanes) s += x;
-    for (; i < n; ++i) s += a[i] * b[i];
-    return s;
-}
-
-/// max |G - I| of the Gram matrix of the first n functions on the hemisphere rule of `degree`.
-double gram_residual(int n, int degree) {
-    const DirectionalRule r = hemisphere_rule(degree);
-    const std::size_t np = r.size(), un = static_cast<std::size_t>(n);
-    std::vector<double> f(un * np);
-    basis_eval_batch<Makhotkin>(n, np, r.x.data(), r.y.data(), r.z.data(), f.data(), np);
-    for (std::size_t k = 0; k < un; ++k)
-        for (std::size_t i = 0; i < np; ++i) f[k * np + i] *= std::sqrt(r.w[i]);
-    double worst = 0;
-    for (std::size_t a = 0; a < un; ++a)
-        for (std::size_t b = 0; b <= a; ++b)
-            worst =
-                std::max(worst, std::fabs(dot(&f[a * np], &f[b * np], np) - (a == b ? 1.0 : 0.0)));
-    return worst;
-}
-
-struct RefValue {
-    int k, l, m;
-    double ref;
 };
-/// The lines of tests/data/hemi_reference.txt, grouped by direction.
-std::map<Dir, std::vector<RefValue>> load_reference(const std::string& basis) {
-    std::ifstream in(SPHBASIS_TEST_DATA_DIR "/hemi_reference.txt");
-    REQUIRE(in.good());
-    std::map<Dir, std::vector<RefValue>> out;
-    std::string line, b;
-    while (std::getline(in, line)) {
-        if (line.empty() || line[0] == '#') continue;
-        std::istringstream is(line);
-        RefValue r;
-        Dir d;
-        REQUIRE(static_cast<bool>(is >> b));
-        if (b != basis) continue;
-        REQUIRE(static_cast<bool>(is >> r.k >> r.l >> r.m >> d[0] >> d[1] >> d[2] >> r.ref));
-        out[d].push_back(r);
-    }
-    return out;
-}
-
-/// Accuracy bound: 5e-14 S_l plus the input's own conditioning, ~l ulp of the sectoral factor and,
-/// within 0.01 of the pole, ~l^2 ulp (slope ~l^2 S_l in z there; 1 ulp of z).
-double bound(int l, double z) {
-    const double dl = l;
-    return (5e-14 + eps * dl * (1 + (1 - z < 1e-2 ? dl : 0.0))) * scale(l);
-}
-
-void check_reference(int max_l) {
-    const auto ref = load_reference("makhotkin");
-    REQUIRE(!ref.empty());
-    long count = 0;
-    double worst = 0;
-    for (const auto& [d, values] : ref) {
-        int lmax = 0;
-        for (const auto& r : values)
-            if (r.l <= max_l) lmax = std::max(lmax, r.l);
-        const auto v = eval_d(lmax + 1, d[0], d[1], d[2]);
-        for (const auto& r : values) {
-            if (r.l > max_l) continue;
-            REQUIRE(r.k == makhotkin::index(r.l, r.m));
-            const double got = v[static_cast<std::size_t>(r.k)];
-            INFO("l=" << r.l << " m=" << r.m << " dir=" << d[0] << "," << d[1] << "," << d[2]
-                      << " got " << got << " ref " << r.ref);
-            REQUIRE(std::fabs(got - r.ref) <= bound(r.l, d[2]));
-            worst = std::max(worst, std::fabs(got - r.ref) / scale(r.l));
-            ++count;
-        }
-    }
-    CHECK(count > 500);
-    WARN("makhotkin reference (l <= " << max_l << "): " << count
-                                      << " values, worst |error|/S = " << worst);
-}
 
 }  // namespace
 
@@ -205,21 +103,14 @@ TEST_CASE("makhotkin: bands 0-2 closed forms and band-1 signs pin the convention
 // bands, to exactly 0 at every z node. Hence hemisphere_rule(2 bands - 1) gives the exact Gram
 // matrix.
 TEST_CASE("makhotkin: Gram matrix is the identity by exact quadrature", "[makhotkin]") {
-    for (int bands = 1; bands <= 10; ++bands) {
-        const double r = gram_residual(Makhotkin::count(bands), 2 * bands - 1);
-        INFO("bands " << bands << " residual " << r);
-        CHECK(r < 1e-13);
-    }
+    test::check_gram_identity<Makhotkin>(
+        test::band_range(10), [](int bands) { return 2 * bands - 1; }, 1e-13, false);
 }
 
 TEST_CASE("makhotkin: Gram matrix is the identity by exact quadrature, 16 to 33 bands",
           "[makhotkin][slow]") {
-    for (int bands : {16, 24, 33}) {
-        const double r = gram_residual(Makhotkin::count(bands), 2 * bands - 1);
-        INFO("bands " << bands << " residual " << r);
-        CHECK(r < 1e-12);
-        WARN("makhotkin Gram residual, " << bands << " bands: " << r);
-    }
+    test::check_gram_identity<Makhotkin>(
+        {16, 24, 33}, [](int bands) { return 2 * bands - 1; }, 1e-12, true);
 }
 
 TEST_CASE("makhotkin: column recurrence is orthonormal per order to 512 bands",
@@ -227,185 +118,40 @@ TEST_CASE("makhotkin: column recurrence is orthonormal per order to 512 bands",
     // At phi = 0 the m >= 0 functions are g_lm(z) cos(0) = g_lm(z), and the hemisphere integral of
     // M_lm M_l'm is pi (1 + delta_m0) int_0^1 g_lm g_l'm dz: a polynomial of degree <= 2 bands - 1
     // in z (as in the Gram test), exact with `bands` Gauss-Legendre nodes.
-    const int bands = 512;
-    std::vector<double> t, w;
-    gauss_legendre(bands, t, w);
-    const std::vector<int> orders = {0, 1, 2, 100, 300, 510, 511};
-    std::vector<std::vector<double>> g(orders.size());
-    std::vector<double> v(static_cast<std::size_t>(Makhotkin::count(bands)));
-    for (std::size_t i = 0; i < t.size(); ++i) {
-        const double z = 0.5 * (t[i] + 1);
-        const double s = std::sqrt((1 - z) * (1 + z));
-        makhotkin::detail::ColumnKernel{bands}(
-            s, 0.0, z, [&](int k, double x) { v[static_cast<std::size_t>(k)] = x; });
-        for (std::size_t j = 0; j < orders.size(); ++j)
-            for (int l = orders[j]; l < bands; ++l)
-                g[j].push_back(v[static_cast<std::size_t>(makhotkin::index(l, orders[j]))]);
-    }
-    double worst = 0;
-    for (std::size_t j = 0; j < orders.size(); ++j) {
-        const int m = orders[j], nl = bands - m;
-        const double c = pi * (m == 0 ? 2 : 1);
-        for (int a = 0; a < nl; ++a)
-            for (int b = 0; b <= a; ++b) {
-                double s = 0;
-                for (std::size_t i = 0; i < t.size(); ++i)
-                    s += 0.5 * w[i] *
-                         g[j][i * static_cast<std::size_t>(nl) + static_cast<std::size_t>(a)] *
-                         g[j][i * static_cast<std::size_t>(nl) + static_cast<std::size_t>(b)];
-                worst = std::max(worst, std::fabs(c * s - (a == b ? 1.0 : 0.0)));
-            }
-    }
+    const double worst = test::column_gram_residual<Traits>(512, {0, 1, 2, 100, 300, 510, 511}, 1);
     WARN("makhotkin per-order Gram residual at 512 bands: " << worst);
     CHECK(worst < 1e-12);
 }
 
 TEST_CASE("makhotkin: values against the mpmath reference (l <= 255)", "[makhotkin][reference]") {
-    check_reference(255);
+    test::check_hemi_reference<Traits>(255);
 }
 
 TEST_CASE("makhotkin: values against the mpmath reference (l <= 2047)",
           "[makhotkin][reference][slow]") {
-    check_reference(2047);
+    test::check_hemi_reference<Traits>(2047);
 }
 
 TEST_CASE("makhotkin: unrolled kernels, row recurrence and column recurrence agree",
           "[makhotkin]") {
-    auto dirs = random_dirs(100, 2);
-    for (Dir d : {Dir{0, 0, 1}, Dir{1, 0, 0}, Dir{0, -1, 0}, Dir{0.6, 0.8, 1e-9}, Dir{1e-9, 0, 1},
-                  Dir{0, 0, -1}, Dir{0.6, 0, -0.8}})
-        dirs.push_back(d);
-    for (auto& d : dirs) normalize_or_pole(d[0], d[1], d[2]);  // the kernels take unit input
-    for (int bands = 1; bands <= 8; ++bands) {
-        const int n = Makhotkin::count(bands);
-        double worst = 0;
-        for (const auto& d : dirs) {
-            std::vector<double> fixed;
-            makhotkin::detail::with_kernel(bands, [&](auto k) { fixed = run(k, n, d); });
-            const auto rows = run(makhotkin::detail::RowKernel{bands}, n, d);
-            const auto cols = run(makhotkin::detail::ColumnKernel{bands}, n, d);
-            for (int k = 0; k < n; ++k) {
-                const std::size_t uk = static_cast<std::size_t>(k);
-                const double s = scale(sh::degree_of(k));
-                worst = std::max(worst, std::fabs(fixed[uk] - rows[uk]) / s);
-                worst = std::max(worst, std::fabs(fixed[uk] - cols[uk]) / s);
-            }
-        }
-        INFO("bands " << bands);
-        CHECK(worst <= 16 * eps);
-    }
-    // Row (<= 64 bands) against column recurrence at the switch-over.
-    double worst = 0;
-    for (const auto& d : dirs) {
-        const auto rows = run(makhotkin::detail::RowKernel{64}, Makhotkin::count(64), d);
-        const auto cols = run(makhotkin::detail::ColumnKernel{64}, Makhotkin::count(64), d);
-        for (int k = 0; k < Makhotkin::count(64); ++k)
-            worst = std::max(worst, std::fabs(rows[static_cast<std::size_t>(k)] -
-                                              cols[static_cast<std::size_t>(k)]) /
-                                        scale(sh::degree_of(k)));
-    }
-    CHECK(worst <= 1e-13);
+    test::check_kernels_agree<Traits>();
 }
 
-TEST_CASE("makhotkin: prefix property", "[makhotkin]") {
-    for (const auto& d : random_dirs(5, 3)) {
-        const auto big = eval_d(100, d[0], d[1], d[2]);
-        for (int b : {1, 2, 3, 7, 8, 9, 31, 64, 65, 99}) {
-            const auto small = eval_d(b, d[0], d[1], d[2]);
-            double worst = 0;
-            for (int i = 0; i < Makhotkin::count(b); ++i)
-                worst = std::max(worst, std::fabs(small[static_cast<std::size_t>(i)] -
-                                                  big[static_cast<std::size_t>(i)]) /
-                                            scale(sh::degree_of(i)));
-            INFO("bands " << b);
-            CHECK(worst <= 1e-13);
-        }
-        // Within one evaluation path the prefix is bitwise.
-        const auto a = eval_d(40, d[0], d[1], d[2]);
-        const auto c = eval_d(20, d[0], d[1], d[2]);
-        CHECK(std::equal(c.begin(), c.end(), a.begin()));
-    }
-}
+TEST_CASE("makhotkin: prefix property", "[makhotkin]") { test::check_prefix_property<Traits>(); }
 
 TEMPLATE_TEST_CASE("makhotkin: batch path equals scalar path", "[makhotkin]", float, double) {
-    using T = TestType;
-    auto dirs = random_dirs(37, 5, false);  // not a multiple of any SIMD width; both hemispheres
-    dirs.push_back({0, 0, 1});
-    dirs.push_back({1, 0, 0});
-    std::vector<T> xs, ys, zs;
-    for (const auto& d : dirs) {
-        xs.push_back(T(d[0] * 3));  // non-unit on purpose: both paths normalise
-        ys.push_back(T(d[1] * 3));
-        zs.push_back(T(d[2] * 3));
-    }
-    const std::size_t n = dirs.size();
-    for (int bands : {1, 2, 3, 4, 8, 9, 17, 64, 66}) {
-        const int nf = Makhotkin::count(bands);
-        const std::size_t unf = static_cast<std::size_t>(nf);
-        std::vector<T> out(unf * n), one(unf), coeffs(unf), sums(n);
-        for (std::size_t k = 0; k < unf; ++k) coeffs[k] = T(std::sin(double(k) + 1));
-        basis_eval_batch<Makhotkin>(nf, n, xs.data(), ys.data(), zs.data(), out.data(), n);
-        basis_eval_sum_batch<Makhotkin>(nf, coeffs.data(), n, xs.data(), ys.data(), zs.data(),
-                                        sums.data());
-        double worst = 0, worst_sum = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-            basis_eval<Makhotkin>(nf, xs[i], ys[i], zs[i], one.data());
-            double dot = 0, mag = 0;
-            for (std::size_t k = 0; k < unf; ++k) {
-                const int l = sh::degree_of(int(k));
-                worst = std::max(worst, std::fabs(double(out[k * n + i]) - double(one[k])) /
-                                            ((l + 1) * scale(l)));
-                dot += double(coeffs[k]) * double(one[k]);
-                mag += std::fabs(double(coeffs[k]) * double(one[k]));
-            }
-            const T s1 = basis_eval_sum<Makhotkin>(nf, coeffs.data(), xs[i], ys[i], zs[i]);
-            worst_sum = std::max(worst_sum, std::fabs(double(s1) - dot) / (mag + 1));
-            worst_sum = std::max(worst_sum, std::fabs(double(sums[i]) - dot) / (mag + 1));
-        }
-        INFO("bands " << bands);
-        CHECK(worst <= 4 * double(std::numeric_limits<T>::epsilon()));
-        CHECK(worst_sum <= 8 * double(std::numeric_limits<T>::epsilon()));
-    }
+    test::check_batch_equals_scalar<Traits, TestType>();
 }
 
 TEST_CASE("makhotkin: float is within a stated bound of double", "[makhotkin]") {
     // Bound: |float - double| <= 6 (l + 1)^1.5 ulp(float) * S_l (measured worst 3.2 (l + 1)^1.5,
     // near the pole): the float path normalises the direction in float (near the pole degree-l
     // functions have slope ~l^2 in z) and rounds each recurrence step (~l^1.5 ulp near the ends).
-    const double ef = std::numeric_limits<float>::epsilon();
-    double worst = 0;
-    auto dirs = random_dirs(200, 9);
-    dirs.push_back({0, 0, 1});
-    dirs.push_back({0.6, 0.8, 0});
-    for (const auto& d : dirs) {
-        for (int bands : {3, 8, 31, 64, 70}) {
-            std::vector<float> f(static_cast<std::size_t>(Makhotkin::count(bands)));
-            basis_eval<Makhotkin>(Makhotkin::count(bands), float(d[0]), float(d[1]), float(d[2]),
-                                  f.data());
-            const auto dd =
-                eval_d(bands, double(float(d[0])), double(float(d[1])), double(float(d[2])));
-            for (std::size_t k = 0; k < f.size(); ++k) {
-                const int l = sh::degree_of(int(k));
-                worst = std::max(worst, std::fabs(double(f[k]) - dd[k]) /
-                                            (std::pow(l + 1, 1.5) * ef * scale(l)));
-            }
-        }
-    }
-    WARN("makhotkin float vs double: worst |f - d| / ((l + 1)^1.5 ulp S_l) = " << worst);
-    CHECK(worst <= 6);
+    test::check_float_vs_double<Traits>();
 }
 
 TEST_CASE("makhotkin: below the horizon every function is 0", "[makhotkin]") {
-    auto dirs = random_dirs(50, 4, false);
-    for (Dir d : {Dir{0, 0, -1}, Dir{1, 0, -1e-300}, Dir{0.6, 0.8, -1e-12}, Dir{0, 1, -0.5}})
-        dirs.push_back(d);
-    for (const auto& d : dirs) {
-        if (d[2] >= 0) continue;
-        for (int bands : {1, 3, 8, 20, 65}) {
-            const auto v = eval_d(bands, d[0], d[1], d[2]);
-            for (double x : v) REQUIRE(x == 0);
-        }
-    }
+    test::check_zero_below_horizon<Makhotkin>();
 }
 
 TEST_CASE("makhotkin: pole and horizon are finite and exact", "[makhotkin]") {
@@ -431,26 +177,7 @@ TEST_CASE("makhotkin: pole and horizon are finite and exact", "[makhotkin]") {
 }
 
 TEST_CASE("makhotkin: hard directions stay finite", "[makhotkin]") {
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    const std::vector<Dir> hard = {
-        {0, 0, 1}, {1e-300, 0, 1}, {3e-310, 2e-310, 1e-310}, {1e300, 1e300, 1e300}, {1, 1e-300, 0},
-        {0, 0, 0}, {nan, 0, 1},    {1e-20, -1e-20, 1}};
-    double pole[16];
-    basis_eval<Makhotkin>(16, 0.0, 0.0, 1.0, pole);
-    for (int bands : {4, 9, 64, 200}) {
-        std::vector<double> v(static_cast<std::size_t>(Makhotkin::count(bands)));
-        std::vector<float> f(v.size());
-        for (const auto& d : hard) {
-            basis_eval<Makhotkin>(Makhotkin::count(bands), d[0], d[1], d[2], v.data());
-            basis_eval<Makhotkin>(Makhotkin::count(bands), float(d[0]), float(d[1]), float(d[2]),
-                                  f.data());
-            for (double x : v) REQUIRE(std::isfinite(x));
-            for (float x : f) REQUIRE(std::isfinite(x));
-        }
-    }
-    double v[16];
-    basis_eval<Makhotkin>(16, nan, 0.0, 0.0, v);  // no direction: the pole
-    for (int k = 0; k < 16; ++k) CHECK(v[k] == pole[k]);
+    test::check_hard_directions_finite<Makhotkin>(16);
 }
 
 TEST_CASE("makhotkin: bad sizes throw", "[makhotkin]") {
