@@ -5,34 +5,22 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
-#include <random>
 #include <sphbasis/basis/hbasis.hpp>
 #include <sphbasis/core/quadrature.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "../support/basis_checks.hpp"
+
 using namespace sphbasis;
 
 namespace {
 
-using Dir = std::array<double, 3>;
+using test::Dir;
+using test::random_dirs;
 constexpr double pi = constants::pi;
 constexpr double eps = std::numeric_limits<double>::epsilon();
-
-std::vector<Dir> random_dirs(int n, unsigned seed, bool upper = true) {
-    std::mt19937_64 rng(seed);
-    std::normal_distribution<double> g;
-    std::vector<Dir> d;
-    while (static_cast<int>(d.size()) < n) {
-        double x = g(rng), y = g(rng), z = g(rng);
-        const double r = std::sqrt(x * x + y * y + z * z);
-        if (r < 1e-3) continue;
-        if (upper) z = std::fabs(z);
-        d.push_back({x / r, y / r, z / r});
-    }
-    return d;
-}
 
 /// The six functions from their definitions (Habel & Wimmer 2010; thesis 1.52-1.58).
 std::array<double, 6> defined(bool mod, double x, double y, double z) {
@@ -56,16 +44,7 @@ std::vector<double> eval_d(int n, double x, double y, double z) {
 /// polynomials of degree <= 4 in x, y, z).
 template <class B>
 std::vector<std::vector<double>> gram(int n) {
-    const DirectionalRule r = hemisphere_rule(4);
-    std::vector<std::vector<double>> g(static_cast<std::size_t>(n),
-                                       std::vector<double>(static_cast<std::size_t>(n), 0.0));
-    std::vector<double> v(static_cast<std::size_t>(n));
-    for (std::size_t i = 0; i < r.size(); ++i) {
-        basis_eval<B>(n, r.x[i], r.y[i], r.z[i], v.data());
-        for (std::size_t a = 0; a < v.size(); ++a)
-            for (std::size_t b = 0; b < v.size(); ++b) g[a][b] += r.w[i] * v[a] * v[b];
-    }
-    return g;
+    return test::gram_matrix<B>(n, hemisphere_rule(4));
 }
 
 }  // namespace
@@ -231,40 +210,16 @@ TEST_CASE("hbasis: prefix, below the horizon, pole and horizon", "[hbasis]") {
 TEMPLATE_TEST_CASE("hbasis: batch path equals scalar path, float within 4 ulp of double",
                    "[hbasis]", float, double) {
     using T = TestType;
-    const auto dirs = random_dirs(37, 5, false);  // not a multiple of any SIMD width
-    std::vector<T> xs, ys, zs;
-    for (const auto& d : dirs) {
-        xs.push_back(T(d[0] * 3));  // non-unit on purpose: both paths normalise
-        ys.push_back(T(d[1] * 3));
-        zs.push_back(T(d[2] * 3));
-    }
-    const std::size_t n = dirs.size();
+    // 37: not a multiple of any SIMD width; * 3: non-unit on purpose, both paths normalise.
+    const auto in = test::scaled_inputs<T>(random_dirs(37, 5, false), 3);
     const T et = std::numeric_limits<T>::epsilon();
-    auto run = [&](auto basis, int nf) {
-        using B = decltype(basis);
-        const std::size_t unf = static_cast<std::size_t>(nf);
-        std::vector<T> out(unf * n), one(unf), coeffs(unf), sums(n);
-        std::vector<double> dd(unf);
-        for (std::size_t k = 0; k < unf; ++k) coeffs[k] = T(std::sin(double(k) + 1));
-        basis_eval_batch<B>(nf, n, xs.data(), ys.data(), zs.data(), out.data(), n);
-        basis_eval_sum_batch<B>(nf, coeffs.data(), n, xs.data(), ys.data(), zs.data(), sums.data());
-        for (std::size_t i = 0; i < n; ++i) {
-            basis_eval<B>(nf, xs[i], ys[i], zs[i], one.data());
-            basis_eval<B>(nf, double(xs[i]), double(ys[i]), double(zs[i]), dd.data());
-            T dot = 0;
-            for (std::size_t k = 0; k < unf; ++k) {
-                REQUIRE(std::fabs(out[k * n + i] - one[k]) <= 2 * et);
-                REQUIRE(std::fabs(double(one[k]) - dd[k]) <= 4 * double(et) * 1.6);
-                dot += coeffs[k] * one[k];
-            }
-            REQUIRE(std::fabs(basis_eval_sum<B>(nf, coeffs.data(), xs[i], ys[i], zs[i]) - dot) <=
-                    16 * et);
-            REQUIRE(std::fabs(sums[i] - dot) <= 16 * et);
-        }
-    };
     for (int nf : {4, 6}) {
-        run(HBasis{}, nf);
-        run(HBasisMod{}, nf);
+        std::vector<T> coeffs(static_cast<std::size_t>(nf));
+        for (std::size_t k = 0; k < coeffs.size(); ++k) coeffs[k] = T(std::sin(double(k) + 1));
+        test::check_batch_equals_scalar<HBasis, T>(nf, coeffs, in, 2 * et, 4 * double(et) * 1.6,
+                                                   16 * et);
+        test::check_batch_equals_scalar<HBasisMod, T>(nf, coeffs, in, 2 * et, 4 * double(et) * 1.6,
+                                                      16 * et);
     }
 }
 

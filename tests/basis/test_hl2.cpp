@@ -5,7 +5,6 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
-#include <random>
 #include <sphbasis/basis/hl2.hpp>
 #include <sphbasis/basis/sh.hpp>
 #include <sphbasis/core/quadrature.hpp>
@@ -13,27 +12,16 @@
 #include <string>
 #include <vector>
 
+#include "../support/basis_checks.hpp"
+
 using namespace sphbasis;
 
 namespace {
 
-using Dir = std::array<double, 3>;
+using test::Dir;
+using test::random_dirs;
 constexpr double pi = constants::pi;
 constexpr double eps = std::numeric_limits<double>::epsilon();
-
-std::vector<Dir> random_dirs(int n, unsigned seed, bool upper = true) {
-    std::mt19937_64 rng(seed);
-    std::normal_distribution<double> g;
-    std::vector<Dir> d;
-    while (static_cast<int>(d.size()) < n) {
-        double x = g(rng), y = g(rng), z = g(rng);
-        const double r = std::sqrt(x * x + y * y + z * z);
-        if (r < 1e-3) continue;
-        if (upper) z = std::fabs(z);
-        d.push_back({x / r, y / r, z / r});
-    }
-    return d;
-}
 
 /// The basis vectors (1.18)-(1.20).
 std::array<Dir, 3> vectors() {
@@ -49,14 +37,8 @@ std::array<double, 3> eval_d(double x, double y, double z) {
 }
 
 /// Gram matrix by a product rule of degree 2 (exact for products of linear functions).
-std::array<std::array<double, 3>, 3> gram(const DirectionalRule& r) {
-    std::array<std::array<double, 3>, 3> g{};
-    for (std::size_t i = 0; i < r.size(); ++i) {
-        const auto v = eval_d(r.x[i], r.y[i], r.z[i]);
-        for (std::size_t a = 0; a < 3; ++a)
-            for (std::size_t b = 0; b < 3; ++b) g[a][b] += r.w[i] * v[a] * v[b];
-    }
-    return g;
+std::vector<std::vector<double>> gram(const DirectionalRule& r) {
+    return test::gram_matrix<HL2>(3, r);
 }
 
 }  // namespace
@@ -158,33 +140,11 @@ TEST_CASE("hl2: below the horizon the linear polynomials are returned", "[hl2]")
 TEMPLATE_TEST_CASE("hl2: batch path equals scalar path, float within 4 ulp of double", "[hl2]",
                    float, double) {
     using T = TestType;
-    const auto dirs = random_dirs(37, 5, false);  // not a multiple of any SIMD width
-    std::vector<T> xs, ys, zs;
-    for (const auto& d : dirs) {
-        xs.push_back(T(d[0] * 3));  // non-unit on purpose: both paths normalise
-        ys.push_back(T(d[1] * 3));
-        zs.push_back(T(d[2] * 3));
-    }
-    const std::size_t n = dirs.size();
+    // 37: not a multiple of any SIMD width; * 3: non-unit on purpose, both paths normalise.
+    const auto in = test::scaled_inputs<T>(random_dirs(37, 5, false), 3);
     const T et = std::numeric_limits<T>::epsilon();
-    std::vector<T> out(3 * n), sums(n);
-    const T coeffs[3] = {T(0.5), T(-1.25), T(2)};
-    basis_eval_batch<HL2>(3, n, xs.data(), ys.data(), zs.data(), out.data(), n);
-    basis_eval_sum_batch<HL2>(3, coeffs, n, xs.data(), ys.data(), zs.data(), sums.data());
-    for (std::size_t i = 0; i < n; ++i) {
-        T one[3];
-        double dd[3];
-        basis_eval<HL2>(3, xs[i], ys[i], zs[i], one);
-        basis_eval<HL2>(3, double(xs[i]), double(ys[i]), double(zs[i]), dd);
-        T dot = 0;
-        for (std::size_t k = 0; k < 3; ++k) {
-            REQUIRE(std::fabs(out[k * n + i] - one[k]) <= 2 * et);
-            REQUIRE(std::fabs(double(one[k]) - dd[k]) <= 4 * double(et));
-            dot += coeffs[k] * one[k];
-        }
-        REQUIRE(std::fabs(basis_eval_sum<HL2>(3, coeffs, xs[i], ys[i], zs[i]) - dot) <= 8 * et);
-        REQUIRE(std::fabs(sums[i] - dot) <= 8 * et);
-    }
+    test::check_batch_equals_scalar<HL2, T>(3, {T(0.5), T(-1.25), T(2)}, in, 2 * et, 4 * double(et),
+                                            8 * et);
 }
 
 TEST_CASE("hl2: bad sizes throw", "[hl2]") {

@@ -4,12 +4,13 @@
 #include <fstream>
 #include <glm/vec3.hpp>
 #include <limits>
-#include <random>
 #include <sphbasis/basis/sh.hpp>
 #include <sphbasis/core/quadrature.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "../support/basis_checks.hpp"
 
 using namespace sphbasis;
 
@@ -21,17 +22,9 @@ std::vector<double> eval_d(int bands, double x, double y, double z) {
     return v;
 }
 
-std::vector<std::array<double, 3>> random_dirs(int n, unsigned seed) {
-    std::mt19937_64 rng(seed);
-    std::normal_distribution<double> g;
-    std::vector<std::array<double, 3>> d;
-    while (static_cast<int>(d.size()) < n) {
-        double x = g(rng), y = g(rng), z = g(rng);
-        const double r = std::sqrt(x * x + y * y + z * z);
-        if (r < 1e-3) continue;
-        d.push_back({x / r, y / r, z / r});
-    }
-    return d;
+/// Directions over the whole sphere.
+std::vector<test::Dir> random_dirs(int n, unsigned seed) {
+    return test::random_dirs(n, seed, false);
 }
 
 double norm_s(int l) { return std::sqrt((2 * l + 1) / (4 * constants::pi)); }
@@ -163,14 +156,10 @@ TEST_CASE("sh: compile-time band count and vector adapters", "[sh]") {
 
 TEMPLATE_TEST_CASE("sh: batch path equals scalar path", "[sh]", float, double) {
     using T = TestType;
-    const auto dirs = random_dirs(37, 5);  // not a multiple of any SIMD width
-    std::vector<T> xs, ys, zs;
-    for (const auto& d : dirs) {
-        xs.push_back(T(d[0] * 3));  // non-unit on purpose: both paths normalise
-        ys.push_back(T(d[1] * 3));
-        zs.push_back(T(d[2] * 3));
-    }
-    const std::size_t n = dirs.size();
+    // 37: not a multiple of any SIMD width; * 3: non-unit on purpose, both paths normalise.
+    const auto in = test::scaled_inputs<T>(random_dirs(37, 5), 3);
+    const auto &xs = in.xs, &ys = in.ys, &zs = in.zs;
+    const std::size_t n = in.size();
     for (int bands : {1, 2, 3, 5, 8, 9, 17, 64, 66}) {
         const std::size_t nf = static_cast<std::size_t>(bands * bands);
         std::vector<T> out(nf * n), one(nf), coeffs(nf), sums(n);
