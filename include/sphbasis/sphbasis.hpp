@@ -3,6 +3,7 @@
 
 #include "basis/basis.hpp"
 #include "basis/hbasis.hpp"
+#include "basis/hemi_basis.hpp"
 #include "basis/hl2.hpp"
 #include "basis/hsh.hpp"
 #include "basis/makhotkin.hpp"
@@ -11,6 +12,7 @@
 #include "basis/zernike.hpp"
 #include "config.hpp"
 #include "core/constants.hpp"
+#include "core/jacobi.hpp"
 #include "core/quadrature.hpp"
 #include "core/sampling.hpp"
 #include "core/scalar.hpp"

@@ -37,9 +37,9 @@
 //   (1.42) M_20 = sqrt(3/pi) sqrt(z) (1 + 16(z-1) + 10(z-1)^2): 16 must be 8 (its left side
 //          (1.41) 1 + 4(2cos t - 2) + 5/2 (2cos t - 2)^2 is right; = 10z^2 - 12z + 3).
 //
-// Evaluation: the shared normalised Jacobi recurrence of hsh.hpp (detail::hemi, family (|m|,
-// |m|+1) in w = u, advanced in z itself): a row recurrence for bands <= 64 (any value type), the
-// exponent-carrying column recurrence in extended precision above. No factorials, no pow. Cost:
+// Evaluation: the shared normalised Jacobi recurrence of core/jacobi.hpp (detail::hemi, family
+// (|m|, |m|+1) in w = u, advanced in z itself): a row recurrence for bands <= 64 (any value type),
+// the exponent-carrying column recurrence in extended precision above. No factorials, no pow. Cost:
 // two square roots and one division per direction, then ~n^2 multiply-adds (plus ~n^2 square
 // roots and divisions above 64 bands, ~10 ns per function). Accuracy (double, against mpmath;
 // tests/basis/test_makhotkin.cpp), relative to the scale S_l = sqrt((l+1)/pi) = M_l0(pole):
@@ -53,10 +53,11 @@
 #include <utility>
 
 #include "../config.hpp"
+#include "../core/jacobi.hpp"
 #include "../core/scalar.hpp"
 #include "../core/simd.hpp"
 #include "basis.hpp"
-#include "hsh.hpp"  // detail::hemi: the shared Jacobi recurrence
+#include "hemi_basis.hpp"
 
 namespace sphbasis::makhotkin {
 
@@ -70,89 +71,41 @@ constexpr int count(int bands) noexcept { return bands * bands; }
 
 namespace detail {
 
-struct MakhotkinFamily {
+namespace hemi = sphbasis::detail::hemi;
+
+struct MakhotkinFamily : hemi::Acn<MakhotkinFamily> {
     // clang-format off
-    static constexpr sphbasis::detail::hemi::Family family{
+    static constexpr hemi::Family family{
         1, 1,                 // sigma, step: w = 2z - 1, band l = |m| + k
         0, 1, 1, 1,           // alpha = |m|, beta = |m| + 1
         0.56418958354775629,  // q0 = 1/sqrt(pi)
         0.97720502380583984,  // q1 = sqrt(3/pi)
         0};                   // q_m = q_{m-1} sqrt((2m+1)/(2m)), m >= 2
     // clang-format on
+
+    /// zc = max(z, 0), (X, Y) = 2 sqrt(zc/(1+zc)) (x, y), E = sqrt(zc) (0 below the horizon).
+    template <class V>
+    static SPHBASIS_FORCEINLINE void prep(const V& x, const V& y, const V& z, V& zc, V& X, V& Y,
+                                          V& E) noexcept {
+        using S = scalar_t<V>;
+        zc = vmax(z, V(S(0)));
+        const V g = V(S(2)) * vsqrt(zc / (V(S(1)) + zc));
+        X = x * g;
+        Y = y * g;
+        E = vsqrt(zc);
+    }
 };
 
-/// zc = max(z, 0), (X, Y) = 2 sqrt(zc/(1+zc)) (x, y), E = sqrt(zc) (0 below the horizon).
-template <class V>
-SPHBASIS_FORCEINLINE void prep(const V& x, const V& y, const V& z, V& zc, V& X, V& Y,
-                               V& E) noexcept {
-    using S = scalar_t<V>;
-    zc = vmax(z, V(S(0)));
-    const V g = V(S(2)) * vsqrt(zc / (V(S(1)) + zc));
-    X = x * g;
-    Y = y * g;
-    E = vsqrt(zc);
-}
-
+/// bands <= 8: the row recurrence with a compile-time band count.
 template <int N>
-struct FixedKernel {
-    template <class V, class Store>
-    SPHBASIS_FORCEINLINE void operator()(const V& x, const V& y, const V& z,
-                                         Store&& store) const noexcept {
-        V zc, X, Y, E;
-        prep(x, y, z, zc, X, Y, E);
-        sphbasis::detail::hemi::rows_acn<MakhotkinFamily, N>(N, zc, X, Y, E, store);
-    }
-};
-struct RowKernel {
-    int bands;
-    template <class V, class Store>
-    SPHBASIS_FORCEINLINE void operator()(const V& x, const V& y, const V& z,
-                                         Store&& store) const noexcept {
-        V zc, X, Y, E;
-        prep(x, y, z, zc, X, Y, E);
-        sphbasis::detail::hemi::rows_acn<MakhotkinFamily>(bands, zc, X, Y, E, store);
-    }
-};
-struct ColumnKernel {
-    int bands;
-    template <class V, class Store>
-    void operator()(const V& x, const V& y, const V& z, Store&& store) const {
-        sphbasis::detail::hemi::columns_any(
-            MakhotkinFamily::family, bands, x, y, z, store,
-            [](sphbasis::detail::hemi::wide dx, sphbasis::detail::hemi::wide dy,
-               sphbasis::detail::hemi::wide dz, sphbasis::detail::hemi::wide& zc,
-               sphbasis::detail::hemi::wide& X, sphbasis::detail::hemi::wide& Y,
-               sphbasis::detail::hemi::wide& E) { prep(dx, dy, dz, zc, X, Y, E); },
-            [](int b, int m) { return index(b, m); });
-    }
-};
+using FixedKernel = hemi::FixedRowKernel<MakhotkinFamily, N>;
+using RowKernel = hemi::RowKernel<MakhotkinFamily>;
+using ColumnKernel = hemi::ColumnKernel<MakhotkinFamily>;
 
-/// Calls f(kernel) for 1 <= bands <= max_bands: compile-time band counts (fully unrolled by
-/// the compiler) up to 8, the row recurrence up to 64, the column recurrence above.
+/// Calls f(kernel) with the fastest kernel for 1 <= bands <= max_bands.
 template <class F>
 inline decltype(auto) with_kernel(int bands, F&& f) {
-    switch (bands) {
-        case 1:
-            return f(FixedKernel<1>{});
-        case 2:
-            return f(FixedKernel<2>{});
-        case 3:
-            return f(FixedKernel<3>{});
-        case 4:
-            return f(FixedKernel<4>{});
-        case 5:
-            return f(FixedKernel<5>{});
-        case 6:
-            return f(FixedKernel<6>{});
-        case 7:
-            return f(FixedKernel<7>{});
-        case 8:
-            return f(FixedKernel<8>{});
-        default:
-            break;
-    }
-    if (bands <= sphbasis::detail::hemi::max_row_bands) return f(RowKernel{bands});
-    return f(ColumnKernel{bands});
+    return hemi::with_kernel<FixedKernel, MakhotkinFamily>(bands, std::forward<F>(f));
 }
 
 }  // namespace detail
@@ -162,27 +115,10 @@ namespace sphbasis {
 
 /// The Makhotkin basis (1996) as a basis (basis/basis.hpp): n = bands^2 functions, ACN order,
 /// orthonormal on the upper hemisphere, 0 below the horizon.
-struct Makhotkin {
+struct Makhotkin
+    : detail::hemi::HemiBasis<detail::hemi::SquareCount, makhotkin::max_bands,
+                              makhotkin::detail::MakhotkinFamily, makhotkin::detail::FixedKernel> {
     static constexpr const char* name = "makhotkin";
-    static constexpr Domain domain = Domain::hemisphere;
-    static constexpr bool orthonormal = true;
-    /// Number of functions in `bands` bands: bands^2.
-    static constexpr int count(int bands) noexcept { return bands * bands; }
-    /// The band count of n functions, or -1 if n is not a positive square.
-    static int bands_of(int n) noexcept { return HSH::bands_of(n); }
-    static bool valid_count(int n) noexcept {
-        const int b = bands_of(n);
-        return b >= 1 && b <= makhotkin::max_bands;
-    }
-    static const char* count_rule() noexcept {
-        return "a square number (bands^2, bands <= 2048) of";
-    }
-    static int max_count() noexcept { return makhotkin::max_bands * makhotkin::max_bands; }
-    /// Precondition: valid_count(n). Batch stores need lane(k, i, v) above 64 bands.
-    template <class F>
-    static decltype(auto) with_kernel(int n, F&& f) {
-        return makhotkin::detail::with_kernel(bands_of(n), std::forward<F>(f));
-    }
 };
 
 }  // namespace sphbasis

@@ -44,8 +44,8 @@
 // Evaluation: R_n^m(rho) = rho^m P_k^(0,m)(2 rho^2 - 1), k = (n-m)/2, and 2 rho^2 - 1 = 1 - 2z, so
 //   Z_n^m = sqrt((2 - delta_m0)/pi) 2^(m/2) rho^m p_k^(0,m)(1 - 2z) trig(m phi)
 // with p_k the orthonormal Jacobi polynomials (the normalisation no longer depends on n), by the
-// shared normalised three-term recurrence of hsh.hpp (detail::hemi, advanced in z itself): a row
-// recurrence for bands <= 64 (any value type), the exponent-carrying column recurrence in
+// shared normalised three-term recurrence of core/jacobi.hpp (detail::hemi, advanced in z itself):
+// a row recurrence for bands <= 64 (any value type), the exponent-carrying column recurrence in
 // extended precision above. No factorial sums, no pow. Cost: one square root and one division per
 // direction, then ~bands^2/2 multiply-adds (plus as many square roots and divisions above 64
 // bands, ~10 ns per function). Accuracy (double, against mpmath's factorial sums;
@@ -60,10 +60,11 @@
 #include <utility>
 
 #include "../config.hpp"
+#include "../core/jacobi.hpp"
 #include "../core/scalar.hpp"
 #include "../core/simd.hpp"
 #include "basis.hpp"
-#include "hsh.hpp"  // detail::hemi: the shared Jacobi recurrence
+#include "hemi_basis.hpp"
 
 namespace sphbasis::zernike {
 
@@ -77,138 +78,75 @@ constexpr int count(int bands) noexcept { return bands * (bands + 1) / 2; }
 
 namespace detail {
 
+namespace hemi = sphbasis::detail::hemi;
+
 struct ZernikeFamily {
     // clang-format off
-    static constexpr sphbasis::detail::hemi::Family family{
+    static constexpr hemi::Family family{
         -1, 2,                // sigma, step: w = 1 - 2z = 2 rho^2 - 1, band n = |m| + 2k
         0, 0, 0, 1,           // alpha = 0, beta = |m|
         0.39894228040143268,  // q0 = 1/sqrt(2 pi)
         0.79788456080286536,  // q1 = sqrt(2/pi)
         1};                   // q_m = q_{m-1} sqrt((m+1)/m), m >= 2
     // clang-format on
-};
 
-/// zc = max(z, 0), (X, Y) = (x, y) / sqrt(1 + zc) = rho (cos phi, sin phi), E = [z >= 0].
-template <class V>
-SPHBASIS_FORCEINLINE void prep(const V& x, const V& y, const V& z, V& zc, V& X, V& Y,
-                               V& E) noexcept {
-    using S = scalar_t<V>;
-    zc = vmax(z, V(S(0)));
-    const V h = V(S(1)) / vsqrt(V(S(1)) + zc);
-    X = x * h;
-    Y = y * h;
-    E = sphbasis::detail::hemi::upper(z);
-}
+    static constexpr int index(int n, int m) noexcept { return zernike::index(n, m); }
 
-/// Row recurrence, bands <= Cap <= 64: order n then m ascending. Each order m advances every
-/// second band, so the state is kept per m. A compile-time Cap = bands lets the compiler unroll
-/// everything (the small-size kernels).
-template <int Cap = sphbasis::detail::hemi::max_row_bands, class V, class Store>
-SPHBASIS_FORCEINLINE void rows(int bands, const V& zc, const V& X, const V& Y, const V& E,
-                               Store&& store) noexcept {
-    namespace hemi = sphbasis::detail::hemi;
-    static_assert(Cap >= 1 && Cap <= hemi::max_row_bands,
-                  "sphbasis: row recurrence up to 64 bands.");
-    using S = scalar_t<V>;
-    SPHBASIS_ASSERT(bands >= 1 && bands <= Cap);
-    const hemi::RowTable<S>& t = hemi::row_table<S, ZernikeFamily>();
-    V cm[Cap], sm[Cap], cur[Cap], prev[Cap];
-    hemi::powers(bands, X, Y, cm, sm);
-    for (int n = 0; n < bands; ++n) {
-        const std::size_t o = t.row[static_cast<std::size_t>(n)];
-        const S* pz = t.pz.data() + o;
-        const S* d = t.d.data() + o;
-        const S* c = t.c.data() + o;
-        const int par = n % 2;
-        for (int m = par, j = 0; m + 2 <= n; m += 2, ++j) {
-            const V v = (hemi::splat<V>(pz[j]) * zc - hemi::splat<V>(d[j])) * cur[m] -
-                        hemi::splat<V>(c[j]) * prev[m];
-            prev[m] = cur[m];
-            cur[m] = v;
+    /// zc = max(z, 0), (X, Y) = (x, y) / sqrt(1 + zc) = rho (cos phi, sin phi), E = [z >= 0].
+    template <class V>
+    static SPHBASIS_FORCEINLINE void prep(const V& x, const V& y, const V& z, V& zc, V& X, V& Y,
+                                          V& E) noexcept {
+        using S = scalar_t<V>;
+        zc = vmax(z, V(S(0)));
+        const V h = V(S(1)) / vsqrt(V(S(1)) + zc);
+        X = x * h;
+        Y = y * h;
+        E = hemi::upper(z);
+    }
+
+    /// Row recurrence, bands <= Cap <= 64: order n then m ascending. Each order m advances every
+    /// second band, so the state is kept per m. A compile-time Cap = bands lets the compiler unroll
+    /// everything (the small-size kernels).
+    template <int Cap, class V, class Store>
+    static SPHBASIS_FORCEINLINE void rows(int bands, const V& zc, const V& X, const V& Y,
+                                          const V& E, Store&& store) noexcept {
+        static_assert(Cap >= 1 && Cap <= hemi::max_row_bands,
+                      "sphbasis: row recurrence up to 64 bands.");
+        using S = scalar_t<V>;
+        SPHBASIS_ASSERT(bands >= 1 && bands <= Cap);
+        const hemi::RowTable<S>& t = hemi::row_table<S, ZernikeFamily>();
+        V cm[Cap], sm[Cap], cur[Cap], prev[Cap];
+        hemi::powers(bands, X, Y, cm, sm);
+        for (int n = 0; n < bands; ++n) {
+            const std::size_t o = t.row[static_cast<std::size_t>(n)];
+            const S* pz = t.pz.data() + o;
+            const S* d = t.d.data() + o;
+            const S* c = t.c.data() + o;
+            const int par = n % 2;
+            for (int m = par, j = 0; m + 2 <= n; m += 2, ++j) {
+                const V v = (hemi::splat<V>(pz[j]) * zc - hemi::splat<V>(d[j])) * cur[m] -
+                            hemi::splat<V>(c[j]) * prev[m];
+                prev[m] = cur[m];
+                cur[m] = v;
+            }
+            cur[n] = hemi::splat<V>(t.start[static_cast<std::size_t>(n)]) * E;
+            prev[n] = V(S(0));
+            const int base = n * (n + 1) / 2;
+            for (int m = n; m > 0; m -= 2) store(base + (n - m) / 2, cur[m] * sm[m]);
+            if (par == 0) store(base + n / 2, cur[0]);
+            for (int m = 2 - par; m <= n; m += 2) store(base + (n + m) / 2, cur[m] * cm[m]);
         }
-        cur[n] = hemi::splat<V>(t.start[static_cast<std::size_t>(n)]) * E;
-        prev[n] = V(S(0));
-        const int base = n * (n + 1) / 2;
-        for (int m = n; m > 0; m -= 2) store(base + (n - m) / 2, cur[m] * sm[m]);
-        if (par == 0) store(base + n / 2, cur[0]);
-        for (int m = 2 - par; m <= n; m += 2) store(base + (n + m) / 2, cur[m] * cm[m]);
     }
-}
+};
 
+/// bands <= 8: the row recurrence with a compile-time band count.
 template <int N>
-struct FixedKernel {
-    template <class V, class Store>
-    SPHBASIS_FORCEINLINE void operator()(const V& x, const V& y, const V& z,
-                                         Store&& store) const noexcept {
-        V zc, X, Y, E;
-        prep(x, y, z, zc, X, Y, E);
-        rows<N>(N, zc, X, Y, E, store);
-    }
-};
-struct RowKernel {
-    int bands;
-    template <class V, class Store>
-    SPHBASIS_FORCEINLINE void operator()(const V& x, const V& y, const V& z,
-                                         Store&& store) const noexcept {
-        V zc, X, Y, E;
-        prep(x, y, z, zc, X, Y, E);
-        rows(bands, zc, X, Y, E, store);
-    }
-};
-struct ColumnKernel {
-    int bands;
-    template <class V, class Store>
-    void operator()(const V& x, const V& y, const V& z, Store&& store) const {
-        sphbasis::detail::hemi::columns_any(
-            ZernikeFamily::family, bands, x, y, z, store,
-            [](sphbasis::detail::hemi::wide dx, sphbasis::detail::hemi::wide dy,
-               sphbasis::detail::hemi::wide dz, sphbasis::detail::hemi::wide& zc,
-               sphbasis::detail::hemi::wide& X, sphbasis::detail::hemi::wide& Y,
-               sphbasis::detail::hemi::wide& E) { prep(dx, dy, dz, zc, X, Y, E); },
-            [](int n, int m) { return index(n, m); });
-    }
-};
+using FixedKernel = hemi::FixedRowKernel<ZernikeFamily, N>;
+using RowKernel = hemi::RowKernel<ZernikeFamily>;
+using ColumnKernel = hemi::ColumnKernel<ZernikeFamily>;
 
-/// Calls f(kernel) for 1 <= bands <= max_bands: compile-time band counts (fully unrolled by
-/// the compiler) up to 8, the row recurrence up to 64, the column recurrence above.
-template <class F>
-inline decltype(auto) with_kernel(int bands, F&& f) {
-    switch (bands) {
-        case 1:
-            return f(FixedKernel<1>{});
-        case 2:
-            return f(FixedKernel<2>{});
-        case 3:
-            return f(FixedKernel<3>{});
-        case 4:
-            return f(FixedKernel<4>{});
-        case 5:
-            return f(FixedKernel<5>{});
-        case 6:
-            return f(FixedKernel<6>{});
-        case 7:
-            return f(FixedKernel<7>{});
-        case 8:
-            return f(FixedKernel<8>{});
-        default:
-            break;
-    }
-    if (bands <= sphbasis::detail::hemi::max_row_bands) return f(RowKernel{bands});
-    return f(ColumnKernel{bands});
-}
-
-}  // namespace detail
-}  // namespace sphbasis::zernike
-
-namespace sphbasis {
-
-/// Koenderink's hemispherical Zernike basis as a basis (basis/basis.hpp): n = bands(bands+1)/2
-/// functions ordered by band then m, orthonormal on the upper hemisphere, 0 below the horizon.
-struct Zernike {
-    static constexpr const char* name = "zernike";
-    static constexpr Domain domain = Domain::hemisphere;
-    static constexpr bool orthonormal = true;
-    /// Number of functions in `bands` bands: bands(bands+1)/2.
+/// Triangular function counts: n bands = n(n+1)/2 functions.
+struct TriangularCount {
     static constexpr int count(int bands) noexcept { return bands * (bands + 1) / 2; }
     /// The band count of n functions, or -1 if n is not a triangular number >= 1.
     static int bands_of(int n) noexcept {
@@ -219,19 +157,26 @@ struct Zernike {
         while (tri(b + 1) <= n) ++b;
         return tri(b) == n ? static_cast<int>(b) : -1;
     }
-    static bool valid_count(int n) noexcept {
-        const int b = bands_of(n);
-        return b >= 1 && b <= zernike::max_bands;
-    }
-    static const char* count_rule() noexcept {
-        return "a triangular number (bands(bands+1)/2, bands <= 2048) of";
-    }
-    static int max_count() noexcept { return count(zernike::max_bands); }
-    /// Precondition: valid_count(n). Batch stores need lane(k, i, v) above 64 bands.
-    template <class F>
-    static decltype(auto) with_kernel(int n, F&& f) {
-        return zernike::detail::with_kernel(bands_of(n), std::forward<F>(f));
-    }
+    static constexpr const char* rule = "a triangular number (bands(bands+1)/2, bands <= 2048) of";
+};
+
+/// Calls f(kernel) with the fastest kernel for 1 <= bands <= max_bands.
+template <class F>
+inline decltype(auto) with_kernel(int bands, F&& f) {
+    return hemi::with_kernel<FixedKernel, ZernikeFamily>(bands, std::forward<F>(f));
+}
+
+}  // namespace detail
+}  // namespace sphbasis::zernike
+
+namespace sphbasis {
+
+/// Koenderink's hemispherical Zernike basis as a basis (basis/basis.hpp): n = bands(bands+1)/2
+/// functions ordered by band then m, orthonormal on the upper hemisphere, 0 below the horizon.
+struct Zernike
+    : detail::hemi::HemiBasis<zernike::detail::TriangularCount, zernike::max_bands,
+                              zernike::detail::ZernikeFamily, zernike::detail::FixedKernel> {
+    static constexpr const char* name = "zernike";
 };
 
 }  // namespace sphbasis

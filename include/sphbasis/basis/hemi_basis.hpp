@@ -1,0 +1,141 @@
+// sphbasis: the kernels and the basis interface (basis/basis.hpp) shared by the hemispherical
+// bases evaluated by the Jacobi recurrence of core/jacobi.hpp: HSH (hsh.hpp), Makhotkin
+// (makhotkin.hpp) and Zernike (zernike.hpp).
+//
+// A family type Fam supplies, beside `static constexpr hemi::Family family`:
+//   prep(x, y, z, zc, X, Y, E)            the recurrence inputs of a direction, any value type
+//                                         (float, double, batch, detail::hemi::wide);
+//   rows<Cap>(bands, zc, X, Y, E, store)  the row recurrence in the basis' order, bands <= Cap;
+//   index(band, m)                        the function index of the label (band, m).
+// Kernels: a compile-time band count (<= 8) gets the row recurrence unrolled, <= 64 bands the
+// row recurrence, more the column recurrence (lane by lane for batches).
+#pragma once
+
+#include <utility>
+
+#include "../config.hpp"
+#include "../core/jacobi.hpp"
+#include "../core/scalar.hpp"
+#include "basis.hpp"
+#include "sh.hpp"
+
+namespace sphbasis::detail::hemi {
+
+/// ACN order (index l(l+1) + m) and its row recurrence, for families with step 1: derive Fam
+/// from Acn<Fam>.
+template <class Fam>
+struct Acn {
+    static constexpr int index(int l, int m) noexcept { return l * (l + 1) + m; }
+    template <int Cap, class V, class Store>
+    static SPHBASIS_FORCEINLINE void rows(int bands, const V& zc, const V& X, const V& Y,
+                                          const V& E, Store&& store) noexcept {
+        rows_acn<Fam, Cap>(bands, zc, X, Y, E, store);
+    }
+};
+
+/// bands = N: the row recurrence with a compile-time band count, which the compiler unrolls and
+/// keeps in registers.
+template <class Fam, int N>
+struct FixedRowKernel {
+    template <class V, class Store>
+    SPHBASIS_FORCEINLINE void operator()(const V& x, const V& y, const V& z,
+                                         Store&& store) const noexcept {
+        V zc, X, Y, E;
+        Fam::prep(x, y, z, zc, X, Y, E);
+        Fam::template rows<N>(N, zc, X, Y, E, store);
+    }
+};
+
+/// bands <= max_row_bands: the row recurrence.
+template <class Fam>
+struct RowKernel {
+    int bands;
+    template <class V, class Store>
+    SPHBASIS_FORCEINLINE void operator()(const V& x, const V& y, const V& z,
+                                         Store&& store) const noexcept {
+        V zc, X, Y, E;
+        Fam::prep(x, y, z, zc, X, Y, E);
+        Fam::template rows<max_row_bands>(bands, zc, X, Y, E, store);
+    }
+};
+
+/// Any band count: the column recurrence in the wide type.
+template <class Fam>
+struct ColumnKernel {
+    int bands;
+    template <class V, class Store>
+    void operator()(const V& x, const V& y, const V& z, Store&& store) const {
+        columns_any(
+            Fam::family, bands, x, y, z, store,
+            [](wide dx, wide dy, wide dz, wide& zc, wide& X, wide& Y, wide& E) {
+                Fam::prep(dx, dy, dz, zc, X, Y, E);
+            },
+            [](int b, int m) { return Fam::index(b, m); });
+    }
+};
+
+/// Calls f(kernel) with the fastest kernel for 1 <= bands: Fixed<bands> up to 8 bands, then
+/// RowKernel<Fam>, then ColumnKernel<Fam>.
+template <template <int> class Fixed, class Fam, class F>
+inline decltype(auto) with_kernel(int bands, F&& f) {
+    switch (bands) {
+        case 1:
+            return f(Fixed<1>{});
+        case 2:
+            return f(Fixed<2>{});
+        case 3:
+            return f(Fixed<3>{});
+        case 4:
+            return f(Fixed<4>{});
+        case 5:
+            return f(Fixed<5>{});
+        case 6:
+            return f(Fixed<6>{});
+        case 7:
+            return f(Fixed<7>{});
+        case 8:
+            return f(Fixed<8>{});
+        default:
+            break;
+    }
+    if (bands <= max_row_bands) return f(RowKernel<Fam>{bands});
+    return f(ColumnKernel<Fam>{bands});
+}
+
+/// Square function counts: n bands = n^2 functions.
+struct SquareCount {
+    static constexpr int count(int bands) noexcept { return bands * bands; }
+    /// The band count of n functions, or -1 if n is not a positive square.
+    static int bands_of(int n) noexcept {
+        if (n < 1) return -1;
+        const int b = sh::degree_of(n - 1) + 1;
+        return b * b == n ? b : -1;
+    }
+    static constexpr const char* rule = "a square number (bands^2, bands <= 2048) of";
+};
+
+/// The basis interface of a hemispherical basis orthonormal on the upper hemisphere: Count's
+/// band-count rule (count, bands_of, rule), 1 <= bands <= MaxBands, the kernels of
+/// with_kernel<Fixed, Fam>. The basis type derives from it and adds its `name`.
+template <class Count, int MaxBands, class Fam, template <int> class Fixed>
+struct HemiBasis {
+    static constexpr Domain domain = Domain::hemisphere;
+    static constexpr bool orthonormal = true;
+    /// Number of functions in `bands` bands.
+    static constexpr int count(int bands) noexcept { return Count::count(bands); }
+    /// The band count of n functions, or -1 if n is no function count of this basis.
+    static int bands_of(int n) noexcept { return Count::bands_of(n); }
+    static bool valid_count(int n) noexcept {
+        const int b = bands_of(n);
+        return b >= 1 && b <= MaxBands;
+    }
+    static const char* count_rule() noexcept { return Count::rule; }
+    static int max_count() noexcept { return count(MaxBands); }
+    /// Precondition: valid_count(n). Batch stores need lane(k, i, v) above 64 bands.
+    template <class F>
+    static decltype(auto) with_kernel(int n, F&& f) {
+        return hemi::with_kernel<Fixed, Fam>(bands_of(n), std::forward<F>(f));
+    }
+};
+
+}  // namespace sphbasis::detail::hemi

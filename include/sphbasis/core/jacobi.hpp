@@ -1,0 +1,302 @@
+// sphbasis: the orthonormal Jacobi polynomials by their normalised three-term recurrence, advanced
+// in z itself: the shared evaluation engine of the hemispherical bases HSH (basis/hsh.hpp),
+// Makhotkin (basis/makhotkin.hpp) and Zernike (basis/zernike.hpp).
+//
+// detail::hemi: the orthonormal Jacobi polynomials p_k^(a,b)(w), weight (1-w)^a (1+w)^b on
+// [-1, 1], by their three-term recurrence (Szego; Gautschi, "Orthogonal Polynomials", 2004, tables
+// 1.1): w p_k = a_{k+1} p_{k+1} + b_k p_k + a_k p_{k-1},
+//   b_k = (b^2 - a^2) / ((2k+a+b)(2k+a+b+2)),
+//   a_k = 2/(2k+a+b) sqrt(k (k+a) (k+b) (k+a+b) / ((2k+a+b-1)(2k+a+b+1))).
+// HSH are (a, b) = (|m|, |m|) in w = u, Makhotkin (|m|, |m|+1) in w = u, Zernike (0, |m|) in
+// w = 1 - 2z; each basis is E(z) * q_m * p_k(w) * Re/Im (X + iY)^m for its own E, q_m, (X, Y).
+// Row recurrence (bands <= 64, any value type, tables built once per family) and column
+// recurrence (any band count, extended precision, a binary exponent carried beside each sectoral
+// start); see basis/hsh.hpp for the accuracy this gives.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+#include "../config.hpp"
+#include "scalar.hpp"
+#include "simd.hpp"
+
+namespace sphbasis::detail::hemi {
+
+/// Band count at or below which the row recurrence on Q = value / sin'^m is used. Q stays below
+/// ~1e14 there for every family, so it cannot overflow in float.
+inline constexpr int max_row_bands = 64;
+
+/// The type of the high-degree column recurrence: x87 extended precision (64-bit significand)
+/// where long double is that format, else double. Near w = +-1 the three-term recurrence turns
+/// every rounding of a coefficient into a perturbation of the argument, which degree-l functions
+/// amplify ~l^1.5 times (slope ~l^2 at the ends): 2e-11 of the scale at l = 2047 in double,
+/// ~1e-14 in extended precision, for ~1.4x the time of the (scalar, division-bound) loop.
+using wide =
+    std::conditional_t<std::numeric_limits<long double>::digits == 64, long double, double>;
+
+/// A family of hemispherical functions f = E(z) q_m p_k^(alpha, beta)(w) Re/Im (X + iY)^|m| with
+/// w = sigma (2z - 1), alpha = a0 + am |m|, beta = b0 + bm |m|, band = |m| + step k.
+/// q_m folds the normalisation of the trig factor, of the change of variables and of p_0:
+/// q_0, q_1 given, q_m = q_{m-1} sqrt((2m+1)/(2m)) (ratio 0) or sqrt((m+1)/m) (ratio 1), m >= 2.
+struct Family {
+    int sigma, step, a0, am, b0, bm;
+    double q0, q1;
+    int ratio;
+    int alpha(int m) const noexcept { return a0 + am * m; }
+    int beta(int m) const noexcept { return b0 + bm * m; }
+    /// q_m / q_{m-1}, m >= 1, in precision R.
+    template <class R>
+    R start_ratio(int m) const noexcept {
+        if (m == 1) return R(q1) / R(q0);
+        const R dm = R(m);
+        return ratio == 0 ? std::sqrt((2 * dm + 1) / (2 * dm)) : std::sqrt((dm + 1) / dm);
+    }
+};
+
+/// a_k (k >= 1) of the orthonormal Jacobi recurrence, weight (1-w)^al (1+w)^be.
+template <class R = double>
+inline R jacobi_a(int k, int al, int be) noexcept {
+    const R dk = R(k), da = R(al), db = R(be), s = 2 * dk + da + db;
+    return 2 / s * std::sqrt(dk * (dk + da) / ((s - 1) * (s + 1)) * ((dk + db) * (dk + da + db)));
+}
+
+/// sigma + b_k, formed from integers so that 1 - b_k keeps its digits when b_k is close to 1.
+template <class R = double>
+inline R sigma_plus_b(int k, int al, int be, int sigma) noexcept {
+    const R s = R(2 * k + al + be);
+    if (s == 0) return R(sigma);  // a = b = 0, k = 0: b_0 = 0
+    const R den = s * (s + 2);
+    return (R(sigma) * den + (R(be) * R(be) - R(al) * R(al))) / den;
+}
+
+/// One step p_k = (pz z - d) p_{k-1} - c p_{k-2}, k >= 1, of the family's recurrence in z:
+/// (w - b) / a = (2 sigma z - (sigma + b)) / a, so z enters unrounded.
+struct Step {
+    double pz, d, c;
+};
+inline Step jacobi_step(int k, int al, int be, int sigma) noexcept {
+    // Formed in the wide type, so that each table entry is rounded once.
+    const wide ak = jacobi_a<wide>(k, al, be);
+    const wide akm1 = k >= 2 ? jacobi_a<wide>(k - 1, al, be) : wide(0);
+    return {static_cast<double>(wide(2 * sigma) / ak),
+            static_cast<double>(sigma_plus_b<wide>(k - 1, al, be, sigma) / ak),
+            static_cast<double>(akm1 / ak)};
+}
+
+/// Recurrence constants of a family for up to `bands` bands, in precision T. Band b holds the
+/// steps of the orders that advance in it, ascending in m (step 1: m = 0..b-1; step 2:
+/// m = b-2, b-4, ... >= 0), contiguous from row[b].
+template <class T>
+struct RowTable {
+    std::vector<T> pz, d, c, start;
+    std::vector<std::size_t> row;
+
+    RowTable(const Family& f, int bands) {
+        const std::size_t nb = static_cast<std::size_t>(bands);
+        row.assign(nb + 1, 0);
+        start.assign(nb, T(0));
+        wide q = f.q0;
+        for (int m = 0; m < bands; ++m) {
+            if (m > 0) q *= f.start_ratio<wide>(m);
+            start[static_cast<std::size_t>(m)] = static_cast<T>(q);
+        }
+        for (int b = 0; b < bands; ++b) {
+            row[static_cast<std::size_t>(b)] = pz.size();
+            for (int m = f.step == 1 ? 0 : b % 2; m + f.step <= b; m += f.step) {
+                const Step s = jacobi_step((b - m) / f.step, f.alpha(m), f.beta(m), f.sigma);
+                pz.push_back(static_cast<T>(s.pz));
+                d.push_back(static_cast<T>(s.d));
+                c.push_back(static_cast<T>(s.c));
+            }
+        }
+        row[nb] = pz.size();
+    }
+};
+
+/// The shared table of family Fam (a type with `static constexpr Family family`), built once,
+/// thread-safe.
+template <class T, class Fam>
+const RowTable<T>& row_table() {
+    static const RowTable<T> t(Fam::family, max_row_bands);
+    return t;
+}
+
+/// s in every lane of V. For batches written as one vector operation (s - 0 is s for every s,
+/// -0 included), which compilers emit as a single broadcast even inside unrolled loops, where the
+/// lane-by-lane batch(T) constructor can turn into one masked broadcast per lane (GCC 12).
+template <class V>
+SPHBASIS_FORCEINLINE V splat(scalar_t<V> s) noexcept {
+    if constexpr (std::is_floating_point_v<V>) {
+        return s;
+    } else {
+        using N = typename V::native_type;
+        return V(N(s - N{}));
+    }
+}
+
+/// cos(m phi) and sin(m phi) scaled by S^m: Re/Im (X + iY)^m, m = 0..bands-1.
+template <class V>
+SPHBASIS_FORCEINLINE void powers(int bands, const V& X, const V& Y, V* cm, V* sm) noexcept {
+    using S = scalar_t<V>;
+    cm[0] = V(S(1));
+    sm[0] = V(S(0));
+    for (int m = 1; m < bands; ++m) {
+        cm[m] = X * cm[m - 1] - Y * sm[m - 1];
+        sm[m] = X * sm[m - 1] + Y * cm[m - 1];
+    }
+}
+
+/// Row recurrence for families with step 1 (HSH, Makhotkin): ACN order, bands <= Cap <=
+/// max_row_bands. zc = max(z, 0); E multiplies every function (the family's E(z) and the
+/// below-horizon mask). A compile-time Cap = bands lets the compiler unroll everything and keep
+/// the state in registers (the small-size kernels).
+template <class Fam, int Cap = max_row_bands, class V, class Store>
+SPHBASIS_FORCEINLINE void rows_acn(int bands, const V& zc, const V& X, const V& Y, const V& E,
+                                   Store&& store) noexcept {
+    static_assert(Cap >= 1 && Cap <= max_row_bands, "sphbasis: row recurrence up to 64 bands.");
+    using S = scalar_t<V>;
+    SPHBASIS_ASSERT(bands >= 1 && bands <= Cap);
+    const RowTable<S>& t = row_table<S, Fam>();
+    V cm[Cap], sm[Cap], cur[Cap], prev[Cap];
+    powers(bands, X, Y, cm, sm);
+    for (int l = 0; l < bands; ++l) {
+        const std::size_t o = t.row[static_cast<std::size_t>(l)];
+        const S* pz = t.pz.data() + o;
+        const S* d = t.d.data() + o;
+        const S* c = t.c.data() + o;
+        for (int m = 0; m < l; ++m) {
+            const V v = (splat<V>(pz[m]) * zc - splat<V>(d[m])) * cur[m] - splat<V>(c[m]) * prev[m];
+            prev[m] = cur[m];
+            cur[m] = v;
+        }
+        cur[l] = splat<V>(t.start[static_cast<std::size_t>(l)]) * E;
+        prev[l] = V(S(0));
+        const int k = l * (l + 1);
+        store(k, cur[0]);
+        for (int m = 1; m <= l; ++m) {
+            store(k + m, cur[m] * cm[m]);
+            store(k - m, cur[m] * sm[m]);
+        }
+    }
+}
+
+/// A wide value carried with a binary exponent (value = m 2^e), as sh.hpp's Scaled.
+struct ScaledW {
+    wide m;
+    int e;
+};
+inline constexpr int rescale_bits = 480;  // 2^480 ~ 3e144, far inside the double range
+
+/// Column recurrence of family f, any band count: calls out(band, m, value) for every function,
+/// m signed (m > 0: cos, m < 0: sin, 0). zc = max(z, 0), (X, Y) the family's sectoral pair, E the
+/// family's factor (0 below the horizon). The sectoral starts carry a binary exponent, so nothing
+/// underflows before the recurrence has grown it back; values below the double range come out
+/// as 0, never NaN or Inf. Coefficients are computed on the fly: ~1 sqrt and 3 divisions per
+/// function, in the `wide` type.
+template <class Out>
+inline void columns(const Family& f, int bands, wide zc, wide X, wide Y, wide E, Out&& out) {
+    using R = wide;
+    // sin' = |(X, Y)|, cos(phi), sin(phi) without underflow (as sh::detail::polar_xy).
+    R s = 0, cp = 1, sp = 0;
+    const R mx = std::max(std::fabs(X), std::fabs(Y));
+    if (mx > 0) {
+        const R rx = X / mx, ry = Y / mx, r = std::sqrt(rx * rx + ry * ry);
+        s = mx * r;
+        cp = rx / r;
+        sp = ry / r;
+    }
+    int s_exp = 0;
+    const R s_mant = s > 0 ? std::frexp(s, &s_exp) : R(0);
+    const R small = std::ldexp(R(1), -rescale_bits), big = std::ldexp(R(1), rescale_bits);
+    ScaledW q{R(f.q0) * E, 0};
+    R cm = 1, sm = 0;
+    const R two_sigma_z = R(2 * f.sigma) * zc;
+    for (int m = 0; m < bands; ++m) {
+        if (m > 0) {
+            q.m *= f.start_ratio<R>(m) * s_mant;
+            q.e += s_exp;
+            if (q.m != 0 && std::fabs(q.m) < small) {
+                int k;
+                q.m = std::frexp(q.m, &k);
+                q.e += k;
+            }
+            const R c = cm * cp - sm * sp;
+            sm = sm * cp + cm * sp;
+            cm = c;
+        }
+        if (q.m == 0) {
+            // E = 0 or sin' = 0 exactly: every remaining order vanishes.
+            for (int mm = m; mm < bands; ++mm)
+                for (int b = mm; b < bands; b += f.step) {
+                    out(b, mm, 0.0);
+                    if (mm > 0) out(b, -mm, 0.0);
+                }
+            return;
+        }
+        const int al = f.alpha(m), be = f.beta(m);
+        int e = q.e;
+        auto emit = [&](int b, R p) {
+            const R v = e == 0 ? p : std::ldexp(p, e);
+            if (m == 0) {
+                out(b, 0, static_cast<double>(v));
+            } else {
+                out(b, m, static_cast<double>(v * cm));
+                out(b, -m, static_cast<double>(v * sm));
+            }
+        };
+        R p2 = 0, p1 = q.m, a_prev = 0;
+        emit(m, p1);
+        for (int k = 1, b = m + f.step; b < bands; ++k, b += f.step) {
+            const R ak = jacobi_a<R>(k, al, be);
+            R p0 =
+                ((two_sigma_z - sigma_plus_b<R>(k - 1, al, be, f.sigma)) * p1 - a_prev * p2) / ak;
+            a_prev = ak;
+            if (e < 0 && std::fabs(p0) > big) {
+                // Move magnitude from the mantissas into the exponent, but never above 2^0.
+                const int shift = std::min(rescale_bits, -e);
+                p0 = std::ldexp(p0, -shift);
+                p1 = std::ldexp(p1, -shift);
+                e += shift;
+            }
+            emit(b, p0);
+            p2 = p1;
+            p1 = p0;
+        }
+    }
+}
+
+/// Runs columns() for a value type V: directly for float/double, lane by lane for batches.
+/// prep(x, y, z, zc, X, Y, E) computes the family's inputs in the wide type from the lane's
+/// direction (m-th powers of (X, Y) amplify their rounding m times); index(b, m) maps a label to
+/// the function index.
+template <class V, class Store, class Prep, class Index>
+inline void columns_any(const Family& f, int bands, const V& x, const V& y, const V& z,
+                        Store&& store, Prep&& prep, Index&& index) {
+    auto run = [&](wide dx, wide dy, wide dz, auto&& put) {
+        wide zc, X, Y, E;
+        prep(dx, dy, dz, zc, X, Y, E);
+        columns(f, bands, zc, X, Y, E, [&](int b, int m, double v) { put(index(b, m), v); });
+    };
+    if constexpr (std::is_floating_point_v<V>) {
+        run(wide(x), wide(y), wide(z), [&](int k, double v) { store(k, static_cast<V>(v)); });
+    } else {
+        using S = scalar_t<V>;
+        for (int i = 0; i < V::size; ++i)
+            run(wide(x[i]), wide(y[i]), wide(z[i]),
+                [&](int k, double v) { store.lane(k, i, static_cast<S>(v)); });
+    }
+}
+
+/// 1 for z >= 0, else 0.
+template <class V>
+SPHBASIS_FORCEINLINE V upper(const V& z) noexcept {
+    using S = scalar_t<V>;
+    return select(z >= V(S(0)), V(S(1)), V(S(0)));
+}
+
+}  // namespace sphbasis::detail::hemi
