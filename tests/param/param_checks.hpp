@@ -296,4 +296,17 @@ double jacobian(F&& to_dir, double u, double v, double h) {
     return std::sqrt(cx * cx + cy * cy + cz * cz);
 }
 
+/// The standard round-trip set of a map p over directions of type T: round trips and footprints
+/// at random and special directions, a constant reconstructed at random directions and, with
+/// `constant_at_special`, at the special ones.
+template <class T, class P>
+void check_map_round_trips(const P& p, double tol, bool constant_at_special = true) {
+    check_roundtrip(p, random_dirs<T>(20000, 1), tol);
+    check_roundtrip(p, special_dirs<T>(), tol);
+    check_footprints(p, random_dirs<T>(5000, 2));
+    check_footprints(p, special_dirs<T>());
+    check_constant(p, random_dirs<T>(5000, 3));
+    if (constant_at_special) check_constant(p, special_dirs<T>());
+}
+
 }  // namespace sphbasis_test

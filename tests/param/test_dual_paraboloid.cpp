@@ -11,14 +11,7 @@ TEMPLATE_TEST_CASE("dual paraboloid: round trips incl. poles and equator",
                    "[param][dual_paraboloid]", float, double) {
     using T = TestType;
     const double tol = sizeof(T) == 4 ? 2e-6 : 1e-13;
-    for (int n : {2, 3, 8, 33}) {
-        const DualParaboloid<T> p(n);
-        check_roundtrip(p, random_dirs<T>(20000, 1), tol);
-        check_roundtrip(p, special_dirs<T>(), tol);
-        check_footprints(p, random_dirs<T>(5000, 2));
-        check_footprints(p, special_dirs<T>());
-        check_constant(p, random_dirs<T>(5000, 3));
-    }
+    for (int n : {2, 3, 8, 33}) check_map_round_trips<T>(DualParaboloid<T>(n), tol, false);
 }
 
 TEMPLATE_TEST_CASE("dual paraboloid: equator on the outer ring of texel centres",
@@ -30,85 +23,27 @@ TEMPLATE_TEST_CASE("dual paraboloid: equator on the outer ring of texel centres"
 
 TEST_CASE("dual paraboloid: uv -> direction -> uv away from the redundant ring",
           "[param][dual_paraboloid]") {
-    const DualParaboloid<double> p(16);
-    const double h = 0.5 / 16;
-    for (int face = 0; face < 2; ++face)
-        for (int j = 0; j <= 50; ++j)
-            for (int i = 0; i <= 50; ++i) {
-                const double u = h + 1e-6 + (1 - 2 * h - 2e-6) * i / 50;
-                const double v = h + 1e-6 + (1 - 2 * h - 2e-6) * j / 50;
-                const auto d = p.uv_to_direction(face, u, v);
-                const auto t = p.direction_to_uv(d.x, d.y, d.z);
-                CHECK(t.face == face);
-                CHECK(t.u == Approx(u).margin(1e-12));
-                CHECK(t.v == Approx(v).margin(1e-12));
-            }
+    check_uv_round_trip_inside(DualParaboloid<double>(16));
 }
 
 TEST_CASE("dual paraboloid: texel solid angles", "[param][dual_paraboloid]") {
-    for (int n : {2, 3, 8, 64}) {
-        const DualParaboloid<double> p(n);
-        CHECK(total_solid_angle(p) == Approx(4 * 3.141592653589793).epsilon(1e-12));
-        double face0 = 0;
-        for (int r = 0; r < n; ++r)
-            for (int c = 0; c < n; ++c) face0 += p.texel_solid_angle(0, c, r);
-        CHECK(face0 == Approx(2 * 3.141592653589793).epsilon(1e-12));
-    }
-    for (int n : {2, 5, 12}) {
-        const DualParaboloid<double> p(n);
-        const double h = 0.5 / n;
-        check_caps(
-            p, [](double R) { return 4 * 3.141592653589793 * R * R / (1 + R * R); }, 1e-12);
-        check_texel_solid_angles(p, h, 1 - h, 16, 1e-6);
-    }
-    const DualParaboloid<float> pf(32);
-    CHECK(total_solid_angle(pf) == Approx(4 * 3.141592653589793).epsilon(1e-6));
+    check_dual_solid_angles<DualParaboloid>(
+        [](double R) { return 4 * 3.141592653589793 * R * R / (1 + R * R); }, 1e-6);
 }
 
 TEST_CASE("dual paraboloid: pdf integrates to one and is 1/|Jacobian|",
           "[param][dual_paraboloid]") {
-    const double integral = integrate_sphere(
-        [](double x, double y, double z) { return square_to_paraboloid_pdf(x, y, z); }, true, 800);
-    CHECK(integral == Approx(1.0).epsilon(1e-5));
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<double> U(0.02, 0.98);
-    for (int k = 0; k < 1000; ++k) {
-        const double u = U(rng), v = U(rng);
-        if (std::fabs(std::fabs(2 * u - 1) - std::fabs(2 * v - 1)) < 1e-4) continue;
-        const double jac =
-            jacobian([](double a, double b) { return square_to_paraboloid(a, b); }, u, v, 1e-6);
-        const auto d = square_to_paraboloid(u, v);
-        CHECK(square_to_paraboloid_pdf(d.x, d.y, d.z) * jac == Approx(1.0).epsilon(1e-6));
-        const auto s = paraboloid_to_square(d.x, d.y, d.z);
-        CHECK(s.x == Approx(u).margin(1e-13));
-        CHECK(s.y == Approx(v).margin(1e-13));
-    }
+    check_hemisphere_pdf(
+        [](double u, double v) { return square_to_paraboloid(u, v); },
+        [](double x, double y, double z) { return square_to_paraboloid_pdf(x, y, z); },
+        [](double x, double y, double z) { return paraboloid_to_square(x, y, z); });
 }
 
 TEST_CASE("dual paraboloid: reconstruction", "[param][dual_paraboloid]") {
-    for (int n : {2, 7, 16}) {
-        const DualParaboloid<double> p(n);
-        check_interpolates_at_centres(p, 1e-12);
-        check_equator_continuity(p);
-    }
     // Bilinear reconstruction of a smooth function converges at second order: MSE ~ h^4.
-    const double m16 = smooth_mse(DualParaboloid<double>(16), 20000);
-    const double m32 = smooth_mse(DualParaboloid<double>(32), 20000);
-    INFO("MSE n=16 " << m16 << ", n=32 " << m32);
-    CHECK(m16 / m32 > 10);
+    check_dual_reconstruction<DualParaboloid>(10);
 }
 
 TEST_CASE("dual paraboloid: bad input", "[param][dual_paraboloid]") {
-    REQUIRE_THROWS_WITH(
-        DualParaboloid<double>(1),
-        Catch::Contains("sphbasis::param::DualParaboloid(): expected 2 <= resolution"));
-    REQUIRE_THROWS_WITH(DualParaboloid<double>(8, 25), Catch::Contains("subtexel_bits"));
-    // A zero or NaN vector is read as the pole (0, 0, 1).
-    const DualParaboloid<float> p(8);
-    const auto t = p.direction_to_uv(0.0f, 0.0f, 0.0f);
-    CHECK(t.face == 0);
-    CHECK(t.u == Approx(0.5f));
-    const auto q = p.direction_to_uv(std::nanf(""), 1.0f, 0.0f);
-    CHECK(q.face == 0);
-    CHECK(q.v == Approx(0.5f));
+    check_dual_bad_input<DualParaboloid>("DualParaboloid");
 }

@@ -11,13 +11,7 @@ TEMPLATE_TEST_CASE("lat-long: round trips incl. seam and poles", "[param][latlon
     using T = TestType;
     const double tol = sizeof(T) == 4 ? 1e-6 : 1e-14;
     for (int n : {1, 2, 5, 16}) {
-        const LatLong<T> p(n);
-        check_roundtrip(p, random_dirs<T>(20000, 1), tol);
-        check_roundtrip(p, special_dirs<T>(), tol);
-        check_footprints(p, random_dirs<T>(5000, 2));
-        check_footprints(p, special_dirs<T>());
-        check_constant(p, random_dirs<T>(5000, 3));
-        check_constant(p, special_dirs<T>());
+        check_map_round_trips<T>(LatLong<T>(n), tol);
     }
     const auto north = latlong_to_square(T(0), T(0), T(1));
     const auto south = latlong_to_square(T(0), T(0), T(-1));
