@@ -79,6 +79,32 @@ struct DirectionalRule {
 };
 
 namespace detail {
+/// A rule of `rings` rings times nphi uniform azimuths (j + 1/2) 2 pi / nphi: ring(i, z, s, w)
+/// sets ring i's z, sin(theta) = s and weight per unit azimuth w (the points get w 2 pi / nphi).
+template <class Ring>
+DirectionalRule azimuthal_rule(int rings, int nphi, Ring&& ring) {
+    DirectionalRule r;
+    const std::size_t total = static_cast<std::size_t>(rings) * static_cast<std::size_t>(nphi);
+    r.x.reserve(total);
+    r.y.reserve(total);
+    r.z.reserve(total);
+    r.w.reserve(total);
+    const double dphi = constants::two_pi / nphi;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(rings); ++i) {
+        double z, s, w;
+        ring(i, z, s, w);
+        w = w * dphi;
+        for (int j = 0; j < nphi; ++j) {
+            const double phi = (j + 0.5) * dphi;
+            r.x.push_back(s * std::cos(phi));
+            r.y.push_back(s * std::sin(phi));
+            r.z.push_back(z);
+            r.w.push_back(w);
+        }
+    }
+    return r;
+}
+
 inline DirectionalRule product_rule(int degree, bool hemisphere, const char* fn) {
     if (degree < 0 || degree > 100000)
         throw std::invalid_argument(std::string("sphbasis::") + fn +
@@ -88,28 +114,12 @@ inline DirectionalRule product_rule(int degree, bool hemisphere, const char* fn)
     const int np = degree + 1;      // uniform phi rule: exact for trig degree <= np - 1
     std::vector<double> t, wt;
     gauss_legendre(nt, t, wt);
-    DirectionalRule r;
-    const std::size_t total = static_cast<std::size_t>(nt) * static_cast<std::size_t>(np);
-    r.x.reserve(total);
-    r.y.reserve(total);
-    r.z.reserve(total);
-    r.w.reserve(total);
-    const double dphi = constants::two_pi / np;
-    for (int i = 0; i < nt; ++i) {
-        const std::size_t ui = static_cast<std::size_t>(i);
-        const double z = hemisphere ? 0.5 * (t[ui] + 1) : t[ui];
-        const double w = (hemisphere ? 0.5 * wt[ui] : wt[ui]) * dphi;
+    return azimuthal_rule(nt, np, [&](std::size_t i, double& z, double& s, double& w) {
+        z = hemisphere ? 0.5 * (t[i] + 1) : t[i];
+        w = hemisphere ? 0.5 * wt[i] : wt[i];
         // sin(theta) without cancellation: 1 - z^2 = (1 - z)(1 + z).
-        const double s = std::sqrt((1 - z) * (1 + z));
-        for (int j = 0; j < np; ++j) {
-            const double phi = (j + 0.5) * dphi;
-            r.x.push_back(s * std::cos(phi));
-            r.y.push_back(s * std::sin(phi));
-            r.z.push_back(z);
-            r.w.push_back(w);
-        }
-    }
-    return r;
+        s = std::sqrt((1 - z) * (1 + z));
+    });
 }
 }  // namespace detail
 

@@ -92,27 +92,13 @@ inline DirectionalRule hemisphere_rule_sqrt(int nu, int nphi) {
             std::to_string(nu) + ", " + std::to_string(nphi));
     std::vector<double> t, wt;
     gauss_legendre(nu, t, wt);
-    DirectionalRule r;
-    const std::size_t total = static_cast<std::size_t>(nu) * static_cast<std::size_t>(nphi);
-    r.x.reserve(total);
-    r.y.reserve(total);
-    r.z.reserve(total);
-    r.w.reserve(total);
-    const double dphi = constants::two_pi / nphi;
-    for (std::size_t i = 0; i < t.size(); ++i) {
-        const double u = 0.5 * (t[i] + 1);
-        const double z = u * u;
-        const double w = 0.5 * wt[i] * 2 * u * dphi;
-        const double s = std::sqrt((1 - u) * (1 + u) * (1 + z));  // sin = sqrt(1 - u^4)
-        for (int j = 0; j < nphi; ++j) {
-            const double phi = (j + 0.5) * dphi;
-            r.x.push_back(s * std::cos(phi));
-            r.y.push_back(s * std::sin(phi));
-            r.z.push_back(z);
-            r.w.push_back(w);
-        }
-    }
-    return r;
+    return sphbasis::detail::azimuthal_rule(
+        nu, nphi, [&](std::size_t i, double& z, double& s, double& w) {
+            const double u = 0.5 * (t[i] + 1);
+            z = u * u;
+            w = 0.5 * wt[i] * 2 * u;
+            s = std::sqrt((1 - u) * (1 + u) * (1 + z));  // sin = sqrt(1 - u^4)
+        });
 }
 
 /// The rule of the paper protocol (nu = nphi = 32, 1024 points): bases up to 25 functions
