@@ -317,7 +317,9 @@ inline float decode_snorm8(std::int8_t c) noexcept {
 }
 /// Decodes an 8-bit UNORM component with the usual 2c/255 - 1 bias (0..255 -> -1..1).
 inline float decode_unorm8(std::uint8_t c) noexcept {
-    return static_cast<float>(c) * (2.0f / 255.0f) - 1.0f;
+    // (c - 127.5) / 127.5 is exact at both ends (0 -> -1, 255 -> +1) under any contraction;
+    // c * (2/255) - 1 becomes 0.99999994 at 255 when the compiler fuses it into an FMA.
+    return (static_cast<float>(c) - 127.5f) / 127.5f;
 }
 
 /// One level of a normal-map mip chain: the averaged, not renormalised, normals and their
