@@ -29,14 +29,18 @@ struct Dirs {
     }
 };
 
-template <int N, class T>
-void one_call(benchmark::State& st) {
+// Unit = true: sh::eval_unit<N> (no normalisation); false: sh::eval<N> (normalising).
+template <int N, class T, bool Unit>
+void one_call_impl(benchmark::State& st) {
     const Dirs<T> d(4096);
     T out[N * N];
     T acc = 0;
     for (auto _ : st) {
         for (std::size_t i = 0; i < 4096; ++i) {
-            sphbasis::sh::eval<N>(d.x[i], d.y[i], d.z[i], out);
+            if constexpr (Unit)
+                sphbasis::sh::eval_unit<N>(d.x[i], d.y[i], d.z[i], out);
+            else
+                sphbasis::sh::eval<N>(d.x[i], d.y[i], d.z[i], out);
             benchmark::DoNotOptimize(out);
             acc += out[N * N - 1];
         }
@@ -44,21 +48,13 @@ void one_call(benchmark::State& st) {
     benchmark::DoNotOptimize(acc);
     st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations()) * 4096);
 }
-
+template <int N, class T>
+void one_call(benchmark::State& st) {
+    one_call_impl<N, T, false>(st);
+}
 template <int N, class T>
 void one_call_unit(benchmark::State& st) {
-    const Dirs<T> d(4096);
-    T out[N * N];
-    T acc = 0;
-    for (auto _ : st) {
-        for (std::size_t i = 0; i < 4096; ++i) {
-            sphbasis::sh::eval_unit<N>(d.x[i], d.y[i], d.z[i], out);
-            benchmark::DoNotOptimize(out);
-            acc += out[N * N - 1];
-        }
-    }
-    benchmark::DoNotOptimize(acc);
-    st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations()) * 4096);
+    one_call_impl<N, T, true>(st);
 }
 
 template <class T>
