@@ -76,6 +76,28 @@ TEST_CASE("quadrature: sphere and hemisphere rules are exact to their degree", "
     REQUIRE_THROWS_AS(sphere_rule(-1), std::invalid_argument);
 }
 
+TEST_CASE("sqrt(z) hemisphere rule: exact for polynomials times sqrt(z)", "[quadrature]") {
+    const DirectionalRule r = hemisphere_rule_sqrt(12, 13);
+    double area = 0, sz = 0, z3 = 0, x2y2sz = 0, x3z = 0;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+        area += r.w[i];
+        sz += r.w[i] * std::sqrt(r.z[i]);
+        z3 += r.w[i] * r.z[i] * r.z[i] * r.z[i];
+        x2y2sz += r.w[i] * r.x[i] * r.x[i] * r.y[i] * r.y[i] * std::sqrt(r.z[i]);
+        x3z += r.w[i] * r.x[i] * r.x[i] * r.x[i] * r.z[i];
+        REQUIRE(r.z[i] > 0);
+        REQUIRE(r.x[i] * r.x[i] + r.y[i] * r.y[i] + r.z[i] * r.z[i] == Approx(1).epsilon(1e-15));
+    }
+    const double two_pi = constants::two_pi;
+    CHECK(area == Approx(two_pi).epsilon(1e-14));
+    CHECK(sz == Approx(two_pi * 2.0 / 3.0).epsilon(1e-14));  // 2 pi int_0^1 z^(1/2) dz
+    CHECK(z3 == Approx(two_pi / 4).epsilon(1e-14));
+    // x^2 y^2 = (1 - z^2)^2 cos^2 sin^2: pi/4 int_0^1 (1 - z^2)^2 z^(1/2) dz = pi/4 * 64/231.
+    CHECK(x2y2sz == Approx(constants::pi / 4 * 64.0 / 231.0).epsilon(1e-13));
+    CHECK(x3z == Approx(0).margin(1e-15));
+    CHECK_THROWS_AS(hemisphere_rule_sqrt(0, 4), std::invalid_argument);
+}
+
 TEST_CASE("sampling: warps land on their domain and pdfs integrate to one", "[sampling]") {
     const int k = 64;
     std::vector<double> u, v;

@@ -19,6 +19,8 @@
 #include <tuple>
 #include <vector>
 
+#include "../support/cli_runner.hpp"
+
 using namespace sphbasis;
 
 namespace {
@@ -513,23 +515,16 @@ TEST_CASE("product: larger band counts against quadrature", "[product][slow]") {
     CHECK(err < 1e-12);
 }
 
-#if defined(__unix__) || defined(__APPLE__)
+#ifdef SPHBASIS_TEST_HAVE_POPEN
 TEST_CASE("gaunt: the sphbasis gaunt command", "[gaunt][cli]") {
     // Documented behaviour: one line with 17 significant digits; negative m are plain arguments;
     // bad input exits non-zero. Runs only when the tool was built beside the tests.
-    const std::string exe = std::string(SPHBASIS_BINARY_DIR) + "/bin/sphbasis";
-    if (!std::ifstream(exe)) {
+    if (test::tool_path().empty()) {
         WARN("sphbasis tool not built; skipping");
         return;
     }
-    auto run = [&](const std::string& args, int& status) {
-        std::string out;
-        FILE* p = popen((exe + " gaunt " + args + " 2>&1").c_str(), "r");
-        REQUIRE(p != nullptr);
-        char buf[256];
-        while (std::fgets(buf, sizeof buf, p)) out += buf;
-        status = pclose(p);
-        return out;
+    auto run = [](const std::string& args, int& status) {
+        return test::run_tool("gaunt " + args, status);
     };
     int st = 0;
     std::string out = run("2 -1 3 2 3 -3", st);

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/cli_runner.hpp"
 #include "sphbasis/ops/sh_rotation.hpp"
 
 namespace sh = sphbasis::sh;
@@ -471,25 +472,18 @@ TEST_CASE("rotation: bad input throws with the function name", "[rotation]") {
     CHECK(sh::rotation_from_matrix(0, id).size() == 0);
 }
 
-#if defined(SPHBASIS_BINARY_DIR) && (defined(__unix__) || defined(__APPLE__))
+#ifdef SPHBASIS_TEST_HAVE_POPEN
 TEST_CASE("rotation: the sphbasis rotate command", "[rotation][cli]") {
     // One JSON line {"bands":N,"quat":[...],"coeffs":[...]} with 17 significant digits (so the
     // numbers round-trip to what sh::rotate_quaternion computes); both option spellings and
     // negative numbers; bad input exits non-zero with one line. Runs only when the tool was
     // built beside the tests.
-    const std::string exe = std::string(SPHBASIS_BINARY_DIR) + "/bin/sphbasis";
-    if (!std::ifstream(exe)) {
+    if (sphbasis::test::tool_path().empty()) {
         WARN("sphbasis tool not built; skipping");
         return;
     }
-    auto run = [&](const std::string& args, int& status) {
-        std::string out;
-        FILE* p = popen((exe + " rotate " + args + " 2>&1").c_str(), "r");
-        REQUIRE(p != nullptr);
-        char buf[4096];
-        while (std::fgets(buf, sizeof buf, p)) out += buf;
-        status = pclose(p);
-        return out;
+    auto run = [](const std::string& args, int& status) {
+        return sphbasis::test::run_tool("rotate " + args, status);
     };
     auto coeffs_of = [](const std::string& out) {
         std::vector<double> v;

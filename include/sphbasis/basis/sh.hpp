@@ -200,7 +200,7 @@ inline constexpr int rescale_bits = 480;  // 2^480 ~ 3e144, far inside the doubl
 
 /// Column recurrence for one order m >= 0 of degrees l = m..bands-1 (bands > m), starting from
 /// the scaled sectoral value Pbar_m^m (sqrt(2) folded in for m > 0). Calls out(l, value).
-/// a_lm, b_lm are computed on the fly when `t` is null.
+/// a_lm, b_lm are computed on the fly (a square root each: this is the high-degree path).
 template <class Out>
 inline void column(int bands, int m, Scaled pmm, double z, Out&& out) {
     double p2 = 0, p1 = pmm.m;
@@ -232,62 +232,61 @@ inline void column(int bands, int m, Scaled pmm, double z, Out&& out) {
     }
 }
 
-/// sin(t), cos(phi), sin(phi) from x and y without underflow: s = |(x, y)|.
-inline void polar_xy(double x, double y, double& s, double& cp, double& sp) noexcept {
-    const double big = std::max(std::fabs(x), std::fabs(y));
-    if (!(big > 0)) {
-        s = 0;
-        cp = 1;
-        sp = 0;
-        return;
+/// Walks the sectoral values Pbar_m^m and cos/sin(m phi) up in m for one direction: the start
+/// of every column of the high-degree recurrence. sin(t) is carried as mantissa and binary
+/// exponent so that sin^m(t) never underflows.
+class SectoralWalk {
+  public:
+    SectoralWalk(double x, double y) noexcept {
+        polar_xy(x, y, s_, cp_, sp_);  // core/vec.hpp
+        s_mant_ = s_ > 0 ? std::frexp(s_, &s_exp_) : 0.0;
     }
-    const double rx = x / big, ry = y / big;
-    const double r = std::sqrt(rx * rx + ry * ry);
-    s = big * r;
-    cp = rx / r;
-    sp = ry / r;
-}
+    /// Order m (starts at 0).
+    int order() const noexcept { return m_; }
+    /// Advances to order m + 1: Pbar *= sqrt((2m+3)/(2m+2)) sin(t); (cos, sin)(m phi) by phi.
+    void advance() noexcept {
+        ++m_;
+        p_.m *= std::sqrt((2.0 * m_ + 1) / (2.0 * m_)) * s_mant_;
+        p_.e += s_exp_;
+        if (p_.m != 0 && std::fabs(p_.m) < std::ldexp(1.0, -rescale_bits)) {
+            int k;
+            p_.m = std::frexp(p_.m, &k);
+            p_.e += k;
+        }
+        const double c = cm_ * cp_ - sm_ * sp_;
+        sm_ = sm_ * cp_ + cm_ * sp_;
+        cm_ = c;
+    }
+    /// The start value of column m for the real SH: Pbar_m^m, times sqrt(2) for m > 0.
+    Scaled start() const noexcept { return m_ > 0 ? Scaled{p_.m * constants::sqrt2, p_.e} : p_; }
+    /// sin(t) = 0 exactly: every order m > 0 vanishes.
+    bool vanished() const noexcept { return p_.m == 0; }
+    double cos_m() const noexcept { return cm_; }
+    double sin_m() const noexcept { return sm_; }
 
-/// Advances the scaled sectoral value from order m-1 to m: times sqrt((2m+1)/(2m)) s.
-inline Scaled next_sectoral(Scaled p, int m, double s_mant, int s_exp) noexcept {
-    p.m *= std::sqrt((2.0 * m + 1) / (2.0 * m)) * s_mant;
-    p.e += s_exp;
-    if (p.m != 0 && std::fabs(p.m) < std::ldexp(1.0, -rescale_bits)) {
-        int k;
-        p.m = std::frexp(p.m, &k);
-        p.e += k;
-    }
-    return p;
-}
+  private:
+    double s_ = 0, cp_ = 1, sp_ = 0, s_mant_ = 0;
+    int s_exp_ = 0, m_ = 0;
+    Scaled p_{constants::inv_sqrt_four_pi, 0};
+    double cm_ = 1, sm_ = 0;  // cos(m phi), sin(m phi)
+};
 
 /// All functions of `bands` bands by the column recurrence (any degree). (x, y, z) unit, double.
 template <class Store>
 inline void eval_columns(int bands, double x, double y, double z, Store&& store) {
-    double s, cp, sp;
-    polar_xy(x, y, s, cp, sp);
-    int s_exp = 0;
-    const double s_mant = s > 0 ? std::frexp(s, &s_exp) : 0.0;
-    Scaled pmm{constants::inv_sqrt_four_pi, 0};
-    double cm = 1, sm = 0;  // cos(m phi), sin(m phi)
+    SectoralWalk w(x, y);
     for (int m = 0; m < bands; ++m) {
-        if (m > 0) {
-            pmm = next_sectoral(pmm, m, s_mant, s_exp);
-            const double c = cm * cp - sm * sp;
-            sm = sm * cp + cm * sp;
-            cm = c;
-        }
+        if (m > 0) w.advance();
         if (m == 0) {
-            column(bands, 0, pmm, z, [&](int l, double v) { store(index(l, 0), v); });
+            column(bands, 0, w.start(), z, [&](int l, double v) { store(index(l, 0), v); });
         } else {
-            Scaled p2 = pmm;
-            p2.m *= constants::sqrt2;
-            column(bands, m, p2, z, [&](int l, double v) {
+            const double cm = w.cos_m(), sm = w.sin_m();
+            column(bands, m, w.start(), z, [&](int l, double v) {
                 store(index(l, m), v * cm);
                 store(index(l, -m), v * sm);
             });
         }
-        if (pmm.m == 0) {
-            // sin(t) = 0 exactly: every remaining order vanishes.
+        if (w.vanished()) {
             for (int mm = m + 1; mm < bands; ++mm)
                 for (int l = mm; l < bands; ++l) {
                     store(index(l, mm), 0.0);
@@ -422,23 +421,13 @@ T eval_lm(int l, int m, T x, T y, T z) {
             " and |m| <= l, got l = " + std::to_string(l) + ", m = " + std::to_string(m));
     normalize_or_pole(x, y, z);
     const int am = m < 0 ? -m : m;
-    double s, cp, sp;
-    detail::polar_xy(double(x), double(y), s, cp, sp);
-    int s_exp = 0;
-    const double s_mant = s > 0 ? std::frexp(s, &s_exp) : 0.0;
-    detail::Scaled pmm{constants::inv_sqrt_four_pi, 0};
-    double cm = 1, sm = 0;
-    for (int k = 1; k <= am; ++k) {
-        pmm = detail::next_sectoral(pmm, k, s_mant, s_exp);
-        const double c = cm * cp - sm * sp;
-        sm = sm * cp + cm * sp;
-        cm = c;
-    }
-    if (am > 0) pmm.m *= constants::sqrt2;
+    detail::SectoralWalk w{double(x), double(y)};
+    while (w.order() < am) w.advance();
     double value = 0;
-    detail::column(l + 1, am, pmm, double(z), [&](int ll, double v) {
+    detail::column(l + 1, am, w.start(), double(z), [&](int ll, double v) {
         if (ll == l) value = v;
     });
+    const double cm = w.cos_m(), sm = w.sin_m();
     return static_cast<T>(m > 0 ? value * cm : m < 0 ? value * sm : value);
 }
 

@@ -24,6 +24,7 @@
 #include "../config.hpp"
 #include "scalar.hpp"
 #include "simd.hpp"
+#include "vec.hpp"
 
 namespace sphbasis::detail::hemi {
 
@@ -201,15 +202,8 @@ inline constexpr int rescale_bits = 480;  // 2^480 ~ 3e144, far inside the doubl
 template <class Out>
 inline void columns(const Family& f, int bands, wide zc, wide X, wide Y, wide E, Out&& out) {
     using R = wide;
-    // sin' = |(X, Y)|, cos(phi), sin(phi) without underflow (as sh::detail::polar_xy).
-    R s = 0, cp = 1, sp = 0;
-    const R mx = std::max(std::fabs(X), std::fabs(Y));
-    if (mx > 0) {
-        const R rx = X / mx, ry = Y / mx, r = std::sqrt(rx * rx + ry * ry);
-        s = mx * r;
-        cp = rx / r;
-        sp = ry / r;
-    }
+    R s, cp, sp;  // sin' = |(X, Y)|, cos(phi), sin(phi) without underflow
+    polar_xy(X, Y, s, cp, sp);
     int s_exp = 0;
     const R s_mant = s > 0 ? std::frexp(s, &s_exp) : R(0);
     const R small = std::ldexp(R(1), -rescale_bits), big = std::ldexp(R(1), rescale_bits);

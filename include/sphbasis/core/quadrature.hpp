@@ -135,4 +135,25 @@ inline DirectionalRule hemisphere_rule(int degree) {
     return detail::product_rule(degree, true, "hemisphere_rule");
 }
 
+/// Product rule on the upper hemisphere in u = sqrt(z): nu Gauss-Legendre nodes in u on [0, 1]
+/// (weight 2u du) times nphi uniform azimuths (offset by half a step, like hemisphere_rule).
+/// Exact for p(x, y, z) z^(j/2) with p of total degree d and j in {0, 1} when
+/// 2d + j + 1 <= 2 nu - 1 and d < nphi; converges geometrically for those functions times
+/// factors analytic in z on [-1, 1]. Made for bases with a sqrt(z) factor (Makhotkin, HSH). nu *
+/// nphi points, all with z > 0. Throws std::invalid_argument unless 1 <= nu, nphi <= 100000.
+inline DirectionalRule hemisphere_rule_sqrt(int nu, int nphi) {
+    if (nu < 1 || nphi < 1 || nu > 100000 || nphi > 100000)
+        throw std::invalid_argument(
+            "sphbasis::hemisphere_rule_sqrt(): expected 1 <= nu, nphi <= 100000, got " +
+            std::to_string(nu) + ", " + std::to_string(nphi));
+    std::vector<double> t, wt;
+    gauss_legendre(nu, t, wt);
+    return detail::azimuthal_rule(nu, nphi, [&](std::size_t i, double& z, double& s, double& w) {
+        const double u = 0.5 * (t[i] + 1);
+        z = u * u;
+        w = 0.5 * wt[i] * 2 * u;
+        s = std::sqrt((1 - u) * (1 + u) * (1 + z));  // sin = sqrt(1 - u^4)
+    });
+}
+
 }  // namespace sphbasis

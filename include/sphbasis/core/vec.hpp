@@ -75,6 +75,25 @@ template <class D>
 using direction_scalar_t =
     std::remove_cv_t<std::remove_reference_t<decltype(component<0>(std::declval<const D&>()))>>;
 
+/// |(x, y)| and the unit vector (cos phi, sin phi) along (x, y), without under- or overflow:
+/// for a unit direction, s = sin(theta) taken from x and y (never sqrt(1 - z^2)). At x = y = 0
+/// the documented outcome is s = 0, phi = 0. R is float, double or long double.
+template <class R>
+inline void polar_xy(R x, R y, R& s, R& cp, R& sp) noexcept {
+    const R big = std::fmax(std::fabs(x), std::fabs(y));
+    if (!(big > 0)) {
+        s = 0;
+        cp = 1;
+        sp = 0;
+        return;
+    }
+    const R rx = x / big, ry = y / big;
+    const R r = std::sqrt(rx * rx + ry * ry);
+    s = big * r;
+    cp = rx / r;
+    sp = ry / r;
+}
+
 /// Normalises (x, y, z) in place. The documented outcome for input that has no direction:
 /// a zero vector or a vector with a NaN or infinite component becomes the pole (0, 0, 1).
 /// Vectors of any finite non-zero length, denormal or near overflow included, are scaled to

@@ -118,13 +118,16 @@ SPHBASIS_FORCEINLINE T square_to_cube_pdf(T x, T y, T z) noexcept {
 
 /// A cube map of 6 faces of n x n texels, filtered as `filter` says.
 template <class T>
-class CubeMap {
+class CubeMap : public detail::TexelGrid {
   public:
     /// n >= 1 texels per face edge. Throws std::invalid_argument outside 1 <= n <= 32768 or
     /// 0 <= subtexel_bits <= 24. Cost: O(n) for the seam table of dx10_seamless.
     explicit CubeMap(int resolution, CubeFilter filter = CubeFilter::dx10_seamless,
                      int subtexel_bits = 0)
-        : n_(resolution), filter_(filter), bits_(subtexel_bits) {
+        : detail::TexelGrid(6, resolution, resolution),
+          n_(resolution),
+          filter_(filter),
+          bits_(subtexel_bits) {
         detail::check_resolution("CubeMap", resolution, 1);
         detail::check_subtexel_bits("CubeMap", subtexel_bits);
         if (filter_ == CubeFilter::dx10_seamless) build_seams();
@@ -132,18 +135,6 @@ class CubeMap {
 
     int resolution() const noexcept { return n_; }
     CubeFilter filter() const noexcept { return filter_; }
-    int faces() const noexcept { return 6; }
-    int width() const noexcept { return n_; }
-    int height() const noexcept { return n_; }
-    std::size_t texel_count() const noexcept {
-        return 6 * static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_);
-    }
-    std::size_t texel_index(int face, int col, int row) const noexcept {
-        return (static_cast<std::size_t>(face) * static_cast<std::size_t>(n_) +
-                static_cast<std::size_t>(row)) *
-                   static_cast<std::size_t>(n_) +
-               static_cast<std::size_t>(col);
-    }
 
     FaceUV<T> direction_to_uv(T x, T y, T z) const noexcept {
         const vec3<T> d = detail::unit(x, y, z);
@@ -153,9 +144,7 @@ class CubeMap {
         return square_to_cube(face, u, v);
     }
     vec3<T> texel_direction(int face, int col, int row) const noexcept {
-        const T inv = T(1) / static_cast<T>(n_);
-        return square_to_cube(face, (static_cast<T>(col) + T(0.5)) * inv,
-                              (static_cast<T>(row) + T(0.5)) * inv);
+        return square_to_cube(face, u_center<T>(col), v_center<T>(row));
     }
 
     /// Exact solid angle of the texel (the area of its face rectangle projected onto the

@@ -32,30 +32,18 @@ namespace sphbasis::param {
 ///                                          solid angle per unit area of [-1, 1]^2 at Chebyshev
 ///                                          radius r (so that int g(max|a|,|b|) = 2 pi)
 template <class T, class Proj>
-class DualHemisphere {
+class DualHemisphere : public detail::TexelGrid {
   public:
     /// n x n texels per hemisphere, n >= 2 (the shrink needs two rings of centres).
     /// subtexel_bits > 0 quantises bilinear weights as hardware does. Throws
     /// std::invalid_argument outside 2 <= n <= 32768 or 0 <= subtexel_bits <= 24.
     explicit DualHemisphere(int resolution, int subtexel_bits = 0)
-        : n_(resolution), bits_(subtexel_bits) {
+        : detail::TexelGrid(2, resolution, resolution), n_(resolution), bits_(subtexel_bits) {
         detail::check_resolution(Proj::name, resolution, 2);
         detail::check_subtexel_bits(Proj::name, subtexel_bits);
     }
 
     int resolution() const noexcept { return n_; }
-    int faces() const noexcept { return 2; }
-    int width() const noexcept { return n_; }
-    int height() const noexcept { return n_; }
-    std::size_t texel_count() const noexcept {
-        return 2 * static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_);
-    }
-    std::size_t texel_index(int face, int col, int row) const noexcept {
-        return (static_cast<std::size_t>(face) * static_cast<std::size_t>(n_) +
-                static_cast<std::size_t>(row)) *
-                   static_cast<std::size_t>(n_) +
-               static_cast<std::size_t>(col);
-    }
 
     /// Face (0: z >= 0, 1: z < 0) and texture coordinates in [0.5/n, 1 - 0.5/n]^2.
     FaceUV<T> direction_to_uv(T x, T y, T z) const noexcept {
@@ -77,9 +65,7 @@ class DualHemisphere {
     }
 
     vec3<T> texel_direction(int face, int col, int row) const noexcept {
-        const T inv = T(1) / static_cast<T>(n_);
-        return uv_to_direction(face, (static_cast<T>(col) + T(0.5)) * inv,
-                               (static_cast<T>(row) + T(0.5)) * inv);
+        return uv_to_direction(face, u_center<T>(col), v_center<T>(row));
     }
 
     /// Solid angle of the part of the texel's cell inside the shrunk square (the outer ring

@@ -51,26 +51,17 @@ SPHBASIS_FORCEINLINE T square_to_latlong_pdf(T x, T y, T /*z*/) noexcept {
 
 /// A latitude-longitude map of 2n x n texels.
 template <class T>
-class LatLong {
+class LatLong : public detail::TexelGrid {
   public:
     /// n >= 1 rows (2n columns). Throws std::invalid_argument outside 1 <= n <= 32768 or
     /// 0 <= subtexel_bits <= 24.
-    explicit LatLong(int resolution, int subtexel_bits = 0) : n_(resolution), bits_(subtexel_bits) {
+    explicit LatLong(int resolution, int subtexel_bits = 0)
+        : detail::TexelGrid(1, 2 * resolution, resolution), n_(resolution), bits_(subtexel_bits) {
         detail::check_resolution("LatLong", resolution, 1);
         detail::check_subtexel_bits("LatLong", subtexel_bits);
     }
 
     int resolution() const noexcept { return n_; }
-    int faces() const noexcept { return 1; }
-    int width() const noexcept { return 2 * n_; }
-    int height() const noexcept { return n_; }
-    std::size_t texel_count() const noexcept {
-        return 2 * static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_);
-    }
-    std::size_t texel_index(int /*face*/, int col, int row) const noexcept {
-        return static_cast<std::size_t>(row) * static_cast<std::size_t>(2 * n_) +
-               static_cast<std::size_t>(col);
-    }
 
     FaceUV<T> direction_to_uv(T x, T y, T z) const noexcept {
         const vec3<T> d = detail::unit(x, y, z);
@@ -81,8 +72,7 @@ class LatLong {
         return square_to_latlong(u, v);
     }
     vec3<T> texel_direction(int face, int col, int row) const noexcept {
-        return uv_to_direction(face, (static_cast<T>(col) + T(0.5)) / static_cast<T>(2 * n_),
-                               (static_cast<T>(row) + T(0.5)) / static_cast<T>(n_));
+        return uv_to_direction(face, u_center<T>(col), v_center<T>(row));
     }
 
     /// Exact solid angle (2 pi/(2n)) (cos(theta0) - cos(theta1)), in double.

@@ -71,29 +71,22 @@ SPHBASIS_FORCEINLINE T square_to_octahedral_pdf(T x, T y, T z) noexcept {
 
 /// An octahedral map of n x n texels (one face).
 template <class T>
-class Octahedral {
+class Octahedral : public detail::TexelGrid {
   public:
     /// n >= 1. Throws std::invalid_argument outside 1 <= n <= 32768 or
     /// 0 <= subtexel_bits <= 24.
     explicit Octahedral(int resolution, OctahedralFilter filter = OctahedralFilter::seamless,
                         int subtexel_bits = 0)
-        : n_(resolution), filter_(filter), bits_(subtexel_bits) {
+        : detail::TexelGrid(1, resolution, resolution),
+          n_(resolution),
+          filter_(filter),
+          bits_(subtexel_bits) {
         detail::check_resolution("Octahedral", resolution, 1);
         detail::check_subtexel_bits("Octahedral", subtexel_bits);
     }
 
     int resolution() const noexcept { return n_; }
     OctahedralFilter filter() const noexcept { return filter_; }
-    int faces() const noexcept { return 1; }
-    int width() const noexcept { return n_; }
-    int height() const noexcept { return n_; }
-    std::size_t texel_count() const noexcept {
-        return static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_);
-    }
-    std::size_t texel_index(int /*face*/, int col, int row) const noexcept {
-        return static_cast<std::size_t>(row) * static_cast<std::size_t>(n_) +
-               static_cast<std::size_t>(col);
-    }
 
     FaceUV<T> direction_to_uv(T x, T y, T z) const noexcept {
         const vec3<T> d = detail::unit(x, y, z);
@@ -104,9 +97,7 @@ class Octahedral {
         return square_to_octahedral(u, v);
     }
     vec3<T> texel_direction(int face, int col, int row) const noexcept {
-        const T inv = T(1) / static_cast<T>(n_);
-        return uv_to_direction(face, (static_cast<T>(col) + T(0.5)) * inv,
-                               (static_cast<T>(row) + T(0.5)) * inv);
+        return uv_to_direction(face, u_center<T>(col), v_center<T>(row));
     }
 
     /// Exact solid angle of the texel: its cell is cut along a = 0, b = 0 and |a| + |b| = 1

@@ -256,5 +256,40 @@ SPHBASIS_FORCEINLINE vec3<T> unit(T x, T y, T z) noexcept {
     return {x, y, z};
 }
 
+/// Texel bookkeeping shared by every parameterization: `faces` images of width x height texels,
+/// face-major then row-major (the layout the file header describes).
+class TexelGrid {
+  public:
+    int faces() const noexcept { return faces_; }
+    int width() const noexcept { return width_; }
+    int height() const noexcept { return height_; }
+    std::size_t texel_count() const noexcept {
+        return static_cast<std::size_t>(faces_) * static_cast<std::size_t>(width_) *
+               static_cast<std::size_t>(height_);
+    }
+    std::size_t texel_index(int face, int col, int row) const noexcept {
+        return (static_cast<std::size_t>(face) * static_cast<std::size_t>(height_) +
+                static_cast<std::size_t>(row)) *
+                   static_cast<std::size_t>(width_) +
+               static_cast<std::size_t>(col);
+    }
+
+  protected:
+    TexelGrid(int faces, int width, int height) noexcept
+        : faces_(faces), width_(width), height_(height) {}
+    /// Texture coordinates of the centre of texel (col, row): ((col + 0.5)/w, (row + 0.5)/h).
+    template <class T>
+    T u_center(int col) const noexcept {
+        return (static_cast<T>(col) + T(0.5)) / static_cast<T>(width_);
+    }
+    template <class T>
+    T v_center(int row) const noexcept {
+        return (static_cast<T>(row) + T(0.5)) / static_cast<T>(height_);
+    }
+
+  private:
+    int faces_, width_, height_;
+};
+
 }  // namespace detail
 }  // namespace sphbasis::param
