@@ -63,3 +63,29 @@ TEMPLATE_TEST_CASE("vec: normalize_or_pole, scalar and batch", "[simd]", float, 
     CHECK(x == Approx(0.6));
     CHECK(y == Approx(0.8));
 }
+
+TEMPLATE_TEST_CASE("simd: all and any see every lane", "[simd]", float, double) {
+    using T = TestType;
+    using V = batch<T>;
+    T a[V::size];
+    for (int i = 0; i < V::size; ++i) a[i] = T(1);
+    CHECK(all(V::load(a) > V(T(0))));
+    CHECK(any(V::load(a) > V(T(0))));
+    CHECK(!any(V::load(a) < V(T(0))));
+    // One lane differs, at every position: all() must see it false, any() true.
+    for (int j = 0; j < V::size; ++j) {
+        T b[V::size];
+        for (int i = 0; i < V::size; ++i) b[i] = i == j ? T(-1) : T(1);
+        const V vb = V::load(b);
+        INFO("lane " << j);
+        CHECK(!all(vb > V(T(0))));
+        CHECK(any(vb < V(T(0))));
+        CHECK(!all(vb < V(T(0))));
+    }
+    // NaN compares false in every ordered comparison.
+    T c[V::size];
+    for (int i = 0; i < V::size; ++i)
+        c[i] = i == V::size - 1 ? std::numeric_limits<T>::quiet_NaN() : T(1);
+    CHECK(!all(V::load(c) > V(T(0))));
+    CHECK(!all(V::load(c) <= V(T(0))));
+}

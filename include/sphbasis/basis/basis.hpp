@@ -13,6 +13,11 @@
 //       calls f(kernel) with kernel(x, y, z, store) templated on the value type V (float,
 //       double, batch<T>) for a UNIT direction; the kernel calls store(k, value) once per k.
 //       Precondition: valid_count(n).
+// and optionally
+//   template <class T, class F> static bool with_sum_kernel(int n, const T* coeffs, F&& f);
+//       for sizes with a cheaper expansion than sum_k c_k * kernel value k: calls f(sk) with
+//       sk(x, y, z) = sum_k coeffs[k] B_k(x, y, z) for unit directions (V as above) and returns
+//       true, or returns false to use the generic sum. basis_eval_sum_batch uses it.
 // The free functions below check n and normalise directions (normalize_or_pole), so all bases
 // share one documented behaviour for bad input and one SIMD batch path.
 #pragma once
@@ -67,6 +72,12 @@ struct SumStore {
         acc->v[j] += c[k] * v;
     }
 };
+
+template <class B, class = void>
+struct has_sum_kernel : std::false_type {};
+template <class B>
+struct has_sum_kernel<B, std::void_t<decltype(&B::template with_sum_kernel<float, int (*)(int)>)>>
+    : std::true_type {};
 
 /// Runs kernel over n SoA directions: whole SIMD batches, then a scalar tail.
 /// body(V x, V y, V z, std::size_t i) for batches, tail(T x, T y, T z, std::size_t i).
@@ -151,6 +162,17 @@ void basis_eval_sum_batch(int n, const T* coeffs, std::size_t count, const T* xs
                           const T* zs, T* out) {
     check_count<B>(n, "basis_eval_sum_batch");
     if (count == 0) return;
+    if constexpr (detail::has_sum_kernel<B>::value) {
+        const bool done = B::with_sum_kernel(n, coeffs, [&](const auto& sum) {
+            detail::for_each_direction(
+                count, xs, ys, zs,
+                [&](const batch<T>& x, const batch<T>& y, const batch<T>& z, std::size_t i) {
+                    sum(x, y, z).store(out + i);
+                },
+                [&](T x, T y, T z, std::size_t i) { out[i] = sum(x, y, z); });
+        });
+        if (done) return;
+    }
     B::with_kernel(n, [&](auto kernel) {
         detail::for_each_direction(
             count, xs, ys, zs,

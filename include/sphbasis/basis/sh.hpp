@@ -79,45 +79,46 @@ inline constexpr int max_row_bands = 64;
 inline constexpr int row_chunk = 8;
 
 /// Constants of the normalised recurrence for up to `bands` bands, in precision T.
-/// Row layout: for degree l >= 2 the pairs (a_lm, a_lm b_lm), m = 0..l-2, are contiguous and
-/// zero-padded to a multiple of row_chunk.
+/// Row l >= 1 holds, for m = 0..l, the triple (a, ab, c) of
+///     Q_l^m = a z Q_{l-1}^m - ab Q_{l-2}^m + c,
+/// zero-padded to a multiple of row_chunk: (a_lm, a_lm b_lm, 0) for m <= l-2, (sqrt(2l+1), 0,
+/// 0) for m = l-1 (Q_l^{l-1} = sqrt(2l+1) z Q_{l-1}^{l-1}) and (0, 0, Q_l^l) for m = l (sqrt(2)
+/// folded in for m > 0). One formula for the whole row: every row is written by whole-chunk
+/// stores, so the next reads of it are forwarded from the store buffer (a row finished by
+/// scalar stores and read back as vectors stalled the 31-band double path by a third).
 template <class T>
 struct RowTable {
     int bands = 0;
-    std::vector<T> a, ab;  // row recurrence coefficients
-    std::vector<int> row;  // offset of degree l in a/ab
-    std::vector<T> diag;   // Q_m^m (sqrt(2) folded in for m > 0)
-    std::vector<T> sub;    // sqrt(2m+3): Q_{m+1}^m = sub[m] z Q_m^m
+    std::vector<T> a, ab, c;  // row recurrence coefficients
+    std::vector<int> row;     // offset of degree l in a/ab/c
+    T q00 = 0;                // Q_0^0 = 1/(2 sqrt(pi))
 
     explicit RowTable(int n) : bands(n) {
         row.assign(static_cast<std::size_t>(std::max(n, 1)), 0);
         std::size_t off = 0;
-        for (int l = 2; l < n; ++l) {
+        for (int l = 1; l < n; ++l) {
             row[static_cast<std::size_t>(l)] = static_cast<int>(off);
-            off += static_cast<std::size_t>((l - 1 + row_chunk - 1) / row_chunk * row_chunk);
+            off += static_cast<std::size_t>((l + row_chunk) / row_chunk * row_chunk);
         }
         a.assign(off, T(0));
         ab.assign(off, T(0));
-        for (int l = 2; l < n; ++l) {
+        c.assign(off, T(0));
+        double q = constants::inv_sqrt_four_pi;  // Q_m^m without the sqrt(2)
+        q00 = static_cast<T>(q);
+        for (int l = 1; l < n; ++l) {
             const double dl = l;
+            const std::size_t r = static_cast<std::size_t>(row[static_cast<std::size_t>(l)]);
             for (int m = 0; m <= l - 2; ++m) {
                 const double dm = m;
                 const double al = std::sqrt((4 * dl * dl - 1) / (dl * dl - dm * dm));
                 const double bl =
                     std::sqrt(((dl - 1) * (dl - 1) - dm * dm) / (4 * (dl - 1) * (dl - 1) - 1));
-                const std::size_t i =
-                    static_cast<std::size_t>(row[static_cast<std::size_t>(l)] + m);
-                a[i] = static_cast<T>(al);
-                ab[i] = static_cast<T>(al * bl);
+                a[r + static_cast<std::size_t>(m)] = static_cast<T>(al);
+                ab[r + static_cast<std::size_t>(m)] = static_cast<T>(al * bl);
             }
-        }
-        diag.resize(static_cast<std::size_t>(n));
-        sub.resize(static_cast<std::size_t>(n));
-        double q = constants::inv_sqrt_four_pi;
-        for (int m = 0; m < n; ++m) {
-            if (m > 0) q *= std::sqrt((2.0 * m + 1) / (2.0 * m));
-            diag[static_cast<std::size_t>(m)] = static_cast<T>(m > 0 ? q * constants::sqrt2 : q);
-            sub[static_cast<std::size_t>(m)] = static_cast<T>(std::sqrt(2.0 * m + 3));
+            a[r + static_cast<std::size_t>(l - 1)] = static_cast<T>(std::sqrt(2.0 * l + 1));
+            q *= std::sqrt((2.0 * l + 1) / (2.0 * l));
+            c[r + static_cast<std::size_t>(l)] = static_cast<T>(q * constants::sqrt2);
         }
     }
 };
@@ -136,11 +137,16 @@ SPHBASIS_FORCEINLINE void eval_rows(int bands, const V& x, const V& y, const V& 
     using S = scalar_t<V>;
     const RowTable<S>& t = row_table<S>();
     SPHBASIS_ASSERT(bands <= max_row_bands);
+    if (bands <= 0) return;
     V cm[max_row_bands], sm[max_row_bands];
-    // Rows padded by a chunk: the chunked loop reads and writes (zero-weighted) past l - 2.
-    V buf[3][max_row_bands + row_chunk];
+    // Rows padded to whole chunks: the chunked loop reads and writes (zero-weighted) past l.
+    constexpr int row_len = (max_row_bands + row_chunk - 1) / row_chunk * row_chunk;
+    V buf[3][row_len];
+    // Only the part the rows of `bands` bands touch needs zeros: Q_{l-1} and Q_{l-2} are read
+    // up to the chunk end of row l.
+    const int used = std::min(row_len, (bands + row_chunk - 1) / row_chunk * row_chunk);
     for (auto& r : buf)
-        for (auto& v : r) v = V(S(0));
+        for (int j = 0; j < used; ++j) r[j] = V(S(0));
     // (x + iy)^m: four interleaved chains w^m = w^(m-4) w^4, a quarter of the latency of the
     // plain chain w^m = w^(m-1) w.
     cm[0] = V(S(1));
@@ -159,33 +165,40 @@ SPHBASIS_FORCEINLINE void eval_rows(int bands, const V& x, const V& y, const V& 
     V* p2 = buf[0];  // degree l-2
     V* p1 = buf[1];  // degree l-1
     V* p0 = buf[2];  // degree l
-    if (bands <= 0) return;
-    p1[0] = V(t.diag[0]);
+    p1[0] = V(t.q00);
     store(0, p1[0]);
     for (int l = 1; l < bands; ++l) {
-        const S* a = t.a.data() + (l >= 2 ? t.row[static_cast<std::size_t>(l)] : 0);
-        const S* ab = t.ab.data() + (l >= 2 ? t.row[static_cast<std::size_t>(l)] : 0);
+        const std::size_t r = static_cast<std::size_t>(t.row[static_cast<std::size_t>(l)]);
+        const S* SPHBASIS_RESTRICT a = t.a.data() + r;
+        const S* SPHBASIS_RESTRICT ab = t.ab.data() + r;
+        const S* SPHBASIS_RESTRICT c = t.c.data() + r;
         {
             // The three rows never overlap: say so, or the rotating pointers block SIMD.
             V* SPHBASIS_RESTRICT q0 = p0;
             const V* SPHBASIS_RESTRICT q1 = p1;
             const V* SPHBASIS_RESTRICT q2 = p2;
-            for (int m0 = 0; m0 <= l - 2; m0 += row_chunk)
+            for (int m0 = 0; m0 <= l; m0 += row_chunk)
                 for (int j = m0; j < m0 + row_chunk; ++j)
-                    q0[j] = V(a[j]) * z * q1[j] - V(ab[j]) * q2[j];
+                    q0[j] = vfma(V(a[j]) * z, q1[j], vfma(-V(ab[j]), q2[j], V(c[j])));
         }
-        p0[l - 1] = V(t.sub[static_cast<std::size_t>(l - 1)]) * z * p1[l - 1];
-        p0[l] = V(t.diag[static_cast<std::size_t>(l)]);
         const int k = l * (l + 1);
-        store(k, p0[0]);
-        for (int m = 1; m <= l; ++m) {
-            store(k + m, p0[m] * cm[m]);
-            store(k - m, p0[m] * sm[m]);
+        if constexpr (std::is_floating_point_v<V>) {
+            // Scalar V: both loops read the row from m = 0, at the offsets it was written at
+            // (see RowTable). m = 0 of the first loop stores 0 * Q_l^0 at k; the second loop
+            // overwrites it with y_l0.
+            for (int m = 0; m <= l; ++m) store(k - m, p0[m] * sm[m]);
+            for (int m = 0; m <= l; ++m) store(k + m, p0[m] * cm[m]);
+        } else {
+            store(k, p0[0]);
+            for (int m = 1; m <= l; ++m) {
+                store(k + m, p0[m] * cm[m]);
+                store(k - m, p0[m] * sm[m]);
+            }
         }
-        V* r = p2;
+        V* rot = p2;
         p2 = p1;
         p1 = p0;
-        p0 = r;
+        p0 = rot;
     }
 }
 
@@ -327,6 +340,41 @@ struct ColumnKernel {
                 eval_columns(bands, double(x[i]), double(y[i]), double(z[i]),
                              [&](int k, double v) { s.lane(k, i, static_cast<S>(v)); });
         }
+    }
+};
+
+/// The expansion sum_k c_k y_k of exactly 3 bands as one quadratic polynomial in a unit
+/// direction (the basis_eval_sum_batch hook, basis/basis.hpp). With z^2 = 1 - x^2 - y^2,
+///   f = b0 + x (bx + bxx x + bxy y + bxz z) + y (by + byy y + byz z) + bz z,
+/// eight fused multiply-adds per direction instead of 9 basis values and 9 multiply-adds.
+/// The b's are computed in double from the coefficients once per call.
+template <class T>
+struct QuadraticSum {
+    T b0, bx, by, bz, bxx, byy, bxy, byz, bxz;
+
+    explicit QuadraticSum(const T* c) noexcept {
+        constexpr double k0 = 0.28209479177387814;  // 1/(2*sqrt(pi)) = y_00
+        constexpr double k1 = 0.48860251190291992;  // sqrt(3/(4*pi)): y_1m = k1 (y, z, x)
+        constexpr double ka = 1.0925484305920791;   // sqrt(15/(4*pi)): y_2-2 = ka xy, ...
+        constexpr double kb = 0.31539156525252001;  // sqrt(5/(16*pi)): y_20 = kb (3z^2 - 1)
+        constexpr double kc = 0.54627421529603954;  // sqrt(15/(16*pi)): y_22 = kc (x^2 - y^2)
+        auto d = [c](int k) { return static_cast<double>(c[k]); };
+        // y_20 = kb (3 z^2 - 1) = kb (2 - 3 x^2 - 3 y^2) on the unit sphere.
+        b0 = static_cast<T>(k0 * d(0) + 2 * kb * d(6));
+        bx = static_cast<T>(k1 * d(3));
+        by = static_cast<T>(k1 * d(1));
+        bz = static_cast<T>(k1 * d(2));
+        bxx = static_cast<T>(-3 * kb * d(6) + kc * d(8));
+        byy = static_cast<T>(-3 * kb * d(6) - kc * d(8));
+        bxy = static_cast<T>(ka * d(4));
+        byz = static_cast<T>(ka * d(5));
+        bxz = static_cast<T>(ka * d(7));
+    }
+    template <class V>
+    SPHBASIS_FORCEINLINE V operator()(const V& x, const V& y, const V& z) const noexcept {
+        const V tx = vfma(V(bxz), z, vfma(V(bxy), y, vfma(V(bxx), x, V(bx))));
+        const V ty = vfma(V(byz), z, vfma(V(byy), y, V(by)));
+        return vfma(V(bz), z, vfma(y, ty, vfma(x, tx, V(b0))));
     }
 };
 
@@ -495,6 +543,13 @@ struct SH {
     template <class F>
     static decltype(auto) with_kernel(int n, F&& f) {
         return sh::detail::with_kernel(bands_of(n), std::forward<F>(f));
+    }
+    /// basis_eval_sum_batch hook: 3 bands as one quadratic (sh::detail::QuadraticSum).
+    template <class T, class F>
+    static bool with_sum_kernel(int n, const T* coeffs, F&& f) {
+        if (n != 9) return false;
+        f(sh::detail::QuadraticSum<T>(coeffs));
+        return true;
     }
 };
 

@@ -197,17 +197,55 @@ template <class T>
 SPHBASIS_FORCEINLINE batch<T> vmin(batch<T> a, batch<T> b) noexcept {
     return select(a < b, a, b);
 }
+namespace detail {
+/// Bit i set where lane i of the comparison mask m is true (one instruction on x86).
+template <class M>
+SPHBASIS_FORCEINLINE unsigned lane_bits(M m) noexcept {
+    constexpr std::size_t lanes = sizeof(M) / sizeof(m[0]);
+#if defined(__AVX512F__)
+    if constexpr (sizeof(M) == 64) {
+        if constexpr (lanes == 16)
+            return _mm512_test_epi32_mask(reinterpret_cast<__m512i>(m),
+                                          reinterpret_cast<__m512i>(m));
+        else
+            return _mm512_test_epi64_mask(reinterpret_cast<__m512i>(m),
+                                          reinterpret_cast<__m512i>(m));
+    }
+#endif
+#if defined(__AVX__)
+    if constexpr (sizeof(M) == 32) {
+        if constexpr (lanes == 8)
+            return static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(m)));
+        else
+            return static_cast<unsigned>(_mm256_movemask_pd(reinterpret_cast<__m256d>(m)));
+    }
+#endif
+#if defined(__SSE2__)
+    if constexpr (sizeof(M) == 16) {
+        if constexpr (lanes == 4)
+            return static_cast<unsigned>(_mm_movemask_ps(reinterpret_cast<__m128>(m)));
+        else
+            return static_cast<unsigned>(_mm_movemask_pd(reinterpret_cast<__m128d>(m)));
+    }
+#endif
+    unsigned bits = 0;
+    for (std::size_t i = 0; i < lanes; ++i)
+        if (m[i]) bits |= 1u << i;
+    return bits;
+}
+}  // namespace detail
+
+/// True if every lane of the comparison mask m is true. A lane loop would compile to one
+/// extract and branch per lane (measured: 16 of each per AVX-512 float batch).
 template <class M, std::enable_if_t<!std::is_arithmetic_v<M>, int> = 0>
 SPHBASIS_FORCEINLINE bool all(M m) noexcept {
-    for (std::size_t i = 0; i < sizeof(M) / sizeof(m[0]); ++i)
-        if (!m[i]) return false;
-    return true;
+    constexpr std::size_t lanes = sizeof(M) / sizeof(m[0]);
+    return detail::lane_bits(m) == (lanes == 32 ? ~0u : (1u << lanes) - 1u);
 }
+/// True if any lane of the comparison mask m is true.
 template <class M, std::enable_if_t<!std::is_arithmetic_v<M>, int> = 0>
 SPHBASIS_FORCEINLINE bool any(M m) noexcept {
-    for (std::size_t i = 0; i < sizeof(M) / sizeof(m[0]); ++i)
-        if (m[i]) return true;
-    return false;
+    return detail::lane_bits(m) != 0;
 }
 
 #else
