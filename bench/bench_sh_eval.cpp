@@ -3,6 +3,8 @@
 //   one_call:   sh::eval<N> (normalising) called once per direction, results consumed
 //   runtime:    sh::eval(bands, ...) with the band count known only at run time
 //   batch:      sh::eval_batch over 1M directions (SoA in and out, SIMD across directions)
+//   memory_floor: the loads and stores of batch, in its order, with no arithmetic
+//   batch_cached: sh::eval_batch over 512 directions whose output stays in cache
 //   sum_batch:  sh::eval_sum_batch over 1M directions (sum c_i y_i, the y_i not stored)
 //   recurrence: the general recurrence at 31 bands in double, one direction at a time
 #include <benchmark/benchmark.h>
@@ -87,6 +89,29 @@ void batch(benchmark::State& st) {
     st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * n));
 }
 
+// The memory floor of batch(): the same loads and stores in the same order (one SIMD batch of
+// directions read, then one vector store per function row), with no arithmetic. batch() over
+// 1M directions cannot be faster than this on the machine it runs on.
+template <int Bands, class T>
+void memory_floor(benchmark::State& st) {
+    using V = sphbasis::batch<T>;
+    constexpr std::size_t W = static_cast<std::size_t>(V::size);
+    constexpr int bands = Bands;  // compile-time: the row stores unroll as batch()'s do
+    const std::size_t n = 1 << 20, stride = n + 16;
+    const Dirs<T> d(n);
+    std::vector<T> out(stride * static_cast<std::size_t>(bands * bands));
+    for (auto _ : st) {
+        for (std::size_t i = 0; i < n; i += W) {
+            const V v = V::load(d.x.data() + i) + V::load(d.y.data() + i) + V::load(d.z.data() + i);
+            for (int k = 0; k < bands * bands; ++k)
+                v.store(out.data() + static_cast<std::size_t>(k) * stride + i);
+        }
+        benchmark::DoNotOptimize(out.data());
+        benchmark::ClobberMemory();
+    }
+    st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * n));
+}
+
 // The same on 512 directions whose output stays in cache: the compute cost without the
 // memory traffic of writing n^2 floats per direction to DRAM.
 template <class T>
@@ -141,6 +166,9 @@ BENCHMARK_TEMPLATE(one_call_unit, 8, float);
 BENCHMARK_TEMPLATE(runtime, float)->Arg(3)->Arg(8);
 BENCHMARK_TEMPLATE(runtime, double)->Arg(31)->Arg(100);
 BENCHMARK_TEMPLATE(batch, float)->Arg(3)->Arg(8)->Arg(16);
+BENCHMARK_TEMPLATE(memory_floor, 3, float);
+BENCHMARK_TEMPLATE(memory_floor, 8, float);
+BENCHMARK_TEMPLATE(memory_floor, 16, float);
 BENCHMARK_TEMPLATE(batch_cached, float)->Arg(3)->Arg(8)->Arg(16);
 BENCHMARK_TEMPLATE(sum_batch_cached, float)->Arg(3)->Arg(8);
 BENCHMARK_TEMPLATE(sum_batch, float)->Arg(3)->Arg(8);
