@@ -152,15 +152,17 @@ SPHBASIS_FORCEINLINE batch<T> vsqrt(batch<T> a) noexcept {
 /// 1/sqrt(a) for a > 0 (normal range), lane-wise: the hardware estimate refined by
 /// Newton-Raphson steps to within about 2 ulp of the correctly rounded value; where the target
 /// has no estimate instruction, 1/sqrt(a). Several times cheaper than sqrt + division.
+/// AVX-512 uses the maskz_ forms with a full mask (as vsqrt does): the unmasked intrinsics
+/// trip GCC 12's -Wmaybe-uninitialized inside <immintrin.h> in every user's -Wall build.
 template <class T>
 SPHBASIS_FORCEINLINE batch<T> vrsqrt(batch<T> a) noexcept {
     using B = batch<T>;
     auto newton = [&](B y) { return y * (B(T(1.5)) - B(T(0.5)) * a * y * y); };
 #if defined(__AVX512F__)
     if constexpr (std::is_same_v<T, float>) {
-        return newton(B(_mm512_rsqrt14_ps(a.v)));  // 2^-14 -> ~2^-27
+        return newton(B(_mm512_maskz_rsqrt14_ps(__mmask16(0xFFFF), a.v)));  // 2^-14 -> ~2^-27
     } else {
-        return newton(newton(B(_mm512_rsqrt14_pd(a.v))));  // 2^-14 -> ~2^-54
+        return newton(newton(B(_mm512_maskz_rsqrt14_pd(__mmask8(0xFF), a.v))));  // 2^-14 -> ~2^-54
     }
 #elif defined(__AVX__)
     if constexpr (std::is_same_v<T, float>) {
