@@ -314,6 +314,39 @@ TEMPLATE_TEST_CASE("sh: bad input in the batch paths gives the pole", "[sh]", fl
     }
 }
 
+TEST_CASE("sh: the double row path (65..256 bands) agrees with the column path", "[sh]") {
+    // Two different recurrences (rows on Q = Pbar / sin^m in z, columns on Pbar in l with
+    // exponent-carried sectoral starts) must agree within the accuracy bound, near the poles
+    // too, where the rows multiply a large Q by an underflowing sin^m.
+    auto dirs = random_dirs(20, 17);
+    for (double e : {1e-12, 1e-9, 1e-6, 1e-3}) {
+        dirs.push_back({e, 0, std::sqrt(1 - e * e)});
+        dirs.push_back({0.6 * e, -0.8 * e, -std::sqrt(1 - e * e)});
+    }
+    dirs.push_back({0, 0, 1});
+    dirs.push_back({0, 0, -1});
+    dirs.push_back({1, 0, 0});
+    for (int bands : {65, 100, 256}) {
+        const std::size_t nf = static_cast<std::size_t>(bands * bands);
+        std::vector<double> rows(nf), cols(nf);
+        for (const auto& d : dirs) {
+            sh::eval(bands, d[0], d[1], d[2], rows.data());
+            sh::detail::eval_columns(bands, d[0], d[1], d[2], [&](int k, double v) {
+                cols[static_cast<std::size_t>(k)] = v;
+            });
+            for (int l = 0; l < bands; ++l)
+                for (int m = -l; m <= l; ++m) {
+                    const std::size_t k = static_cast<std::size_t>(sh::index(l, m));
+                    INFO("bands " << bands << " l " << l << " m " << m << " dir " << d[0] << ","
+                                  << d[1] << "," << d[2]);
+                    REQUIRE(std::isfinite(rows[k]));
+                    REQUIRE(std::fabs(rows[k] - cols[k]) <=
+                            (1e-12 + l * double(l) * 1.1e-16) * norm_s(l));
+                }
+        }
+    }
+}
+
 TEST_CASE("sh: values against the mpmath reference (l <= 2000)", "[sh][reference]") {
     std::ifstream in(SPHBASIS_TEST_DATA_DIR "/sh_reference.txt");
     REQUIRE(in.good());
@@ -329,8 +362,9 @@ TEST_CASE("sh: values against the mpmath reference (l <= 2000)", "[sh][reference
         const double s = norm_s(l);
         const double bound = l <= 100 ? 1e-12 * s : (1e-12 + l * double(l) * 1.1e-16) * s;
         const double got = sh::eval_lm(l, m, x, y, z);
-        // The full evaluation path too (cheap below 64 bands; all paths above via eval_lm).
-        if (l < 13) {
+        // The full evaluation path too: unrolled (l < 8), rows in T (l < 64) and rows in double
+        // (l < 256). Above, eval() and eval_lm share the column recurrence.
+        if (l < 256) {
             const auto v = eval_d(l + 1, x, y, z);
             REQUIRE(std::fabs(v[static_cast<std::size_t>(sh::index(l, m))] - ref) <= bound);
         }
