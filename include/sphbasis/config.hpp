@@ -25,3 +25,17 @@
 #define SPHBASIS_FORCEINLINE inline
 #define SPHBASIS_RESTRICT
 #endif
+
+// SPHBASIS_NOINLINE keeps a function out of line (one-time table builds, cold error paths, the
+// large-size paths of the one-call kernels); SPHBASIS_INLINE_LAMBDA always inlines a lambda body
+// (placed after the parameter list).
+#if defined(__GNUC__) || defined(__clang__)
+#define SPHBASIS_NOINLINE __attribute__((noinline))
+#define SPHBASIS_INLINE_LAMBDA __attribute__((always_inline))
+#elif defined(_MSC_VER)
+#define SPHBASIS_NOINLINE __declspec(noinline)
+#define SPHBASIS_INLINE_LAMBDA
+#else
+#define SPHBASIS_NOINLINE
+#define SPHBASIS_INLINE_LAMBDA
+#endif

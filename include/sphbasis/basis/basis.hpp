@@ -38,13 +38,19 @@ namespace sphbasis {
 /// Where a basis lives: the whole sphere or the upper hemisphere z >= 0.
 enum class Domain { sphere, hemisphere };
 
-/// Throws std::invalid_argument unless B has n functions.
+namespace detail {
 template <class B>
-void check_count(int n, const char* fn) {
-    if (!B::valid_count(n))
-        throw std::invalid_argument(std::string("sphbasis::") + fn + "(): expected " +
-                                    B::count_rule() + " functions for basis '" + B::name +
-                                    "', got " + std::to_string(n));
+[[noreturn]] SPHBASIS_NOINLINE void throw_bad_count(int n, const char* fn) {
+    throw std::invalid_argument(std::string("sphbasis::") + fn + "(): expected " + B::count_rule() +
+                                " functions for basis '" + B::name + "', got " + std::to_string(n));
+}
+}  // namespace detail
+
+/// Throws std::invalid_argument unless B has n functions. The check is inlined; the message is
+/// built out of line, so the one-call paths keep the direction in registers.
+template <class B>
+SPHBASIS_FORCEINLINE void check_count(int n, const char* fn) {
+    if (!B::valid_count(n)) detail::throw_bad_count<B>(n, fn);
 }
 
 namespace detail {
@@ -86,13 +92,16 @@ SPHBASIS_FORCEINLINE void for_each_direction(std::size_t n, const T* xs, const T
                                              Body&& body, Tail&& tail) {
     using V = batch<T>;
     constexpr std::size_t W = static_cast<std::size_t>(V::size);
-    std::size_t i = 0;
-    for (; i + W <= n; i += W) {
+    const std::size_t full = n - n % W;
+    for (std::size_t i = 0; i < full; i += W) {
         V x = V::load(xs + i), y = V::load(ys + i), z = V::load(zs + i);
         normalize_or_pole(x, y, z);
         body(x, y, z, i);
     }
-    for (; i < n; ++i) {
+    // The tail as a count below W: with a running index GCC 12 loses the bound after inlining
+    // an out-of-line kernel and warns (-Waggressive-loop-optimizations) in callers' builds.
+    for (std::size_t j = 0; j < n % W; ++j) {
+        const std::size_t i = full + j;
         T x = xs[i], y = ys[i], z = zs[i];
         normalize_or_pole(x, y, z);
         tail(x, y, z, i);

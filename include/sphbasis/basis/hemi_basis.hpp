@@ -11,6 +11,7 @@
 // row recurrence, more the column recurrence (lane by lane for batches).
 #pragma once
 
+#include <type_traits>
 #include <utility>
 
 #include "../config.hpp"
@@ -74,10 +75,38 @@ struct ColumnKernel {
     }
 };
 
-/// Calls f(kernel) with the fastest kernel for 1 <= bands: Fixed<bands> up to 8 bands, then
-/// RowKernel<Fam>, then ColumnKernel<Fam>.
+/// bands > 8: RowKernel<Fam> (<= max_row_bands bands) or ColumnKernel<Fam>. For float and
+/// double it passes the direction by value to one out-of-line function: the caller's kernel
+/// lambda, which holds the direction by reference, then stays small enough to be inlined, and
+/// the direction of the unrolled kernels stays in registers instead of being stored for this
+/// path and loaded back (~1/3 of a 4-function call). Batches run the recurrences inline.
+template <class Fam>
+struct LargeKernel {
+    int bands;
+    template <class V, class Store>
+    SPHBASIS_FORCEINLINE void operator()(const V& x, const V& y, const V& z, Store&& store) const {
+        if constexpr (std::is_floating_point_v<V>) {
+            large<V, std::decay_t<Store>>(bands, x, y, z, store);
+        } else if (bands <= max_row_bands) {
+            RowKernel<Fam>{bands}(x, y, z, store);
+        } else {
+            ColumnKernel<Fam>{bands}(x, y, z, store);
+        }
+    }
+    template <class V, class Store>
+    SPHBASIS_NOINLINE static void large(int bands, V x, V y, V z, Store store) {
+        if (bands <= max_row_bands)
+            RowKernel<Fam>{bands}(x, y, z, store);
+        else
+            ColumnKernel<Fam>{bands}(x, y, z, store);
+    }
+};
+
+/// Calls f(kernel) with the fastest kernel for 1 <= bands: Fixed<bands> up to 8 bands, else
+/// LargeKernel<Fam>. Inlined into the caller, so that the one-call path has no call, no frame
+/// and no reload of the direction between the band-count check and the unrolled kernel.
 template <template <int> class Fixed, class Fam, class F>
-inline decltype(auto) with_kernel(int bands, F&& f) {
+SPHBASIS_FORCEINLINE decltype(auto) with_kernel(int bands, F&& f) {
     switch (bands) {
         case 1:
             return f(Fixed<1>{});
@@ -96,10 +125,8 @@ inline decltype(auto) with_kernel(int bands, F&& f) {
         case 8:
             return f(Fixed<8>{});
         default:
-            break;
+            return f(LargeKernel<Fam>{bands});
     }
-    if (bands <= max_row_bands) return f(RowKernel<Fam>{bands});
-    return f(ColumnKernel<Fam>{bands});
 }
 
 /// Square function counts: n bands = n^2 functions.
@@ -108,6 +135,9 @@ struct SquareCount {
     /// The band count of n functions, or -1 if n is not a positive square.
     static int bands_of(int n) noexcept {
         if (n < 1) return -1;
+        // The unrolled sizes (checked on every one-call evaluation) without a square root.
+        for (int b = 1; b <= 8; ++b)
+            if (n <= b * b) return n == b * b ? b : -1;
         const int b = sh::degree_of(n - 1) + 1;
         return b * b == n ? b : -1;
     }
@@ -133,7 +163,7 @@ struct HemiBasis {
     static int max_count() noexcept { return count(MaxBands); }
     /// Precondition: valid_count(n). Batch stores need lane(k, i, v) above 64 bands.
     template <class F>
-    static decltype(auto) with_kernel(int n, F&& f) {
+    static SPHBASIS_FORCEINLINE decltype(auto) with_kernel(int n, F&& f) {
         return hemi::with_kernel<Fixed, Fam>(bands_of(n), std::forward<F>(f));
     }
 };

@@ -114,28 +114,46 @@ struct ZernikeFamily {
                       "sphbasis: row recurrence up to 64 bands.");
         using S = scalar_t<V>;
         SPHBASIS_ASSERT(bands >= 1 && bands <= Cap);
-        const hemi::RowTable<S>& t = hemi::row_table<S, ZernikeFamily>();
+        constexpr int tb = hemi::table_bands(Cap);
+        const hemi::RowTable<S, tb>& t = hemi::row_table<S, ZernikeFamily, tb>();
         V cm[Cap], sm[Cap], cur[Cap], prev[Cap];
         hemi::powers(bands, X, Y, cm, sm);
-        for (int n = 0; n < bands; ++n) {
-            const std::size_t o = t.row[static_cast<std::size_t>(n)];
-            const S* pz = t.pz.data() + o;
-            const S* d = t.d.data() + o;
-            const S* c = t.c.data() + o;
+        hemi::for_each_index<Cap>(0, bands, 1, [&](int n) SPHBASIS_INLINE_LAMBDA {
+            const int o = hemi::row_offset(2, n);
+            const S* pz = t.pz + o;
+            const S* d = t.d + o;
+            const S* c = t.c + o;
             const int par = n % 2;
-            for (int m = par, j = 0; m + 2 <= n; m += 2, ++j) {
-                const V v = (hemi::splat<V>(pz[j]) * zc - hemi::splat<V>(d[j])) * cur[m] -
-                            hemi::splat<V>(c[j]) * prev[m];
+            // Step j of band n is order par + 2j. Unrolled, the first step of order n-2 (c = 0,
+            // p_{-1} = 0) drops the zero term: the same value. The loop keeps it (prev[n] = 0).
+            constexpr bool unroll = Cap <= 8;
+            const int steps = (n - par) / 2;
+            hemi::for_each_index<Cap>(
+                0, unroll ? steps - 1 : steps, 1, [&](int j) SPHBASIS_INLINE_LAMBDA {
+                    const int m = par + 2 * j;
+                    const V v = (hemi::splat<V>(pz[j]) * zc - hemi::splat<V>(d[j])) * cur[m] -
+                                hemi::splat<V>(c[j]) * prev[m];
+                    prev[m] = cur[m];
+                    cur[m] = v;
+                });
+            if (unroll && n >= 2) {
+                const int m = n - 2, j = steps - 1;
                 prev[m] = cur[m];
-                cur[m] = v;
+                cur[m] = (hemi::splat<V>(pz[j]) * zc - hemi::splat<V>(d[j])) * cur[m];
             }
-            cur[n] = hemi::splat<V>(t.start[static_cast<std::size_t>(n)]) * E;
-            prev[n] = V(S(0));
+            cur[n] = hemi::splat<V>(t.start[n]) * E;
+            if (!unroll) prev[n] = V(S(0));
             const int base = n * (n + 1) / 2;
-            for (int m = n; m > 0; m -= 2) store(base + (n - m) / 2, cur[m] * sm[m]);
+            // Functions of band n in index order: sin (m = n, n-2, ... > 0), m = 0, cos.
+            hemi::for_each_index<Cap>(0, (n + 1) / 2, 1, [&](int i) SPHBASIS_INLINE_LAMBDA {
+                const int m = n - 2 * i;
+                store(base + i, cur[m] * sm[m]);
+            });
             if (par == 0) store(base + n / 2, cur[0]);
-            for (int m = 2 - par; m <= n; m += 2) store(base + (n + m) / 2, cur[m] * cm[m]);
-        }
+            hemi::for_each_index<Cap>(2 - par, n + 1, 2, [&](int m) SPHBASIS_INLINE_LAMBDA {
+                store(base + (n + m) / 2, cur[m] * cm[m]);
+            });
+        });
     }
 };
 
@@ -151,6 +169,9 @@ struct TriangularCount {
     /// The band count of n functions, or -1 if n is not a triangular number >= 1.
     static int bands_of(int n) noexcept {
         if (n < 1) return -1;
+        // The unrolled sizes (checked on every one-call evaluation) without a square root.
+        for (int b = 1; b <= 8; ++b)
+            if (n <= count(b)) return n == count(b) ? b : -1;
         auto tri = [](long long b) { return b * (b + 1) / 2; };
         long long b = static_cast<long long>(std::sqrt(2.0 * n));
         while (b > 0 && tri(b) > n) --b;

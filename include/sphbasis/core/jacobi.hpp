@@ -19,7 +19,7 @@
 #include <cstddef>
 #include <limits>
 #include <type_traits>
-#include <vector>
+#include <utility>
 
 #include "../config.hpp"
 #include "scalar.hpp"
@@ -78,52 +78,56 @@ inline R sigma_plus_b(int k, int al, int be, int sigma) noexcept {
 /// One step p_k = (pz z - d) p_{k-1} - c p_{k-2}, k >= 1, of the family's recurrence in z:
 /// (w - b) / a = (2 sigma z - (sigma + b)) / a, so z enters unrounded.
 struct Step {
-    double pz, d, c;
+    wide pz, d, c;
 };
 inline Step jacobi_step(int k, int al, int be, int sigma) noexcept {
-    // Formed in the wide type, so that each table entry is rounded once.
+    // Formed in the wide type and rounded once, to the table's type, by the caller.
     const wide ak = jacobi_a<wide>(k, al, be);
     const wide akm1 = k >= 2 ? jacobi_a<wide>(k - 1, al, be) : wide(0);
-    return {static_cast<double>(wide(2 * sigma) / ak),
-            static_cast<double>(sigma_plus_b<wide>(k - 1, al, be, sigma) / ak),
-            static_cast<double>(akm1 / ak)};
+    return {wide(2 * sigma) / ak, sigma_plus_b<wide>(k - 1, al, be, sigma) / ak, akm1 / ak};
 }
 
-/// Recurrence constants of a family for up to `bands` bands, in precision T. Band b holds the
-/// steps of the orders that advance in it, ascending in m (step 1: m = 0..b-1; step 2:
-/// m = b-2, b-4, ... >= 0), contiguous from row[b].
-template <class T>
-struct RowTable {
-    std::vector<T> pz, d, c, start;
-    std::vector<std::size_t> row;
+/// Number of recurrence steps in bands 0..b-1 (the table offset of band b): band b advances
+/// b orders with step 1 (m = 0..b-1), floor(b/2) with step 2 (m = b-2, b-4, ... >= 0).
+constexpr int row_offset(int step, int b) noexcept {
+    return step == 1 ? b * (b - 1) / 2 : (b / 2) * (b / 2 - 1) + (b % 2) * (b / 2);
+}
 
-    RowTable(const Family& f, int bands) {
-        const std::size_t nb = static_cast<std::size_t>(bands);
-        row.assign(nb + 1, 0);
-        start.assign(nb, T(0));
+/// Recurrence constants of a family for up to Bands bands, in precision T, in fixed-size arrays
+/// (constant addresses, no pointer to chase). Band b holds the steps of the orders that advance
+/// in it, ascending in m, from row_offset(step, b).
+template <class T, int Bands>
+struct RowTable {
+    static constexpr int size = row_offset(1, Bands);  // enough for both steps
+    T pz[size], d[size], c[size], start[Bands];
+
+    // Out of line: row_table() is inlined into every kernel, its one-time construction is not.
+    SPHBASIS_NOINLINE explicit RowTable(const Family& f) noexcept {
         wide q = f.q0;
-        for (int m = 0; m < bands; ++m) {
+        for (int m = 0; m < Bands; ++m) {
             if (m > 0) q *= f.start_ratio<wide>(m);
-            start[static_cast<std::size_t>(m)] = static_cast<T>(q);
+            start[m] = static_cast<T>(q);
         }
-        for (int b = 0; b < bands; ++b) {
-            row[static_cast<std::size_t>(b)] = pz.size();
-            for (int m = f.step == 1 ? 0 : b % 2; m + f.step <= b; m += f.step) {
+        for (int b = 0; b < Bands; ++b) {
+            int i = row_offset(f.step, b);
+            for (int m = f.step == 1 ? 0 : b % 2; m + f.step <= b; m += f.step, ++i) {
                 const Step s = jacobi_step((b - m) / f.step, f.alpha(m), f.beta(m), f.sigma);
-                pz.push_back(static_cast<T>(s.pz));
-                d.push_back(static_cast<T>(s.d));
-                c.push_back(static_cast<T>(s.c));
+                pz[i] = static_cast<T>(s.pz);
+                d[i] = static_cast<T>(s.d);
+                c[i] = static_cast<T>(s.c);
             }
         }
-        row[nb] = pz.size();
     }
 };
 
-/// The shared table of family Fam (a type with `static constexpr Family family`), built once,
-/// thread-safe.
-template <class T, class Fam>
-const RowTable<T>& row_table() {
-    static const RowTable<T> t(Fam::family, max_row_bands);
+/// The table capacity for kernels of up to Cap bands: 8 for the unrolled kernels, else 64.
+constexpr int table_bands(int cap) noexcept { return cap <= 8 ? 8 : max_row_bands; }
+
+/// The shared table of family Fam (a type with `static constexpr Family family`) for up to
+/// Bands bands, built once, thread-safe.
+template <class T, class Fam, int Bands>
+SPHBASIS_FORCEINLINE const RowTable<T, Bands>& row_table() noexcept {
+    static const RowTable<T, Bands> t(Fam::family);
     return t;
 }
 
@@ -140,13 +144,36 @@ SPHBASIS_FORCEINLINE V splat(scalar_t<V> s) noexcept {
     }
 }
 
+template <class F, int... I>
+SPHBASIS_FORCEINLINE void unrolled(int begin, int end, int stride, F& f,
+                                   std::integer_sequence<int, I...>) noexcept {
+    ((begin + I * stride < end ? f(begin + I * stride) : void()), ...);
+}
+
+/// Calls f(i) for i = begin, begin + stride, ... < end: at most Cap values. Cap <= 8 (the
+/// kernels with a compile-time band count): as straight-line code with folded conditions, since
+/// GCC leaves the nested loops of the row recurrences (Zernike's step-2 orders, Makhotkin at
+/// 3 bands and more) rolled, with their state in memory; else an ordinary loop.
+template <int Cap, class F>
+SPHBASIS_FORCEINLINE void for_each_index(int begin, int end, int stride, F&& f) noexcept {
+    if constexpr (Cap <= 8) {
+        unrolled(begin, end, stride, f, std::make_integer_sequence<int, Cap>{});
+    } else {
+        for (int i = begin; i < end; i += stride) f(i);
+    }
+}
+
 /// cos(m phi) and sin(m phi) scaled by S^m: Re/Im (X + iY)^m, m = 0..bands-1.
 template <class V>
 SPHBASIS_FORCEINLINE void powers(int bands, const V& X, const V& Y, V* cm, V* sm) noexcept {
     using S = scalar_t<V>;
     cm[0] = V(S(1));
     sm[0] = V(S(0));
-    for (int m = 1; m < bands; ++m) {
+    if (bands > 1) {
+        cm[1] = X;  // = X * 1 - Y * 0 for finite input, without the two multiplications
+        sm[1] = Y;
+    }
+    for (int m = 2; m < bands; ++m) {
         cm[m] = X * cm[m - 1] - Y * sm[m - 1];
         sm[m] = X * sm[m - 1] + Y * cm[m - 1];
     }
@@ -162,28 +189,36 @@ SPHBASIS_FORCEINLINE void rows_acn(int bands, const V& zc, const V& X, const V& 
     static_assert(Cap >= 1 && Cap <= max_row_bands, "sphbasis: row recurrence up to 64 bands.");
     using S = scalar_t<V>;
     SPHBASIS_ASSERT(bands >= 1 && bands <= Cap);
-    const RowTable<S>& t = row_table<S, Fam>();
+    const RowTable<S, table_bands(Cap)>& t = row_table<S, Fam, table_bands(Cap)>();
     V cm[Cap], sm[Cap], cur[Cap], prev[Cap];
     powers(bands, X, Y, cm, sm);
-    for (int l = 0; l < bands; ++l) {
-        const std::size_t o = t.row[static_cast<std::size_t>(l)];
-        const S* pz = t.pz.data() + o;
-        const S* d = t.d.data() + o;
-        const S* c = t.c.data() + o;
-        for (int m = 0; m < l; ++m) {
+    for_each_index<Cap>(0, bands, 1, [&](int l) SPHBASIS_INLINE_LAMBDA {
+        const int o = row_offset(1, l);
+        const S* pz = t.pz + o;
+        const S* d = t.d + o;
+        const S* c = t.c + o;
+        // Unrolled, the first step of order l-1 (c = 0, p_{-1} = 0) drops the zero term: the same
+        // value. The loop keeps it (prev[l] = 0), so that it stays one vectorised loop.
+        constexpr bool unroll = Cap <= 8;
+        for_each_index<Cap>(0, unroll ? l - 1 : l, 1, [&](int m) SPHBASIS_INLINE_LAMBDA {
             const V v = (splat<V>(pz[m]) * zc - splat<V>(d[m])) * cur[m] - splat<V>(c[m]) * prev[m];
             prev[m] = cur[m];
             cur[m] = v;
+        });
+        if (unroll && l >= 1) {
+            const int m = l - 1;
+            prev[m] = cur[m];
+            cur[m] = (splat<V>(pz[m]) * zc - splat<V>(d[m])) * cur[m];
         }
-        cur[l] = splat<V>(t.start[static_cast<std::size_t>(l)]) * E;
-        prev[l] = V(S(0));
+        cur[l] = splat<V>(t.start[l]) * E;
+        if (!unroll) prev[l] = V(S(0));
         const int k = l * (l + 1);
         store(k, cur[0]);
-        for (int m = 1; m <= l; ++m) {
+        for_each_index<Cap>(1, l + 1, 1, [&](int m) SPHBASIS_INLINE_LAMBDA {
             store(k + m, cur[m] * cm[m]);
             store(k - m, cur[m] * sm[m]);
-        }
-    }
+        });
+    });
 }
 
 /// A wide value carried with a binary exponent (value = m 2^e), as sh.hpp's Scaled.
