@@ -314,6 +314,9 @@ TEMPLATE_TEST_CASE("sh: bad input in the batch paths gives the pole", "[sh]", fl
     }
 }
 
+// The one-direction row path keeps every row's Q on the stack: the size documented in sh.hpp.
+static_assert(sh::detail::RowTable<double>::size_for(sh::detail::max_row_bands) == 2296);
+
 TEST_CASE("sh: the double row path (65..256 bands) agrees with the column path", "[sh]") {
     // Two different recurrences (rows on Q = Pbar / sin^m in z, columns on Pbar in l with
     // exponent-carried sectoral starts) must agree within the accuracy bound, near the poles
