@@ -314,6 +314,21 @@ TEMPLATE_TEST_CASE("sh: bad input in the batch paths gives the pole", "[sh]", fl
     }
 }
 
+TEST_CASE("sh: band count of a function count", "[sh]") {
+    // Against a plain integer search, across the no-sqrt range (<= 8 bands) and beyond it.
+    for (int n = -3; n <= 20000; ++n) {
+        int expect = -1;
+        for (int b = 1; b * b <= n; ++b)
+            if (b * b == n) expect = b;
+        INFO("n = " << n);
+        REQUIRE(sh::bands_of_count(n) == expect);
+        REQUIRE(SH::bands_of(n) == expect);
+    }
+    REQUIRE(sh::bands_of_count(8192 * 8192) == 8192);
+    REQUIRE(sh::bands_of_count(8192 * 8192 - 1) == -1);
+    REQUIRE(sh::bands_of_count(46340 * 46340) == 46340);
+}
+
 // The one-direction row path keeps every row's Q on the stack: the size documented in sh.hpp.
 static_assert(sh::detail::RowTable<double>::size_for(sh::detail::max_row_bands) == 2296);
 

@@ -133,14 +133,7 @@ SPHBASIS_FORCEINLINE decltype(auto) with_kernel(int bands, F&& f) {
 struct SquareCount {
     static constexpr int count(int bands) noexcept { return bands * bands; }
     /// The band count of n functions, or -1 if n is not a positive square.
-    static int bands_of(int n) noexcept {
-        if (n < 1) return -1;
-        // The unrolled sizes (checked on every one-call evaluation) without a square root.
-        for (int b = 1; b <= 8; ++b)
-            if (n <= b * b) return n == b * b ? b : -1;
-        const int b = sh::degree_of(n - 1) + 1;
-        return b * b == n ? b : -1;
-    }
+    static int bands_of(int n) noexcept { return sh::bands_of_count(n); }
     static constexpr const char* rule = "a square number (bands^2, bands <= 2048) of";
 };
 

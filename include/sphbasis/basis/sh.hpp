@@ -68,6 +68,17 @@ namespace detail {
 }
 }  // namespace detail
 
+/// The band count of n = bands^2 functions, or -1 if n is not a positive square. Sizes up to
+/// 8 bands (checked on every one-call evaluation of the bases with square counts) without a
+/// square root.
+inline int bands_of_count(int n) noexcept {
+    if (n < 1) return -1;
+    for (int b = 1; b <= 8; ++b)
+        if (n <= b * b) return n == b * b ? b : -1;
+    const int b = degree_of(n - 1) + 1;
+    return b * b == n ? b : -1;
+}
+
 /// Throws std::invalid_argument unless 0 <= bands <= max_bands (the message is built out of
 /// line, so the check costs a compare in the one-call paths).
 SPHBASIS_FORCEINLINE void check_bands(int bands, const char* fn) {
@@ -609,11 +620,7 @@ struct SH {
     static constexpr const char* name = "sh";
     static constexpr Domain domain = Domain::sphere;
     static constexpr bool orthonormal = true;
-    static int bands_of(int n) noexcept {
-        if (n < 1) return -1;
-        const int b = sh::degree_of(n - 1) + 1;
-        return b * b == n ? b : -1;
-    }
+    static int bands_of(int n) noexcept { return sh::bands_of_count(n); }
     static bool valid_count(int n) noexcept {
         const int b = bands_of(n);
         return b >= 1 && b <= sh::max_bands;
