@@ -9,15 +9,40 @@
 //   recurrence: the general recurrence at 31 bands in double, one direction at a time
 #include <benchmark/benchmark.h>
 
+#include <new>
 #include <random>
 #include <sphbasis/basis/sh.hpp>
 #include <vector>
 
 namespace {
 
+// Every array starts on a 64-byte boundary, so that an AVX-512 batch is one cache line and the
+// results do not depend on where the heap (16-byte aligned) puts the arrays.
+template <class T>
+struct Aligned64 {
+    using value_type = T;
+    Aligned64() = default;
+    template <class U>
+    Aligned64(const Aligned64<U>&) noexcept {}
+    T* allocate(std::size_t n) {
+        return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(64)));
+    }
+    void deallocate(T* p, std::size_t) noexcept { ::operator delete(p, std::align_val_t(64)); }
+    template <class U>
+    bool operator==(const Aligned64<U>&) const noexcept {
+        return true;
+    }
+    template <class U>
+    bool operator!=(const Aligned64<U>&) const noexcept {
+        return false;
+    }
+};
+template <class T>
+using vec = std::vector<T, Aligned64<T>>;
+
 template <class T>
 struct Dirs {
-    std::vector<T> x, y, z;
+    vec<T> x, y, z;
     explicit Dirs(std::size_t n) {
         std::mt19937 rng(1);
         std::normal_distribution<double> g;
@@ -63,7 +88,7 @@ void runtime(benchmark::State& st) {
     const int bands = static_cast<int>(st.range(0));
     const std::size_t n = bands > 20 ? 256 : 4096;
     const Dirs<T> d(n);
-    std::vector<T> out(static_cast<std::size_t>(bands * bands));
+    vec<T> out(static_cast<std::size_t>(bands * bands));
     for (auto _ : st) {
         for (std::size_t i = 0; i < n; ++i) {
             sphbasis::sh::eval(bands, d.x[i], d.y[i], d.z[i], out.data());
@@ -81,7 +106,7 @@ void batch(benchmark::State& st) {
     // same cache sets and 64 rows thrash them (measured 2.5x slower at 8 bands).
     const std::size_t stride = n + 16;
     const Dirs<T> d(n);
-    std::vector<T> out(stride * static_cast<std::size_t>(bands * bands));
+    vec<T> out(stride * static_cast<std::size_t>(bands * bands));
     for (auto _ : st) {
         sphbasis::sh::eval_batch(bands, n, d.x.data(), d.y.data(), d.z.data(), out.data(), stride);
         benchmark::DoNotOptimize(out.data());
@@ -99,7 +124,7 @@ void memory_floor(benchmark::State& st) {
     constexpr int bands = Bands;  // compile-time: the row stores unroll as batch()'s do
     const std::size_t n = 1 << 20, stride = n + 16;
     const Dirs<T> d(n);
-    std::vector<T> out(stride * static_cast<std::size_t>(bands * bands));
+    vec<T> out(stride * static_cast<std::size_t>(bands * bands));
     for (auto _ : st) {
         for (std::size_t i = 0; i < n; i += W) {
             const V v = V::load(d.x.data() + i) + V::load(d.y.data() + i) + V::load(d.z.data() + i);
@@ -119,7 +144,7 @@ void batch_cached(benchmark::State& st) {
     const int bands = static_cast<int>(st.range(0));
     const std::size_t n = 512, stride = n + 16;  // see batch(): avoid power-of-two strides
     const Dirs<T> d(n);
-    std::vector<T> out(stride * static_cast<std::size_t>(bands * bands));
+    vec<T> out(stride * static_cast<std::size_t>(bands * bands));
     for (auto _ : st) {
         sphbasis::sh::eval_batch(bands, n, d.x.data(), d.y.data(), d.z.data(), out.data(), stride);
         benchmark::DoNotOptimize(out.data());
@@ -133,7 +158,7 @@ void sum_batch_cached(benchmark::State& st) {
     const int bands = static_cast<int>(st.range(0));
     const std::size_t n = 4096;
     const Dirs<T> d(n);
-    std::vector<T> c(static_cast<std::size_t>(bands * bands), T(0.5)), out(n);
+    vec<T> c(static_cast<std::size_t>(bands * bands), T(0.5)), out(n);
     for (auto _ : st) {
         sphbasis::sh::eval_sum_batch(bands, c.data(), n, d.x.data(), d.y.data(), d.z.data(),
                                      out.data());
@@ -147,7 +172,7 @@ void sum_batch(benchmark::State& st) {
     const int bands = static_cast<int>(st.range(0));
     const std::size_t n = 1 << 20;
     const Dirs<T> d(n);
-    std::vector<T> c(static_cast<std::size_t>(bands * bands), T(0.5)), out(n);
+    vec<T> c(static_cast<std::size_t>(bands * bands), T(0.5)), out(n);
     for (auto _ : st) {
         sphbasis::sh::eval_sum_batch(bands, c.data(), n, d.x.data(), d.y.data(), d.z.data(),
                                      out.data());
