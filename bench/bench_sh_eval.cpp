@@ -117,7 +117,7 @@ void batch(benchmark::State& st) {
 // The memory reference for batch(): the same loads and stores in the same order (one SIMD batch
 // of directions read, then one vector store per function row), with no arithmetic. Over 1M
 // directions batch() runs at about this speed; it is a reference, not a strict bound (at 8
-// bands the kernel measured faster: the hardware schedules the two loops' stores differently).
+// bands the kernel measured faster).
 template <int Bands, class T>
 void memory_floor(benchmark::State& st) {
     using V = sphbasis::batch<T>;
