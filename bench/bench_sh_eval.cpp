@@ -2,11 +2,11 @@
 // directions per second, so ns per direction = 1e9 / items_per_second.
 //   one_call:   sh::eval<N> (normalising) called once per direction, results consumed
 //   runtime:    sh::eval(bands, ...) with the band count known only at run time
-//   batch:      sh::eval_batch over 1M directions (SoA in and out, SIMD across directions)
+//   columns:    the column recurrence (above 256 bands) at 31 and 100 bands, for the ratio
+//   batch:      sh::eval_batch over 512 (in cache) or 1M directions (SoA in and out, SIMD)
 //   memory_floor: the loads and stores of batch, in its order, with no arithmetic
-//   batch_cached: sh::eval_batch over 512 directions whose output stays in cache
-//   sum_batch:  sh::eval_sum_batch over 1M directions (sum c_i y_i, the y_i not stored)
-//   recurrence: the general recurrence at 31 bands in double, one direction at a time
+//   sum_batch:  sh::eval_sum_batch over 4096 (in cache) or 1M directions (sum c_i y_i, the y_i
+//               not stored)
 #include <benchmark/benchmark.h>
 
 #include <new>
@@ -98,10 +98,30 @@ void runtime(benchmark::State& st) {
     st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * n));
 }
 
+// The column recurrence (the path above 256 bands) at a band count the row recurrence also
+// serves: the ratio runtime<double>/N : columns/N is what the row path saves.
+void columns(benchmark::State& st) {
+    const int bands = static_cast<int>(st.range(0));
+    const std::size_t n = 256;
+    const Dirs<double> d(n);
+    vec<double> out(static_cast<std::size_t>(bands * bands));
+    for (auto _ : st) {
+        for (std::size_t i = 0; i < n; ++i) {
+            sphbasis::sh::detail::eval_columns(bands, d.x[i], d.y[i], d.z[i], [&](int k, double v) {
+                out[static_cast<std::size_t>(k)] = v;
+            });
+            benchmark::DoNotOptimize(out.data());
+        }
+    }
+    st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * n));
+}
+
+// range(0) bands, range(1) directions: 1M (output in DRAM) or 512 (output stays in cache: the
+// compute cost without the memory traffic of writing n^2 floats per direction).
 template <class T>
 void batch(benchmark::State& st) {
     const int bands = static_cast<int>(st.range(0));
-    const std::size_t n = 1 << 20;
+    const std::size_t n = static_cast<std::size_t>(st.range(1));
     // A stride of n + 16: with a power-of-two stride every function's output row maps to the
     // same cache sets and 64 rows thrash them (measured 2.5x slower at 8 bands).
     const std::size_t stride = n + 16;
@@ -138,40 +158,11 @@ void memory_floor(benchmark::State& st) {
     st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * n));
 }
 
-// The same on 512 directions whose output stays in cache: the compute cost without the
-// memory traffic of writing n^2 floats per direction to DRAM.
-template <class T>
-void batch_cached(benchmark::State& st) {
-    const int bands = static_cast<int>(st.range(0));
-    const std::size_t n = 512, stride = n + 16;  // see batch(): avoid power-of-two strides
-    const Dirs<T> d(n);
-    vec<T> out(stride * static_cast<std::size_t>(bands * bands));
-    for (auto _ : st) {
-        sphbasis::sh::eval_batch(bands, n, d.x.data(), d.y.data(), d.z.data(), out.data(), stride);
-        benchmark::DoNotOptimize(out.data());
-    }
-    st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * n));
-}
-
-// The expansion over 4096 directions that stay in L1/L2: compute cost without DRAM traffic.
-template <class T>
-void sum_batch_cached(benchmark::State& st) {
-    const int bands = static_cast<int>(st.range(0));
-    const std::size_t n = 4096;
-    const Dirs<T> d(n);
-    vec<T> c(static_cast<std::size_t>(bands * bands), T(0.5)), out(n);
-    for (auto _ : st) {
-        sphbasis::sh::eval_sum_batch(bands, c.data(), n, d.x.data(), d.y.data(), d.z.data(),
-                                     out.data());
-        benchmark::DoNotOptimize(out.data());
-    }
-    st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * n));
-}
-
+// The expansion: range(0) bands, range(1) directions (4096 stay in L1/L2: compute cost only).
 template <class T>
 void sum_batch(benchmark::State& st) {
     const int bands = static_cast<int>(st.range(0));
-    const std::size_t n = 1 << 20;
+    const std::size_t n = static_cast<std::size_t>(st.range(1));
     const Dirs<T> d(n);
     vec<T> c(static_cast<std::size_t>(bands * bands), T(0.5)), out(n);
     for (auto _ : st) {
@@ -191,12 +182,11 @@ BENCHMARK_TEMPLATE(one_call_unit, 3, float);
 BENCHMARK_TEMPLATE(one_call_unit, 8, float);
 BENCHMARK_TEMPLATE(runtime, float)->Arg(3)->Arg(8);
 BENCHMARK_TEMPLATE(runtime, double)->Arg(31)->Arg(100);
-BENCHMARK_TEMPLATE(batch, float)->Arg(3)->Arg(8)->Arg(16);
+BENCHMARK(columns)->Arg(31)->Arg(100);
+BENCHMARK_TEMPLATE(batch, float)->ArgsProduct({{3, 8, 16}, {512, 1 << 20}});
 BENCHMARK_TEMPLATE(memory_floor, 3, float);
 BENCHMARK_TEMPLATE(memory_floor, 8, float);
 BENCHMARK_TEMPLATE(memory_floor, 16, float);
-BENCHMARK_TEMPLATE(batch_cached, float)->Arg(3)->Arg(8)->Arg(16);
-BENCHMARK_TEMPLATE(sum_batch_cached, float)->Arg(3)->Arg(8);
-BENCHMARK_TEMPLATE(sum_batch, float)->Arg(3)->Arg(8);
+BENCHMARK_TEMPLATE(sum_batch, float)->ArgsProduct({{3, 8}, {4096, 1 << 20}});
 
 BENCHMARK_MAIN();

@@ -16,6 +16,7 @@
 #include "core/quadrature.hpp"
 #include "core/sampling.hpp"
 #include "core/scalar.hpp"
+#include "core/scaled.hpp"
 #include "core/simd.hpp"
 #include "core/vec.hpp"
 #include "ops/imse.hpp"

@@ -38,6 +38,7 @@
 #include "../config.hpp"
 #include "../core/constants.hpp"
 #include "../core/scalar.hpp"
+#include "../core/scaled.hpp"
 #include "../core/simd.hpp"
 #include "../core/vec.hpp"
 #include "basis.hpp"
@@ -276,14 +277,9 @@ SPHBASIS_FORCEINLINE void eval_rows(int bands, const V& x, const V& y, const V& 
     }
 }
 
-/// A double carried with a separate binary exponent: value = m * 2^e. Used for the sectoral
-/// start values of the high-degree recurrence, which underflow long before the functions do.
-struct Scaled {
-    double m;
-    int e;
-};
-
-inline constexpr int rescale_bits = 480;  // 2^480 ~ 3e144, far inside the double range
+/// The sectoral start values of the high-degree recurrence carry a binary exponent
+/// (core/scaled.hpp).
+using Scaled = sphbasis::detail::Scaled<double>;
 
 /// Column recurrence for one order m >= 0 of degrees l = m..bands-1 (bands > m), starting from
 /// the scaled sectoral value Pbar_m^m (sqrt(2) folded in for m > 0). Calls out(l, value).
@@ -306,13 +302,7 @@ inline void column(int bands, int m, Scaled pmm, double z, Out&& out) {
         const double bl =
             std::sqrt(((dl - 1 - dm) * (dl - 1 + dm)) / (4 * (dl - 1) * (dl - 1) - 1));
         p0 = al * (z * p1 - bl * p2);
-        if (e < 0 && std::fabs(p0) > std::ldexp(1.0, rescale_bits)) {
-            // Move magnitude from the mantissas into the exponent, but never above 2^0.
-            const int k = std::min(rescale_bits, -e);
-            p0 = std::ldexp(p0, -k);
-            p1 = std::ldexp(p1, -k);
-            e += k;
-        }
+        sphbasis::detail::shed_magnitude(p0, p1, e);
         emit(l, p0);
         p2 = p1;
         p1 = p0;
@@ -333,13 +323,7 @@ class SectoralWalk {
     /// Advances to order m + 1: Pbar *= sqrt((2m+3)/(2m+2)) sin(t); (cos, sin)(m phi) by phi.
     void advance() noexcept {
         ++m_;
-        p_.m *= std::sqrt((2.0 * m_ + 1) / (2.0 * m_)) * s_mant_;
-        p_.e += s_exp_;
-        if (p_.m != 0 && std::fabs(p_.m) < std::ldexp(1.0, -rescale_bits)) {
-            int k;
-            p_.m = std::frexp(p_.m, &k);
-            p_.e += k;
-        }
+        p_.scale(std::sqrt((2.0 * m_ + 1) / (2.0 * m_)) * s_mant_, s_exp_);
         const double c = cm_ * cp_ - sm_ * sp_;
         sm_ = sm_ * cp_ + cm_ * sp_;
         cm_ = c;

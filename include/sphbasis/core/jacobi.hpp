@@ -23,6 +23,7 @@
 
 #include "../config.hpp"
 #include "scalar.hpp"
+#include "scaled.hpp"
 #include "simd.hpp"
 #include "vec.hpp"
 
@@ -219,13 +220,6 @@ SPHBASIS_FORCEINLINE void rows_acn(int bands, const V& zc, const V& X, const V& 
     });
 }
 
-/// A wide value carried with a binary exponent (value = m 2^e), as sh.hpp's Scaled.
-struct ScaledW {
-    wide m;
-    int e;
-};
-inline constexpr int rescale_bits = 480;  // 2^480 ~ 3e144, far inside the double range
-
 /// Column recurrence of family f, any band count: calls out(band, m, value) for every function,
 /// m signed (m > 0: cos, m < 0: sin, 0). zc = max(z, 0), (X, Y) the family's sectoral pair, E the
 /// family's factor (0 below the horizon). The sectoral starts carry a binary exponent, so nothing
@@ -239,19 +233,12 @@ inline void columns(const Family& f, int bands, wide zc, wide X, wide Y, wide E,
     polar_xy(X, Y, s, cp, sp);
     int s_exp = 0;
     const R s_mant = s > 0 ? std::frexp(s, &s_exp) : R(0);
-    const R small = std::ldexp(R(1), -rescale_bits), big = std::ldexp(R(1), rescale_bits);
-    ScaledW q{R(f.q0) * E, 0};
+    Scaled<R> q{R(f.q0) * E, 0};  // core/scaled.hpp
     R cm = 1, sm = 0;
     const R two_sigma_z = R(2 * f.sigma) * zc;
     for (int m = 0; m < bands; ++m) {
         if (m > 0) {
-            q.m *= f.start_ratio<R>(m) * s_mant;
-            q.e += s_exp;
-            if (q.m != 0 && std::fabs(q.m) < small) {
-                int k;
-                q.m = std::frexp(q.m, &k);
-                q.e += k;
-            }
+            q.scale(f.start_ratio<R>(m) * s_mant, s_exp);
             const R c = cm * cp - sm * sp;
             sm = sm * cp + cm * sp;
             cm = c;
@@ -283,13 +270,7 @@ inline void columns(const Family& f, int bands, wide zc, wide X, wide Y, wide E,
             R p0 =
                 ((two_sigma_z - sigma_plus_b<R>(k - 1, al, be, f.sigma)) * p1 - a_prev * p2) / ak;
             a_prev = ak;
-            if (e < 0 && std::fabs(p0) > big) {
-                // Move magnitude from the mantissas into the exponent, but never above 2^0.
-                const int shift = std::min(rescale_bits, -e);
-                p0 = std::ldexp(p0, -shift);
-                p1 = std::ldexp(p1, -shift);
-                e += shift;
-            }
+            shed_magnitude(p0, p1, e);
             emit(b, p0);
             p2 = p1;
             p1 = p0;
