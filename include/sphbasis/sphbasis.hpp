@@ -1,37 +1,18 @@
-// sphbasis: umbrella header. Includes every part of the library in dependency order.
+// sphbasis: the whole library in one include (target sphbasis::sphbasis, which needs Eigen):
+// the evaluation tier (core.hpp, standard library only) and the operations tier on top of it
+// (projection and fits with Eigen; SH products, rotation, convolution, lights, windowing).
+// The IMSE benchmark (ops/imse.hpp) is an experiment, not part of the default include: include
+// it by name.
 #pragma once
 
-#include "basis/basis.hpp"
-#include "basis/hbasis.hpp"
-#include "basis/hemi_basis.hpp"
-#include "basis/hl2.hpp"
-#include "basis/hsh.hpp"
-#include "basis/makhotkin.hpp"
-#include "basis/registry.hpp"
-#include "basis/sh.hpp"
-#include "basis/zernike.hpp"
-#include "config.hpp"
-#include "core/constants.hpp"
-#include "core/jacobi.hpp"
-#include "core/quadrature.hpp"
-#include "core/sampling.hpp"
-#include "core/scalar.hpp"
-#include "core/scaled.hpp"
-#include "core/simd.hpp"
-#include "core/vec.hpp"
-#include "ops/imse.hpp"
+// The order is the dependency order, not the alphabet.
+// clang-format off
+#include "core.hpp"
+
 #include "ops/projection.hpp"
 #include "ops/sh_convolution.hpp"
 #include "ops/sh_lights.hpp"
 #include "ops/sh_product.hpp"
 #include "ops/sh_rotation.hpp"
 #include "ops/windowing.hpp"
-#include "param/concentric.hpp"
-#include "param/cubemap.hpp"
-#include "param/dual_orthographic.hpp"
-#include "param/dual_paraboloid.hpp"
-#include "param/latlong.hpp"
-#include "param/octahedral.hpp"
-#include "param/param.hpp"
-#include "shading/toksvig.hpp"
-#include "version.hpp"
+// clang-format on

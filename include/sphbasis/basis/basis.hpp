@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -196,6 +197,20 @@ void basis_eval_sum_batch(int n, const T* coeffs, std::size_t count, const T* xs
                 out[i] = acc;
             });
     });
+}
+
+/// A basis of a given size as a runtime object: n functions and an evaluator for unit
+/// directions. Made from a basis type by evaluator<B>(n), or by hand for any function set.
+struct BasisFunctions {
+    int n = 0;
+    std::function<void(double, double, double, double*)> eval;  // unit (x, y, z) -> out[0..n)
+};
+
+/// The evaluator of basis B with n functions (throws std::invalid_argument for a bad n).
+template <class B>
+BasisFunctions evaluator(int n) {
+    check_count<B>(n, "evaluator");
+    return {n, [n](double x, double y, double z, double* out) { basis_eval<B>(n, x, y, z, out); }};
 }
 
 }  // namespace sphbasis

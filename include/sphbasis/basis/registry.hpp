@@ -9,7 +9,6 @@
 #include <utility>
 #include <vector>
 
-#include "../ops/projection.hpp"
 #include "basis.hpp"
 #include "hbasis.hpp"
 #include "hl2.hpp"

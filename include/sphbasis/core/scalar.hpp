@@ -4,7 +4,9 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <type_traits>
+#include <utility>
 
 #include "../config.hpp"
 
@@ -65,5 +67,58 @@ template <class M, std::enable_if_t<std::is_arithmetic_v<M>, int> = 0>
 inline bool any(M m) noexcept {
     return m != 0;
 }
+
+/// The working precision of the library's ill-conditioned recurrences (Wigner 3j symbols of
+/// the SH products, the high-degree column recurrence of the hemispherical bases): the x87
+/// 80-bit long double where it is a hardware type (64-bit significand), else double (MSVC, and
+/// targets whose long double is a software quad).
+using extended =
+    std::conditional_t<std::numeric_limits<long double>::digits == 64, long double, double>;
+
+/// The scalar a coefficient type C is multiplied by: C itself for float and double, else
+/// C::value_type (glm::vec3, Eigen vectors and arrays), else the type of a member `r` or `x`
+/// (RGB-like structs), else double. Specialise it for other types.
+template <class C, class = void>
+struct coefficient_scalar {
+    using type = double;
+};
+
+namespace detail {
+template <class C, class = void>
+struct has_value_type : std::false_type {};
+template <class C>
+struct has_value_type<C, std::void_t<typename C::value_type>> : std::true_type {};
+template <class C, class = void>
+struct has_member_r : std::false_type {};
+template <class C>
+struct has_member_r<C, std::void_t<decltype(std::declval<const C&>().r)>> : std::true_type {};
+template <class C, class = void>
+struct has_member_x : std::false_type {};
+template <class C>
+struct has_member_x<C, std::void_t<decltype(std::declval<const C&>().x)>> : std::true_type {};
+template <class C>
+constexpr auto coefficient_scalar_probe() {
+    if constexpr (std::is_floating_point_v<C>)
+        return C{};
+    else if constexpr (has_value_type<C>::value)
+        return typename C::value_type{};
+    else if constexpr (has_member_r<C>::value)
+        return std::decay_t<decltype(std::declval<const C&>().r)>{};
+    else if constexpr (has_member_x<C>::value)
+        return std::decay_t<decltype(std::declval<const C&>().x)>{};
+    else
+        return double{};
+}
+}  // namespace detail
+
+template <class C>
+struct coefficient_scalar<
+    C,
+    std::enable_if_t<std::is_floating_point_v<decltype(detail::coefficient_scalar_probe<C>())>>> {
+    using type = decltype(detail::coefficient_scalar_probe<C>());
+};
+
+template <class C>
+using coefficient_scalar_t = typename coefficient_scalar<C>::type;
 
 }  // namespace sphbasis

@@ -32,20 +32,6 @@
 
 namespace sphbasis {
 
-/// A basis of a given size as a runtime object: n functions and an evaluator for unit
-/// directions. Made from a basis type by evaluator<B>(n), or by hand for any function set.
-struct BasisFunctions {
-    int n = 0;
-    std::function<void(double, double, double, double*)> eval;  // unit (x, y, z) -> out[0..n)
-};
-
-/// The evaluator of basis B with n functions (throws std::invalid_argument for a bad n).
-template <class B>
-BasisFunctions evaluator(int n) {
-    check_count<B>(n, "evaluator");
-    return {n, [n](double x, double y, double z, double* out) { basis_eval<B>(n, x, y, z, out); }};
-}
-
 /// The matrix A with A(i, k) = B_k(d_i) over the rule's points.
 inline Eigen::MatrixXd evaluation_matrix(const BasisFunctions& b, const DirectionalRule& rule) {
     Eigen::MatrixXd a(static_cast<Eigen::Index>(rule.size()), b.n);
