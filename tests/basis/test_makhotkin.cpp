@@ -38,7 +38,7 @@ struct Traits {
     static int index(int l, int m) { return makhotkin::index(l, m); }
     template <class F>
     static void with_kernel(int bands, F&& f) {
-        makhotkin::detail::with_kernel(bands, std::forward<F>(f));
+        makhotkin::detail::with_bands_kernel(bands, std::forward<F>(f));
     }
 };
 

@@ -99,7 +99,7 @@ TEST_CASE("sh: unrolled kernels, row recurrence and column recurrence agree", "[
             auto put = [](std::vector<double>& v) {
                 return [&v](int k, double x) { v[static_cast<std::size_t>(k)] = x; };
             };
-            sh::detail::with_kernel(bands, [&](auto k) { k(d[0], d[1], d[2], put(fixed)); });
+            sh::detail::with_bands_kernel(bands, [&](auto k) { k(d[0], d[1], d[2], put(fixed)); });
             sh::detail::eval_rows(bands, d[0], d[1], d[2], put(rows));
             sh::detail::eval_columns(bands, d[0], d[1], d[2], put(cols));
             for (int k = 0; k < n; ++k) {

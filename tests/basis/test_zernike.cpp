@@ -46,7 +46,7 @@ struct Traits {
     static int index(int l, int m) { return zernike::index(l, m); }
     template <class F>
     static void with_kernel(int bands, F&& f) {
-        zernike::detail::with_kernel(bands, std::forward<F>(f));
+        zernike::detail::with_bands_kernel(bands, std::forward<F>(f));
     }
 };
 
