@@ -74,13 +74,12 @@ template <class B>
 }
 [[noreturn]] SPHBASIS_NOINLINE inline void throw_bad_bands(const char* fn, int bands,
                                                            int max_bands) {
-    throw_invalid(fn, "0 <= bands <= " + std::to_string(max_bands) + ", got " +
-                          std::to_string(bands));
+    throw_invalid(fn,
+                  "0 <= bands <= " + std::to_string(max_bands) + ", got " + std::to_string(bands));
 }
 [[noreturn]] SPHBASIS_NOINLINE inline void throw_small_buffer(const char* fn, const char* name,
-                                                              std::size_t need,
-                                                              std::size_t size) {
-    throw_invalid(fn, std::string("a ") + name + " buffer of at least " + std::to_string(need) +
+                                                              std::size_t need, std::size_t size) {
+    throw_invalid(fn, std::string(name) + " buffer of at least " + std::to_string(need) +
                           " elements, got " + std::to_string(size));
 }
 }  // namespace detail
@@ -99,8 +98,8 @@ namespace detail {
 template <class R, class = void>
 struct is_contiguous_range : std::false_type {};
 template <class R>
-struct is_contiguous_range<R, std::void_t<decltype(std::declval<R&>().data()),
-                                          decltype(std::declval<R&>().size())>>
+struct is_contiguous_range<
+    R, std::void_t<decltype(std::declval<R&>().data()), decltype(std::declval<R&>().size())>>
     : std::is_pointer<decltype(std::declval<R&>().data())> {};
 
 /// A buffer argument: a pointer (trusted for its size, checked for null), or a contiguous range
@@ -136,23 +135,6 @@ SPHBASIS_FORCEINLINE void check_buffer_size(const char* fn, const char* name, co
         if (static_cast<std::size_t>(b.size()) < need)
             throw_small_buffer(fn, name, need, static_cast<std::size_t>(b.size()));
     }
-}
-
-template <class D, class = void>
-struct has_subscript : std::false_type {};
-template <class D>
-struct has_subscript<D, std::void_t<decltype(std::declval<const D&>()[0])>> : std::true_type {};
-
-/// A direction argument: a 3-vector type that component<I>() reads, with arithmetic components.
-template <class D>
-constexpr bool is_direction_v = has_member_xyz<D>::value || has_call_xyz<D>::value ||
-                                (has_subscript<D>::value && !std::is_pointer_v<D>);
-
-template <class D>
-SPHBASIS_FORCEINLINE void static_check_direction() {
-    static_assert(is_direction_v<D>,
-                  "sphbasis: a direction is a 3-vector type with .x/.y/.z, x()/y()/z() or "
-                  "operator[] (glm::vec3, Eigen::Vector3f, sphbasis::vec3, std::array).");
 }
 
 /// The scalar in which a direction given as components is evaluated: their common type, which
@@ -314,8 +296,7 @@ template <class B, bool Normalize, class D, class Out>
 SPHBASIS_FORCEINLINE void bands_eval_dir(const char* fn, int bands, const D& d, Out& out) {
     static_check_direction<D>();
     if constexpr (is_direction_v<D>)
-        bands_eval<B, Normalize>(fn, bands, component<0>(d), component<1>(d), component<2>(d),
-                                 out);
+        bands_eval<B, Normalize>(fn, bands, component<0>(d), component<1>(d), component<2>(d), out);
 }
 
 /// Compile-time band count N: B's kernel for exactly N bands, no dispatch. Out as bands_eval.
@@ -413,14 +394,13 @@ SPHBASIS_FORCEINLINE void check_batch(const char* fn, int count, std::size_t dir
                                       const Xs& xs, const Ys& ys, const Zs& zs, const Out& out,
                                       std::size_t stride) {
     if (stride < directions)
-        throw_invalid(fn, "stride >= directions, got stride " + std::to_string(stride) +
-                              " and " + std::to_string(directions) + " directions");
+        throw_invalid(fn, "stride >= directions, got stride " + std::to_string(stride) + " and " +
+                              std::to_string(directions) + " directions");
     check_buffer_size(fn, "x", xs, directions);
     check_buffer_size(fn, "y", ys, directions);
     check_buffer_size(fn, "z", zs, directions);
     const std::size_t need =
-        count > 0 && directions > 0 ? static_cast<std::size_t>(count - 1) * stride + directions
-                                    : 0;
+        count > 0 && directions > 0 ? static_cast<std::size_t>(count - 1) * stride + directions : 0;
     check_buffer_size(fn, "output", out, need);
 }
 
@@ -457,8 +437,8 @@ constexpr bool batch_ok_v = [] {
 /// The expansion at `directions` SoA directions into out[i], with B's cheaper sum kernel where
 /// it has one (with_sum_kernel), else the generic sum. Sizes checked by the caller.
 template <class B, class T, class With>
-void eval_sum_batch_at(int count, const T* coeffs, std::size_t directions, const T* xs,
-                       const T* ys, const T* zs, T* out, With&& with) {
+void eval_sum_batch_at(int count, const T* coeffs, std::size_t directions, const T* xs, const T* ys,
+                       const T* zs, T* out, With&& with) {
     if (directions == 0) return;
     if constexpr (has_sum_kernel<B>::value) {
         const bool done = B::with_sum_kernel(count, coeffs, [&](const auto& sum) {
@@ -530,8 +510,8 @@ void eval_sum_batch_front(const char* fn, int count, const Cs& coeffs, std::size
 
 /// Batch front end shared by basis_eval_batch and the banded eval_batch.
 template <class Xs, class Ys, class Zs, class Out, class With>
-void eval_batch_front(const char* fn, int count, std::size_t directions, const Xs& xs,
-                      const Ys& ys, const Zs& zs, Out& out, std::size_t stride, With&& with) {
+void eval_batch_front(const char* fn, int count, std::size_t directions, const Xs& xs, const Ys& ys,
+                      const Zs& zs, Out& out, std::size_t stride, With&& with) {
     static_check_batch<Xs, Ys, Zs, Out>();
     if constexpr (batch_ok_v<Xs, Ys, Zs, Out>) {
         check_batch(fn, count, directions, xs, ys, zs, out, stride);
@@ -543,7 +523,8 @@ void eval_batch_front(const char* fn, int count, std::size_t directions, const X
 
 }  // namespace detail
 
-// ---- The generic API: a basis type B and a function count ----------------------------------------
+// ---- The generic API: a basis type B and a function count
+// ----------------------------------------
 
 /// Evaluates the `count` functions of basis B at direction (x, y, z) into out[0..count). The
 /// input is normalised; zero or non-finite vectors are taken as the pole (0, 0, 1). out is a T*
@@ -560,8 +541,7 @@ void basis_eval(int count, X x, Y y, Z z, Out&& out) {
         T* p = detail::buffer_data(out);
         T tx = static_cast<T>(x), ty = static_cast<T>(y), tz = static_cast<T>(z);
         normalize_or_pole(tx, ty, tz);
-        B::with_kernel(count,
-                       [&](auto kernel) { kernel(tx, ty, tz, detail::PointerStore<T>{p}); });
+        B::with_kernel(count, [&](auto kernel) { kernel(tx, ty, tz, detail::PointerStore<T>{p}); });
     }
 }
 
@@ -580,8 +560,8 @@ void basis_eval(int count, const D& d, Out&& out) {
 /// or contiguous ranges of T (sizes checked), T float or double. Throws std::invalid_argument for
 /// a bad count or stride, a null buffer or a range too small.
 template <class B, class Xs, class Ys, class Zs, class Out>
-void basis_eval_batch(int count, std::size_t directions, const Xs& xs, const Ys& ys,
-                      const Zs& zs, Out&& out, std::size_t stride) {
+void basis_eval_batch(int count, std::size_t directions, const Xs& xs, const Ys& ys, const Zs& zs,
+                      Out&& out, std::size_t stride) {
     check_count<B>(count, "basis_eval_batch");
     detail::eval_batch_front("basis_eval_batch", count, directions, xs, ys, zs, out, stride,
                              [count](auto&& f) { B::with_kernel(count, f); });
@@ -607,8 +587,7 @@ template <class B, class Coeffs, class D>
 auto basis_eval_sum(int count, const Coeffs& coeffs, const D& d) {
     detail::static_check_direction<D>();
     if constexpr (detail::is_direction_v<D>)
-        return basis_eval_sum<B>(count, coeffs, component<0>(d), component<1>(d),
-                                 component<2>(d));
+        return basis_eval_sum<B>(count, coeffs, component<0>(d), component<1>(d), component<2>(d));
 }
 
 /// The expansion sum_k coeffs[k] B_k(d_i) at `directions` directions into out[i], SIMD across
@@ -651,8 +630,7 @@ struct Banded {
         bands_eval<B, true>(fn, bands, x, y, z, out);
     }
     template <class X, class Y, class Z, class Out>
-    static SPHBASIS_FORCEINLINE void eval_unit(const char* fn, int bands, X x, Y y, Z z,
-                                               Out& out) {
+    static SPHBASIS_FORCEINLINE void eval_unit(const char* fn, int bands, X x, Y y, Z z, Out& out) {
         bands_eval<B, false>(fn, bands, x, y, z, out);
     }
     template <class Cs, class X, class Y, class Z>
@@ -673,9 +651,8 @@ struct Banded {
                          [bands](auto&& f) { B::with_bands_kernel(bands, f); });
     }
     template <class Cs, class Xs, class Ys, class Zs, class Out>
-    static void eval_sum_batch(const char* fn, int bands, const Cs& coeffs,
-                               std::size_t directions, const Xs& xs, const Ys& ys, const Zs& zs,
-                               Out& out) {
+    static void eval_sum_batch(const char* fn, int bands, const Cs& coeffs, std::size_t directions,
+                               const Xs& xs, const Ys& ys, const Zs& zs, Out& out) {
         check_bands_of(bands, B::max_bands, fn);
         eval_sum_batch_front<B>(fn, B::count(bands), coeffs, directions, xs, ys, zs, out,
                                 [bands](auto&& f) { B::with_bands_kernel(bands, f); });

@@ -1,10 +1,10 @@
 // sphbasis: hemispherical harmonics (HSH) of any degree, by the Jacobi recurrence
-// (basis/detail/jacobi.hpp) that also evaluates the Makhotkin (makhotkin.hpp) and Zernike (zernike.hpp)
-// bases.
+// (basis/detail/jacobi.hpp) that also evaluates the Makhotkin (makhotkin.hpp) and Zernike
+// (zernike.hpp) bases.
 //
 // References: P. Gautron, J. Krivanek, S. Pattanaik, K. Bouatouch, "A Novel Hemispherical Basis
-// for Accurate and Efficient Rendering", EGSR 2004; the source thesis (Ishmukhametov,
-// "Irradiance Normal Mapping") section 1.8.3, whose printed forms (1.22)-(1.32) are only a
+// for Accurate and Efficient Rendering", EGSR 2004; Ishmukhametov, "Irradiance
+// Normal Mapping" (thesis), section 1.8.3, whose printed forms (1.22)-(1.32) are only a
 // cross-check (see "Misprints" below).
 //
 // Definition. The SH construction with cos(t) replaced by u = 2 cos(t) - 1, which maps the upper
@@ -31,7 +31,7 @@
 // functions contain sqrt(z) and have no natural extension. The pole z = 1 and the horizon z = 0
 // are regular points (at the horizon only the m = 0 functions are non-zero, H_l0 = K_l0 (-1)^l).
 //
-// Misprints in the thesis' printed forms (derive, do not transcribe):
+// Misprints in Ishmukhametov's printed forms (derive, do not transcribe):
 //   (1.23) H_1-1 = -sqrt(6/pi) y sqrt(z/(1+z)): spurious minus (its own left side is positive);
 //   (1.26) H_2-2 = sqrt(30/pi)(cos^2 t - cos t) sin 2phi: the sign is reversed, it is
 //          sqrt(30/pi)(cos t - cos^2 t) sin 2phi = 2 sqrt(30/pi) x y z/(1+z) (the printed right
@@ -43,7 +43,8 @@
 // Evaluation (no factorials, no pow; Holmes & Featherstone 2002 style normalised recurrences):
 //   * bands <= 8, batches: sh.hpp's unrolled kernels at the mapped direction (X, Y, u), times
 //     sqrt(2);
-//   * bands <= 64: a normalised row recurrence (basis/detail/jacobi.hpp, detail::hemi) on Q = H / sin'^m,
+//   * bands <= 64: a normalised row recurrence (basis/detail/jacobi.hpp, detail::hemi) on Q = H /
+//   sin'^m,
 //     times Re/Im (X + iY)^m; any value type (float, double, batch); fully unrolled for float
 //     and double at <= 8 bands, where it is faster per call than sh.hpp's kernels (no scale
 //     multiplication per function; 9 functions, float: 10.5 against 13 ns).
@@ -60,8 +61,8 @@
 // t = 1e-3). Where long double is double, the column recurrence loses up to ~2e-11 S_l at the
 // horizon and pole at l = 2047 (see sphbasis::extended).
 //
-// The shared recurrence (detail::hemi) is basis/detail/jacobi.hpp; the kernels and the basis interface
-// the three bases share are basis/detail/hemi_family.hpp.
+// The shared recurrence (detail::hemi) is basis/detail/jacobi.hpp; the kernels and the basis
+// interface the three bases share are basis/detail/hemi_family.hpp.
 #pragma once
 
 #include <algorithm>
@@ -222,8 +223,8 @@ SPHBASIS_FORCEINLINE void eval_unit(const D& dir, Out&& out) noexcept(
 template <class Xs, class Ys, class Zs, class Out>
 void eval_batch(int bands, std::size_t directions, const Xs& xs, const Ys& ys, const Zs& zs,
                 Out&& out, std::size_t stride) {
-    sphbasis::detail::Banded<HSH>::eval_batch("hsh::eval_batch", bands, directions, xs, ys, zs,
-                                               out, stride);
+    sphbasis::detail::Banded<HSH>::eval_batch("hsh::eval_batch", bands, directions, xs, ys, zs, out,
+                                              stride);
 }
 /// The expansion sum_k coeffs[k] f_k(d) at one direction, in the direction's scalar type.
 template <class Cs, class X, class Y, class Z>
@@ -238,10 +239,10 @@ auto eval_sum(int bands, const Cs& coeffs, const D& dir) {
 }
 /// The expansion at `directions` directions into out[i], SIMD across directions.
 template <class Cs, class Xs, class Ys, class Zs, class Out>
-void eval_sum_batch(int bands, const Cs& coeffs, std::size_t directions, const Xs& xs,
-                    const Ys& ys, const Zs& zs, Out&& out) {
-    sphbasis::detail::Banded<HSH>::eval_sum_batch("hsh::eval_sum_batch", bands, coeffs,
-                                                   directions, xs, ys, zs, out);
+void eval_sum_batch(int bands, const Cs& coeffs, std::size_t directions, const Xs& xs, const Ys& ys,
+                    const Zs& zs, Out&& out) {
+    sphbasis::detail::Banded<HSH>::eval_sum_batch("hsh::eval_sum_batch", bands, coeffs, directions,
+                                                  xs, ys, zs, out);
 }
 
 }  // namespace sphbasis::hsh

@@ -1,8 +1,8 @@
 // sphbasis: the Makhotkin hemispherical basis of any degree.
 //
 // References: O. A. Makhotkin, "Analysis of radiative transfer between surfaces by hemispherical
-// harmonics", J. Quant. Spectrosc. Radiat. Transfer 56(6), 1996; the source thesis
-// (Ishmukhametov, "Irradiance Normal Mapping") section 1.8.4, whose printed forms (1.33)-(1.45)
+// harmonics", J. Quant. Spectrosc. Radiat. Transfer 56(6), 1996; Ishmukhametov,
+// "Irradiance Normal Mapping" (thesis), section 1.8.4, whose printed forms (1.33)-(1.45)
 // are only a cross-check (see "Misprints" below).
 //
 // Definition (u = 2 cos(t) - 1 = 2z - 1, shifted Jacobi polynomials P_n^(a,b)):
@@ -29,15 +29,16 @@
 // sqrt(z) factor has no real extension). At the horizon z = 0 every function is 0; the pole z = 1
 // is a regular point.
 //
-// Misprints in the thesis' printed forms (derive, do not transcribe):
+// Misprints in Ishmukhametov's printed forms (derive, do not transcribe):
 //   (1.33) M_00 = z/sqrt(pi): the right side drops the root, it is sqrt(z)/sqrt(pi);
 //   (1.34)-(1.45) label cos(m phi) functions with negative m and sin(|m| phi) ones with positive
-//          m (M_-1^1 = ... cos(phi)): the opposite of the thesis' own SH/HSH convention; here
+//          m (M_-1^1 = ... cos(phi)): the opposite of Ishmukhametov's own SH/HSH convention; here
 //          m > 0 is cos;
 //   (1.42) M_20 = sqrt(3/pi) sqrt(z) (1 + 16(z-1) + 10(z-1)^2): 16 must be 8 (its left side
 //          (1.41) 1 + 4(2cos t - 2) + 5/2 (2cos t - 2)^2 is right; = 10z^2 - 12z + 3).
 //
-// Evaluation: the shared normalised Jacobi recurrence of basis/detail/jacobi.hpp (detail::hemi, family
+// Evaluation: the shared normalised Jacobi recurrence of basis/detail/jacobi.hpp (detail::hemi,
+// family
 // (|m|, |m|+1) in w = u, advanced in z itself): a row recurrence for bands <= 64 (any value type),
 // the exponent-carrying column recurrence in extended precision above. No factorials, no pow. Cost:
 // two square roots and one division per direction, then ~n^2 multiply-adds (plus ~n^2 square
@@ -181,13 +182,14 @@ SPHBASIS_FORCEINLINE void eval_unit(const D& dir, Out&& out) noexcept(
 template <class Xs, class Ys, class Zs, class Out>
 void eval_batch(int bands, std::size_t directions, const Xs& xs, const Ys& ys, const Zs& zs,
                 Out&& out, std::size_t stride) {
-    sphbasis::detail::Banded<Makhotkin>::eval_batch("makhotkin::eval_batch", bands, directions, xs, ys, zs,
-                                               out, stride);
+    sphbasis::detail::Banded<Makhotkin>::eval_batch("makhotkin::eval_batch", bands, directions, xs,
+                                                    ys, zs, out, stride);
 }
 /// The expansion sum_k coeffs[k] f_k(d) at one direction, in the direction's scalar type.
 template <class Cs, class X, class Y, class Z>
 auto eval_sum(int bands, const Cs& coeffs, X x, Y y, Z z) {
-    return sphbasis::detail::Banded<Makhotkin>::eval_sum("makhotkin::eval_sum", bands, coeffs, x, y, z);
+    return sphbasis::detail::Banded<Makhotkin>::eval_sum("makhotkin::eval_sum", bands, coeffs, x, y,
+                                                         z);
 }
 template <class Cs, class D>
 auto eval_sum(int bands, const Cs& coeffs, const D& dir) {
@@ -197,10 +199,10 @@ auto eval_sum(int bands, const Cs& coeffs, const D& dir) {
 }
 /// The expansion at `directions` directions into out[i], SIMD across directions.
 template <class Cs, class Xs, class Ys, class Zs, class Out>
-void eval_sum_batch(int bands, const Cs& coeffs, std::size_t directions, const Xs& xs,
-                    const Ys& ys, const Zs& zs, Out&& out) {
+void eval_sum_batch(int bands, const Cs& coeffs, std::size_t directions, const Xs& xs, const Ys& ys,
+                    const Zs& zs, Out&& out) {
     sphbasis::detail::Banded<Makhotkin>::eval_sum_batch("makhotkin::eval_sum_batch", bands, coeffs,
-                                                   directions, xs, ys, zs, out);
+                                                        directions, xs, ys, zs, out);
 }
 
 }  // namespace sphbasis::makhotkin

@@ -57,27 +57,29 @@ inline std::pair<int, int> banded_lm(int l, int m) {
     return {l * (l + 1) + m, (l + 1) * (l + 1)};
 }
 inline std::pair<int, int> no_lm(int, int) {
-    throw_invalid("lm_index", "a basis with (l, m) labels; this basis has a fixed size (select "
-                              "its functions with --coeffs)");
+    throw_invalid("lm_index",
+                  "a basis with (l, m) labels; this basis has a fixed size (select "
+                  "its functions with --coeffs)");
 }
 
 template <class B>
 BasisInfo make_info(std::pair<int, int> (*lm)(int, int)) {
-    return BasisInfo{
-        B::name,
-        B::domain,
-        B::orthonormal,
-        [](int count) { return B::valid_count(count); },
-        []() { return B::count_rule(); },
-        [](int count, double x, double y, double z, double* out) {
-            basis_eval<B>(count, x, y, z, out);
-        },
-        [](int count, float x, float y, float z, float* out) { basis_eval<B>(count, x, y, z, out); },
-        [](int count, std::size_t directions, const float* xs, const float* ys, const float* zs,
-           float* out, std::size_t stride) {
-            basis_eval_batch<B>(count, directions, xs, ys, zs, out, stride);
-        },
-        lm};
+    return BasisInfo{B::name,
+                     B::domain,
+                     B::orthonormal,
+                     [](int count) { return B::valid_count(count); },
+                     []() { return B::count_rule(); },
+                     [](int count, double x, double y, double z, double* out) {
+                         basis_eval<B>(count, x, y, z, out);
+                     },
+                     [](int count, float x, float y, float z, float* out) {
+                         basis_eval<B>(count, x, y, z, out);
+                     },
+                     [](int count, std::size_t directions, const float* xs, const float* ys,
+                        const float* zs, float* out, std::size_t stride) {
+                         basis_eval_batch<B>(count, directions, xs, ys, zs, out, stride);
+                     },
+                     lm};
 }
 }  // namespace detail
 
@@ -109,8 +111,8 @@ inline const BasisInfo& find_basis(std::string_view name) {
         if (name == b.name) return b;
     std::string known;
     for (const auto& b : all_bases()) known += std::string(known.empty() ? "" : ", ") + b.name;
-    detail::throw_invalid("find_basis", "one of: " + known + "; got unknown basis '" +
-                                            std::string(name) + "'");
+    detail::throw_invalid("find_basis",
+                          "one of: " + known + "; got unknown basis '" + std::string(name) + "'");
 }
 
 }  // namespace sphbasis

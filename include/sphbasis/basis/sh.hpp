@@ -1,8 +1,8 @@
 // sphbasis: real spherical harmonics (SH) of any degree.
 //
 // Convention (the graphics convention of Sloan's and Ramamoorthi's papers, DirectX SH samples
-// before DirectXMath, and the source documents of this library): real, orthonormal on the
-// sphere, NO Condon-Shortley phase, ACN index k = l(l+1) + m:
+// before DirectXMath, and Ishmukhametov, "Irradiance Normal Mapping" (thesis)): real, orthonormal
+// on the sphere, NO Condon-Shortley phase, ACN index k = l(l+1) + m:
 //   y_00 = 1/(2 sqrt(pi)),   y_1-1 = +sqrt(3/(4pi)) y,   y_10 = +sqrt(3/(4pi)) z,
 //   y_11 = +sqrt(3/(4pi)) x,  y_2-2 = +sqrt(15/(4pi)) xy, ...
 //   y_lm = sqrt(2) Pbar_l^m(cos t) cos(m phi)   (m > 0)
@@ -595,10 +595,9 @@ auto eval_lm(int l, int m, X x, Y y, Z z) {
     using T = std::common_type_t<X, Y, Z>;
     sphbasis::detail::static_check_scalar<T>();
     if (l < 0 || l >= max_bands || m < -l || m > l)
-        sphbasis::detail::throw_invalid("sh::eval_lm", "0 <= l < " + std::to_string(max_bands) +
-                                                           " and |m| <= l, got l = " +
-                                                           std::to_string(l) +
-                                                           ", m = " + std::to_string(m));
+        sphbasis::detail::throw_invalid(
+            "sh::eval_lm", "0 <= l < " + std::to_string(max_bands) + " and |m| <= l, got l = " +
+                               std::to_string(l) + ", m = " + std::to_string(m));
     T tx = static_cast<T>(x), ty = static_cast<T>(y), tz = static_cast<T>(z);
     normalize_or_pole(tx, ty, tz);
     const int am = m < 0 ? -m : m;
@@ -649,8 +648,8 @@ auto eval_sum(int bands, const Cs& coeffs, const D& dir) {
 /// The expansion sum_k coeffs[k] y_k(d_i) at `directions` directions (separate x, y, z arrays,
 /// normalised as by eval()) into out[i], SIMD across directions, without storing the y_k.
 template <class Cs, class Xs, class Ys, class Zs, class Out>
-void eval_sum_batch(int bands, const Cs& coeffs, std::size_t directions, const Xs& xs,
-                    const Ys& ys, const Zs& zs, Out&& out) {
+void eval_sum_batch(int bands, const Cs& coeffs, std::size_t directions, const Xs& xs, const Ys& ys,
+                    const Zs& zs, Out&& out) {
     sphbasis::detail::Banded<SH>::eval_sum_batch("sh::eval_sum_batch", bands, coeffs, directions,
                                                  xs, ys, zs, out);
 }

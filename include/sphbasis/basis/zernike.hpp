@@ -3,8 +3,8 @@
 // References: F. Zernike, Physica 1, 1934 (the disk polynomials); J. J. Koenderink, A. J. van
 // Doorn, M. Stavridi, "Bidirectional reflection distribution function expressed in terms of
 // surface scattering modes", ECCV 1996 (the hemispherical adaptation); G. J. Kintner, Optica Acta
-// 23, 1976 and the Jacobi form below (the recurrence); the source thesis (Ishmukhametov,
-// "Irradiance Normal Mapping") section 1.8.5, whose printed forms (1.46)-(1.51) are only a
+// 23, 1976 and the Jacobi form below (the recurrence); Ishmukhametov,
+// "Irradiance Normal Mapping" (thesis), section 1.8.5, whose printed forms (1.46)-(1.51) are only a
 // cross-check (see "Misprints" below).
 //
 // Definition. The hemisphere is mapped onto the unit disk by rho = sqrt(1 - cos t) (pole -> centre,
@@ -33,7 +33,7 @@
 // pole z = 1 (rho = 0) and the horizon z = 0 (rho = 1, where the functions still vary with phi)
 // are regular points.
 //
-// Misprints in the thesis' printed forms (derive, do not transcribe):
+// Misprints in Ishmukhametov's printed forms (derive, do not transcribe):
 //   (1.48) Z_11 = (2/sqrt(pi)) cos(phi) sin(t/2) = -sqrt(2/pi) x / sqrt(1+z): spurious minus on
 //          the right side (2 sin(t/2) cos(phi) / sqrt(2) = rho cos(phi) = x / sqrt(1+z) > 0 for
 //          x > 0);
@@ -44,11 +44,11 @@
 // Evaluation: R_n^m(rho) = rho^m P_k^(0,m)(2 rho^2 - 1), k = (n-m)/2, and 2 rho^2 - 1 = 1 - 2z, so
 //   Z_n^m = sqrt((2 - delta_m0)/pi) 2^(m/2) rho^m p_k^(0,m)(1 - 2z) trig(m phi)
 // with p_k the orthonormal Jacobi polynomials (the normalisation no longer depends on n), by the
-// shared normalised three-term recurrence of basis/detail/jacobi.hpp (detail::hemi, advanced in z itself):
-// a row recurrence for bands <= 64 (any value type), the exponent-carrying column recurrence in
-// extended precision above. No factorial sums, no pow. Cost: one square root and one division per
-// direction, then ~bands^2/2 multiply-adds (plus as many square roots and divisions above 64
-// bands, ~10 ns per function). Accuracy (double, against mpmath's factorial sums;
+// shared normalised three-term recurrence of basis/detail/jacobi.hpp (detail::hemi, advanced in z
+// itself): a row recurrence for bands <= 64 (any value type), the exponent-carrying column
+// recurrence in extended precision above. No factorial sums, no pow. Cost: one square root and one
+// division per direction, then ~bands^2/2 multiply-adds (plus as many square roots and divisions
+// above 64 bands, ~10 ns per function). Accuracy (double, against mpmath's factorial sums;
 // tests/basis/test_zernike.cpp), relative to the scale S_n = sqrt((n+1)/pi) of band n: <= 1e-14
 // below 64 bands, <= 1.5e-13 at n = 2047 (rho^m with m ~ 2000 amplifies the input's rounding m
 // times), and within ~0.01 of the pole, where one ulp of z moves a band-n function by up to
@@ -260,8 +260,8 @@ SPHBASIS_FORCEINLINE void eval_unit(const D& dir, Out&& out) noexcept(
 template <class Xs, class Ys, class Zs, class Out>
 void eval_batch(int bands, std::size_t directions, const Xs& xs, const Ys& ys, const Zs& zs,
                 Out&& out, std::size_t stride) {
-    sphbasis::detail::Banded<Zernike>::eval_batch("zernike::eval_batch", bands, directions, xs, ys, zs,
-                                               out, stride);
+    sphbasis::detail::Banded<Zernike>::eval_batch("zernike::eval_batch", bands, directions, xs, ys,
+                                                  zs, out, stride);
 }
 /// The expansion sum_k coeffs[k] f_k(d) at one direction, in the direction's scalar type.
 template <class Cs, class X, class Y, class Z>
@@ -276,10 +276,10 @@ auto eval_sum(int bands, const Cs& coeffs, const D& dir) {
 }
 /// The expansion at `directions` directions into out[i], SIMD across directions.
 template <class Cs, class Xs, class Ys, class Zs, class Out>
-void eval_sum_batch(int bands, const Cs& coeffs, std::size_t directions, const Xs& xs,
-                    const Ys& ys, const Zs& zs, Out&& out) {
+void eval_sum_batch(int bands, const Cs& coeffs, std::size_t directions, const Xs& xs, const Ys& ys,
+                    const Zs& zs, Out&& out) {
     sphbasis::detail::Banded<Zernike>::eval_sum_batch("zernike::eval_sum_batch", bands, coeffs,
-                                                   directions, xs, ys, zs, out);
+                                                      directions, xs, ys, zs, out);
 }
 
 }  // namespace sphbasis::zernike

@@ -11,10 +11,9 @@
 // row recurrence, more the column recurrence (lane by lane for batches).
 #pragma once
 
+#include <string>
 #include <type_traits>
 #include <utility>
-
-#include <string>
 
 #include "../../config.hpp"
 #include "../../core/scalar.hpp"
@@ -71,9 +70,7 @@ struct ColumnKernel {
         columns_any(
             Fam::family, bands, x, y, z, store,
             [](extended dx, extended dy, extended dz, extended& zc, extended& X, extended& Y,
-               extended& E) {
-                Fam::prep(dx, dy, dz, zc, X, Y, E);
-            },
+               extended& E) { Fam::prep(dx, dy, dz, zc, X, Y, E); },
             [](int b, int m) { return Fam::index(b, m); });
     }
 };

@@ -225,7 +225,8 @@ SPHBASIS_FORCEINLINE void rows_acn(int bands, const V& zc, const V& X, const V& 
 /// as 0, never NaN or Inf. Coefficients are computed on the fly: ~1 sqrt and 3 divisions per
 /// function, in sphbasis::extended.
 template <class Out>
-inline void columns(const Family& f, int bands, extended zc, extended X, extended Y, extended E, Out&& out) {
+inline void columns(const Family& f, int bands, extended zc, extended X, extended Y, extended E,
+                    Out&& out) {
     using R = extended;
     R s, cp, sp;  // sin' = |(X, Y)|, cos(phi), sin(phi) without underflow
     polar_xy(X, Y, s, cp, sp);
@@ -289,7 +290,8 @@ inline void columns_any(const Family& f, int bands, const V& x, const V& y, cons
         columns(f, bands, zc, X, Y, E, [&](int b, int m, double v) { put(index(b, m), v); });
     };
     if constexpr (std::is_floating_point_v<V>) {
-        run(extended(x), extended(y), extended(z), [&](int k, double v) { store(k, static_cast<V>(v)); });
+        run(extended(x), extended(y), extended(z),
+            [&](int k, double v) { store(k, static_cast<V>(v)); });
     } else {
         using S = scalar_t<V>;
         for (int i = 0; i < V::size; ++i)
