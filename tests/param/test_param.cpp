@@ -15,9 +15,12 @@ using namespace sphbasis::param;
 
 namespace {
 
+/// The class methods at d against the component form at d's components converted to T.
 template <class Map, class D>
-void check_map(const Map& p, const D& d, double x, double y, double z) {
+void check_map(const Map& p, const D& d) {
     using T = decltype(p.direction_to_uv(0, 0, 0).u);
+    const double x = double(component<0>(d)), y = double(component<1>(d)),
+                 z = double(component<2>(d));
     const auto a = p.direction_to_uv(T(x), T(y), T(z));
     const auto b = p.direction_to_uv(d);
     CHECK(a.face == b.face);
@@ -33,14 +36,13 @@ void check_map(const Map& p, const D& d, double x, double y, double z) {
 
 template <class D>
 void check_all(const D& d) {
-    const double x = 0.36, y = -0.48, z = 0.8;
-    check_map(LatLong<double>(8), d, x, y, z);
-    check_map(Octahedral<float>(8), d, x, y, z);
-    check_map(CubeMap<double>(8), d, x, y, z);
-    check_map(DualParaboloid<float>(8), d, x, y, z);
-    check_map(DualOrthographic<double>(8), d, x, y, z);
+    check_map(LatLong<double>(8), d);
+    check_map(Octahedral<float>(8), d);
+    check_map(CubeMap<double>(8), d);
+    check_map(DualParaboloid<float>(8), d);
+    check_map(DualOrthographic<double>(8), d);
     using T = direction_scalar_t<D>;
-    const T tx = T(x), ty = T(y), tz = T(z);
+    const T tx = component<0>(d), ty = component<1>(d), tz = component<2>(d);
     auto same2 = [](auto a, auto b) {
         CHECK(a.x == b.x);
         CHECK(a.y == b.y);
