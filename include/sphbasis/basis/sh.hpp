@@ -449,7 +449,7 @@ struct QuadraticSum {
 
 /// Calls f(kernel) with the fastest kernel for `bands` >= 1.
 template <class F>
-inline decltype(auto) with_bands_kernel(int bands, F&& f) {
+SPHBASIS_FORCEINLINE decltype(auto) with_bands_kernel(int bands, F&& f) {
 #define SPHBASIS_SH_FIXED_CASE(N) \
     case N:                       \
         return f(FixedKernel<N>{});
@@ -535,12 +535,12 @@ namespace sh {
 /// multiply-adds; unrolled code for bands <= 8. Throws std::invalid_argument for bands outside
 /// [0, max_bands] or a null or too small out.
 template <class X, class Y, class Z, class Out>
-void eval_unit(int bands, X x, Y y, Z z, Out&& out) {
+SPHBASIS_FORCEINLINE void eval_unit(int bands, X x, Y y, Z z, Out&& out) {
     sphbasis::detail::Banded<SH>::eval_unit("sh::eval_unit", bands, x, y, z, out);
 }
 /// eval_unit() for any 3-vector type.
 template <class D, class Out>
-void eval_unit(int bands, const D& dir, Out&& out) {
+SPHBASIS_FORCEINLINE void eval_unit(int bands, const D& dir, Out&& out) {
     sphbasis::detail::bands_eval_dir<SH, false>("sh::eval_unit", bands, dir, out);
 }
 
@@ -549,12 +549,12 @@ void eval_unit(int bands, const D& dir, Out&& out) {
 /// is taken as the pole (0, 0, 1) (see normalize_or_pole). Throws std::invalid_argument for
 /// bands outside [0, max_bands] or a null or too small out.
 template <class X, class Y, class Z, class Out>
-void eval(int bands, X x, Y y, Z z, Out&& out) {
+SPHBASIS_FORCEINLINE void eval(int bands, X x, Y y, Z z, Out&& out) {
     sphbasis::detail::Banded<SH>::eval("sh::eval", bands, x, y, z, out);
 }
 /// eval() for any 3-vector type (glm::vec3, glm::dvec3, Eigen::Vector3d, sphbasis::vec3).
 template <class D, class Out>
-void eval(int bands, const D& dir, Out&& out) {
+SPHBASIS_FORCEINLINE void eval(int bands, const D& dir, Out&& out) {
     sphbasis::detail::bands_eval_dir<SH, true>("sh::eval", bands, dir, out);
 }
 

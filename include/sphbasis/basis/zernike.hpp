@@ -217,21 +217,21 @@ namespace sphbasis::zernike {
 /// float or double). The input is normalised first (a zero or non-finite vector is the pole).
 /// Throws std::invalid_argument for bands outside [0, max_bands] or a null or too small out.
 template <class X, class Y, class Z, class Out>
-void eval(int bands, X x, Y y, Z z, Out&& out) {
+SPHBASIS_FORCEINLINE void eval(int bands, X x, Y y, Z z, Out&& out) {
     sphbasis::detail::Banded<Zernike>::eval("zernike::eval", bands, x, y, z, out);
 }
 /// eval() for any 3-vector type.
 template <class D, class Out>
-void eval(int bands, const D& dir, Out&& out) {
+SPHBASIS_FORCEINLINE void eval(int bands, const D& dir, Out&& out) {
     sphbasis::detail::bands_eval_dir<Zernike, true>("zernike::eval", bands, dir, out);
 }
 /// eval() for a direction already of unit length (no normalisation).
 template <class X, class Y, class Z, class Out>
-void eval_unit(int bands, X x, Y y, Z z, Out&& out) {
+SPHBASIS_FORCEINLINE void eval_unit(int bands, X x, Y y, Z z, Out&& out) {
     sphbasis::detail::Banded<Zernike>::eval_unit("zernike::eval_unit", bands, x, y, z, out);
 }
 template <class D, class Out>
-void eval_unit(int bands, const D& dir, Out&& out) {
+SPHBASIS_FORCEINLINE void eval_unit(int bands, const D& dir, Out&& out) {
     sphbasis::detail::bands_eval_dir<Zernike, false>("zernike::eval_unit", bands, dir, out);
 }
 /// Compile-time band count N (1..64): unrolled for N <= 8. noexcept for a pointer out.
