@@ -22,7 +22,8 @@ using test::random_dirs;
 constexpr double pi = constants::pi;
 constexpr double eps = std::numeric_limits<double>::epsilon();
 
-/// The six functions from their definitions (Habel & Wimmer 2010; thesis 1.52-1.58).
+/// The six functions from their definitions (Habel & Wimmer 2010; Ishmukhametov,
+/// "Irradiance Normal Mapping" (thesis), eqs. 1.52-1.58).
 std::array<double, 6> defined(bool mod, double x, double y, double z) {
     const double c3 = std::sqrt(3 / (2 * pi)), c15 = std::sqrt(15 / (2 * pi));
     return {1 / std::sqrt(2 * pi),
@@ -85,7 +86,7 @@ TEST_CASE("hbasis: values are the definitions, signs pinned", "[hbasis]") {
     CHECK(HBasis::max_count() == 6);
 }
 
-TEST_CASE("hbasis: the thesis' Listing 2.2 shader constants", "[hbasis]") {
+TEST_CASE("hbasis: Ishmukhametov's Listing 2.2 shader constants", "[hbasis]") {
     // 0.39894 = 1/sqrt(2 pi), 0.69099 = sqrt(3/(2 pi)), 1.54509 = sqrt(15/(2 pi)),
     // 0.77255 = sqrt(15/(2 pi))/2, the modified H-basis' normalisations rounded to 5 digits, except
     // that 1.54509 is truncated (sqrt(15/(2 pi)) = 1.5450968...): within one unit of the last

@@ -92,7 +92,7 @@ TEST_CASE("hl2: a rotation of the linear SH band, renormalised to the hemisphere
 
 TEST_CASE("hl2: orthonormal on the hemisphere, orthogonal with norm^2 = 2 on the sphere", "[hl2]") {
     // int_hemisphere n n^T = (2 pi/3) I, so the Gram matrix is h_i . h_j = delta_ij; on the whole
-    // sphere it is 2 delta_ij (the thesis' "orthonormal ... as well as full sphere" holds for
+    // sphere it is 2 delta_ij (Ishmukhametov's "orthonormal ... as well as full sphere" holds for
     // orthogonality only).
     const auto gh = gram(hemisphere_rule(2));
     const auto gs = gram(sphere_rule(2));

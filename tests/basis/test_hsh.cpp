@@ -37,7 +37,7 @@ struct Traits {
     static int index(int l, int m) { return hsh::index(l, m); }
     template <class F>
     static void with_kernel(int bands, F&& f) {
-        hsh::detail::with_kernel(bands, std::forward<F>(f));
+        hsh::detail::with_bands_kernel(bands, std::forward<F>(f));
     }
 };
 

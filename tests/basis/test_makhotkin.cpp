@@ -38,7 +38,7 @@ struct Traits {
     static int index(int l, int m) { return makhotkin::index(l, m); }
     template <class F>
     static void with_kernel(int bands, F&& f) {
-        makhotkin::detail::with_kernel(bands, std::forward<F>(f));
+        makhotkin::detail::with_bands_kernel(bands, std::forward<F>(f));
     }
 };
 
@@ -67,7 +67,7 @@ TEST_CASE("makhotkin: bands 0-2 closed forms and band-1 signs pin the convention
             REQUIRE(std::fabs(v[static_cast<std::size_t>(k)] - c[k]) <= 64 * eps * scale(2));
         }
     }
-    // Band 1: M_1-1 ~ +y, M_11 ~ +x (no Condon-Shortley phase; the thesis labels these the other
+    // Band 1: M_1-1 ~ +y, M_11 ~ +x (no Condon-Shortley phase; Ishmukhametov labels these the other
     // way round).
     const auto a = eval_d(2, 0.6, 0.0, 0.8);
     CHECK(a[3] > 0);
@@ -77,7 +77,7 @@ TEST_CASE("makhotkin: bands 0-2 closed forms and band-1 signs pin the convention
     CHECK(b[1] > 0);
     CHECK(std::fabs(b[3]) < 1e-16);
     CHECK(a[3] == Approx(2 * std::sqrt(3 / pi) * 0.6 * 0.8 / std::sqrt(1.8)).epsilon(1e-15));
-    // The thesis' (1.42) M_20 = sqrt(3/pi) sqrt(z) (1 + 16(z-1) + 10(z-1)^2) is a misprint: 8,
+    // Ishmukhametov's (1.42) M_20 = sqrt(3/pi) sqrt(z) (1 + 16(z-1) + 10(z-1)^2) is a misprint: 8,
     // not 16.
     const double z = 0.8, m20 = std::sqrt(3 / pi) * std::sqrt(z) *
                                 (1 + 8 * (z - 1) + 10 * (z - 1) * (z - 1));

@@ -46,7 +46,7 @@ struct Traits {
     static int index(int l, int m) { return zernike::index(l, m); }
     template <class F>
     static void with_kernel(int bands, F&& f) {
-        zernike::detail::with_kernel(bands, std::forward<F>(f));
+        zernike::detail::with_bands_kernel(bands, std::forward<F>(f));
     }
 };
 
@@ -72,8 +72,8 @@ TEST_CASE("zernike: bands 0-2 closed forms and band-1 signs pin the convention",
             REQUIRE(std::fabs(v[static_cast<std::size_t>(k)] - c[k]) <= 16 * eps * scale(2));
         }
     }
-    // Band 1: Z_1-1 ~ +y, Z_11 ~ +x (the thesis' (1.48) prints -sqrt(2/pi) x/sqrt(1+z), a spurious
-    // minus; its (1.47), (1.49) carry a Condon-Shortley-like minus on the sin functions).
+    // Band 1: Z_1-1 ~ +y, Z_11 ~ +x (Ishmukhametov's (1.48) prints -sqrt(2/pi) x/sqrt(1+z), a
+    // spurious minus; its (1.47), (1.49) carry a Condon-Shortley-like minus on the sin functions).
     const auto a = eval_d(2, 0.6, 0.0, 0.8);
     CHECK(a[2] > 0);
     CHECK(a[1] == 0);
@@ -81,7 +81,7 @@ TEST_CASE("zernike: bands 0-2 closed forms and band-1 signs pin the convention",
     CHECK(b[1] > 0);
     CHECK(std::fabs(b[2]) < 1e-16);
     CHECK(a[2] == Approx(std::sqrt(2 / pi) * 0.6 / std::sqrt(1.8)).epsilon(1e-15));
-    // (2/sqrt(pi)) cos(phi) sin(t/2), the thesis' left side of (1.48), is the same function.
+    // (2/sqrt(pi)) cos(phi) sin(t/2), Ishmukhametov's left side of (1.48), is the same function.
     CHECK(a[2] == Approx(2 / std::sqrt(pi) * std::sin(0.5 * std::acos(0.8))).epsilon(1e-14));
     CHECK(eval_d(3, 0.0, 0.6, 0.8)[3] == 0);
     CHECK(eval_d(3, 0.6, 0.6, std::sqrt(0.28))[3] > 0);  // Z_2-2 ~ +xy

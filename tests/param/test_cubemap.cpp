@@ -185,7 +185,7 @@ TEST_CASE("cube map: DX10 is continuous across edges and corners, DX9 is not", "
         const CubeMap<double> p9(n, CubeFilter::dx9_clamped);
         const double j9 = max_jump(p9, smooth_table<double>(p9), base, normal, 1e-10);
         INFO("n " << n << " DX9 jump " << j9);
-        CHECK(j9 > 1e-3);  // the seams seed 000 warns about
+        CHECK(j9 > 1e-3);  // the seams Iwanicki and Sloan (JGT 2009) warn about
     }
     // Corners: approached along the three edges that meet there.
     const CubeMap<double> p(8);

@@ -1,5 +1,6 @@
 // Tests of param/dual_orthographic.hpp: the dual orthographic map through the concentric map,
-// shrunk so the equator lies on the outer ring of texel centres (seed 000, appendix A).
+// shrunk so the equator lies on the outer ring of texel centres (Iwanicki and Sloan,
+// "Normal Mapping with Low-Frequency Precomputed Visibility", JGT 2009, appendix A).
 // The orthographic lift z = sqrt(1 - r^2) is ill-conditioned at the equator: (u, v) carries r,
 // and an error eps in r becomes sqrt(2 eps) in z there, so round trips are only good to
 // sqrt(2 eps) radians in the worst case (about 2e-8 in double, 5e-4 in float).

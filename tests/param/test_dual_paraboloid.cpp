@@ -1,5 +1,6 @@
 // Tests of param/dual_paraboloid.hpp: the dual paraboloid map through the concentric map,
-// shrunk so the equator lies on the outer ring of texel centres (seed 000, appendix A).
+// shrunk so the equator lies on the outer ring of texel centres (Iwanicki and Sloan,
+// "Normal Mapping with Low-Frequency Precomputed Visibility", JGT 2009, appendix A).
 #include <sphbasis/param/dual_paraboloid.hpp>
 
 #include "dual_checks.hpp"

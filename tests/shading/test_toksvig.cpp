@@ -2,13 +2,16 @@
 // with closed forms retyped here from the definitions (eq. 1, 5, 6, 7), with numerical
 // integration over the hemisphere and with finite differences, not with the header's own
 // helpers.
+#include <Eigen/Core>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <limits>
 #include <random>
 #include <sphbasis/core/quadrature.hpp>
 #include <sphbasis/shading/toksvig.hpp>
+#include <type_traits>
 #include <vector>
 
 namespace tk = sphbasis::toksvig;
@@ -421,4 +424,30 @@ TEMPLATE_TEST_CASE("toksvig: normal-map mip chain without renormalisation", "[to
     CHECK(rc.back().length[0] < T(1));
     REQUIRE_THROWS_WITH(tk::build_normal_mips<T>(nullptr, 4, 4),
                         Catch::Contains("sphbasis::toksvig::build_normal_mips(): expected"));
+}
+
+TEST_CASE("toksvig: normal maps as glm and Eigen vectors", "[toksvig]") {
+    std::vector<glm::vec3> g(4 * 2);
+    std::vector<Eigen::Vector3d> e(4 * 2);
+    std::vector<sphbasis::vec3<float>> v(4 * 2);
+    for (std::size_t k = 0; k < g.size(); ++k) {
+        const float a = 0.1f * float(k);
+        g[k] = glm::vec3(std::sin(a), 0.0f, std::cos(a));
+        e[k] = Eigen::Vector3d(std::sin(a), 0.0, std::cos(a));
+        v[k] = {std::sin(a), 0.0f, std::cos(a)};
+    }
+    const auto cg = tk::build_normal_mips(g, 4, 2);  // a range of glm::vec3: float chain
+    const auto cv = tk::build_normal_mips(v.data(), 4, 2);
+    const auto ce = tk::build_normal_mips(e.data(), 4, 2);  // Eigen::Vector3d: double chain
+    static_assert(std::is_same_v<decltype(cg), decltype(cv)>, "float chain");
+    static_assert(std::is_same_v<std::decay_t<decltype(ce[0].length[0])>, double>, "double chain");
+    REQUIRE(cg.size() == cv.size());
+    for (std::size_t l = 0; l < cg.size(); ++l)
+        for (std::size_t k = 0; k < cg[l].length.size(); ++k) {
+            CHECK(cg[l].length[k] == cv[l].length[k]);
+            CHECK(ce[l].length[k] == Approx(double(cv[l].length[k])).epsilon(1e-6));
+        }
+    REQUIRE_THROWS_WITH(tk::build_normal_mips(g, 4, 4),
+                        Catch::Contains("sphbasis::toksvig::build_normal_mips(): expected a normal "
+                                        "array of width * height = 16 elements, got 8"));
 }

@@ -1,28 +1,54 @@
 // sphbasis: the interface every basis shares, and the drivers that evaluate any basis at one
 // direction, over arrays of directions (SIMD across directions), or as an expansion sum.
 //
+// Sizes: one rule, visible in the names. A size is a plain int in one of two units, and the
+// parameter (and function) name says which:
+//   * `bands` in the namespaces of the banded bases (sh::, hsh::, makhotkin::, zernike::):
+//     n bands = degrees l <= n-1; `<ns>::count(bands)` is the number of functions (n^2 for SH,
+//     HSH and Makhotkin, n(n+1)/2 for Zernike), `<ns>::max_bands` the largest band count.
+//   * `count`, the number of functions, in the generic API templated on a basis type
+//     (basis_eval<B>(count, ...), evaluator<B>(count), B::valid_count, BasisInfo), because the
+//     H-basis (4 or 6 functions) and HL2 (3) have no bands. B::bands_of(count) converts back.
+// Directions count in the batch paths is `directions`. A basis type's `with_kernel(count, f)`
+// takes a count; the banded bases' `with_bands_kernel(bands, f)` takes bands.
+//
+// Arguments as users hold them: a direction is either three components x, y, z (any arithmetic
+// types) or any 3-vector type (glm::vec3, Eigen::Vector3f, sphbasis::vec3, std::array; read by
+// component<I>(), core/vec.hpp). Output and coefficient buffers are a pointer (checked for null)
+// or a contiguous range (.data() and .size(): std::vector, std::array, std::span; checked for
+// size), and the scalar is deduced: basis values are computed in the output's scalar type (float
+// or double); an expansion sum (eval_sum) in the direction's scalar type. Misuse (an int
+// output, a type that is no 3-vector) stops at one static_assert sentence.
+//
 // A basis is a type B with
 //   static constexpr const char* name;    // "sh", "hsh", "makhotkin", "zernike", "hbasis",
 //                                         // "hbasis-mod", "hl2" (the CLI names)
 //   static constexpr Domain domain;       // sphere or hemisphere (z >= 0)
 //   static constexpr bool orthonormal;    // on its domain
-//   static bool valid_count(int n);       // n functions is a size this basis has
-//   static const char* count_rule();      // "a square number", "4 or 6", ... for messages
+//   static bool valid_count(int count);   // `count` functions is a size this basis has
+//   static const char* count_rule();      // "a square number (bands^2, bands <= 8192) of",
+//                                         // "4 or 6", ... for messages ("<rule> functions")
 //   static int max_count();               // largest supported number of functions
-//   template <class F> static decltype(auto) with_kernel(int n, F&& f);
+//   template <class F> static decltype(auto) with_kernel(int count, F&& f);
 //       calls f(kernel) with kernel(x, y, z, store) templated on the value type V (float,
 //       double, batch<T>) for a UNIT direction; the kernel calls store(k, value) once per k.
-//       Precondition: valid_count(n).
+//       Precondition: valid_count(count).
 // and optionally
-//   template <class T, class F> static bool with_sum_kernel(int n, const T* coeffs, F&& f);
+//   template <class T, class F> static bool with_sum_kernel(int count, const T* coeffs, F&& f);
 //       for sizes with a cheaper expansion than sum_k c_k * kernel value k: calls f(sk) with
 //       sk(x, y, z) = sum_k coeffs[k] B_k(x, y, z) for unit directions (V as above) and returns
 //       true, or returns false to use the generic sum. basis_eval_sum_batch uses it.
-// The free functions below check n and normalise directions (normalize_or_pole), so all bases
-// share one documented behaviour for bad input and one SIMD batch path.
+// A banded basis (detail::Banded, the namespace functions) also has
+//   static constexpr int max_bands; static constexpr int count(int bands);
+//   static int bands_of(int count);       // -1 if count is no size of the basis
+//   template <class F> static decltype(auto) with_bands_kernel(int bands, F&& f);  // bands >= 1
+//   template <int N> static auto fixed_kernel();   // the kernel of exactly N <= 64 bands
+// The free functions below check sizes and buffers and normalise directions (normalize_or_pole),
+// so all bases share one documented behaviour for bad input and one SIMD batch path.
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <functional>
 #include <stdexcept>
@@ -30,6 +56,7 @@
 #include <type_traits>
 
 #include "../config.hpp"
+#include "../core/error.hpp"
 #include "../core/scalar.hpp"
 #include "../core/simd.hpp"
 #include "../core/vec.hpp"
@@ -41,20 +68,142 @@ enum class Domain { sphere, hemisphere };
 
 namespace detail {
 template <class B>
-[[noreturn]] SPHBASIS_NOINLINE void throw_bad_count(int n, const char* fn) {
-    throw std::invalid_argument(std::string("sphbasis::") + fn + "(): expected " + B::count_rule() +
-                                " functions for basis '" + B::name + "', got " + std::to_string(n));
+[[noreturn]] SPHBASIS_NOINLINE void throw_bad_count(int count, const char* fn) {
+    throw_invalid(fn, std::string(B::count_rule()) + " functions for basis '" + B::name +
+                          "', got " + std::to_string(count));
+}
+[[noreturn]] SPHBASIS_NOINLINE inline void throw_bad_bands(const char* fn, int bands,
+                                                           int max_bands) {
+    throw_invalid(fn,
+                  "0 <= bands <= " + std::to_string(max_bands) + ", got " + std::to_string(bands));
+}
+/// The failure of the one-call check: bad bands, else the null output buffer.
+[[noreturn]] SPHBASIS_NOINLINE inline void throw_bad_bands_or_buffer(const char* fn, int bands,
+                                                                     int max_bands) {
+    if (bands < 0 || bands > max_bands) throw_bad_bands(fn, bands, max_bands);
+    throw_invalid(fn, "a non-null output buffer");
+}
+[[noreturn]] SPHBASIS_NOINLINE inline void throw_small_buffer(const char* fn, const char* name,
+                                                              std::size_t need, std::size_t size) {
+    throw_invalid(fn, std::string(name) + " buffer of at least " + std::to_string(need) +
+                          " elements, got " + std::to_string(size));
 }
 }  // namespace detail
 
-/// Throws std::invalid_argument unless B has n functions. The check is inlined; the message is
-/// built out of line, so the one-call paths keep the direction in registers.
+namespace detail {
+/// The failure of basis_eval's one check: a bad count, else a null output buffer.
 template <class B>
-SPHBASIS_FORCEINLINE void check_count(int n, const char* fn) {
-    if (!B::valid_count(n)) detail::throw_bad_count<B>(n, fn);
+[[noreturn]] SPHBASIS_NOINLINE void throw_count_or_null(const char* fn, int count) {
+    if (!B::valid_count(count)) throw_bad_count<B>(count, fn);
+    throw_invalid(fn, "a non-null output buffer");
+}
+}  // namespace detail
+
+/// Throws std::invalid_argument unless B has `count` functions. The check is inlined; the
+/// message is built out of line, so the one-call paths keep the direction in registers.
+template <class B>
+SPHBASIS_FORCEINLINE void check_count(int count, const char* fn) {
+    if (!B::valid_count(count)) detail::throw_bad_count<B>(count, fn);
 }
 
 namespace detail {
+
+// ---- Buffers and directions as users hold them -------------------------------------------------
+
+template <class R, class = void>
+struct is_contiguous_range : std::false_type {};
+template <class R>
+struct is_contiguous_range<
+    R, std::void_t<decltype(std::declval<R&>().data()), decltype(std::declval<R&>().size())>>
+    : std::is_pointer<decltype(std::declval<R&>().data())> {};
+
+/// A buffer argument: a pointer (trusted for its size, checked for null), or a contiguous range
+/// (anything with .data() and .size(): std::vector, std::array, std::span; size checked).
+template <class Buf>
+constexpr bool is_buffer_v = std::is_pointer_v<std::decay_t<Buf>> ||
+                             is_contiguous_range<std::remove_reference_t<Buf>>::value;
+
+template <class Buf>
+SPHBASIS_FORCEINLINE auto buffer_data(Buf& b) noexcept {
+    if constexpr (std::is_pointer_v<std::decay_t<Buf>>)
+        return static_cast<std::decay_t<Buf>>(b);
+    else
+        return b.data();
+}
+
+/// The element type of a buffer argument (const kept: an input buffer may hold const values).
+template <class Buf>
+using buffer_element_t =
+    std::remove_pointer_t<decltype(buffer_data(std::declval<std::remove_reference_t<Buf>&>()))>;
+
+/// Throws unless the buffer can hold `need` elements: a pointer must not be null when need > 0,
+/// an array or a range must have at least `need` elements. One compare (none for an array large
+/// enough); the message is built out of line.
+template <class Buf>
+SPHBASIS_FORCEINLINE void check_buffer_size(const char* fn, const char* name, const Buf& b,
+                                            std::size_t need) {
+    if constexpr (std::is_array_v<Buf>) {
+        if (std::extent_v<Buf> < need) throw_small_buffer(fn, name, need, std::extent_v<Buf>);
+    } else if constexpr (std::is_pointer_v<Buf>) {
+        check_buffer(fn, name, static_cast<const void*>(b), need);
+    } else {
+        if (static_cast<std::size_t>(b.size()) < need)
+            throw_small_buffer(fn, name, need, static_cast<std::size_t>(b.size()));
+    }
+}
+
+/// The scalar in which a direction given as components is evaluated: their common type, which
+/// must be float or double.
+template <class X, class Y, class Z>
+using components_scalar_t = std::common_type_t<X, Y, Z>;
+
+template <class T>
+SPHBASIS_FORCEINLINE void static_check_scalar() {
+    static_assert(std::is_same_v<T, float> || std::is_same_v<T, double>,
+                  "sphbasis: directions and basis values are float or double (convert integer "
+                  "or long double input first).");
+}
+
+template <class X, class Y, class Z>
+SPHBASIS_FORCEINLINE void static_check_components() {
+    static_assert(std::is_arithmetic_v<X> && std::is_arithmetic_v<Y> && std::is_arithmetic_v<Z>,
+                  "sphbasis: direction components x, y, z are numbers (or pass a 3-vector "
+                  "type).");
+}
+
+/// The output element type of an evaluation: a non-const float or double.
+template <class Out>
+SPHBASIS_FORCEINLINE void static_check_output() {
+    static_assert(is_buffer_v<Out>,
+                  "sphbasis: an output buffer is a T* or a contiguous range of T (std::vector, "
+                  "std::array, std::span) with T float or double.");
+    if constexpr (is_buffer_v<Out>) {
+        using T = buffer_element_t<Out>;
+        static_assert(!std::is_const_v<T>, "sphbasis: the output buffer must be writable.");
+        static_check_scalar<std::remove_const_t<T>>();
+    }
+}
+
+/// c * v for a coefficient c and a basis value v: C * T where that is defined (float, double),
+/// else C * coefficient_scalar_t<C>(v) (glm::vec3 with double values).
+template <class C, class T, class = void>
+struct has_times : std::false_type {};
+template <class C, class T>
+struct has_times<C, T, std::void_t<decltype(std::declval<const C&>() * std::declval<T>())>>
+    : std::true_type {};
+template <class C, class T>
+SPHBASIS_FORCEINLINE C times(const C& c, T v) {
+    if constexpr (has_times<C, T>::value)
+        return C(c * v);
+    else
+        return C(c * coefficient_scalar_t<C>(v));
+}
+template <class C, class T>
+SPHBASIS_FORCEINLINE void static_check_coefficient() {
+    static_assert(has_times<C, T>::value || has_times<C, coefficient_scalar_t<C>>::value,
+                  "sphbasis: a coefficient type C needs C + C and C * scalar (float, double, "
+                  "glm::vec3, an RGB type).");
+}
 
 /// Store policy for SoA batches: function k of lane i goes to out[k * stride + base + i].
 template <class T>
@@ -109,41 +258,155 @@ SPHBASIS_FORCEINLINE void for_each_direction(std::size_t n, const T* xs, const T
     }
 }
 
-}  // namespace detail
+template <class Out>
+constexpr bool output_ok_v = [] {
+    if constexpr (is_buffer_v<Out>) {
+        using T = buffer_element_t<Out>;
+        return std::is_same_v<T, float> || std::is_same_v<T, double>;
+    } else {
+        return false;
+    }
+}();
 
-/// Evaluates the n functions of basis B at direction (x, y, z) into out[0..n). The input is
-/// normalised; zero or non-finite vectors are taken as the pole (0, 0, 1). Throws
-/// std::invalid_argument if B has no size n.
+/// The scalar of an output buffer (float for float* and std::vector<float>).
+template <class Out>
+using output_scalar_t = buffer_element_t<Out>;
+
+/// The element type of an input buffer without const (the coefficient type of an expansion).
+template <class In>
+using input_element_t = std::remove_const_t<buffer_element_t<In>>;
+
+/// Stores basis values: value k to out[k].
+template <class T>
+struct PointerStore {
+    T* out;
+    SPHBASIS_FORCEINLINE void operator()(int k, T v) const noexcept { out[k] = v; }
+};
+
+/// Throws std::invalid_argument unless 0 <= bands <= max_bands.
+SPHBASIS_FORCEINLINE void check_bands_of(int bands, int max_bands, const char* fn) {
+    if (bands < 0 || bands > max_bands) throw_bad_bands(fn, bands, max_bands);
+}
+
+/// The one-direction evaluation at a direction already converted (and, for eval, normalised):
+/// checks bands and a null out, then B's kernel for `bands`. Not forced inline: the caller's
+/// conversion and normalisation stay in registers and the dispatch is one call, as the
+/// one-call benchmarks measured best.
 template <class B, class T>
-void basis_eval(int n, T x, T y, T z, T* out) {
-    static_assert(std::is_floating_point_v<T>, "sphbasis::basis_eval: T is float or double.");
-    check_count<B>(n, "basis_eval");
+SPHBASIS_FORCEINLINE void bands_eval_at(const char* fn, int bands, T x, T y, T z, T* out) {
+    // Bands and the null buffer in one cold branch: the one-call paths are that sensitive.
+    if (bands < 0 || bands > B::max_bands || (out == nullptr && bands != 0))
+        throw_bad_bands_or_buffer(fn, bands, B::max_bands);
+    if (bands == 0) return;
+    B::with_bands_kernel(bands, [&](auto kernel) { kernel(x, y, z, PointerStore<T>{out}); });
+}
+
+/// The one-direction evaluation of `bands` bands of a banded basis B into out: static checks,
+/// a range's size, conversion to out's scalar, normalisation (Normalize), then bands_eval_at.
+template <class B, bool Normalize, class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void bands_eval(const char* fn, int bands, X x, Y y, Z z, Out& out) {
+    static_check_components<X, Y, Z>();
+    static_check_output<Out>();
+    if constexpr (output_ok_v<Out> && std::is_arithmetic_v<std::common_type_t<X, Y, Z>>) {
+        using T = output_scalar_t<Out>;
+        if constexpr (!std::is_pointer_v<std::remove_reference_t<Out>>) {
+            check_bands_of(bands, B::max_bands, fn);
+            check_buffer_size(fn, "output", out, static_cast<std::size_t>(B::count(bands)));
+        }
+        T tx = static_cast<T>(x), ty = static_cast<T>(y), tz = static_cast<T>(z);
+        if constexpr (Normalize) normalize_or_pole(tx, ty, tz);
+        bands_eval_at<B>(fn, bands, tx, ty, tz, static_cast<T*>(buffer_data(out)));
+    }
+}
+
+/// bands_eval for a direction given as any 3-vector type.
+template <class B, bool Normalize, class D, class Out>
+SPHBASIS_FORCEINLINE void bands_eval_dir(const char* fn, int bands, const D& d, Out& out) {
+    static_check_direction<D>();
+    if constexpr (is_direction_v<D>)
+        bands_eval<B, Normalize>(fn, bands, component<0>(d), component<1>(d), component<2>(d), out);
+}
+
+/// Compile-time band count N: B's kernel for exactly N bands, no dispatch. Out as bands_eval.
+template <class B, int N, bool Normalize, class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void fixed_bands_eval(const char* fn, X x, Y y, Z z, Out& out) {
+    static_check_components<X, Y, Z>();
+    static_check_output<Out>();
+    if constexpr (output_ok_v<Out> && std::is_arithmetic_v<std::common_type_t<X, Y, Z>>) {
+        using T = output_scalar_t<Out>;
+        if constexpr (!std::is_pointer_v<std::remove_reference_t<Out>>)
+            check_buffer_size(fn, "output", out, static_cast<std::size_t>(B::count(N)));
+        (void)fn;
+        T tx = static_cast<T>(x), ty = static_cast<T>(y), tz = static_cast<T>(z);
+        if constexpr (Normalize)
+            normalize_or_pole(tx, ty, tz);
+        else
+            SPHBASIS_ASSERT(std::fabs(tx * tx + ty * ty + tz * tz - T(1)) <= T(1e-3));
+        B::template fixed_kernel<N>()(tx, ty, tz, PointerStore<T>{buffer_data(out)});
+    }
+}
+
+template <class B, int N, bool Normalize, class D, class Out>
+SPHBASIS_FORCEINLINE void fixed_bands_eval_dir(const char* fn, const D& d, Out& out) {
+    static_check_direction<D>();
+    if constexpr (is_direction_v<D>)
+        fixed_bands_eval<B, N, Normalize>(fn, component<0>(d), component<1>(d), component<2>(d),
+                                          out);
+}
+
+/// acc + c * v (see times()), with the rounding of the plain expression for float and double.
+template <class C, class T>
+SPHBASIS_FORCEINLINE C accumulate(const C& acc, const C& c, T v) {
+    if constexpr (has_times<C, T>::value)
+        return acc + c * v;
+    else
+        return acc + c * coefficient_scalar_t<C>(v);
+}
+
+/// The expansion sum_k coeffs[k] B_k(d) at one direction, the size given by `with` (a call
+/// with(f) that passes f the kernel) and checked by the caller. T float or double.
+template <class C, class T, class With>
+SPHBASIS_FORCEINLINE C sum_at(const C* coeffs, T x, T y, T z, With&& with) {
     normalize_or_pole(x, y, z);
-    B::with_kernel(n, [&](auto kernel) { kernel(x, y, z, [&](int k, T v) { out[k] = v; }); });
+    C acc = C{};
+    with([&](auto kernel) {
+        kernel(x, y, z, [&](int k, T v) { acc = accumulate(acc, coeffs[k], v); });
+    });
+    return acc;
 }
 
-/// basis_eval for any 3-vector type (glm::vec3, Eigen::Vector3d, sphbasis::vec3, ...).
-template <class B, class D, class T>
-void basis_eval(int n, const D& d, T* out) {
-    basis_eval<B>(n, T(component<0>(d)), T(component<1>(d)), T(component<2>(d)), out);
+/// Front end of the one-direction expansion: static checks, then sum_at with `size` functions.
+template <class Coeffs, class X, class Y, class Z, class Check, class With>
+SPHBASIS_FORCEINLINE auto eval_sum_front(const char* fn, const Coeffs& coeffs, X x, Y y, Z z,
+                                         Check&& check, With&& with) {
+    static_assert(is_buffer_v<const Coeffs&>,
+                  "sphbasis: coefficients are a const C* or a contiguous range of C (std::vector, "
+                  "std::array, std::span).");
+    static_check_components<X, Y, Z>();
+    using T = std::common_type_t<X, Y, Z>;
+    static_check_scalar<T>();
+    if constexpr (is_buffer_v<const Coeffs&>) {
+        using C = input_element_t<const Coeffs&>;
+        static_check_coefficient<C, T>();
+        const C* c = buffer_data(coeffs);
+        const std::size_t size = check();
+        check_buffer_size(fn, "coefficient", coeffs, size);
+        if (size == 0) return C{};
+        return sum_at(c, static_cast<T>(x), static_cast<T>(y), static_cast<T>(z), with);
+    }
 }
 
-/// Evaluates basis B at `count` directions given as x, y, z arrays, SIMD across directions.
-/// Output is function-major: function k of direction i goes to out[k * stride + i], stride >=
-/// count. Directions are normalised as by basis_eval. Throws std::invalid_argument for a bad n
-/// or stride.
-template <class B, class T>
-void basis_eval_batch(int n, std::size_t count, const T* xs, const T* ys, const T* zs, T* out,
-                      std::size_t stride) {
-    check_count<B>(n, "basis_eval_batch");
-    if (stride < count)
-        throw std::invalid_argument("sphbasis::basis_eval_batch(): expected stride >= count");
-    if (count == 0) return;
-    B::with_kernel(n, [&](auto kernel) {
-        detail::for_each_direction(
-            count, xs, ys, zs,
+/// Runs kernel over `directions` SoA directions into out (function-major, stride), the kernel
+/// given by `with`. Sizes checked by the caller.
+template <class T, class With>
+void eval_batch_at(std::size_t directions, const T* xs, const T* ys, const T* zs, T* out,
+                   std::size_t stride, With&& with) {
+    if (directions == 0) return;
+    with([&](auto kernel) {
+        for_each_direction(
+            directions, xs, ys, zs,
             [&](const batch<T>& x, const batch<T>& y, const batch<T>& z, std::size_t i) {
-                kernel(x, y, z, detail::SoaStore<T>{out, stride, i});
+                kernel(x, y, z, SoaStore<T>{out, stride, i});
             },
             [&](T x, T y, T z, std::size_t i) {
                 kernel(x, y, z,
@@ -152,30 +415,63 @@ void basis_eval_batch(int n, std::size_t count, const T* xs, const T* ys, const 
     });
 }
 
-/// The expansion f(d) = sum_k coeffs[k] B_k(d) at one direction (normalised as by basis_eval).
-/// C is any coefficient type with C + C and C * T (float, double, an RGB type); the basis
-/// values are not stored. Throws std::invalid_argument for a bad n.
-template <class B, class C, class T>
-C basis_eval_sum(int n, const C* coeffs, T x, T y, T z) {
-    check_count<B>(n, "basis_eval_sum");
-    normalize_or_pole(x, y, z);
-    C acc = C{};
-    B::with_kernel(
-        n, [&](auto kernel) { kernel(x, y, z, [&](int k, T v) { acc = acc + coeffs[k] * v; }); });
-    return acc;
+/// Checks of the batch paths: x, y, z arrays of `directions` elements of the output's scalar,
+/// an output of `count` functions at `stride` (stride >= directions).
+template <class Xs, class Ys, class Zs, class Out>
+SPHBASIS_FORCEINLINE void check_batch(const char* fn, int count, std::size_t directions,
+                                      const Xs& xs, const Ys& ys, const Zs& zs, const Out& out,
+                                      std::size_t stride) {
+    if (stride < directions)
+        throw_invalid(fn, "stride >= directions, got stride " + std::to_string(stride) + " and " +
+                              std::to_string(directions) + " directions");
+    check_buffer_size(fn, "x", xs, directions);
+    check_buffer_size(fn, "y", ys, directions);
+    check_buffer_size(fn, "z", zs, directions);
+    const std::size_t need =
+        count > 0 && directions > 0 ? static_cast<std::size_t>(count - 1) * stride + directions : 0;
+    check_buffer_size(fn, "output", out, need);
 }
 
-/// The expansion sum_k coeffs[k] B_k(d_i) at `count` directions into out[i], SIMD across
-/// directions, without storing the basis values.
-template <class B, class T>
-void basis_eval_sum_batch(int n, const T* coeffs, std::size_t count, const T* xs, const T* ys,
-                          const T* zs, T* out) {
-    check_count<B>(n, "basis_eval_sum_batch");
-    if (count == 0) return;
-    if constexpr (detail::has_sum_kernel<B>::value) {
-        const bool done = B::with_sum_kernel(n, coeffs, [&](const auto& sum) {
-            detail::for_each_direction(
-                count, xs, ys, zs,
+template <class Xs, class Ys, class Zs, class Out>
+SPHBASIS_FORCEINLINE void static_check_batch() {
+    static_check_output<Out>();
+    if constexpr (output_ok_v<Out>) {
+        using T = output_scalar_t<Out>;
+        static_assert(is_buffer_v<const Xs&> && is_buffer_v<const Ys&> && is_buffer_v<const Zs&>,
+                      "sphbasis: the batch paths take x, y, z as const T* or contiguous ranges "
+                      "of T, T the output's scalar.");
+        if constexpr (is_buffer_v<const Xs&> && is_buffer_v<const Ys&> && is_buffer_v<const Zs&>)
+            static_assert(std::is_same_v<input_element_t<const Xs&>, T> &&
+                              std::is_same_v<input_element_t<const Ys&>, T> &&
+                              std::is_same_v<input_element_t<const Zs&>, T>,
+                          "sphbasis: the batch paths take x, y, z arrays of the output's scalar "
+                          "type (float with float, double with double).");
+    }
+}
+
+template <class Xs, class Ys, class Zs, class Out>
+constexpr bool batch_ok_v = [] {
+    if constexpr (output_ok_v<Out> && is_buffer_v<const Xs&> && is_buffer_v<const Ys&> &&
+                  is_buffer_v<const Zs&>) {
+        using T = output_scalar_t<Out>;
+        return std::is_same_v<input_element_t<const Xs&>, T> &&
+               std::is_same_v<input_element_t<const Ys&>, T> &&
+               std::is_same_v<input_element_t<const Zs&>, T>;
+    } else {
+        return false;
+    }
+}();
+
+/// The expansion at `directions` SoA directions into out[i], with B's cheaper sum kernel where
+/// it has one (with_sum_kernel), else the generic sum. Sizes checked by the caller.
+template <class B, class T, class With>
+void eval_sum_batch_at(int count, const T* coeffs, std::size_t directions, const T* xs, const T* ys,
+                       const T* zs, T* out, With&& with) {
+    if (directions == 0) return;
+    if constexpr (has_sum_kernel<B>::value) {
+        const bool done = B::with_sum_kernel(count, coeffs, [&](const auto& sum) {
+            for_each_direction(
+                directions, xs, ys, zs,
                 [&](const batch<T>& x, const batch<T>& y, const batch<T>& z, std::size_t i) {
                     sum(x, y, z).store(out + i);
                 },
@@ -183,12 +479,12 @@ void basis_eval_sum_batch(int n, const T* coeffs, std::size_t count, const T* xs
         });
         if (done) return;
     }
-    B::with_kernel(n, [&](auto kernel) {
-        detail::for_each_direction(
-            count, xs, ys, zs,
+    with([&](auto kernel) {
+        for_each_direction(
+            directions, xs, ys, zs,
             [&](const batch<T>& x, const batch<T>& y, const batch<T>& z, std::size_t i) {
                 batch<T> acc(T(0));
-                kernel(x, y, z, detail::SumStore<batch<T>>{coeffs, &acc});
+                kernel(x, y, z, SumStore<batch<T>>{coeffs, &acc});
                 acc.store(out + i);
             },
             [&](T x, T y, T z, std::size_t i) {
@@ -199,18 +495,202 @@ void basis_eval_sum_batch(int n, const T* coeffs, std::size_t count, const T* xs
     });
 }
 
-/// A basis of a given size as a runtime object: n functions and an evaluator for unit
-/// directions. Made from a basis type by evaluator<B>(n), or by hand for any function set.
+template <class Cs, class Xs, class Ys, class Zs, class Out>
+SPHBASIS_FORCEINLINE void static_check_sum_batch() {
+    static_check_batch<Xs, Ys, Zs, Out>();
+    static_assert(is_buffer_v<const Cs&>,
+                  "sphbasis: coefficients are a const T* or a contiguous range of T.");
+    if constexpr (output_ok_v<Out> && is_buffer_v<const Cs&>)
+        static_assert(std::is_same_v<input_element_t<const Cs&>, output_scalar_t<Out>>,
+                      "sphbasis: the batch expansion takes coefficients of the output's scalar "
+                      "type.");
+}
+
+template <class Cs, class Xs, class Ys, class Zs, class Out>
+constexpr bool sum_batch_ok_v = [] {
+    if constexpr (batch_ok_v<Xs, Ys, Zs, Out> && is_buffer_v<const Cs&>)
+        return std::is_same_v<input_element_t<const Cs&>, output_scalar_t<Out>>;
+    else
+        return false;
+}();
+
+/// Sum-batch front end shared by basis_eval_sum_batch and the banded eval_sum_batch.
+template <class B, class Cs, class Xs, class Ys, class Zs, class Out, class With>
+void eval_sum_batch_front(const char* fn, int count, const Cs& coeffs, std::size_t directions,
+                          const Xs& xs, const Ys& ys, const Zs& zs, Out& out, With&& with) {
+    static_check_sum_batch<Cs, Xs, Ys, Zs, Out>();
+    if constexpr (sum_batch_ok_v<Cs, Xs, Ys, Zs, Out>) {
+        using T = output_scalar_t<Out>;
+        check_buffer_size(fn, "coefficient", coeffs, directions > 0 ? std::size_t(count) : 0);
+        check_buffer_size(fn, "x", xs, directions);
+        check_buffer_size(fn, "y", ys, directions);
+        check_buffer_size(fn, "z", zs, directions);
+        check_buffer_size(fn, "output", out, directions);
+        T* o = buffer_data(out);
+        if (count == 0) {
+            std::fill(o, o + directions, T(0));
+            return;
+        }
+        eval_sum_batch_at<B>(count, buffer_data(coeffs), directions, buffer_data(xs),
+                             buffer_data(ys), buffer_data(zs), o, with);
+    }
+}
+
+/// Batch front end shared by basis_eval_batch and the banded eval_batch.
+template <class Xs, class Ys, class Zs, class Out, class With>
+void eval_batch_front(const char* fn, int count, std::size_t directions, const Xs& xs, const Ys& ys,
+                      const Zs& zs, Out& out, std::size_t stride, With&& with) {
+    static_check_batch<Xs, Ys, Zs, Out>();
+    if constexpr (batch_ok_v<Xs, Ys, Zs, Out>) {
+        check_batch(fn, count, directions, xs, ys, zs, out, stride);
+        if (count == 0) return;
+        eval_batch_at(directions, buffer_data(xs), buffer_data(ys), buffer_data(zs),
+                      buffer_data(out), stride, with);
+    }
+}
+
+}  // namespace detail
+
+// ---- The generic API: a basis type B and a function count
+// ----------------------------------------
+
+/// Evaluates the `count` functions of basis B at direction (x, y, z) into out[0..count). The
+/// input is normalised; zero or non-finite vectors are taken as the pole (0, 0, 1). out is a T*
+/// (not checked: this is the one-call hot path, where even a null test measured 3-9% at 3 or 4
+/// functions) or an array or contiguous range of T (size checked), T float or double; x, y, z
+/// are converted to T. Throws std::invalid_argument if B has no size `count` or a range is too
+/// small.
+template <class B, class X, class Y, class Z, class Out>
+void basis_eval(int count, X x, Y y, Z z, Out&& out) {
+    detail::static_check_components<X, Y, Z>();
+    detail::static_check_output<Out>();
+    if constexpr (detail::output_ok_v<Out> && std::is_arithmetic_v<std::common_type_t<X, Y, Z>>) {
+        using T = detail::output_scalar_t<Out>;
+        check_count<B>(count, "basis_eval");
+        if constexpr (!std::is_pointer_v<std::remove_reference_t<Out>>)
+            detail::check_buffer_size("basis_eval", "output", out, static_cast<std::size_t>(count));
+        T* p = detail::buffer_data(out);
+        T tx = static_cast<T>(x), ty = static_cast<T>(y), tz = static_cast<T>(z);
+        normalize_or_pole(tx, ty, tz);
+        B::with_kernel(count,
+                       [&](auto kernel) { kernel(tx, ty, tz, [&](int k, T v) { p[k] = v; }); });
+    }
+}
+
+/// basis_eval for any 3-vector type (glm::vec3, Eigen::Vector3d, sphbasis::vec3, ...); the
+/// values are computed in out's scalar type.
+template <class B, class D, class Out>
+void basis_eval(int count, const D& d, Out&& out) {
+    detail::static_check_direction<D>();
+    if constexpr (detail::is_direction_v<D>)
+        basis_eval<B>(count, component<0>(d), component<1>(d), component<2>(d), out);
+}
+
+/// Evaluates basis B at `directions` directions given as x, y, z arrays, SIMD across
+/// directions. Output is function-major: function k of direction i goes to out[k * stride + i],
+/// stride >= directions. Directions are normalised as by basis_eval. xs, ys, zs and out are T*
+/// or contiguous ranges of T (sizes checked), T float or double. Throws std::invalid_argument for
+/// a bad count or stride, a null buffer or a range too small.
+template <class B, class Xs, class Ys, class Zs, class Out>
+void basis_eval_batch(int count, std::size_t directions, const Xs& xs, const Ys& ys, const Zs& zs,
+                      Out&& out, std::size_t stride) {
+    check_count<B>(count, "basis_eval_batch");
+    detail::eval_batch_front("basis_eval_batch", count, directions, xs, ys, zs, out, stride,
+                             [count](auto&& f) { B::with_kernel(count, f); });
+}
+
+/// The expansion f(d) = sum_k coeffs[k] B_k(d) at one direction (normalised as by basis_eval).
+/// coeffs is a const C* or a contiguous range of C (size checked), C any coefficient type with
+/// C + C and C * scalar (float, double, glm::vec3, an RGB type); the basis values are computed in
+/// the direction's scalar type and not stored. Throws std::invalid_argument for a bad count.
+template <class B, class Coeffs, class X, class Y, class Z>
+auto basis_eval_sum(int count, const Coeffs& coeffs, X x, Y y, Z z) {
+    return detail::eval_sum_front(
+        "basis_eval_sum", coeffs, x, y, z,
+        [count] {
+            check_count<B>(count, "basis_eval_sum");
+            return static_cast<std::size_t>(count);
+        },
+        [count](auto&& f) { B::with_kernel(count, f); });
+}
+
+/// basis_eval_sum for any 3-vector type; the values are computed in its scalar type.
+template <class B, class Coeffs, class D>
+auto basis_eval_sum(int count, const Coeffs& coeffs, const D& d) {
+    detail::static_check_direction<D>();
+    if constexpr (detail::is_direction_v<D>)
+        return basis_eval_sum<B>(count, coeffs, component<0>(d), component<1>(d), component<2>(d));
+}
+
+/// The expansion sum_k coeffs[k] B_k(d_i) at `directions` directions into out[i], SIMD across
+/// directions, without storing the basis values. Buffers as for basis_eval_batch.
+template <class B, class Cs, class Xs, class Ys, class Zs, class Out>
+void basis_eval_sum_batch(int count, const Cs& coeffs, std::size_t directions, const Xs& xs,
+                          const Ys& ys, const Zs& zs, Out&& out) {
+    check_count<B>(count, "basis_eval_sum_batch");
+    detail::eval_sum_batch_front<B>("basis_eval_sum_batch", count, coeffs, directions, xs, ys, zs,
+                                    out, [count](auto&& f) { B::with_kernel(count, f); });
+}
+
+/// A basis of a given size as a runtime object: n functions (a function count) and an
+/// evaluator for unit directions. Made from a basis type by evaluator<B>(count), or by hand for
+/// any function set.
 struct BasisFunctions {
-    int n = 0;
+    int n = 0;                                                  // the function count
     std::function<void(double, double, double, double*)> eval;  // unit (x, y, z) -> out[0..n)
 };
 
-/// The evaluator of basis B with n functions (throws std::invalid_argument for a bad n).
+/// The evaluator of basis B with `count` functions (throws std::invalid_argument for a bad
+/// count).
 template <class B>
-BasisFunctions evaluator(int n) {
-    check_count<B>(n, "evaluator");
-    return {n, [n](double x, double y, double z, double* out) { basis_eval<B>(n, x, y, z, out); }};
+BasisFunctions evaluator(int count) {
+    check_count<B>(count, "evaluator");
+    return {count, [count](double x, double y, double z, double* out) {
+                basis_eval<B>(count, x, y, z, out);
+            }};
 }
+
+// ---- The banded API: a basis type B and a band count (sh::, hsh::, makhotkin::, zernike::) ------
+
+namespace detail {
+
+/// The namespace functions sh::eval, hsh::eval, ... forward here with their name for messages.
+template <class B>
+struct Banded {
+    template <class X, class Y, class Z, class Out>
+    static SPHBASIS_FORCEINLINE void eval(const char* fn, int bands, X x, Y y, Z z, Out& out) {
+        bands_eval<B, true>(fn, bands, x, y, z, out);
+    }
+    template <class X, class Y, class Z, class Out>
+    static SPHBASIS_FORCEINLINE void eval_unit(const char* fn, int bands, X x, Y y, Z z, Out& out) {
+        bands_eval<B, false>(fn, bands, x, y, z, out);
+    }
+    template <class Cs, class X, class Y, class Z>
+    static auto eval_sum(const char* fn, int bands, const Cs& coeffs, X x, Y y, Z z) {
+        return eval_sum_front(
+            fn, coeffs, x, y, z,
+            [&] {
+                check_bands_of(bands, B::max_bands, fn);
+                return static_cast<std::size_t>(B::count(bands));
+            },
+            [bands](auto&& f) { B::with_bands_kernel(bands, f); });
+    }
+    template <class Xs, class Ys, class Zs, class Out>
+    static void eval_batch(const char* fn, int bands, std::size_t directions, const Xs& xs,
+                           const Ys& ys, const Zs& zs, Out& out, std::size_t stride) {
+        check_bands_of(bands, B::max_bands, fn);
+        eval_batch_front(fn, B::count(bands), directions, xs, ys, zs, out, stride,
+                         [bands](auto&& f) { B::with_bands_kernel(bands, f); });
+    }
+    template <class Cs, class Xs, class Ys, class Zs, class Out>
+    static void eval_sum_batch(const char* fn, int bands, const Cs& coeffs, std::size_t directions,
+                               const Xs& xs, const Ys& ys, const Zs& zs, Out& out) {
+        check_bands_of(bands, B::max_bands, fn);
+        eval_sum_batch_front<B>(fn, B::count(bands), coeffs, directions, xs, ys, zs, out,
+                                [bands](auto&& f) { B::with_bands_kernel(bands, f); });
+    }
+};
+
+}  // namespace detail
 
 }  // namespace sphbasis

@@ -1,7 +1,7 @@
-// sphbasis: the H-basis (Habel & Wimmer 2010) and the modified H-basis of the source thesis.
+// sphbasis: the H-basis (Habel & Wimmer 2010) and the modified H-basis of Ishmukhametov.
 //
 // References: R. Habel, M. Wimmer, "Efficient Irradiance Normal Mapping", I3D 2010, pp. 189-195;
-// the source thesis (Ishmukhametov, "Irradiance Normal Mapping") sections 1.8.6-1.8.7 and the
+// Ishmukhametov, "Irradiance Normal Mapping" (thesis), sections 1.8.6-1.8.7 and the
 // shader of its Listing 2.2 (constants 0.39894, 0.69099, 1.54509, 0.77255).
 //
 // H-basis: 4 or 6 polynomials of degree <= 2, orthonormal on the upper hemisphere:
@@ -17,16 +17,17 @@
 // or of y (zero by the phi symmetry), or is int (x^2 - y^2) f(z) = 0, or int (2z - 1) = 0.
 // The first 4 functions (constant + linear) are a basis of their own (the "middle LOD").
 //
-// Modified H-basis (thesis 1.8.7): H3 replaced by
+// Modified H-basis (Ishmukhametov, section 1.8.7): H3 replaced by
 //   H3mod = sqrt(3/(2 pi)) (1 - z),
 // which vanishes at the normal (0, 0, 1), so that the constant H1 alone is the light map. NOT
 // orthonormal: its Gram matrix on the hemisphere is the identity except
 //   <H1, H3mod> = sqrt(3)/(2 pi) * 2 pi * int_0^1 (1 - z) dz = sqrt(3)/2,
 //   <H3mod, H3mod> = 3/(2 pi) * 2 pi * int_0^1 (1 - z)^2 dz = 1.
-// The thesis' shader constants are these normalisations: 0.39894 = 1/sqrt(2 pi),
+// Ishmukhametov's shader constants are these normalisations: 0.39894 = 1/sqrt(2 pi),
 // 0.69099 = sqrt(3/(2 pi)), 1.54509 = sqrt(15/(2 pi)) = 1.5450968... (truncated, not rounded, in
 // the listing), 0.77255 = sqrt(15/(2 pi))/2.
-// (Thesis misprint: (1.53) typesets the root over y, sqrt(3/(2 pi) y); it is sqrt(3/(2 pi)) y.)
+// (Misprint in Ishmukhametov: (1.53) typesets the root over y, sqrt(3/(2 pi) y); it is sqrt(3/(2
+// pi)) y.)
 //
 // Domain: the upper hemisphere z >= 0 (orthonormality holds there). BELOW THE HORIZON (z < 0) the
 // functions return their polynomials, which extend smoothly to the whole sphere (not orthonormal

@@ -1,7 +1,7 @@
 // sphbasis: the Half-Life 2 basis ("radiosity normal mapping" basis of Valve's Source engine).
 //
 // References: G. McTaggart, "Half-Life 2 / Valve Source Shading", GDC 2004 (Valve technical
-// report); the source thesis (Ishmukhametov, "Irradiance Normal Mapping") section 1.8.2, eqs.
+// report); Ishmukhametov, "Irradiance Normal Mapping" (thesis), section 1.8.2, eqs.
 // (1.18)-(1.21).
 //
 // Definition: three linear functions (unclamped cosine lobes)
@@ -17,7 +17,7 @@
 // Orthonormality on the hemisphere: <n.a, n.b> = a^T M b with M = int_hemisphere n n^T dOmega =
 // (2 pi/3) I (int x z = int y z = int x y = 0 by the phi symmetry, int x^2 = int y^2 = int z^2 =
 // 2 pi/3), so the Gram matrix is 3/(2 pi) (2 pi/3) h_i . h_j = delta_ij. (On the whole sphere
-// M = (4 pi/3) I and the Gram matrix is 2 I: orthogonal but not normalised; the thesis'
+// M = (4 pi/3) I and the Gram matrix is 2 I: orthogonal but not normalised; Ishmukhametov's
 // "orthonormal over the upper hemisphere as well as full sphere" holds for orthogonality only.) The
 // three functions are a rotation of the linear SH band, renormalised to the hemisphere.
 //

@@ -1,10 +1,10 @@
 // sphbasis: hemispherical harmonics (HSH) of any degree, by the Jacobi recurrence
-// (core/jacobi.hpp) that also evaluates the Makhotkin (makhotkin.hpp) and Zernike (zernike.hpp)
-// bases.
+// (basis/detail/jacobi.hpp) that also evaluates the Makhotkin (makhotkin.hpp) and Zernike
+// (zernike.hpp) bases.
 //
 // References: P. Gautron, J. Krivanek, S. Pattanaik, K. Bouatouch, "A Novel Hemispherical Basis
-// for Accurate and Efficient Rendering", EGSR 2004; the source thesis (Ishmukhametov,
-// "Irradiance Normal Mapping") section 1.8.3, whose printed forms (1.22)-(1.32) are only a
+// for Accurate and Efficient Rendering", EGSR 2004; Ishmukhametov, "Irradiance
+// Normal Mapping" (thesis), section 1.8.3, whose printed forms (1.22)-(1.32) are only a
 // cross-check (see "Misprints" below).
 //
 // Definition. The SH construction with cos(t) replaced by u = 2 cos(t) - 1, which maps the upper
@@ -31,7 +31,7 @@
 // functions contain sqrt(z) and have no natural extension. The pole z = 1 and the horizon z = 0
 // are regular points (at the horizon only the m = 0 functions are non-zero, H_l0 = K_l0 (-1)^l).
 //
-// Misprints in the thesis' printed forms (derive, do not transcribe):
+// Misprints in Ishmukhametov's printed forms (derive, do not transcribe):
 //   (1.23) H_1-1 = -sqrt(6/pi) y sqrt(z/(1+z)): spurious minus (its own left side is positive);
 //   (1.26) H_2-2 = sqrt(30/pi)(cos^2 t - cos t) sin 2phi: the sign is reversed, it is
 //          sqrt(30/pi)(cos t - cos^2 t) sin 2phi = 2 sqrt(30/pi) x y z/(1+z) (the printed right
@@ -43,11 +43,12 @@
 // Evaluation (no factorials, no pow; Holmes & Featherstone 2002 style normalised recurrences):
 //   * bands <= 8, batches: sh.hpp's unrolled kernels at the mapped direction (X, Y, u), times
 //     sqrt(2);
-//   * bands <= 64: a normalised row recurrence (core/jacobi.hpp, detail::hemi) on Q = H / sin'^m,
+//   * bands <= 64: a normalised row recurrence (basis/detail/jacobi.hpp, detail::hemi) on Q = H /
+//   sin'^m,
 //     times Re/Im (X + iY)^m; any value type (float, double, batch); fully unrolled for float
 //     and double at <= 8 bands, where it is faster per call than sh.hpp's kernels (no scale
 //     multiplication per function; 9 functions, float: 10.5 against 13 ns).
-//   * more bands: the column recurrence in extended precision (detail::hemi::wide) with a binary
+//   * more bands: the column recurrence in extended precision (sphbasis::extended) with a binary
 //     exponent carried beside each sectoral start (nothing underflows), lane by lane for batches.
 // The recurrences use z itself, never a rounded u = 2z - 1, so that the accuracy near the
 // horizon (u -> -1, where degree-l functions have slope ~ l^2) is that of z. Cost: one division
@@ -58,10 +59,10 @@
 // within ~0.01 of the pole, where the input's own rounding dominates (slope ~l^2 S_l in z: one
 // ulp of z moves a degree-l function by up to ~l^2 1e-16 S_l; measured 1.3e-11 S_l at l = 2047,
 // t = 1e-3). Where long double is double, the column recurrence loses up to ~2e-11 S_l at the
-// horizon and pole at l = 2047 (see detail::hemi::wide).
+// horizon and pole at l = 2047 (see sphbasis::extended).
 //
-// The shared recurrence (detail::hemi) is core/jacobi.hpp; the kernels and the basis interface
-// the three bases share are basis/hemi_basis.hpp.
+// The shared recurrence (detail::hemi) is basis/detail/jacobi.hpp; the kernels and the basis
+// interface the three bases share are basis/detail/hemi_family.hpp.
 #pragma once
 
 #include <algorithm>
@@ -76,11 +77,11 @@
 
 #include "../config.hpp"
 #include "../core/constants.hpp"
-#include "../core/jacobi.hpp"
 #include "../core/scalar.hpp"
 #include "../core/simd.hpp"
 #include "basis.hpp"
-#include "hemi_basis.hpp"
+#include "detail/hemi_family.hpp"
+#include "detail/jacobi.hpp"
 #include "sh.hpp"
 
 namespace sphbasis::hsh {
@@ -94,6 +95,12 @@ inline constexpr int max_bands = 2048;
 constexpr int index(int l, int m) noexcept { return l * (l + 1) + m; }
 /// Number of functions in `bands` bands.
 constexpr int count(int bands) noexcept { return bands * bands; }
+
+/// Throws std::invalid_argument unless 0 <= bands <= max_bands (the message is built out of
+/// line, so the check costs a compare).
+SPHBASIS_FORCEINLINE void check_bands(int bands, const char* fn) {
+    sphbasis::detail::check_bands_of(bands, max_bands, fn);
+}
 
 namespace detail {
 
@@ -146,8 +153,8 @@ using ColumnKernel = hemi::ColumnKernel<HshFamily>;
 
 /// Calls f(kernel) with the fastest kernel for 1 <= bands <= max_bands.
 template <class F>
-inline decltype(auto) with_kernel(int bands, F&& f) {
-    return hemi::with_kernel<FixedKernel, HshFamily>(bands, std::forward<F>(f));
+inline decltype(auto) with_bands_kernel(int bands, F&& f) {
+    return hemi::with_bands_kernel<FixedKernel, HshFamily>(bands, std::forward<F>(f));
 }
 
 }  // namespace detail
@@ -163,3 +170,79 @@ struct HSH : detail::hemi::HemiBasis<detail::hemi::SquareCount, hsh::max_bands,
 };
 
 }  // namespace sphbasis
+
+namespace sphbasis::hsh {
+
+// The banded entry points, as sh:: has them (basis/sh.hpp; sizes in bands, buffers pointers or
+// contiguous ranges, directions three components or any 3-vector type; basis/basis.hpp).
+
+/// Evaluates the count(bands) functions at direction (x, y, z) into out (in out's scalar type,
+/// float or double). The input is normalised first (a zero or non-finite vector is the pole).
+/// Throws std::invalid_argument for bands outside [0, max_bands] or a null or too small out.
+template <class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void eval(int bands, X x, Y y, Z z, Out&& out) {
+    sphbasis::detail::Banded<HSH>::eval("hsh::eval", bands, x, y, z, out);
+}
+/// eval() for any 3-vector type.
+template <class D, class Out>
+SPHBASIS_FORCEINLINE void eval(int bands, const D& dir, Out&& out) {
+    sphbasis::detail::bands_eval_dir<HSH, true>("hsh::eval", bands, dir, out);
+}
+/// eval() for a direction already of unit length (no normalisation).
+template <class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void eval_unit(int bands, X x, Y y, Z z, Out&& out) {
+    sphbasis::detail::Banded<HSH>::eval_unit("hsh::eval_unit", bands, x, y, z, out);
+}
+template <class D, class Out>
+SPHBASIS_FORCEINLINE void eval_unit(int bands, const D& dir, Out&& out) {
+    sphbasis::detail::bands_eval_dir<HSH, false>("hsh::eval_unit", bands, dir, out);
+}
+/// Compile-time band count N (1..64): unrolled for N <= 8. noexcept for a pointer out.
+template <int N, class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void eval(X x, Y y, Z z, Out&& out) noexcept(
+    std::is_pointer_v<std::remove_reference_t<Out>>) {
+    sphbasis::detail::fixed_bands_eval<HSH, N, true>("hsh::eval", x, y, z, out);
+}
+template <int N, class D, class Out>
+SPHBASIS_FORCEINLINE void eval(const D& dir, Out&& out) noexcept(
+    std::is_pointer_v<std::remove_reference_t<Out>>) {
+    sphbasis::detail::fixed_bands_eval_dir<HSH, N, true>("hsh::eval", dir, out);
+}
+template <int N, class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void eval_unit(X x, Y y, Z z, Out&& out) noexcept(
+    std::is_pointer_v<std::remove_reference_t<Out>>) {
+    sphbasis::detail::fixed_bands_eval<HSH, N, false>("hsh::eval_unit", x, y, z, out);
+}
+template <int N, class D, class Out>
+SPHBASIS_FORCEINLINE void eval_unit(const D& dir, Out&& out) noexcept(
+    std::is_pointer_v<std::remove_reference_t<Out>>) {
+    sphbasis::detail::fixed_bands_eval_dir<HSH, N, false>("hsh::eval_unit", dir, out);
+}
+/// `bands` bands at `directions` directions (x, y, z arrays), SIMD across directions, into
+/// out[k * stride + i] (stride >= directions).
+template <class Xs, class Ys, class Zs, class Out>
+void eval_batch(int bands, std::size_t directions, const Xs& xs, const Ys& ys, const Zs& zs,
+                Out&& out, std::size_t stride) {
+    sphbasis::detail::Banded<HSH>::eval_batch("hsh::eval_batch", bands, directions, xs, ys, zs, out,
+                                              stride);
+}
+/// The expansion sum_k coeffs[k] f_k(d) at one direction, in the direction's scalar type.
+template <class Cs, class X, class Y, class Z>
+auto eval_sum(int bands, const Cs& coeffs, X x, Y y, Z z) {
+    return sphbasis::detail::Banded<HSH>::eval_sum("hsh::eval_sum", bands, coeffs, x, y, z);
+}
+template <class Cs, class D>
+auto eval_sum(int bands, const Cs& coeffs, const D& dir) {
+    sphbasis::detail::static_check_direction<D>();
+    if constexpr (sphbasis::detail::is_direction_v<D>)
+        return eval_sum(bands, coeffs, component<0>(dir), component<1>(dir), component<2>(dir));
+}
+/// The expansion at `directions` directions into out[i], SIMD across directions.
+template <class Cs, class Xs, class Ys, class Zs, class Out>
+void eval_sum_batch(int bands, const Cs& coeffs, std::size_t directions, const Xs& xs, const Ys& ys,
+                    const Zs& zs, Out&& out) {
+    sphbasis::detail::Banded<HSH>::eval_sum_batch("hsh::eval_sum_batch", bands, coeffs, directions,
+                                                  xs, ys, zs, out);
+}
+
+}  // namespace sphbasis::hsh

@@ -1,8 +1,8 @@
 // sphbasis: the Makhotkin hemispherical basis of any degree.
 //
 // References: O. A. Makhotkin, "Analysis of radiative transfer between surfaces by hemispherical
-// harmonics", J. Quant. Spectrosc. Radiat. Transfer 56(6), 1996; the source thesis
-// (Ishmukhametov, "Irradiance Normal Mapping") section 1.8.4, whose printed forms (1.33)-(1.45)
+// harmonics", J. Quant. Spectrosc. Radiat. Transfer 56(6), 1996; Ishmukhametov,
+// "Irradiance Normal Mapping" (thesis), section 1.8.4, whose printed forms (1.33)-(1.45)
 // are only a cross-check (see "Misprints" below).
 //
 // Definition (u = 2 cos(t) - 1 = 2z - 1, shifted Jacobi polynomials P_n^(a,b)):
@@ -29,15 +29,16 @@
 // sqrt(z) factor has no real extension). At the horizon z = 0 every function is 0; the pole z = 1
 // is a regular point.
 //
-// Misprints in the thesis' printed forms (derive, do not transcribe):
+// Misprints in Ishmukhametov's printed forms (derive, do not transcribe):
 //   (1.33) M_00 = z/sqrt(pi): the right side drops the root, it is sqrt(z)/sqrt(pi);
 //   (1.34)-(1.45) label cos(m phi) functions with negative m and sin(|m| phi) ones with positive
-//          m (M_-1^1 = ... cos(phi)): the opposite of the thesis' own SH/HSH convention; here
+//          m (M_-1^1 = ... cos(phi)): the opposite of Ishmukhametov's own SH/HSH convention; here
 //          m > 0 is cos;
 //   (1.42) M_20 = sqrt(3/pi) sqrt(z) (1 + 16(z-1) + 10(z-1)^2): 16 must be 8 (its left side
 //          (1.41) 1 + 4(2cos t - 2) + 5/2 (2cos t - 2)^2 is right; = 10z^2 - 12z + 3).
 //
-// Evaluation: the shared normalised Jacobi recurrence of core/jacobi.hpp (detail::hemi, family
+// Evaluation: the shared normalised Jacobi recurrence of basis/detail/jacobi.hpp (detail::hemi,
+// family
 // (|m|, |m|+1) in w = u, advanced in z itself): a row recurrence for bands <= 64 (any value type),
 // the exponent-carrying column recurrence in extended precision above. No factorials, no pow. Cost:
 // two square roots and one division per direction, then ~n^2 multiply-adds (plus ~n^2 square
@@ -53,11 +54,11 @@
 #include <utility>
 
 #include "../config.hpp"
-#include "../core/jacobi.hpp"
 #include "../core/scalar.hpp"
 #include "../core/simd.hpp"
 #include "basis.hpp"
-#include "hemi_basis.hpp"
+#include "detail/hemi_family.hpp"
+#include "detail/jacobi.hpp"
 
 namespace sphbasis::makhotkin {
 
@@ -68,6 +69,12 @@ inline constexpr int max_bands = 2048;
 constexpr int index(int l, int m) noexcept { return l * (l + 1) + m; }
 /// Number of functions in `bands` bands.
 constexpr int count(int bands) noexcept { return bands * bands; }
+
+/// Throws std::invalid_argument unless 0 <= bands <= max_bands (the message is built out of
+/// line, so the check costs a compare).
+SPHBASIS_FORCEINLINE void check_bands(int bands, const char* fn) {
+    sphbasis::detail::check_bands_of(bands, max_bands, fn);
+}
 
 namespace detail {
 
@@ -104,8 +111,8 @@ using ColumnKernel = hemi::ColumnKernel<MakhotkinFamily>;
 
 /// Calls f(kernel) with the fastest kernel for 1 <= bands <= max_bands.
 template <class F>
-inline decltype(auto) with_kernel(int bands, F&& f) {
-    return hemi::with_kernel<FixedKernel, MakhotkinFamily>(bands, std::forward<F>(f));
+inline decltype(auto) with_bands_kernel(int bands, F&& f) {
+    return hemi::with_bands_kernel<FixedKernel, MakhotkinFamily>(bands, std::forward<F>(f));
 }
 
 }  // namespace detail
@@ -122,3 +129,80 @@ struct Makhotkin
 };
 
 }  // namespace sphbasis
+
+namespace sphbasis::makhotkin {
+
+// The banded entry points, as sh:: has them (basis/sh.hpp; sizes in bands, buffers pointers or
+// contiguous ranges, directions three components or any 3-vector type; basis/basis.hpp).
+
+/// Evaluates the count(bands) functions at direction (x, y, z) into out (in out's scalar type,
+/// float or double). The input is normalised first (a zero or non-finite vector is the pole).
+/// Throws std::invalid_argument for bands outside [0, max_bands] or a null or too small out.
+template <class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void eval(int bands, X x, Y y, Z z, Out&& out) {
+    sphbasis::detail::Banded<Makhotkin>::eval("makhotkin::eval", bands, x, y, z, out);
+}
+/// eval() for any 3-vector type.
+template <class D, class Out>
+SPHBASIS_FORCEINLINE void eval(int bands, const D& dir, Out&& out) {
+    sphbasis::detail::bands_eval_dir<Makhotkin, true>("makhotkin::eval", bands, dir, out);
+}
+/// eval() for a direction already of unit length (no normalisation).
+template <class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void eval_unit(int bands, X x, Y y, Z z, Out&& out) {
+    sphbasis::detail::Banded<Makhotkin>::eval_unit("makhotkin::eval_unit", bands, x, y, z, out);
+}
+template <class D, class Out>
+SPHBASIS_FORCEINLINE void eval_unit(int bands, const D& dir, Out&& out) {
+    sphbasis::detail::bands_eval_dir<Makhotkin, false>("makhotkin::eval_unit", bands, dir, out);
+}
+/// Compile-time band count N (1..64): unrolled for N <= 8. noexcept for a pointer out.
+template <int N, class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void eval(X x, Y y, Z z, Out&& out) noexcept(
+    std::is_pointer_v<std::remove_reference_t<Out>>) {
+    sphbasis::detail::fixed_bands_eval<Makhotkin, N, true>("makhotkin::eval", x, y, z, out);
+}
+template <int N, class D, class Out>
+SPHBASIS_FORCEINLINE void eval(const D& dir, Out&& out) noexcept(
+    std::is_pointer_v<std::remove_reference_t<Out>>) {
+    sphbasis::detail::fixed_bands_eval_dir<Makhotkin, N, true>("makhotkin::eval", dir, out);
+}
+template <int N, class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void eval_unit(X x, Y y, Z z, Out&& out) noexcept(
+    std::is_pointer_v<std::remove_reference_t<Out>>) {
+    sphbasis::detail::fixed_bands_eval<Makhotkin, N, false>("makhotkin::eval_unit", x, y, z, out);
+}
+template <int N, class D, class Out>
+SPHBASIS_FORCEINLINE void eval_unit(const D& dir, Out&& out) noexcept(
+    std::is_pointer_v<std::remove_reference_t<Out>>) {
+    sphbasis::detail::fixed_bands_eval_dir<Makhotkin, N, false>("makhotkin::eval_unit", dir, out);
+}
+/// `bands` bands at `directions` directions (x, y, z arrays), SIMD across directions, into
+/// out[k * stride + i] (stride >= directions).
+template <class Xs, class Ys, class Zs, class Out>
+void eval_batch(int bands, std::size_t directions, const Xs& xs, const Ys& ys, const Zs& zs,
+                Out&& out, std::size_t stride) {
+    sphbasis::detail::Banded<Makhotkin>::eval_batch("makhotkin::eval_batch", bands, directions, xs,
+                                                    ys, zs, out, stride);
+}
+/// The expansion sum_k coeffs[k] f_k(d) at one direction, in the direction's scalar type.
+template <class Cs, class X, class Y, class Z>
+auto eval_sum(int bands, const Cs& coeffs, X x, Y y, Z z) {
+    return sphbasis::detail::Banded<Makhotkin>::eval_sum("makhotkin::eval_sum", bands, coeffs, x, y,
+                                                         z);
+}
+template <class Cs, class D>
+auto eval_sum(int bands, const Cs& coeffs, const D& dir) {
+    sphbasis::detail::static_check_direction<D>();
+    if constexpr (sphbasis::detail::is_direction_v<D>)
+        return eval_sum(bands, coeffs, component<0>(dir), component<1>(dir), component<2>(dir));
+}
+/// The expansion at `directions` directions into out[i], SIMD across directions.
+template <class Cs, class Xs, class Ys, class Zs, class Out>
+void eval_sum_batch(int bands, const Cs& coeffs, std::size_t directions, const Xs& xs, const Ys& ys,
+                    const Zs& zs, Out&& out) {
+    sphbasis::detail::Banded<Makhotkin>::eval_sum_batch("makhotkin::eval_sum_batch", bands, coeffs,
+                                                        directions, xs, ys, zs, out);
+}
+
+}  // namespace sphbasis::makhotkin

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "../core/error.hpp"
 #include "basis.hpp"
 #include "hbasis.hpp"
 #include "hl2.hpp"
@@ -24,25 +25,26 @@ struct BasisInfo {
     const char* name;
     Domain domain;
     bool orthonormal;
-    bool (*valid_count)(int);
+    bool (*valid_count)(int count);
     const char* (*count_rule)();
-    void (*eval_d)(int n, double x, double y, double z, double* out);
-    void (*eval_f)(int n, float x, float y, float z, float* out);
-    void (*eval_batch_f)(int n, std::size_t count, const float* xs, const float* ys,
+    /// basis_eval<B>(count, ...) and basis_eval_batch<B>(count, directions, ...).
+    void (*eval_d)(int count, double x, double y, double z, double* out);
+    void (*eval_f)(int count, float x, float y, float z, float* out);
+    void (*eval_batch_f)(int count, std::size_t directions, const float* xs, const float* ys,
                          const float* zs, float* out, std::size_t stride);
-    void (*eval_sum_batch_f)(int n, const float* coeffs, std::size_t count, const float* xs,
-                             const float* ys, const float* zs, float* out);
     /// Index of the function labelled (l, m) and the smallest size containing it; throws
     /// std::invalid_argument if the basis has no such label.
     std::pair<int, int> (*lm_index)(int l, int m);
 
-    BasisFunctions functions(int n) const {
-        if (!valid_count(n))
-            throw std::invalid_argument(std::string("sphbasis::BasisInfo::functions(): expected ") +
-                                        count_rule() + " functions for basis '" + name + "', got " +
-                                        std::to_string(n));
+    /// The evaluator of `count` functions (throws std::invalid_argument for a bad count).
+    BasisFunctions functions(int count) const {
+        if (!valid_count(count))
+            detail::throw_invalid("BasisInfo::functions", std::string(count_rule()) +
+                                                              " functions for basis '" + name +
+                                                              "', got " + std::to_string(count));
         auto f = eval_d;
-        return {n, [f, n](double x, double y, double z, double* out) { f(n, x, y, z, out); }};
+        return {count,
+                [f, count](double x, double y, double z, double* out) { f(count, x, y, z, out); }};
     }
 };
 
@@ -50,30 +52,34 @@ namespace detail {
 /// (l, m) labels of bases with the SH band structure: index l(l+1)+m, size (l+1)^2.
 inline std::pair<int, int> banded_lm(int l, int m) {
     if (l < 0 || m < -l || m > l)
-        throw std::invalid_argument("sphbasis::lm_index(): expected l >= 0 and |m| <= l, got l = " +
-                                    std::to_string(l) + ", m = " + std::to_string(m));
+        throw_invalid("lm_index", "l >= 0 and |m| <= l, got l = " + std::to_string(l) +
+                                      ", m = " + std::to_string(m));
     return {l * (l + 1) + m, (l + 1) * (l + 1)};
 }
 inline std::pair<int, int> no_lm(int, int) {
-    throw std::invalid_argument(
-        "sphbasis::lm_index(): this basis has a fixed size; select its functions with --coeffs");
+    throw_invalid("lm_index",
+                  "a basis with (l, m) labels; this basis has a fixed size (select "
+                  "its functions with --coeffs)");
 }
 
 template <class B>
 BasisInfo make_info(std::pair<int, int> (*lm)(int, int)) {
-    return BasisInfo{
-        B::name,
-        B::domain,
-        B::orthonormal,
-        [](int n) { return B::valid_count(n); },
-        []() { return B::count_rule(); },
-        [](int n, double x, double y, double z, double* out) { basis_eval<B>(n, x, y, z, out); },
-        [](int n, float x, float y, float z, float* out) { basis_eval<B>(n, x, y, z, out); },
-        [](int n, std::size_t c, const float* xs, const float* ys, const float* zs, float* out,
-           std::size_t stride) { basis_eval_batch<B>(n, c, xs, ys, zs, out, stride); },
-        [](int n, const float* co, std::size_t c, const float* xs, const float* ys, const float* zs,
-           float* out) { basis_eval_sum_batch<B>(n, co, c, xs, ys, zs, out); },
-        lm};
+    return BasisInfo{B::name,
+                     B::domain,
+                     B::orthonormal,
+                     [](int count) { return B::valid_count(count); },
+                     []() { return B::count_rule(); },
+                     [](int count, double x, double y, double z, double* out) {
+                         basis_eval<B>(count, x, y, z, out);
+                     },
+                     [](int count, float x, float y, float z, float* out) {
+                         basis_eval<B>(count, x, y, z, out);
+                     },
+                     [](int count, std::size_t directions, const float* xs, const float* ys,
+                        const float* zs, float* out, std::size_t stride) {
+                         basis_eval_batch<B>(count, directions, xs, ys, zs, out, stride);
+                     },
+                     lm};
 }
 }  // namespace detail
 
@@ -86,10 +92,9 @@ inline const std::vector<BasisInfo>& all_bases() {
         // Zernike: band n holds m = -n, -n+2, ..., n; n + 1 bands = (n+1)(n+2)/2 functions.
         detail::make_info<Zernike>([](int n, int m) -> std::pair<int, int> {
             if (n < 0 || m < -n || m > n || (n - m) % 2 != 0)
-                throw std::invalid_argument(
-                    "sphbasis::lm_index(): expected n >= 0, |m| <= n and n - m even for "
-                    "zernike, got n = " +
-                    std::to_string(n) + ", m = " + std::to_string(m));
+                detail::throw_invalid("lm_index",
+                                      "n >= 0, |m| <= n and n - m even for zernike, got n = " +
+                                          std::to_string(n) + ", m = " + std::to_string(m));
             return {zernike::index(n, m), (n + 1) * (n + 2) / 2};
         }),
         detail::make_info<HBasis>(detail::no_lm),
@@ -106,8 +111,8 @@ inline const BasisInfo& find_basis(std::string_view name) {
         if (name == b.name) return b;
     std::string known;
     for (const auto& b : all_bases()) known += std::string(known.empty() ? "" : ", ") + b.name;
-    throw std::invalid_argument("sphbasis::find_basis(): unknown basis '" + std::string(name) +
-                                "' (expected one of: " + known + ")");
+    detail::throw_invalid("find_basis",
+                          "one of: " + known + "; got unknown basis '" + std::string(name) + "'");
 }
 
 }  // namespace sphbasis

@@ -1,8 +1,8 @@
 // sphbasis: real spherical harmonics (SH) of any degree.
 //
 // Convention (the graphics convention of Sloan's and Ramamoorthi's papers, DirectX SH samples
-// before DirectXMath, and the source documents of this library): real, orthonormal on the
-// sphere, NO Condon-Shortley phase, ACN index k = l(l+1) + m:
+// before DirectXMath, and Ishmukhametov, "Irradiance Normal Mapping" (thesis)): real, orthonormal
+// on the sphere, NO Condon-Shortley phase, ACN index k = l(l+1) + m:
 //   y_00 = 1/(2 sqrt(pi)),   y_1-1 = +sqrt(3/(4pi)) y,   y_10 = +sqrt(3/(4pi)) z,
 //   y_11 = +sqrt(3/(4pi)) x,  y_2-2 = +sqrt(15/(4pi)) xy, ...
 //   y_lm = sqrt(2) Pbar_l^m(cos t) cos(m phi)   (m > 0)
@@ -62,13 +62,6 @@ inline int degree_of(int k) noexcept {
     return l;
 }
 
-namespace detail {
-[[noreturn]] SPHBASIS_NOINLINE inline void throw_bad_bands(int bands, const char* fn) {
-    throw std::invalid_argument(std::string("sphbasis::") + fn + "(): expected 0 <= bands <= " +
-                                std::to_string(max_bands) + ", got " + std::to_string(bands));
-}
-}  // namespace detail
-
 /// The band count of n = bands^2 functions, or -1 if n is not a positive square. Sizes up to
 /// 8 bands (checked on every one-call evaluation of the bases with square counts) without a
 /// square root.
@@ -83,7 +76,7 @@ inline int bands_of_count(int n) noexcept {
 /// Throws std::invalid_argument unless 0 <= bands <= max_bands (the message is built out of
 /// line, so the check costs a compare in the one-call paths).
 SPHBASIS_FORCEINLINE void check_bands(int bands, const char* fn) {
-    if (bands < 0 || bands > max_bands) detail::throw_bad_bands(bands, fn);
+    sphbasis::detail::check_bands_of(bands, max_bands, fn);
 }
 
 namespace detail {
@@ -456,7 +449,7 @@ struct QuadraticSum {
 
 /// Calls f(kernel) with the fastest kernel for `bands` >= 1.
 template <class F>
-inline decltype(auto) with_kernel(int bands, F&& f) {
+SPHBASIS_FORCEINLINE decltype(auto) with_bands_kernel(int bands, F&& f) {
 #define SPHBASIS_SH_FIXED_CASE(N) \
     case N:                       \
         return f(FixedKernel<N>{});
@@ -480,147 +473,51 @@ inline decltype(auto) with_kernel(int bands, F&& f) {
 
 }  // namespace detail
 
-/// Evaluates the n*n functions of `bands` bands at a unit direction, ACN order, into out.
-/// Precondition: (x, y, z) has unit length (checked by SPHBASIS_ASSERT in debug builds); other
-/// finite input gives the polynomial extension (bands <= 64), never NaN. Use eval() to have
-/// the input normalised. Cost: ~n^2 multiply-adds; unrolled code for n <= 8.
-/// Throws std::invalid_argument for bands outside [0, max_bands].
-template <class T>
-void eval_unit(int bands, T x, T y, T z, T* out) {
-    static_assert(std::is_floating_point_v<T>, "sphbasis::sh::eval_unit: T is float or double.");
-    check_bands(bands, "sh::eval_unit");
-    if (bands == 0) return;
-    detail::with_kernel(bands,
-                        [&](auto kernel) { kernel(x, y, z, [&](int k, T v) { out[k] = v; }); });
-}
-
-/// Evaluates the n*n functions of `bands` bands at direction (x, y, z), ACN order, into out.
-/// The input is normalised first; a zero vector or one with a NaN/Inf component is taken as the
-/// pole (0, 0, 1) (see normalize_or_pole). Throws std::invalid_argument for bands outside
-/// [0, max_bands].
-template <class T>
-void eval(int bands, T x, T y, T z, T* out) {
-    normalize_or_pole(x, y, z);
-    eval_unit(bands, x, y, z, out);
-}
-
-/// eval() for any 3-vector type (glm::vec3, glm::dvec3, Eigen::Vector3d, sphbasis::vec3).
-template <class D, class T>
-void eval(int bands, const D& dir, T* out) {
-    eval(bands, T(component<0>(dir)), T(component<1>(dir)), T(component<2>(dir)), out);
-}
-
-/// Compile-time band count for a direction already of unit length: eval<N> without the
-/// normalisation (the cheapest call, as a shader would do it). Precondition and outcome for
-/// other input as for eval_unit(); SPHBASIS_ASSERT checks |d| in debug builds. noexcept.
-template <int N, class T>
-SPHBASIS_FORCEINLINE void eval_unit(T x, T y, T z, T* out) noexcept {
-    static_assert(N >= 1 && N <= detail::max_row_bands,
-                  "sphbasis::sh::eval_unit<N>: compile-time band counts are 1..64.");
-    SPHBASIS_ASSERT(std::fabs(x * x + y * y + z * z - T(1)) <= T(1e-3));
-    auto st = [&](int k, T v) { out[k] = v; };
-    if constexpr (N <= detail::max_fixed_bands)
-        detail::eval_fixed<N>(x, y, z, st);
-    else
-        detail::eval_rows(N, x, y, z, st);
-}
-
-/// Compile-time band count: unrolled code for N <= 8 (no allocation, no dispatch), the row
-/// recurrence above. Input normalised as by eval(). noexcept.
-template <int N, class T>
-SPHBASIS_FORCEINLINE void eval(T x, T y, T z, T* out) noexcept {
-    static_assert(N >= 1 && N <= detail::max_row_bands,
-                  "sphbasis::sh::eval<N>: compile-time band counts are 1..64.");
-    normalize_or_pole(x, y, z);
-    eval_unit<N>(x, y, z, out);
-}
-
-/// One function y_lm at direction (x, y, z) (normalised as by eval()). Cost O(l) with square
-/// roots: for many functions at one direction, eval() is far cheaper per value.
-/// Throws std::invalid_argument unless 0 <= l < max_bands and |m| <= l.
-template <class T>
-T eval_lm(int l, int m, T x, T y, T z) {
-    if (l < 0 || l >= max_bands || m < -l || m > l)
-        throw std::invalid_argument(
-            "sphbasis::sh::eval_lm(): expected 0 <= l < " + std::to_string(max_bands) +
-            " and |m| <= l, got l = " + std::to_string(l) + ", m = " + std::to_string(m));
-    normalize_or_pole(x, y, z);
-    const int am = m < 0 ? -m : m;
-    detail::SectoralWalk w{double(x), double(y)};
-    while (w.order() < am) w.advance();
-    double value = 0;
-    detail::column(l + 1, am, w.start(), double(z), [&](int ll, double v) {
-        if (ll == l) value = v;
-    });
-    const double cm = w.cos_m(), sm = w.sin_m();
-    return static_cast<T>(m > 0 ? value * cm : m < 0 ? value * sm : value);
-}
-
-/// Evaluates `bands` bands at n directions given as separate x, y, z arrays (normalised as by
-/// eval()), SIMD across directions. Output is function-major (SoA): function k of direction i
-/// goes to out[k * stride + i], stride >= n. Throws std::invalid_argument for bad bands or
-/// stride < n.
-template <class T>
-void eval_batch(int bands, std::size_t n, const T* xs, const T* ys, const T* zs, T* out,
-                std::size_t stride);
-
-/// The expansion f(d) = sum_k coeffs[k] y_k(d) over `bands` bands at one direction (normalised
-/// as by eval()). C is any coefficient type with C + C and C * T (float, double, an RGB type);
-/// the y_k are not stored. Throws std::invalid_argument for bad bands.
-template <class C, class T>
-C eval_sum(int bands, const C* coeffs, T x, T y, T z);
-
-/// The expansion sum_k coeffs[k] y_k(d_i) at n directions (separate x, y, z arrays, normalised
-/// as by eval()) into out[i], SIMD across directions, without storing the y_k.
-template <class T>
-void eval_sum_batch(int bands, const T* coeffs, std::size_t n, const T* xs, const T* ys,
-                    const T* zs, T* out);
-
-/// Converts a coefficient vector of `bands` bands between this library's convention and the
-/// Condon-Shortley one (DirectXMath, google/spherical-harmonics): multiplies the coefficients
-/// with odd |m| by -1. The map is its own inverse. In place; C is any type with unary minus.
-template <class C>
-void to_condon_shortley(int bands, C* coeffs) {
-    check_bands(bands, "sh::to_condon_shortley");
-    for (int l = 1; l < bands; ++l)
-        for (int m = 1; m <= l; m += 2) {
-            coeffs[index(l, m)] = -coeffs[index(l, m)];
-            coeffs[index(l, -m)] = -coeffs[index(l, -m)];
-        }
-}
-/// The inverse of to_condon_shortley (the same sign flip).
-template <class C>
-void from_condon_shortley(int bands, C* coeffs) {
-    to_condon_shortley(bands, coeffs);
-}
-
 }  // namespace sphbasis::sh
 
 namespace sphbasis {
 
-/// Real spherical harmonics as a basis (basis/basis.hpp): n = bands^2 functions, orthonormal
-/// on the sphere.
+/// Real spherical harmonics as a basis (basis/basis.hpp): count = bands^2 functions,
+/// orthonormal on the sphere.
 struct SH {
     static constexpr const char* name = "sh";
     static constexpr Domain domain = Domain::sphere;
     static constexpr bool orthonormal = true;
-    static int bands_of(int n) noexcept { return sh::bands_of_count(n); }
-    static bool valid_count(int n) noexcept {
-        const int b = bands_of(n);
+    static constexpr int max_bands = sh::max_bands;
+    static constexpr int count(int bands) noexcept { return sh::count(bands); }
+    static int bands_of(int count) noexcept { return sh::bands_of_count(count); }
+    static bool valid_count(int count) noexcept {
+        const int b = bands_of(count);
         return b >= 1 && b <= sh::max_bands;
     }
-    static const char* count_rule() noexcept {
-        return "a square number (bands^2, bands <= 8192) of";
+    static const char* count_rule() {
+        static const std::string rule =
+            "a square number (bands^2, bands <= " + std::to_string(max_bands) + ") of";
+        return rule.c_str();
     }
     static int max_count() noexcept { return sh::max_bands * sh::max_bands; }
     template <class F>
-    static decltype(auto) with_kernel(int n, F&& f) {
-        return sh::detail::with_kernel(bands_of(n), std::forward<F>(f));
+    static decltype(auto) with_kernel(int count, F&& f) {
+        return sh::detail::with_bands_kernel(bands_of(count), std::forward<F>(f));
+    }
+    template <class F>
+    static SPHBASIS_FORCEINLINE decltype(auto) with_bands_kernel(int bands, F&& f) {
+        return sh::detail::with_bands_kernel(bands, std::forward<F>(f));
+    }
+    /// The kernel of exactly N bands: unrolled for N <= 8, the row recurrence above.
+    template <int N>
+    static constexpr auto fixed_kernel() noexcept {
+        static_assert(N >= 1 && N <= sh::detail::max_row_bands,
+                      "sphbasis::sh::eval<N>: compile-time band counts are 1..64.");
+        if constexpr (N <= sh::detail::max_fixed_bands)
+            return sh::detail::FixedKernel<N>{};
+        else
+            return sh::detail::RowKernel{N};
     }
     /// basis_eval_sum_batch hook: 3 bands as one quadratic (sh::detail::QuadraticSum).
     template <class T, class F>
-    static bool with_sum_kernel(int n, const T* coeffs, F&& f) {
-        if (n != 9) return false;
+    static bool with_sum_kernel(int count, const T* coeffs, F&& f) {
+        if (count != 9) return false;
         f(sh::detail::QuadraticSum<T>(coeffs));
         return true;
     }
@@ -628,27 +525,170 @@ struct SH {
 
 namespace sh {
 
-template <class T>
-void eval_batch(int bands, std::size_t n, const T* xs, const T* ys, const T* zs, T* out,
-                std::size_t stride) {
-    check_bands(bands, "sh::eval_batch");
-    if (bands > 0) basis_eval_batch<SH>(bands * bands, n, xs, ys, zs, out, stride);
+// Buffers (out, coeffs, xs, ys, zs) are pointers or contiguous ranges (std::vector, std::array,
+// std::span; sizes checked), directions three components or any 3-vector type (basis/basis.hpp).
+
+/// Evaluates the count(bands) = bands^2 functions at a unit direction, ACN order, into out (in
+/// out's scalar type, float or double). Precondition: (x, y, z) has unit length (checked by
+/// SPHBASIS_ASSERT in debug builds); other finite input gives the polynomial extension
+/// (bands <= 64), never NaN. Use eval() to have the input normalised. Cost: ~bands^2
+/// multiply-adds; unrolled code for bands <= 8. Throws std::invalid_argument for bands outside
+/// [0, max_bands] or a null or too small out.
+template <class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void eval_unit(int bands, X x, Y y, Z z, Out&& out) {
+    sphbasis::detail::Banded<SH>::eval_unit("sh::eval_unit", bands, x, y, z, out);
+}
+/// eval_unit() for any 3-vector type.
+template <class D, class Out>
+SPHBASIS_FORCEINLINE void eval_unit(int bands, const D& dir, Out&& out) {
+    sphbasis::detail::bands_eval_dir<SH, false>("sh::eval_unit", bands, dir, out);
 }
 
-template <class C, class T>
-C eval_sum(int bands, const C* coeffs, T x, T y, T z) {
-    check_bands(bands, "sh::eval_sum");
-    return bands > 0 ? basis_eval_sum<SH>(bands * bands, coeffs, x, y, z) : C{};
+/// Evaluates the bands^2 functions at direction (x, y, z), ACN order, into out (in out's
+/// scalar type). The input is normalised first; a zero vector or one with a NaN/Inf component
+/// is taken as the pole (0, 0, 1) (see normalize_or_pole). Throws std::invalid_argument for
+/// bands outside [0, max_bands] or a null or too small out.
+template <class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void eval(int bands, X x, Y y, Z z, Out&& out) {
+    sphbasis::detail::Banded<SH>::eval("sh::eval", bands, x, y, z, out);
+}
+/// eval() for any 3-vector type (glm::vec3, glm::dvec3, Eigen::Vector3d, sphbasis::vec3).
+template <class D, class Out>
+SPHBASIS_FORCEINLINE void eval(int bands, const D& dir, Out&& out) {
+    sphbasis::detail::bands_eval_dir<SH, true>("sh::eval", bands, dir, out);
 }
 
-template <class T>
-void eval_sum_batch(int bands, const T* coeffs, std::size_t n, const T* xs, const T* ys,
-                    const T* zs, T* out) {
-    check_bands(bands, "sh::eval_sum_batch");
-    if (bands > 0)
-        basis_eval_sum_batch<SH>(bands * bands, coeffs, n, xs, ys, zs, out);
-    else
-        std::fill(out, out + n, T(0));
+/// Compile-time band count for a direction already of unit length: eval<N> without the
+/// normalisation (the cheapest call, as a shader would do it). Precondition and outcome for
+/// other input as for eval_unit(); SPHBASIS_ASSERT checks |d| in debug builds. noexcept for a
+/// pointer out (a range's size is checked).
+template <int N, class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void eval_unit(X x, Y y, Z z, Out&& out) noexcept(
+    std::is_pointer_v<std::remove_reference_t<Out>>) {
+    sphbasis::detail::fixed_bands_eval<SH, N, false>("sh::eval_unit", x, y, z, out);
+}
+template <int N, class D, class Out>
+SPHBASIS_FORCEINLINE void eval_unit(const D& dir, Out&& out) noexcept(
+    std::is_pointer_v<std::remove_reference_t<Out>>) {
+    sphbasis::detail::fixed_bands_eval_dir<SH, N, false>("sh::eval_unit", dir, out);
+}
+
+/// Compile-time band count: unrolled code for N <= 8 (no allocation, no dispatch), the row
+/// recurrence above (N <= 64). Input normalised as by eval(). noexcept for a pointer out.
+template <int N, class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void eval(X x, Y y, Z z, Out&& out) noexcept(
+    std::is_pointer_v<std::remove_reference_t<Out>>) {
+    sphbasis::detail::fixed_bands_eval<SH, N, true>("sh::eval", x, y, z, out);
+}
+template <int N, class D, class Out>
+SPHBASIS_FORCEINLINE void eval(const D& dir, Out&& out) noexcept(
+    std::is_pointer_v<std::remove_reference_t<Out>>) {
+    sphbasis::detail::fixed_bands_eval_dir<SH, N, true>("sh::eval", dir, out);
+}
+
+/// One function y_lm at direction (x, y, z) (normalised as by eval()), in the direction's
+/// scalar type. Cost O(l) with square roots: for many functions at one direction, eval() is far
+/// cheaper per value. Throws std::invalid_argument unless 0 <= l < max_bands and |m| <= l.
+template <class X, class Y, class Z>
+auto eval_lm(int l, int m, X x, Y y, Z z) {
+    sphbasis::detail::static_check_components<X, Y, Z>();
+    using T = std::common_type_t<X, Y, Z>;
+    sphbasis::detail::static_check_scalar<T>();
+    if (l < 0 || l >= max_bands || m < -l || m > l)
+        sphbasis::detail::throw_invalid(
+            "sh::eval_lm", "0 <= l < " + std::to_string(max_bands) + " and |m| <= l, got l = " +
+                               std::to_string(l) + ", m = " + std::to_string(m));
+    T tx = static_cast<T>(x), ty = static_cast<T>(y), tz = static_cast<T>(z);
+    normalize_or_pole(tx, ty, tz);
+    const int am = m < 0 ? -m : m;
+    detail::SectoralWalk w{double(tx), double(ty)};
+    while (w.order() < am) w.advance();
+    double value = 0;
+    detail::column(l + 1, am, w.start(), double(tz), [&](int ll, double v) {
+        if (ll == l) value = v;
+    });
+    const double cm = w.cos_m(), sm = w.sin_m();
+    return static_cast<T>(m > 0 ? value * cm : m < 0 ? value * sm : value);
+}
+/// eval_lm() for any 3-vector type.
+template <class D>
+auto eval_lm(int l, int m, const D& dir) {
+    sphbasis::detail::static_check_direction<D>();
+    if constexpr (sphbasis::detail::is_direction_v<D>)
+        return eval_lm(l, m, component<0>(dir), component<1>(dir), component<2>(dir));
+}
+
+/// Evaluates `bands` bands at `directions` directions given as separate x, y, z arrays
+/// (normalised as by eval()), SIMD across directions. Output is function-major (SoA): function
+/// k of direction i goes to out[k * stride + i], stride >= directions. Throws
+/// std::invalid_argument for bad bands, stride < directions, or a null or too small buffer.
+template <class Xs, class Ys, class Zs, class Out>
+void eval_batch(int bands, std::size_t directions, const Xs& xs, const Ys& ys, const Zs& zs,
+                Out&& out, std::size_t stride) {
+    sphbasis::detail::Banded<SH>::eval_batch("sh::eval_batch", bands, directions, xs, ys, zs, out,
+                                             stride);
+}
+
+/// The expansion f(d) = sum_k coeffs[k] y_k(d) over `bands` bands at one direction (normalised
+/// as by eval(), evaluated in its scalar type). C (the coefficients' element type) is any type
+/// with C + C and C * scalar (float, double, glm::vec3, an RGB type); the y_k are not stored.
+/// Throws std::invalid_argument for bad bands or a null or too small coeffs.
+template <class Cs, class X, class Y, class Z>
+auto eval_sum(int bands, const Cs& coeffs, X x, Y y, Z z) {
+    return sphbasis::detail::Banded<SH>::eval_sum("sh::eval_sum", bands, coeffs, x, y, z);
+}
+/// eval_sum() for any 3-vector type.
+template <class Cs, class D>
+auto eval_sum(int bands, const Cs& coeffs, const D& dir) {
+    sphbasis::detail::static_check_direction<D>();
+    if constexpr (sphbasis::detail::is_direction_v<D>)
+        return eval_sum(bands, coeffs, component<0>(dir), component<1>(dir), component<2>(dir));
+}
+
+/// The expansion sum_k coeffs[k] y_k(d_i) at `directions` directions (separate x, y, z arrays,
+/// normalised as by eval()) into out[i], SIMD across directions, without storing the y_k.
+template <class Cs, class Xs, class Ys, class Zs, class Out>
+void eval_sum_batch(int bands, const Cs& coeffs, std::size_t directions, const Xs& xs, const Ys& ys,
+                    const Zs& zs, Out&& out) {
+    sphbasis::detail::Banded<SH>::eval_sum_batch("sh::eval_sum_batch", bands, coeffs, directions,
+                                                 xs, ys, zs, out);
+}
+
+/// Converts a coefficient vector of `bands` bands between this library's convention and the
+/// Condon-Shortley one (DirectXMath, google/spherical-harmonics): multiplies the coefficients
+/// with odd |m| by -1. The map is its own inverse. In place; coeffs is a C* or a contiguous
+/// range of C, C any type with unary minus. Throws std::invalid_argument for bad bands or a null
+/// or too small coeffs.
+template <class Cs>
+void to_condon_shortley(int bands, Cs&& coeffs) {
+    static_assert(sphbasis::detail::is_buffer_v<Cs>,
+                  "sphbasis::sh::to_condon_shortley: coefficients are a C* or a contiguous range "
+                  "of C.");
+    if constexpr (sphbasis::detail::is_buffer_v<Cs>) {
+        check_bands(bands, "sh::to_condon_shortley");
+        sphbasis::detail::check_buffer_size("sh::to_condon_shortley", "coefficient", coeffs,
+                                            static_cast<std::size_t>(count(bands)));
+        auto* c = sphbasis::detail::buffer_data(coeffs);
+        for (int l = 1; l < bands; ++l)
+            for (int m = 1; m <= l; m += 2) {
+                c[index(l, m)] = -c[index(l, m)];
+                c[index(l, -m)] = -c[index(l, -m)];
+            }
+    }
+}
+/// The inverse of to_condon_shortley (the same sign flip; the same checks, named
+/// from_condon_shortley).
+template <class Cs>
+void from_condon_shortley(int bands, Cs&& coeffs) {
+    static_assert(sphbasis::detail::is_buffer_v<Cs>,
+                  "sphbasis::sh::from_condon_shortley: coefficients are a C* or a contiguous "
+                  "range of C.");
+    if constexpr (sphbasis::detail::is_buffer_v<Cs>) {
+        check_bands(bands, "sh::from_condon_shortley");
+        sphbasis::detail::check_buffer_size("sh::from_condon_shortley", "coefficient", coeffs,
+                                            static_cast<std::size_t>(count(bands)));
+        to_condon_shortley(bands, coeffs);
+    }
 }
 
 }  // namespace sh

@@ -3,8 +3,8 @@
 // References: F. Zernike, Physica 1, 1934 (the disk polynomials); J. J. Koenderink, A. J. van
 // Doorn, M. Stavridi, "Bidirectional reflection distribution function expressed in terms of
 // surface scattering modes", ECCV 1996 (the hemispherical adaptation); G. J. Kintner, Optica Acta
-// 23, 1976 and the Jacobi form below (the recurrence); the source thesis (Ishmukhametov,
-// "Irradiance Normal Mapping") section 1.8.5, whose printed forms (1.46)-(1.51) are only a
+// 23, 1976 and the Jacobi form below (the recurrence); Ishmukhametov,
+// "Irradiance Normal Mapping" (thesis), section 1.8.5, whose printed forms (1.46)-(1.51) are only a
 // cross-check (see "Misprints" below).
 //
 // Definition. The hemisphere is mapped onto the unit disk by rho = sqrt(1 - cos t) (pole -> centre,
@@ -33,7 +33,7 @@
 // pole z = 1 (rho = 0) and the horizon z = 0 (rho = 1, where the functions still vary with phi)
 // are regular points.
 //
-// Misprints in the thesis' printed forms (derive, do not transcribe):
+// Misprints in Ishmukhametov's printed forms (derive, do not transcribe):
 //   (1.48) Z_11 = (2/sqrt(pi)) cos(phi) sin(t/2) = -sqrt(2/pi) x / sqrt(1+z): spurious minus on
 //          the right side (2 sin(t/2) cos(phi) / sqrt(2) = rho cos(phi) = x / sqrt(1+z) > 0 for
 //          x > 0);
@@ -44,11 +44,11 @@
 // Evaluation: R_n^m(rho) = rho^m P_k^(0,m)(2 rho^2 - 1), k = (n-m)/2, and 2 rho^2 - 1 = 1 - 2z, so
 //   Z_n^m = sqrt((2 - delta_m0)/pi) 2^(m/2) rho^m p_k^(0,m)(1 - 2z) trig(m phi)
 // with p_k the orthonormal Jacobi polynomials (the normalisation no longer depends on n), by the
-// shared normalised three-term recurrence of core/jacobi.hpp (detail::hemi, advanced in z itself):
-// a row recurrence for bands <= 64 (any value type), the exponent-carrying column recurrence in
-// extended precision above. No factorial sums, no pow. Cost: one square root and one division per
-// direction, then ~bands^2/2 multiply-adds (plus as many square roots and divisions above 64
-// bands, ~10 ns per function). Accuracy (double, against mpmath's factorial sums;
+// shared normalised three-term recurrence of basis/detail/jacobi.hpp (detail::hemi, advanced in z
+// itself): a row recurrence for bands <= 64 (any value type), the exponent-carrying column
+// recurrence in extended precision above. No factorial sums, no pow. Cost: one square root and one
+// division per direction, then ~bands^2/2 multiply-adds (plus as many square roots and divisions
+// above 64 bands, ~10 ns per function). Accuracy (double, against mpmath's factorial sums;
 // tests/basis/test_zernike.cpp), relative to the scale S_n = sqrt((n+1)/pi) of band n: <= 1e-14
 // below 64 bands, <= 1.5e-13 at n = 2047 (rho^m with m ~ 2000 amplifies the input's rounding m
 // times), and within ~0.01 of the pole, where one ulp of z moves a band-n function by up to
@@ -60,11 +60,11 @@
 #include <utility>
 
 #include "../config.hpp"
-#include "../core/jacobi.hpp"
 #include "../core/scalar.hpp"
 #include "../core/simd.hpp"
 #include "basis.hpp"
-#include "hemi_basis.hpp"
+#include "detail/hemi_family.hpp"
+#include "detail/jacobi.hpp"
 
 namespace sphbasis::zernike {
 
@@ -75,6 +75,12 @@ inline constexpr int max_bands = 2048;
 constexpr int index(int n, int m) noexcept { return n * (n + 1) / 2 + (n + m) / 2; }
 /// Number of functions in `bands` bands: bands(bands+1)/2.
 constexpr int count(int bands) noexcept { return bands * (bands + 1) / 2; }
+
+/// Throws std::invalid_argument unless 0 <= bands <= max_bands (the message is built out of
+/// line, so the check costs a compare).
+SPHBASIS_FORCEINLINE void check_bands(int bands, const char* fn) {
+    sphbasis::detail::check_bands_of(bands, max_bands, fn);
+}
 
 namespace detail {
 
@@ -178,13 +184,13 @@ struct TriangularCount {
         while (tri(b + 1) <= n) ++b;
         return tri(b) == n ? static_cast<int>(b) : -1;
     }
-    static constexpr const char* rule = "a triangular number (bands(bands+1)/2, bands <= 2048) of";
+    static constexpr const char* rule = "a triangular number (bands(bands+1)/2";
 };
 
 /// Calls f(kernel) with the fastest kernel for 1 <= bands <= max_bands.
 template <class F>
-inline decltype(auto) with_kernel(int bands, F&& f) {
-    return hemi::with_kernel<FixedKernel, ZernikeFamily>(bands, std::forward<F>(f));
+inline decltype(auto) with_bands_kernel(int bands, F&& f) {
+    return hemi::with_bands_kernel<FixedKernel, ZernikeFamily>(bands, std::forward<F>(f));
 }
 
 }  // namespace detail
@@ -201,3 +207,79 @@ struct Zernike
 };
 
 }  // namespace sphbasis
+
+namespace sphbasis::zernike {
+
+// The banded entry points, as sh:: has them (basis/sh.hpp; sizes in bands, buffers pointers or
+// contiguous ranges, directions three components or any 3-vector type; basis/basis.hpp).
+
+/// Evaluates the count(bands) functions at direction (x, y, z) into out (in out's scalar type,
+/// float or double). The input is normalised first (a zero or non-finite vector is the pole).
+/// Throws std::invalid_argument for bands outside [0, max_bands] or a null or too small out.
+template <class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void eval(int bands, X x, Y y, Z z, Out&& out) {
+    sphbasis::detail::Banded<Zernike>::eval("zernike::eval", bands, x, y, z, out);
+}
+/// eval() for any 3-vector type.
+template <class D, class Out>
+SPHBASIS_FORCEINLINE void eval(int bands, const D& dir, Out&& out) {
+    sphbasis::detail::bands_eval_dir<Zernike, true>("zernike::eval", bands, dir, out);
+}
+/// eval() for a direction already of unit length (no normalisation).
+template <class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void eval_unit(int bands, X x, Y y, Z z, Out&& out) {
+    sphbasis::detail::Banded<Zernike>::eval_unit("zernike::eval_unit", bands, x, y, z, out);
+}
+template <class D, class Out>
+SPHBASIS_FORCEINLINE void eval_unit(int bands, const D& dir, Out&& out) {
+    sphbasis::detail::bands_eval_dir<Zernike, false>("zernike::eval_unit", bands, dir, out);
+}
+/// Compile-time band count N (1..64): unrolled for N <= 8. noexcept for a pointer out.
+template <int N, class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void eval(X x, Y y, Z z, Out&& out) noexcept(
+    std::is_pointer_v<std::remove_reference_t<Out>>) {
+    sphbasis::detail::fixed_bands_eval<Zernike, N, true>("zernike::eval", x, y, z, out);
+}
+template <int N, class D, class Out>
+SPHBASIS_FORCEINLINE void eval(const D& dir, Out&& out) noexcept(
+    std::is_pointer_v<std::remove_reference_t<Out>>) {
+    sphbasis::detail::fixed_bands_eval_dir<Zernike, N, true>("zernike::eval", dir, out);
+}
+template <int N, class X, class Y, class Z, class Out>
+SPHBASIS_FORCEINLINE void eval_unit(X x, Y y, Z z, Out&& out) noexcept(
+    std::is_pointer_v<std::remove_reference_t<Out>>) {
+    sphbasis::detail::fixed_bands_eval<Zernike, N, false>("zernike::eval_unit", x, y, z, out);
+}
+template <int N, class D, class Out>
+SPHBASIS_FORCEINLINE void eval_unit(const D& dir, Out&& out) noexcept(
+    std::is_pointer_v<std::remove_reference_t<Out>>) {
+    sphbasis::detail::fixed_bands_eval_dir<Zernike, N, false>("zernike::eval_unit", dir, out);
+}
+/// `bands` bands at `directions` directions (x, y, z arrays), SIMD across directions, into
+/// out[k * stride + i] (stride >= directions).
+template <class Xs, class Ys, class Zs, class Out>
+void eval_batch(int bands, std::size_t directions, const Xs& xs, const Ys& ys, const Zs& zs,
+                Out&& out, std::size_t stride) {
+    sphbasis::detail::Banded<Zernike>::eval_batch("zernike::eval_batch", bands, directions, xs, ys,
+                                                  zs, out, stride);
+}
+/// The expansion sum_k coeffs[k] f_k(d) at one direction, in the direction's scalar type.
+template <class Cs, class X, class Y, class Z>
+auto eval_sum(int bands, const Cs& coeffs, X x, Y y, Z z) {
+    return sphbasis::detail::Banded<Zernike>::eval_sum("zernike::eval_sum", bands, coeffs, x, y, z);
+}
+template <class Cs, class D>
+auto eval_sum(int bands, const Cs& coeffs, const D& dir) {
+    sphbasis::detail::static_check_direction<D>();
+    if constexpr (sphbasis::detail::is_direction_v<D>)
+        return eval_sum(bands, coeffs, component<0>(dir), component<1>(dir), component<2>(dir));
+}
+/// The expansion at `directions` directions into out[i], SIMD across directions.
+template <class Cs, class Xs, class Ys, class Zs, class Out>
+void eval_sum_batch(int bands, const Cs& coeffs, std::size_t directions, const Xs& xs, const Ys& ys,
+                    const Zs& zs, Out&& out) {
+    sphbasis::detail::Banded<Zernike>::eval_sum_batch("zernike::eval_sum_batch", bands, coeffs,
+                                                      directions, xs, ys, zs, out);
+}
+
+}  // namespace sphbasis::zernike

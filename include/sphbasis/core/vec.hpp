@@ -70,6 +70,26 @@ constexpr auto component(const D& d) noexcept {
     }
 }
 
+namespace detail {
+template <class D, class = void>
+struct has_subscript : std::false_type {};
+template <class D>
+struct has_subscript<D, std::void_t<decltype(std::declval<const D&>()[0])>> : std::true_type {};
+
+/// A direction argument: a 3-vector type that component<I>() reads, with arithmetic components.
+template <class D>
+constexpr bool is_direction_v = has_member_xyz<D>::value || has_call_xyz<D>::value ||
+                                (has_subscript<D>::value && !std::is_pointer_v<D>);
+
+template <class D>
+constexpr void static_check_direction() {
+    static_assert(is_direction_v<D>,
+                  "sphbasis: a direction is a 3-vector type with .x/.y/.z, x()/y()/z() or "
+                  "operator[] (glm::vec3, Eigen::Vector3f, sphbasis::vec3, std::array).");
+}
+
+}  // namespace detail
+
 /// The scalar type of a direction type (float for glm::vec3, double for Eigen::Vector3d).
 template <class D>
 using direction_scalar_t =

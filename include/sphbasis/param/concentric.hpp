@@ -6,7 +6,8 @@
 // area-preserving up to the constant pi/4 (pi per unit area of [0, 1]^2). It is continuous
 // and bijective; the dual-hemisphere parameterizations (dual_paraboloid.hpp,
 // dual_orthographic.hpp) use it to store a hemisphere in a square texture without wasting the
-// corners, as seed 000 (Iwanicki and Sloan, section 3.2) does.
+// corners, as Iwanicki and Sloan, "Normal Mapping with Low-Frequency Precomputed Visibility" (JGT
+// 2009), section 3.2, do.
 #pragma once
 
 #include <cmath>

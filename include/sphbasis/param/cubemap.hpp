@@ -5,8 +5,9 @@
 //
 // References: the OpenGL 4.6 specification, section 8.13 (cube map face selection, table 8.19)
 // and ARB_seamless_cube_map (the corner rule: "average the values of the three available
-// samples"); Direct3D 10 functional specification (cube filtering across faces); seed 000
-// (Iwanicki and Sloan) section 3.2 and appendix A, which compares both behaviours.
+// samples"); Direct3D 10 functional specification (cube filtering across faces); Iwanicki
+// and Sloan, "Normal Mapping with Low-Frequency Precomputed Visibility" (JGT 2009), section 3.2
+// and appendix A, which compares both behaviours.
 //
 // Faces in the D3D/GL order +X, -X, +Y, -Y, +Z, -Z. For a direction r with major axis ma,
 // (sc, tc) from table 8.19 and (u, v) = ((sc/|ma| + 1)/2, (tc/|ma| + 1)/2):
@@ -100,6 +101,14 @@ SPHBASIS_FORCEINLINE FaceUV<T> cube_to_square(T x, T y, T z) noexcept {
     return {c.face, T(0.5) * (c.sc + T(1)), T(0.5) * (c.tc + T(1))};
 }
 
+/// cube_to_square() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its scalar type.
+template <class D>
+SPHBASIS_FORCEINLINE auto cube_to_square(const D& d) noexcept {
+    sphbasis::detail::static_check_direction<D>();
+    using T = direction_scalar_t<D>;
+    return cube_to_square<T>(component<0>(d), component<1>(d), component<2>(d));
+}
+
 /// Cube face (0..5) and (u, v) in [0, 1]^2 -> unit direction.
 template <class T>
 SPHBASIS_FORCEINLINE vec3<T> square_to_cube(int face, T u, T v) noexcept {
@@ -114,6 +123,15 @@ template <class T>
 SPHBASIS_FORCEINLINE T square_to_cube_pdf(T x, T y, T z) noexcept {
     const T ma = std::fmax(std::fabs(x), std::fmax(std::fabs(y), std::fabs(z)));
     return T(1) / (T(24) * ma * ma * ma);
+}
+
+/// square_to_cube_pdf() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its scalar
+/// type.
+template <class D>
+SPHBASIS_FORCEINLINE auto square_to_cube_pdf(const D& d) noexcept {
+    sphbasis::detail::static_check_direction<D>();
+    using T = direction_scalar_t<D>;
+    return square_to_cube_pdf<T>(component<0>(d), component<1>(d), component<2>(d));
 }
 
 /// A cube map of 6 faces of n x n texels, filtered as `filter` says.
@@ -139,6 +157,13 @@ class CubeMap : public detail::TexelGrid {
     FaceUV<T> direction_to_uv(T x, T y, T z) const noexcept {
         const vec3<T> d = detail::unit(x, y, z);
         return cube_to_square(d.x, d.y, d.z);
+    }
+    /// direction_to_uv() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), converted to T.
+    template <class D>
+    FaceUV<T> direction_to_uv(const D& d) const noexcept {
+        sphbasis::detail::static_check_direction<D>();
+        return direction_to_uv(static_cast<T>(component<0>(d)), static_cast<T>(component<1>(d)),
+                               static_cast<T>(component<2>(d)));
     }
     vec3<T> uv_to_direction(int face, T u, T v) const noexcept {
         return square_to_cube(face, u, v);
@@ -192,6 +217,13 @@ class CubeMap : public detail::TexelGrid {
             fp.index[missing] = fp.index[missing ^ 3];
         }
         return fp;
+    }
+    /// footprint() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), converted to T.
+    template <class D>
+    Footprint<T> footprint(const D& d) const noexcept {
+        sphbasis::detail::static_check_direction<D>();
+        return footprint(static_cast<T>(component<0>(d)), static_cast<T>(component<1>(d)),
+                         static_cast<T>(component<2>(d)));
     }
 
   private:

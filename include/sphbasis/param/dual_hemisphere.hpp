@@ -3,8 +3,8 @@
 // square by the concentric map (concentric.hpp), the square shrunk so that the equator lies
 // exactly on the outer ring of texel centres.
 //
-// Reference: seed 000 (Iwanicki and Sloan, "Normal Mapping with Low-Frequency Precomputed
-// Visibility"), section 3.2 and appendix A: "shrink the mapping so that the equator maps
+// Reference: Iwanicki and Sloan, "Normal Mapping with Low-Frequency Precomputed Visibility"
+// (JGT 2009), section 3.2 and appendix A: "shrink the mapping so that the equator maps
 // exactly to the outer ring of texel centers on the square. This generates redundant texels
 // between hemispheres, but guarantees continuity." Both faces map the equator direction
 // (x, y, 0) to the same (u, v), and bilinear filtering on the outer ring reads only ring
@@ -53,6 +53,13 @@ class DualHemisphere : public detail::TexelGrid {
         const Point2<T> s = uniform_disk_to_square_concentric(p.x, p.y);
         return {face, detail::shrink(s.x, n_), detail::shrink(s.y, n_)};
     }
+    /// direction_to_uv() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), converted to T.
+    template <class D>
+    FaceUV<T> direction_to_uv(const D& d) const noexcept {
+        sphbasis::detail::static_check_direction<D>();
+        return direction_to_uv(static_cast<T>(component<0>(d)), static_cast<T>(component<1>(d)),
+                               static_cast<T>(component<2>(d)));
+    }
 
     /// Unit direction of (face, u, v); (u, v) outside the shrunk square are clamped onto it
     /// (the border of the square is the equator).
@@ -90,6 +97,13 @@ class DualHemisphere : public detail::TexelGrid {
             static_cast<std::size_t>(t.face) * static_cast<std::size_t>(n_) *
                 static_cast<std::size_t>(n_),
             detail::axis_taps(t.u, n_, bits_), detail::axis_taps(t.v, n_, bits_), n_, n_);
+    }
+    /// footprint() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), converted to T.
+    template <class D>
+    Footprint<T> footprint(const D& d) const noexcept {
+        sphbasis::detail::static_check_direction<D>();
+        return footprint(static_cast<T>(component<0>(d)), static_cast<T>(component<1>(d)),
+                         static_cast<T>(component<2>(d)));
     }
 
   private:

@@ -4,8 +4,9 @@
 // d = (px, py, sqrt(1 - |p|^2)); solid angle per disk area 1/sqrt(1 - |p|^2), singular (but
 // integrable) at the equator, so texels crowd towards the pole's opposite. Together with the
 // concentric map this is Malley's cosine-weighted hemisphere sampling. Layout and the shrink
-// that puts the equator on the outer ring of texel centres are those of seed 000 (Iwanicki and
-// Sloan, appendix A), shared with the dual paraboloid in dual_hemisphere.hpp.
+// that puts the equator on the outer ring of texel centres are those of Iwanicki and Sloan,
+// "Normal Mapping with Low-Frequency Precomputed Visibility" (JGT 2009), appendix A, shared with
+// the dual paraboloid in dual_hemisphere.hpp.
 #pragma once
 
 #include <cmath>
@@ -52,12 +53,30 @@ SPHBASIS_FORCEINLINE Point2<T> orthographic_to_square(T x, T y, T z) noexcept {
     return uniform_disk_to_square_concentric(x, y);
 }
 
+/// orthographic_to_square() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its scalar
+/// type.
+template <class D>
+SPHBASIS_FORCEINLINE auto orthographic_to_square(const D& d) noexcept {
+    sphbasis::detail::static_check_direction<D>();
+    using T = direction_scalar_t<D>;
+    return orthographic_to_square<T>(component<0>(d), component<1>(d), component<2>(d));
+}
+
 /// Density of square_to_orthographic() w.r.t. solid angle, |z|/pi (cosine-weighted).
 template <class T>
 SPHBASIS_FORCEINLINE T square_to_orthographic_pdf(T x, T y, T z) noexcept {
     (void)x;
     (void)y;
     return std::fabs(z) * T(0.31830988618379067);  // 1/pi
+}
+
+/// square_to_orthographic_pdf() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its
+/// scalar type.
+template <class D>
+SPHBASIS_FORCEINLINE auto square_to_orthographic_pdf(const D& d) noexcept {
+    sphbasis::detail::static_check_direction<D>();
+    using T = direction_scalar_t<D>;
+    return square_to_orthographic_pdf<T>(component<0>(d), component<1>(d), component<2>(d));
 }
 
 /// The dual orthographic map: 2 faces of n x n texels (see dual_hemisphere.hpp).

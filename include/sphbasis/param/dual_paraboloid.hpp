@@ -3,7 +3,8 @@
 // References: W. Heidrich and H.-P. Seidel, "View-independent Environment Maps", Graphics
 // Hardware 1998 (the paraboloid projection p = (x, y)/(1 + z), inverse
 // d = (2 px, 2 py, 1 - |p|^2)/(1 + |p|^2), solid angle per disk area 4/(1 + |p|^2)^2);
-// seed 000 (Iwanicki and Sloan) section 3.2 and appendix A: the disk is mapped to the square by
+// Iwanicki and Sloan, "Normal Mapping with Low-Frequency Precomputed Visibility" (JGT 2009),
+// section 3.2 and appendix A: the disk is mapped to the square by
 // Shirley and Chiu's concentric map and shrunk so that the equator lies on the outer ring of
 // texel centres (dual_hemisphere.hpp), which makes the reconstruction C0 across the equator
 // on DX9-class hardware.
@@ -55,6 +56,15 @@ SPHBASIS_FORCEINLINE Point2<T> paraboloid_to_square(T x, T y, T z) noexcept {
     return uniform_disk_to_square_concentric(p.x, p.y);
 }
 
+/// paraboloid_to_square() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its scalar
+/// type.
+template <class D>
+SPHBASIS_FORCEINLINE auto paraboloid_to_square(const D& d) noexcept {
+    sphbasis::detail::static_check_direction<D>();
+    using T = direction_scalar_t<D>;
+    return paraboloid_to_square<T>(component<0>(d), component<1>(d), component<2>(d));
+}
+
 /// Density of square_to_paraboloid() w.r.t. solid angle at the unit direction (x, y, z),
 /// 1/(pi (1 + |z|)^2): 1/(4 pi) at the pole, 1/pi on the equator.
 template <class T>
@@ -63,6 +73,15 @@ SPHBASIS_FORCEINLINE T square_to_paraboloid_pdf(T x, T y, T z) noexcept {
     (void)y;
     const T a = T(1) + std::fabs(z);
     return T(0.31830988618379067) / (a * a);  // 1/pi
+}
+
+/// square_to_paraboloid_pdf() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its
+/// scalar type.
+template <class D>
+SPHBASIS_FORCEINLINE auto square_to_paraboloid_pdf(const D& d) noexcept {
+    sphbasis::detail::static_check_direction<D>();
+    using T = direction_scalar_t<D>;
+    return square_to_paraboloid_pdf<T>(component<0>(d), component<1>(d), component<2>(d));
 }
 
 /// The dual paraboloid map: 2 faces of n x n texels (see dual_hemisphere.hpp).

@@ -29,6 +29,14 @@ SPHBASIS_FORCEINLINE Point2<T> latlong_to_square(T x, T y, T z) noexcept {
     return {u, v};
 }
 
+/// latlong_to_square() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its scalar type.
+template <class D>
+SPHBASIS_FORCEINLINE auto latlong_to_square(const D& d) noexcept {
+    sphbasis::detail::static_check_direction<D>();
+    using T = direction_scalar_t<D>;
+    return latlong_to_square<T>(component<0>(d), component<1>(d), component<2>(d));
+}
+
 /// [0, 1]^2 -> unit direction (sin(theta) cos(phi), sin(theta) sin(phi), cos(theta)) with
 /// phi = 2 pi u, theta = pi v.
 template <class T>
@@ -49,6 +57,15 @@ SPHBASIS_FORCEINLINE T square_to_latlong_pdf(T x, T y, T /*z*/) noexcept {
     return T(0.050660591821168886) / st;  // 1/(2 pi^2)
 }
 
+/// square_to_latlong_pdf() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its scalar
+/// type.
+template <class D>
+SPHBASIS_FORCEINLINE auto square_to_latlong_pdf(const D& d) noexcept {
+    sphbasis::detail::static_check_direction<D>();
+    using T = direction_scalar_t<D>;
+    return square_to_latlong_pdf<T>(component<0>(d), component<1>(d), component<2>(d));
+}
+
 /// A latitude-longitude map of 2n x n texels.
 template <class T>
 class LatLong : public detail::TexelGrid {
@@ -67,6 +84,13 @@ class LatLong : public detail::TexelGrid {
         const vec3<T> d = detail::unit(x, y, z);
         const Point2<T> s = latlong_to_square(d.x, d.y, d.z);
         return {0, s.x, s.y};
+    }
+    /// direction_to_uv() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), converted to T.
+    template <class D>
+    FaceUV<T> direction_to_uv(const D& d) const noexcept {
+        sphbasis::detail::static_check_direction<D>();
+        return direction_to_uv(static_cast<T>(component<0>(d)), static_cast<T>(component<1>(d)),
+                               static_cast<T>(component<2>(d)));
     }
     vec3<T> uv_to_direction(int /*face*/, T u, T v) const noexcept {
         return square_to_latlong(u, v);
@@ -98,6 +122,13 @@ class LatLong : public detail::TexelGrid {
         const T fx = ax.frac, fy = ay.frac;
         return {{r0 + i0, r0 + i1, r1 + i0, r1 + i1},
                 {(T(1) - fx) * (T(1) - fy), fx * (T(1) - fy), (T(1) - fx) * fy, fx * fy}};
+    }
+    /// footprint() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), converted to T.
+    template <class D>
+    Footprint<T> footprint(const D& d) const noexcept {
+        sphbasis::detail::static_check_direction<D>();
+        return footprint(static_cast<T>(component<0>(d)), static_cast<T>(component<1>(d)),
+                         static_cast<T>(component<2>(d)));
     }
 
   private:

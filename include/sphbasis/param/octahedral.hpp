@@ -46,6 +46,15 @@ SPHBASIS_FORCEINLINE Point2<T> octahedral_to_square(T x, T y, T z) noexcept {
     return {T(0.5) * (a + T(1)), T(0.5) * (b + T(1))};
 }
 
+/// octahedral_to_square() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its scalar
+/// type.
+template <class D>
+SPHBASIS_FORCEINLINE auto octahedral_to_square(const D& d) noexcept {
+    sphbasis::detail::static_check_direction<D>();
+    using T = direction_scalar_t<D>;
+    return octahedral_to_square<T>(component<0>(d), component<1>(d), component<2>(d));
+}
+
 /// [0, 1]^2 -> unit direction (inverse of octahedral_to_square).
 template <class T>
 SPHBASIS_FORCEINLINE vec3<T> square_to_octahedral(T u, T v) noexcept {
@@ -67,6 +76,15 @@ template <class T>
 SPHBASIS_FORCEINLINE T square_to_octahedral_pdf(T x, T y, T z) noexcept {
     const T l1 = std::fabs(x) + std::fabs(y) + std::fabs(z);
     return T(1) / (T(4) * l1 * l1 * l1);
+}
+
+/// square_to_octahedral_pdf() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its
+/// scalar type.
+template <class D>
+SPHBASIS_FORCEINLINE auto square_to_octahedral_pdf(const D& d) noexcept {
+    sphbasis::detail::static_check_direction<D>();
+    using T = direction_scalar_t<D>;
+    return square_to_octahedral_pdf<T>(component<0>(d), component<1>(d), component<2>(d));
 }
 
 /// An octahedral map of n x n texels (one face).
@@ -92,6 +110,13 @@ class Octahedral : public detail::TexelGrid {
         const vec3<T> d = detail::unit(x, y, z);
         const Point2<T> s = octahedral_to_square(d.x, d.y, d.z);
         return {0, s.x, s.y};
+    }
+    /// direction_to_uv() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), converted to T.
+    template <class D>
+    FaceUV<T> direction_to_uv(const D& d) const noexcept {
+        sphbasis::detail::static_check_direction<D>();
+        return direction_to_uv(static_cast<T>(component<0>(d)), static_cast<T>(component<1>(d)),
+                               static_cast<T>(component<2>(d)));
     }
     vec3<T> uv_to_direction(int /*face*/, T u, T v) const noexcept {
         return square_to_octahedral(u, v);
@@ -144,6 +169,13 @@ class Octahedral : public detail::TexelGrid {
             fp.index[k] = texel_index(0, i, j);
         }
         return fp;
+    }
+    /// footprint() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), converted to T.
+    template <class D>
+    Footprint<T> footprint(const D& d) const noexcept {
+        sphbasis::detail::static_check_direction<D>();
+        return footprint(static_cast<T>(component<0>(d)), static_cast<T>(component<1>(d)),
+                         static_cast<T>(component<2>(d)));
     }
 
   private:

@@ -33,6 +33,7 @@
 
 #include "../config.hpp"
 #include "../core/constants.hpp"
+#include "../core/error.hpp"
 #include "../core/vec.hpp"
 
 namespace sphbasis::param {
@@ -78,8 +79,7 @@ SPHBASIS_FORCEINLINE void reconstruct(const V* SPHBASIS_RESTRICT table, std::siz
 /// interleaved. Throws std::invalid_argument for channels == 0.
 template <class V, class P, class F>
 std::vector<V> tabulate(const P& p, std::size_t channels, F&& f) {
-    if (channels == 0)
-        throw std::invalid_argument("sphbasis::param::tabulate(): expected channels >= 1");
+    if (channels == 0) sphbasis::detail::throw_invalid("param::tabulate", "channels >= 1, got 0");
     std::vector<V> table(p.texel_count() * channels);
     for (int face = 0; face < p.faces(); ++face)
         for (int row = 0; row < p.height(); ++row)
@@ -95,6 +95,13 @@ template <class V, class P, class T>
 SPHBASIS_FORCEINLINE void lookup(const P& p, const V* table, std::size_t channels, T x, T y, T z,
                                  V* out) noexcept {
     reconstruct(table, channels, p.footprint(x, y, z), out);
+}
+/// lookup() at a direction of any 3-vector type (glm::vec3, Eigen::Vector3f, ...).
+template <class V, class P, class D>
+SPHBASIS_FORCEINLINE void lookup(const P& p, const V* table, std::size_t channels, const D& d,
+                                 V* out) noexcept {
+    sphbasis::detail::static_check_direction<D>();
+    reconstruct(table, channels, p.footprint(d), out);
 }
 
 /// Total solid angle of all texels of p (4 pi up to rounding), summed in double.
@@ -138,7 +145,8 @@ SPHBASIS_FORCEINLINE AxisTaps<T> axis_taps(T coord, int n, int subtexel_bits) no
 }
 
 /// Texture coordinate of a unit-square coordinate s in [0, 1] shrunk so that s = 0 and s = 1
-/// fall on the outer texel centres 0.5/n and 1 - 0.5/n (seed 000, appendix A).
+/// fall on the outer texel centres 0.5/n and 1 - 0.5/n (Iwanicki and Sloan, JGT 2009,
+/// appendix A).
 template <class T>
 SPHBASIS_FORCEINLINE T shrink(T s, int n) noexcept {
     const T h = T(0.5) / static_cast<T>(n);
@@ -238,15 +246,14 @@ SPHBASIS_FORCEINLINE Footprint<T> clamped_footprint(std::size_t base, AxisTaps<T
 
 inline void check_resolution(const char* fn, int n, int min_n) {
     if (n < min_n || n > (1 << 15))
-        throw std::invalid_argument(std::string("sphbasis::param::") + fn + "(): expected " +
-                                    std::to_string(min_n) + " <= resolution <= 32768, got " +
-                                    std::to_string(n));
+        sphbasis::detail::throw_invalid(
+            (std::string("param::") + fn).c_str(),
+            std::to_string(min_n) + " <= resolution <= 32768, got " + std::to_string(n));
 }
 inline void check_subtexel_bits(const char* fn, int bits) {
     if (bits < 0 || bits > 24)
-        throw std::invalid_argument(std::string("sphbasis::param::") + fn +
-                                    "(): expected 0 <= subtexel_bits <= 24, got " +
-                                    std::to_string(bits));
+        sphbasis::detail::throw_invalid((std::string("param::") + fn).c_str(),
+                                        "0 <= subtexel_bits <= 24, got " + std::to_string(bits));
 }
 
 /// Normalises a direction for the class methods (see the header comment).

@@ -34,9 +34,12 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "../config.hpp"
+#include "../core/error.hpp"
 #include "../core/vec.hpp"
 
 namespace sphbasis::toksvig {
@@ -138,9 +141,7 @@ SPHBASIS_FORCEINLINE T sensitivity(T length, T shininess) noexcept {
 template <class T = double>
 T quantization_length_error(int bits) {
     if (bits < 2 || bits > 32)
-        throw std::invalid_argument(
-            "sphbasis::toksvig::quantization_length_error(): expected 2 <= bits <= 32, got " +
-            std::to_string(bits));
+        sphbasis::detail::check_range("toksvig::quantization_length_error", "bits", bits, 2, 32);
     const double steps = std::ldexp(1.0, bits - 1) - 1.0;
     return static_cast<T>(0.86602540378443865 / steps);  // sqrt(3)/2 / steps
 }
@@ -244,21 +245,21 @@ struct SpecularTable {
 inline SpecularTable make_specular_table(const SpecularTableOptions& o) {
     const int min_size = o.sampling == TableSampling::endpoints ? 2 : 1;
     if (o.width < min_size || o.height < min_size)
-        throw std::invalid_argument(
-            "sphbasis::toksvig::make_specular_table(): expected width and height >= " +
-            std::to_string(min_size) + ", got " + std::to_string(o.width) + " x " +
-            std::to_string(o.height));
+        sphbasis::detail::throw_invalid("toksvig::make_specular_table",
+                                        "width and height >= " + std::to_string(min_size) +
+                                            ", got " + std::to_string(o.width) + " x " +
+                                            std::to_string(o.height));
     if (!(o.shininess > 0) || !std::isfinite(o.shininess))
-        throw std::invalid_argument(
-            "sphbasis::toksvig::make_specular_table(): expected a finite shininess > 0");
+        sphbasis::detail::throw_invalid(
+            "toksvig::make_specular_table",
+            "a finite shininess > 0, got " + std::to_string(o.shininess));
     if (o.normal_bits < 0 || o.normal_bits == 1 || o.normal_bits > 32)
-        throw std::invalid_argument(
-            "sphbasis::toksvig::make_specular_table(): expected normal_bits 0 (no fade) or "
-            "2..32, got " +
-            std::to_string(o.normal_bits));
+        sphbasis::detail::throw_invalid(
+            "toksvig::make_specular_table",
+            "normal_bits 0 (no fade) or 2..32, got " + std::to_string(o.normal_bits));
     if (!(o.threshold >= 0))
-        throw std::invalid_argument(
-            "sphbasis::toksvig::make_specular_table(): expected threshold >= 0");
+        sphbasis::detail::throw_invalid("toksvig::make_specular_table",
+                                        "threshold >= 0, got " + std::to_string(o.threshold));
     SpecularTable t;
     t.width = o.width;
     t.height = o.height;
@@ -293,11 +294,12 @@ inline std::vector<float> make_power_table(int size, double shininess,
                                            TableSampling sampling = TableSampling::endpoints) {
     const int min_size = sampling == TableSampling::endpoints ? 2 : 1;
     if (size < min_size)
-        throw std::invalid_argument("sphbasis::toksvig::make_power_table(): expected size >= " +
-                                    std::to_string(min_size) + ", got " + std::to_string(size));
+        sphbasis::detail::throw_invalid(
+            "toksvig::make_power_table",
+            "size >= " + std::to_string(min_size) + ", got " + std::to_string(size));
     if (!(shininess > 0) || !std::isfinite(shininess))
-        throw std::invalid_argument(
-            "sphbasis::toksvig::make_power_table(): expected a finite shininess > 0");
+        sphbasis::detail::throw_invalid("toksvig::make_power_table",
+                                        "a finite shininess > 0, got " + std::to_string(shininess));
     std::vector<float> out(static_cast<std::size_t>(size));
     for (int k = 0; k < size; ++k) {
         const double x =
@@ -336,14 +338,16 @@ struct NormalMipLevel {
 /// may be slightly above or below 1). Each level halves each dimension (floor, at least 1); a
 /// texel of the next level averages the contiguous block of 1, 2 or 3 texels per axis that
 /// partitions the level above (exactly the 2 x 2 box for even sizes), so a constant map stays
-/// constant and the chain is exact for powers of two. Throws std::invalid_argument for a
-/// non-positive size or a null pointer.
+/// constant and the chain is exact for powers of two. Other 3-vector types (glm::vec3,
+/// Eigen::Vector3f, ...) and contiguous ranges of them: the overloads below. Throws
+/// std::invalid_argument for a non-positive size or a null pointer.
 template <class T>
 std::vector<NormalMipLevel<T>> build_normal_mips(const vec3<T>* normals, int width, int height) {
     if (width < 1 || height < 1 || normals == nullptr)
-        throw std::invalid_argument(
-            "sphbasis::toksvig::build_normal_mips(): expected width, height >= 1 and a "
-            "non-null normal array");
+        sphbasis::detail::throw_invalid("toksvig::build_normal_mips",
+                                        "width, height >= 1 and a non-null normal array, got " +
+                                            std::to_string(width) + " x " + std::to_string(height) +
+                                            (normals == nullptr ? " and null" : ""));
     auto idx = [](int col, int row, int w) {
         return static_cast<std::size_t>(row) * static_cast<std::size_t>(w) +
                static_cast<std::size_t>(col);
@@ -389,6 +393,49 @@ std::vector<NormalMipLevel<T>> build_normal_mips(const vec3<T>* normals, int wid
         chain.push_back(std::move(lv));
     }
     return chain;
+}
+
+namespace detail {
+template <class N>
+struct is_vec3 : std::false_type {};
+template <class T>
+struct is_vec3<vec3<T>> : std::true_type {};
+}  // namespace detail
+
+/// build_normal_mips() for normals of any other 3-vector type (glm::vec3, Eigen::Vector3f, ...),
+/// in its scalar type (float or double). Costs one copy of level 0 more.
+template <class N, std::enable_if_t<sphbasis::detail::is_direction_v<N> &&
+                                        !detail::is_vec3<std::remove_cv_t<N>>::value,
+                                    int> = 0>
+auto build_normal_mips(const N* normals, int width, int height) {
+    using T = direction_scalar_t<N>;
+    static_assert(std::is_floating_point_v<T>,
+                  "sphbasis::toksvig::build_normal_mips: normals have float or double components.");
+    std::vector<vec3<T>> v;
+    if (normals != nullptr && width >= 1 && height >= 1) {
+        v.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+        for (std::size_t k = 0; k < v.size(); ++k)
+            v[k] = {static_cast<T>(component<0>(normals[k])),
+                    static_cast<T>(component<1>(normals[k])),
+                    static_cast<T>(component<2>(normals[k]))};
+    }
+    return build_normal_mips(normals != nullptr ? v.data() : nullptr, width, height);
+}
+
+/// build_normal_mips() for a contiguous range of normals (std::vector<glm::vec3>, ...), size
+/// checked: at least width * height elements.
+template <class Normals, class = decltype(std::declval<const Normals&>().data()),
+          class = decltype(std::declval<const Normals&>().size())>
+auto build_normal_mips(const Normals& normals, int width, int height) {
+    if (width >= 1 && height >= 1 &&
+        static_cast<std::size_t>(normals.size()) <
+            static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
+        sphbasis::detail::throw_invalid(
+            "toksvig::build_normal_mips",
+            "a normal array of width * height = " +
+                std::to_string(static_cast<std::size_t>(width) * static_cast<std::size_t>(height)) +
+                " elements, got " + std::to_string(normals.size()));
+    return build_normal_mips(normals.data(), width, height);
 }
 
 /// The Toksvig factor (eq. 6) of every texel of a mip level, for shininess s.

@@ -21,11 +21,11 @@
 #include <type_traits>
 #include <utility>
 
-#include "../config.hpp"
-#include "scalar.hpp"
-#include "scaled.hpp"
-#include "simd.hpp"
-#include "vec.hpp"
+#include "../../config.hpp"
+#include "../../core/scalar.hpp"
+#include "../../core/scaled.hpp"
+#include "../../core/simd.hpp"
+#include "../../core/vec.hpp"
 
 namespace sphbasis::detail::hemi {
 
@@ -33,13 +33,11 @@ namespace sphbasis::detail::hemi {
 /// ~1e14 there for every family, so it cannot overflow in float.
 inline constexpr int max_row_bands = 64;
 
-/// The type of the high-degree column recurrence: x87 extended precision (64-bit significand)
-/// where long double is that format, else double. Near w = +-1 the three-term recurrence turns
-/// every rounding of a coefficient into a perturbation of the argument, which degree-l functions
-/// amplify ~l^1.5 times (slope ~l^2 at the ends): 2e-11 of the scale at l = 2047 in double,
-/// ~1e-14 in extended precision, for ~1.4x the time of the (scalar, division-bound) loop.
-using wide =
-    std::conditional_t<std::numeric_limits<long double>::digits == 64, long double, double>;
+// The high-degree column recurrence runs in sphbasis::extended (core/scalar.hpp): near w = +-1
+// the three-term recurrence turns every rounding of a coefficient into a perturbation of the
+// argument, which degree-l functions amplify ~l^1.5 times (slope ~l^2 at the ends): 2e-11 of the
+// scale at l = 2047 in double, ~1e-14 in x87 extended precision, for ~1.4x the time of the
+// (scalar, division-bound) loop.
 
 /// A family of hemispherical functions f = E(z) q_m p_k^(alpha, beta)(w) Re/Im (X + iY)^|m| with
 /// w = sigma (2z - 1), alpha = a0 + am |m|, beta = b0 + bm |m|, band = |m| + step k.
@@ -79,13 +77,13 @@ inline R sigma_plus_b(int k, int al, int be, int sigma) noexcept {
 /// One step p_k = (pz z - d) p_{k-1} - c p_{k-2}, k >= 1, of the family's recurrence in z:
 /// (w - b) / a = (2 sigma z - (sigma + b)) / a, so z enters unrounded.
 struct Step {
-    wide pz, d, c;
+    extended pz, d, c;
 };
 inline Step jacobi_step(int k, int al, int be, int sigma) noexcept {
-    // Formed in the wide type and rounded once, to the table's type, by the caller.
-    const wide ak = jacobi_a<wide>(k, al, be);
-    const wide akm1 = k >= 2 ? jacobi_a<wide>(k - 1, al, be) : wide(0);
-    return {wide(2 * sigma) / ak, sigma_plus_b<wide>(k - 1, al, be, sigma) / ak, akm1 / ak};
+    // Formed in the extended type and rounded once, to the table's type, by the caller.
+    const extended ak = jacobi_a<extended>(k, al, be);
+    const extended akm1 = k >= 2 ? jacobi_a<extended>(k - 1, al, be) : extended(0);
+    return {extended(2 * sigma) / ak, sigma_plus_b<extended>(k - 1, al, be, sigma) / ak, akm1 / ak};
 }
 
 /// Number of recurrence steps in bands 0..b-1 (the table offset of band b): band b advances
@@ -104,9 +102,9 @@ struct RowTable {
 
     // Out of line: row_table() is inlined into every kernel, its one-time construction is not.
     SPHBASIS_NOINLINE explicit RowTable(const Family& f) noexcept {
-        wide q = f.q0;
+        extended q = f.q0;
         for (int m = 0; m < Bands; ++m) {
-            if (m > 0) q *= f.start_ratio<wide>(m);
+            if (m > 0) q *= f.start_ratio<extended>(m);
             start[m] = static_cast<T>(q);
         }
         for (int b = 0; b < Bands; ++b) {
@@ -225,10 +223,11 @@ SPHBASIS_FORCEINLINE void rows_acn(int bands, const V& zc, const V& X, const V& 
 /// family's factor (0 below the horizon). The sectoral starts carry a binary exponent, so nothing
 /// underflows before the recurrence has grown it back; values below the double range come out
 /// as 0, never NaN or Inf. Coefficients are computed on the fly: ~1 sqrt and 3 divisions per
-/// function, in the `wide` type.
+/// function, in sphbasis::extended.
 template <class Out>
-inline void columns(const Family& f, int bands, wide zc, wide X, wide Y, wide E, Out&& out) {
-    using R = wide;
+inline void columns(const Family& f, int bands, extended zc, extended X, extended Y, extended E,
+                    Out&& out) {
+    using R = extended;
     R s, cp, sp;  // sin' = |(X, Y)|, cos(phi), sin(phi) without underflow
     polar_xy(X, Y, s, cp, sp);
     int s_exp = 0;
@@ -279,23 +278,24 @@ inline void columns(const Family& f, int bands, wide zc, wide X, wide Y, wide E,
 }
 
 /// Runs columns() for a value type V: directly for float/double, lane by lane for batches.
-/// prep(x, y, z, zc, X, Y, E) computes the family's inputs in the wide type from the lane's
+/// prep(x, y, z, zc, X, Y, E) computes the family's inputs in the extended type from the lane's
 /// direction (m-th powers of (X, Y) amplify their rounding m times); index(b, m) maps a label to
 /// the function index.
 template <class V, class Store, class Prep, class Index>
 inline void columns_any(const Family& f, int bands, const V& x, const V& y, const V& z,
                         Store&& store, Prep&& prep, Index&& index) {
-    auto run = [&](wide dx, wide dy, wide dz, auto&& put) {
-        wide zc, X, Y, E;
+    auto run = [&](extended dx, extended dy, extended dz, auto&& put) {
+        extended zc, X, Y, E;
         prep(dx, dy, dz, zc, X, Y, E);
         columns(f, bands, zc, X, Y, E, [&](int b, int m, double v) { put(index(b, m), v); });
     };
     if constexpr (std::is_floating_point_v<V>) {
-        run(wide(x), wide(y), wide(z), [&](int k, double v) { store(k, static_cast<V>(v)); });
+        run(extended(x), extended(y), extended(z),
+            [&](int k, double v) { store(k, static_cast<V>(v)); });
     } else {
         using S = scalar_t<V>;
         for (int i = 0; i < V::size; ++i)
-            run(wide(x[i]), wide(y[i]), wide(z[i]),
+            run(extended(x[i]), extended(y[i]), extended(z[i]),
                 [&](int k, double v) { store.lane(k, i, static_cast<S>(v)); });
     }
 }

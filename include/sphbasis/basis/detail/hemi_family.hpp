@@ -1,24 +1,25 @@
 // sphbasis: the kernels and the basis interface (basis/basis.hpp) shared by the hemispherical
-// bases evaluated by the Jacobi recurrence of core/jacobi.hpp: HSH (hsh.hpp), Makhotkin
-// (makhotkin.hpp) and Zernike (zernike.hpp).
+// bases evaluated by the normalised Jacobi recurrence (basis/detail/jacobi.hpp): HSH (hsh.hpp),
+// Makhotkin (makhotkin.hpp) and Zernike (zernike.hpp). Internal: users include those headers.
 //
 // A family type Fam supplies, beside `static constexpr hemi::Family family`:
 //   prep(x, y, z, zc, X, Y, E)            the recurrence inputs of a direction, any value type
-//                                         (float, double, batch, detail::hemi::wide);
+//                                         (float, double, batch, sphbasis::extended);
 //   rows<Cap>(bands, zc, X, Y, E, store)  the row recurrence in the basis' order, bands <= Cap;
 //   index(band, m)                        the function index of the label (band, m).
 // Kernels: a compile-time band count (<= 8) gets the row recurrence unrolled, <= 64 bands the
 // row recurrence, more the column recurrence (lane by lane for batches).
 #pragma once
 
+#include <string>
 #include <type_traits>
 #include <utility>
 
-#include "../config.hpp"
-#include "../core/jacobi.hpp"
-#include "../core/scalar.hpp"
-#include "basis.hpp"
-#include "sh.hpp"
+#include "../../config.hpp"
+#include "../../core/scalar.hpp"
+#include "../basis.hpp"
+#include "../sh.hpp"
+#include "jacobi.hpp"
 
 namespace sphbasis::detail::hemi {
 
@@ -60,7 +61,7 @@ struct RowKernel {
     }
 };
 
-/// Any band count: the column recurrence in the wide type.
+/// Any band count: the column recurrence in sphbasis::extended.
 template <class Fam>
 struct ColumnKernel {
     int bands;
@@ -68,9 +69,8 @@ struct ColumnKernel {
     void operator()(const V& x, const V& y, const V& z, Store&& store) const {
         columns_any(
             Fam::family, bands, x, y, z, store,
-            [](wide dx, wide dy, wide dz, wide& zc, wide& X, wide& Y, wide& E) {
-                Fam::prep(dx, dy, dz, zc, X, Y, E);
-            },
+            [](extended dx, extended dy, extended dz, extended& zc, extended& X, extended& Y,
+               extended& E) { Fam::prep(dx, dy, dz, zc, X, Y, E); },
             [](int b, int m) { return Fam::index(b, m); });
     }
 };
@@ -106,7 +106,7 @@ struct LargeKernel {
 /// LargeKernel<Fam>. Inlined into the caller, so that the one-call path has no call, no frame
 /// and no reload of the direction between the band-count check and the unrolled kernel.
 template <template <int> class Fixed, class Fam, class F>
-SPHBASIS_FORCEINLINE decltype(auto) with_kernel(int bands, F&& f) {
+SPHBASIS_FORCEINLINE decltype(auto) with_bands_kernel(int bands, F&& f) {
     switch (bands) {
         case 1:
             return f(Fixed<1>{});
@@ -134,30 +134,51 @@ struct SquareCount {
     static constexpr int count(int bands) noexcept { return bands * bands; }
     /// The band count of n functions, or -1 if n is not a positive square.
     static int bands_of(int n) noexcept { return sh::bands_of_count(n); }
-    static constexpr const char* rule = "a square number (bands^2, bands <= 2048) of";
+    static constexpr const char* rule = "a square number (bands^2";
 };
 
 /// The basis interface of a hemispherical basis orthonormal on the upper hemisphere: Count's
 /// band-count rule (count, bands_of, rule), 1 <= bands <= MaxBands, the kernels of
-/// with_kernel<Fixed, Fam>. The basis type derives from it and adds its `name`.
+/// with_bands_kernel<Fixed, Fam>. The basis type derives from it and adds its `name`.
 template <class Count, int MaxBands, class Fam, template <int> class Fixed>
 struct HemiBasis {
     static constexpr Domain domain = Domain::hemisphere;
     static constexpr bool orthonormal = true;
+    static constexpr int max_bands = MaxBands;
     /// Number of functions in `bands` bands.
     static constexpr int count(int bands) noexcept { return Count::count(bands); }
-    /// The band count of n functions, or -1 if n is no function count of this basis.
-    static int bands_of(int n) noexcept { return Count::bands_of(n); }
-    static bool valid_count(int n) noexcept {
-        const int b = bands_of(n);
+    /// The band count of `count` functions, or -1 if it is no size of this basis.
+    static int bands_of(int count) noexcept { return Count::bands_of(count); }
+    static bool valid_count(int count) noexcept {
+        const int b = bands_of(count);
         return b >= 1 && b <= MaxBands;
     }
-    static const char* count_rule() noexcept { return Count::rule; }
+    /// "a square number (bands^2, bands <= 2048) of", from Count's rule and MaxBands.
+    static const char* count_rule() {
+        static const std::string rule =
+            std::string(Count::rule) + ", bands <= " + std::to_string(MaxBands) + ") of";
+        return rule.c_str();
+    }
     static int max_count() noexcept { return count(MaxBands); }
-    /// Precondition: valid_count(n). Batch stores need lane(k, i, v) above 64 bands.
+    /// Precondition: valid_count(count). Batch stores need lane(k, i, v) above 64 bands.
     template <class F>
-    static SPHBASIS_FORCEINLINE decltype(auto) with_kernel(int n, F&& f) {
-        return hemi::with_kernel<Fixed, Fam>(bands_of(n), std::forward<F>(f));
+    static SPHBASIS_FORCEINLINE decltype(auto) with_kernel(int count, F&& f) {
+        return hemi::with_bands_kernel<Fixed, Fam>(bands_of(count), std::forward<F>(f));
+    }
+    /// Precondition: 1 <= bands <= max_bands.
+    template <class F>
+    static SPHBASIS_FORCEINLINE decltype(auto) with_bands_kernel(int bands, F&& f) {
+        return hemi::with_bands_kernel<Fixed, Fam>(bands, std::forward<F>(f));
+    }
+    /// The kernel of exactly N bands: unrolled for N <= 8, the row recurrence above (N <= 64).
+    template <int N>
+    static constexpr auto fixed_kernel() noexcept {
+        static_assert(N >= 1 && N <= max_row_bands,
+                      "sphbasis: compile-time band counts are 1..64.");
+        if constexpr (N <= 8)
+            return Fixed<N>{};
+        else
+            return RowKernel<Fam>{N};
     }
 };
 
