@@ -44,5 +44,6 @@ TEST_CASE("clamped-cosine factors: the table equals the single values", "[clampe
     for (int l = 0; l < 4001; l += (l < 64 ? 1 : 97)) CHECK(a[std::size_t(l)] == clamped_cosine(l));
     CHECK(std::isfinite(a[4000]));
     CHECK(std::fabs(a[4000]) > 0);
-    CHECK_THROWS_WITH(clamped_cosine(-3), Catch::Contains("sphbasis::clamped_cosine(): expected l >= 0, got -3"));
+    CHECK_THROWS_WITH(clamped_cosine(-3),
+                      Catch::Contains("sphbasis::clamped_cosine(): expected l >= 0, got -3"));
 }

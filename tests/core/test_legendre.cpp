@@ -25,7 +25,8 @@ TEST_CASE("Legendre: values against closed forms", "[legendre]") {
         // Pbar_3^3 = sqrt(35/32) s^3 k (no Condon-Shortley phase: y_33 = sqrt(2) Pbar_3^3 cos 3phi
         // = sqrt(35/(32 pi)) s^3 cos 3 phi).
         CHECK(p[leg.index(3, 3)] == Approx(std::sqrt(35.0 / 16.0) * s * s * s * k).margin(1e-15));
-        // Pbar_2^1 = sqrt(15/4) z s k / ... : y_21 = sqrt(15/(4 pi)) x z = sqrt(2) Pbar_2^1 cos phi.
+        // Pbar_2^1 = sqrt(15/4) z s k / ... : y_21 = sqrt(15/(4 pi)) x z = sqrt(2) Pbar_2^1 cos
+        // phi.
         CHECK(p[leg.index(2, 1)] == Approx(std::sqrt(15.0 / 2.0) * z * s * k).margin(1e-15));
     }
     // The coefficients.
@@ -92,4 +93,3 @@ TEST_CASE("Legendre tables match the library's SH", "[legendre]") {
             }
     }
 }
-

@@ -308,8 +308,7 @@ TEST_CASE("hemispherical SH Gram, truncation bound and ShFits against direct qua
     }
     double exact_tail = 0;
     for (int l = cut; l < bands; ++l)
-        exact_tail += clamped_cosine(l) * clamped_cosine(l) *
-                      energies[static_cast<std::size_t>(l)];
+        exact_tail += clamped_cosine(l) * clamped_cosine(l) * energies[static_cast<std::size_t>(l)];
     CHECK(tail >= exact_tail);
     CHECK(tail == Approx(exact_tail).epsilon(1e-12));  // no radiance energy beyond `bands`
     Eigen::MatrixXd both(k, 2);

@@ -8,9 +8,10 @@
 
 using namespace sphbasis;
 
-TEST_CASE("sh::project_latlong integrates piecewise-constant texels exactly (ported from the "
-          "FFT projector of the IMSE benchmark)",
-          "[latlong]") {
+TEST_CASE(
+    "sh::project_latlong integrates piecewise-constant texels exactly (ported from the "
+    "FFT projector of the IMSE benchmark)",
+    "[latlong]") {
     // Constant map: only y_00, with coefficient sqrt(4 pi).
     LatLongMap one{32, 16, std::vector<double>(32 * 16, 1.0)};
     const std::vector<double> c1 = sh::project_latlong(one, 6);
@@ -50,4 +51,3 @@ TEST_CASE("sh::project_latlong integrates piecewise-constant texels exactly (por
     }
     CHECK_THROWS_AS(sh::project_latlong(LatLongMap{4, 2, {1.0}}, 4), std::invalid_argument);
 }
-

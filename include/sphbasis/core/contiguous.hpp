@@ -15,11 +15,12 @@ namespace sphbasis::detail {
 template <class R, class = void>
 struct is_contiguous_range : std::false_type {};
 template <class R>
-struct is_contiguous_range<R, std::void_t<decltype(std::declval<R&>().data()),
-                                          decltype(std::declval<R&>().size())>>
+struct is_contiguous_range<
+    R, std::void_t<decltype(std::declval<R&>().data()), decltype(std::declval<R&>().size())>>
     : std::is_pointer<decltype(std::declval<R&>().data())> {};
 template <class R>
-inline constexpr bool is_contiguous_range_v = is_contiguous_range<std::remove_reference_t<R>>::value;
+inline constexpr bool is_contiguous_range_v =
+    is_contiguous_range<std::remove_reference_t<R>>::value;
 
 /// The element type of a contiguous range (const kept for const ranges).
 template <class R>
@@ -84,8 +85,8 @@ struct is_direction_index : std::false_type {};
 template <class D>
 struct is_direction_index<
     D, std::enable_if_t<!std::is_arithmetic_v<D> && !std::is_pointer_v<D> &&
-                            std::is_arithmetic_v<std::remove_cv_t<std::remove_reference_t<
-                                decltype(std::declval<const D&>()[2])>>>>>
+                        std::is_arithmetic_v<std::remove_cv_t<
+                            std::remove_reference_t<decltype(std::declval<const D&>()[2])>>>>>
     : std::true_type {};
 template <class D>
 inline constexpr bool is_direction_v =

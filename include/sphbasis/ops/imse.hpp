@@ -138,9 +138,9 @@ class Fit : public LeastSquares {
 inline Eigen::MatrixXd irradiance_samples(const Eigen::MatrixXd& radiance,
                                           const DirectionalRule& rule) {
     if (radiance.rows() != signal_coeffs)
-        sphbasis::detail::throw_invalid("imse::irradiance_samples",
-                                        "9 radiance coefficients per column, got " +
-                                            std::to_string(radiance.rows()));
+        sphbasis::detail::throw_invalid(
+            "imse::irradiance_samples",
+            "9 radiance coefficients per column, got " + std::to_string(radiance.rows()));
     return evaluation_matrix(evaluator<SH>(signal_coeffs), rule) *
            (irradiance_factors().asDiagonal() * radiance);
 }
@@ -191,8 +191,8 @@ inline double imse_of(const Eigen::MatrixXd& q, const Eigen::VectorXd& radiance)
     return radiance.dot(q * radiance);
 }
 
-/// IMSE of one signal computed the long way (Ishmukhametov, eq. 3.1): irradiance sampled on the rule,
-/// least-squares fit, squared residual integrated by the rule.
+/// IMSE of one signal computed the long way (Ishmukhametov, eq. 3.1): irradiance sampled on the
+/// rule, least-squares fit, squared residual integrated by the rule.
 inline double imse_direct(const BasisFunctions& b, bool orthonormal,
                           const Eigen::VectorXd& radiance,
                           const DirectionalRule& rule = paper_rule()) {
@@ -244,9 +244,8 @@ inline double truncation_bound(const std::vector<double>& energies, double squar
     const int known = static_cast<int>(energies.size());
     if (bands < 1 || bands > known)
         sphbasis::detail::throw_invalid("imse::truncation_bound",
-                                        "1 <= bands <= energies.size() = " +
-                                            std::to_string(known) + ", got " +
-                                            std::to_string(bands));
+                                        "1 <= bands <= energies.size() = " + std::to_string(known) +
+                                            ", got " + std::to_string(bands));
     double tail = 0, seen = 0;
     for (int l = 0; l < known; ++l) {
         seen += energies[static_cast<std::size_t>(l)];

@@ -102,7 +102,8 @@ double call_direction(F& f, double x, double y, double z) {
                       "from (x, y, z) (glm::dvec3, Eigen::Vector3d).");
         if constexpr (!std::is_void_v<P> && std::is_constructible_v<P, double, double, double>) {
             using S = std::remove_cv_t<std::remove_reference_t<decltype(component<0>(P(x, y, z)))>>;
-            return static_cast<double>(f(P(static_cast<S>(x), static_cast<S>(y), static_cast<S>(z))));
+            return static_cast<double>(
+                f(P(static_cast<S>(x), static_cast<S>(y), static_cast<S>(z))));
         } else {
             return 0.0;
         }
@@ -194,9 +195,10 @@ class GramSolver {
         const Eigen::VectorXd d = llt_.matrixLLT().diagonal();
         if (d.minCoeff() <= 1e-7 * d.maxCoeff())
             sphbasis::detail::throw_runtime(
-                "GramSolver", "a Gram matrix that is not numerically singular on the domain, got "
-                              "a Cholesky diagonal ratio of " +
-                                  std::to_string(d.minCoeff() / d.maxCoeff()));
+                "GramSolver",
+                "a Gram matrix that is not numerically singular on the domain, got "
+                "a Cholesky diagonal ratio of " +
+                    std::to_string(d.minCoeff() / d.maxCoeff()));
     }
     Eigen::VectorXd solve(const Eigen::VectorXd& r) const { return llt_.solve(r); }
     Eigen::MatrixXd solve(const Eigen::MatrixXd& r) const { return llt_.solve(r); }
@@ -229,8 +231,9 @@ class LeastSquares {
             const double dev = (gram_ - Eigen::MatrixXd::Identity(n_, n_)).cwiseAbs().maxCoeff();
             if (!(dev <= tolerance))
                 sphbasis::detail::throw_runtime(
-                    "LeastSquares", "an orthonormal basis on the rule's domain, got max |G - I| = " +
-                                        std::to_string(dev));
+                    "LeastSquares",
+                    "an orthonormal basis on the rule's domain, got max |G - I| = " +
+                        std::to_string(dev));
         } else {
             solver_ = std::make_shared<const GramSolver>(gram_);
         }

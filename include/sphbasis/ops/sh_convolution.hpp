@@ -135,7 +135,8 @@ std::vector<T> zonal_kernel(int bands, F&& h, KernelScale scale = KernelScale::u
     check_bands(bands, "sh::zonal_kernel");
     if (nodes < 0 || nodes > 100000)
         sphbasis::detail::throw_invalid(
-            "sh::zonal_kernel", "0 <= nodes <= 100000 (0: automatic), got " + std::to_string(nodes));
+            "sh::zonal_kernel",
+            "0 <= nodes <= 100000 (0: automatic), got " + std::to_string(nodes));
     const int nq = nodes > 0 ? nodes : bands + 32;
     std::vector<double> t, w;
     gauss_legendre(nq, t, w);
@@ -200,7 +201,8 @@ void scale_bands(const char* fn, int bands, const T* kernel, const C* in, C* out
     static_assert(sphbasis::detail::is_scalable<C, S>::value,
                   "sphbasis::sh::convolve: the coefficient type C needs C * "
                   "coefficient_scalar_t<C> (specialise sphbasis::coefficient_scalar).");
-    static_assert(std::is_arithmetic_v<T>, "sphbasis::sh::convolve: the kernel is float or double.");
+    static_assert(std::is_arithmetic_v<T>,
+                  "sphbasis::sh::convolve: the kernel is float or double.");
     check_bands(bands, fn);
     const std::size_t n = static_cast<std::size_t>(bands);
     sphbasis::detail::check_buffer(fn, "kernel", kernel, n);
@@ -221,7 +223,8 @@ void scale_bands_any(const char* fn, int bands, K&& kernel, In&& in, Out&& out) 
     auto pi = sphbasis::detail::buffer_pointer(fn, "in", in, n * n);
     auto po = sphbasis::detail::buffer_pointer(fn, "out", out, n * n);
     using C = std::remove_cv_t<std::remove_pointer_t<decltype(po)>>;
-    scale_bands(fn, bands, static_cast<const std::remove_cv_t<std::remove_pointer_t<decltype(pk)>>*>(pk),
+    scale_bands(fn, bands,
+                static_cast<const std::remove_cv_t<std::remove_pointer_t<decltype(pk)>>*>(pk),
                 static_cast<const C*>(pi), po);
 }
 
@@ -238,11 +241,11 @@ void convolve(int bands, const T* kernel, const C* in, C* out) {
 
 /// convolve() with any of kernel, in, out given as a contiguous range (std::vector, std::array,
 /// std::span): kernel of at least bands values, in and out of at least bands^2 (checked).
-template <class K, class In, class Out,
-          std::enable_if_t<!(std::is_pointer_v<std::decay_t<K>> &&
-                             std::is_pointer_v<std::decay_t<In>> &&
-                             std::is_pointer_v<std::decay_t<Out>>),
-                           int> = 0>
+template <
+    class K, class In, class Out,
+    std::enable_if_t<!(std::is_pointer_v<std::decay_t<K>> && std::is_pointer_v<std::decay_t<In>> &&
+                       std::is_pointer_v<std::decay_t<Out>>),
+                     int> = 0>
 void convolve(int bands, K&& kernel, In&& in, Out&& out) {
     detail::scale_bands_any("sh::convolve", bands, kernel, in, out);
 }
@@ -270,9 +273,10 @@ std::vector<T> band_energies(int bands, const T* coeffs) {
 template <class R, std::enable_if_t<sphbasis::detail::is_contiguous_range_v<R>, int> = 0>
 auto band_energies(int bands, const R& coeffs) {
     check_bands(bands, "sh::band_energies");
-    return band_energies(bands, sphbasis::detail::checked_data(
-                                    "sh::band_energies", "coeffs", coeffs,
-                                    static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands)));
+    return band_energies(bands,
+                         sphbasis::detail::checked_data(
+                             "sh::band_energies", "coeffs", coeffs,
+                             static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands)));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -352,8 +356,7 @@ C irradiance(const C* L, T x, T y, T z) {
     normalize_or_pole(x, y, z);
     const T c1 = T(k::c1), c2 = T(k::c2), c3 = T(k::c3), c4 = T(k::c4), c5 = T(k::c5);
     C e = L[8] * S(c1 * (x * x - y * y)) + L[6] * S(c3 * z * z - c5) + L[0] * S(c4);
-    e = e + L[4] * S(T(2) * c1 * x * y) + L[7] * S(T(2) * c1 * x * z) +
-        L[5] * S(T(2) * c1 * y * z);
+    e = e + L[4] * S(T(2) * c1 * x * y) + L[7] * S(T(2) * c1 * x * z) + L[5] * S(T(2) * c1 * y * z);
     e = e + L[3] * S(T(2) * c2 * x) + L[1] * S(T(2) * c2 * y) + L[2] * S(T(2) * c2 * z);
     return e;
 }
@@ -364,7 +367,8 @@ template <class LC, class D, std::enable_if_t<sphbasis::detail::is_direction_v<D
 auto irradiance(const LC& L, const D& n) {
     using T = direction_scalar_t<D>;
     const auto* p = sphbasis::detail::buffer_pointer("sh::irradiance", "L", L, 9);
-    if constexpr (std::is_pointer_v<LC>) sphbasis::detail::check_buffer("sh::irradiance", "L", p, 9);
+    if constexpr (std::is_pointer_v<LC>)
+        sphbasis::detail::check_buffer("sh::irradiance", "L", p, 9);
     return irradiance(p, T(component<0>(n)), T(component<1>(n)), T(component<2>(n)));
 }
 

@@ -298,7 +298,8 @@ template <class D, class A, class C, class Out, SPHBASIS_LIGHT_DIRECTION_OVERLOA
 void cone_light(int bands, const D& dir, A half_angle, const C& radiance, Out&& out) {
     using T = direction_scalar_t<D>;
     cone_light(bands, T(component<0>(dir)), T(component<1>(dir)), T(component<2>(dir)),
-               static_cast<T>(half_angle), radiance, detail::light_out(bands, out, "sh::cone_light"));
+               static_cast<T>(half_angle), radiance,
+               detail::light_out(bands, out, "sh::cone_light"));
 }
 /// spherical_light() with a position of any 3-vector type and out as C* or a range.
 template <class D, class A, class C, class Out, SPHBASIS_LIGHT_DIRECTION_OVERLOAD_REQUIRES(D)>

@@ -1,12 +1,13 @@
 // sphbasis: a certified lower bound of a spherical-harmonic expansion's minimum over the sphere
 // (e.g. to prove that a reconstructed irradiance is non-negative everywhere).
 //
-// minimum(): a certified lower bound by subdivision. For a spherical polynomial f of degree L, restricted to any great circle it is a trigonometric polynomial of
-// degree L in arc length, so Bernstein's inequality gives |g''| <= L^2 ||f - c||_inf for any
-// constant c. At a global minimiser w* the gradient vanishes, so every point p at geodesic
-// distance d from w* has f(p) <= f(w*) + L^2 F d^2 / 2, F >= ||f - f_00 y_00||_inf. The sphere
-// is covered by latitude-longitude cells; if w* is in a cell with centre c and radius delta
-// (the largest distance from c to the cell, attained at a corner), then
+// minimum(): a certified lower bound by subdivision. For a spherical polynomial f of degree L,
+// restricted to any great circle it is a trigonometric polynomial of degree L in arc length, so
+// Bernstein's inequality gives |g''| <= L^2 ||f - c||_inf for any constant c. At a global minimiser
+// w* the gradient vanishes, so every point p at geodesic distance d from w* has f(p) <= f(w*) + L^2
+// F d^2 / 2, F >= ||f - f_00 y_00||_inf. The sphere is covered by latitude-longitude cells; if w*
+// is in a cell with centre c and radius delta (the largest distance from c to the cell, attained at
+// a corner), then
 //   f(w*) >= f(c) - L^2 F delta^2 / 2.
 // The bound is the minimum of that over the cells that can still hold w*; cells whose bound
 // exceeds the best value found are dropped and the rest split in four, so the gap shrinks by
@@ -83,8 +84,7 @@ MinimumBound<T> minimum(int bands, const T* coeffs, double rel_tolerance = 1e-6,
                         long long max_evaluations = 4000000) {
     static_assert(std::is_floating_point_v<T>, "sphbasis::sh::minimum: T is float or double.");
     check_bands(bands, "sh::minimum");
-    if (bands < 1)
-        sphbasis::detail::throw_invalid("sh::minimum", "bands >= 1, got 0");
+    if (bands < 1) sphbasis::detail::throw_invalid("sh::minimum", "bands >= 1, got 0");
     sphbasis::detail::check_buffer("sh::minimum", "coeffs", coeffs, 1);
     if (!(rel_tolerance > 0))
         sphbasis::detail::throw_invalid("sh::minimum",
