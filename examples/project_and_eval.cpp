@@ -1,5 +1,6 @@
 // Example: project a function of direction onto SH, convert it to the modified H-basis over the
-// hemisphere (thesis Listing 2.1), and evaluate both at a normal, as a shader's CPU mirror would.
+// hemisphere (Ishmukhametov, "Irradiance Normal Mapping" (thesis), Listing 2.1), and evaluate
+// both at a normal, as a shader's CPU mirror would.
 #include <cmath>
 #include <cstdio>
 #include <sphbasis/sphbasis.hpp>
@@ -10,10 +11,9 @@ int main() {
     auto sky = [](double x, double, double z) { return 1.0 + 0.8 * z + 0.3 * x; };
     const auto rule = sphere_rule(16);                               // exact for degree <= 16
     const Eigen::VectorXd L = project(evaluator<SH>(9), sky, rule);  // 3 bands, 9 coefficients
-    Eigen::VectorXd E = L;  // irradiance / pi: clamped cosine
-    E(0) *= 1.0;
-    E.segment(1, 3) *= 2.0 / 3.0;
-    E.segment(4, 5) *= 1.0 / 4.0;
+    // Irradiance / pi: the normalised clamped-cosine factors a_l = 1, 2/3, 1/4 per band.
+    Eigen::VectorXd E(9);
+    sh::convolve(3, sh::clamped_cosine_kernel(3, sh::KernelScale::normalized), L, E);
     const Eigen::MatrixXd T =
         conversion(evaluator<SH>(9), evaluator<HBasisMod>(6), hemisphere_rule(8));
     const Eigen::VectorXd H = T * E;       // 6 modified H-basis coefficients

@@ -16,6 +16,9 @@
 #include "core/vec.hpp"
 #include "core/scaled.hpp"
 #include "core/small_buffer.hpp"
+#include "core/contiguous.hpp"
+#include "core/clamped_cosine.hpp"
+#include "core/legendre.hpp"
 #include "core/quadrature.hpp"
 #include "core/sampling.hpp"
 

@@ -11,8 +11,10 @@
 
 #include "ops/projection.hpp"
 #include "ops/sh_convolution.hpp"
+#include "ops/sh_minimum.hpp"
+#include "ops/sh_latlong.hpp"
 #include "ops/sh_lights.hpp"
 #include "ops/sh_product.hpp"
 #include "ops/sh_rotation.hpp"
-#include "ops/windowing.hpp"
+#include "ops/sh_windowing.hpp"
 // clang-format on

@@ -1,7 +1,9 @@
-// Tests of sphbasis/ops/imse.hpp: the IMSE basis comparison (thesis section 3.1).
+// Tests of sphbasis/ops/imse.hpp: the IMSE basis comparison (Ishmukhametov, "Irradiance Normal
+// Mapping" (thesis), section 3.1).
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <sphbasis/ops/imse.hpp>
+#include <sphbasis/ops/sh_convolution.hpp>
 #include <string>
 #include <vector>
 
@@ -23,11 +25,7 @@ struct RowSpec {
     const char* basis;
     int n;
 };
-const RowSpec kRows[] = {{"sh", 4},         {"sh", 9},         {"sh", 16},     {"sh", 25},
-                         {"hsh", 4},        {"hsh", 9},        {"hsh", 16},    {"makhotkin", 4},
-                         {"makhotkin", 9},  {"makhotkin", 16}, {"zernike", 3}, {"zernike", 6},
-                         {"zernike", 10},   {"zernike", 15},   {"hbasis", 4},  {"hbasis", 6},
-                         {"hbasis-mod", 4}, {"hbasis-mod", 6}, {"hl2", 3}};
+const std::vector<imse::Row> kRows = imse::paper_rows();
 
 /// Per-signal IMSE of `count` paper signals for a registered row.
 Eigen::VectorXd paper_values(const BasisInfo& info, int n, std::uint64_t seed, int count) {
@@ -37,34 +35,6 @@ Eigen::VectorXd paper_values(const BasisInfo& info, int n, std::uint64_t seed, i
 }
 
 }  // namespace
-
-TEST_CASE("clamped-cosine factors: thesis eq. 2.3 and Funk-Hecke", "[imse]") {
-    CHECK(imse::clamped_cosine(0) == 1.0);
-    CHECK(imse::clamped_cosine(1) == Approx(2.0 / 3.0).epsilon(1e-15));
-    CHECK(imse::clamped_cosine(2) == Approx(0.25).epsilon(1e-15));
-    CHECK(imse::clamped_cosine(3) == 0.0);
-    CHECK(imse::clamped_cosine(4) == Approx(-1.0 / 24.0).epsilon(1e-15));
-    CHECK(imse::clamped_cosine(6) == Approx(1.0 / 64.0).epsilon(1e-15));
-    // a_l = (1/pi) 2 pi int_0^1 z P_l(z) dz (Funk-Hecke with the kernel max(0, t)).
-    std::vector<double> t, w;
-    gauss_legendre(40, t, w);
-    for (int l = 0; l <= 30; ++l) {
-        double s = 0;
-        for (std::size_t i = 0; i < t.size(); ++i) {
-            const double z = 0.5 * (t[i] + 1);
-            double p0 = 1, p1 = z;  // Legendre P_l(z)
-            double pl = l == 0 ? 1 : z;
-            for (int k = 2; k <= l; ++k) {
-                pl = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
-                p0 = p1;
-                p1 = pl;
-            }
-            s += 0.5 * w[i] * z * pl;
-        }
-        CHECK(imse::clamped_cosine(l) == Approx(2 * s).margin(1e-15));
-    }
-    CHECK_THROWS_AS(imse::clamped_cosine(-1), std::invalid_argument);
-}
 
 TEST_CASE("Gauss-Legendre in z is not enough for sqrt(z) bases; the sqrt rule is", "[imse]") {
     const BasisInfo* mk = lookup("makhotkin");
@@ -111,7 +81,7 @@ TEST_CASE("a signal built in a basis' span has IMSE ~ 0 in that basis", "[imse]"
     const Eigen::Map<const Eigen::VectorXd> w(rule.w.data(),
                                               static_cast<Eigen::Index>(rule.size()));
     for (const auto& row : kRows) {
-        const BasisInfo* info = lookup(row.basis);
+        const BasisInfo* info = lookup(row.basis.c_str());
         if (!info) continue;
         INFO(row.basis << " " << row.n);
         const BasisFunctions b = info->functions(row.n);
@@ -187,7 +157,7 @@ TEST_CASE("closed-form expectation agrees with the sample mean", "[imse]") {
     const Eigen::MatrixXd samples =
         imse::irradiance_samples(imse::random_radiance(2024, count), rule);
     for (const auto& row : kRows) {
-        const BasisInfo* info = lookup(row.basis);
+        const BasisInfo* info = lookup(row.basis.c_str());
         if (!info) continue;
         INFO(row.basis << " " << row.n);
         const Eigen::MatrixXd q = imse::residual_form(*info, row.n);
@@ -222,7 +192,7 @@ TEST_CASE("quadrature error of the paper protocol below 1e-9 of the value", "[im
     const double signal_energy = (a.asDiagonal() * y * a.asDiagonal()).trace();
     CHECK(signal_energy == Approx(0.5 * (1 + 3 * 4.0 / 9 + 5.0 / 16)).epsilon(1e-13));
     for (const auto& row : kRows) {
-        const BasisInfo* info = lookup(row.basis);
+        const BasisInfo* info = lookup(row.basis.c_str());
         if (!info) continue;
         INFO(row.basis << " " << row.n);
         const Eigen::MatrixXd q = imse::residual_form(*info, row.n, imse::paper_rule());
@@ -253,6 +223,23 @@ TEST_CASE("fixed-seed runs are stable", "[imse]") {
     CHECK_FALSE(paper_values(*sh, 4, 78, 64) == a);
 }
 
+TEST_CASE("the benchmark's rows are the table's rows", "[imse]") {
+    const std::vector<imse::Row> rows = imse::paper_rows();
+    REQUIRE(rows.size() == 19);
+    CHECK(rows.front().basis == "sh");
+    CHECK(rows.front().n == 4);
+    CHECK(rows.back().basis == "hl2");
+    CHECK(rows.back().n == 3);
+    const std::vector<imse::Row> hdri = imse::hdri_rows();
+    REQUIRE(hdri.size() == rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        CHECK(hdri[i].basis == rows[i].basis);
+        CHECK(hdri[i].n == rows[i].n);
+        const BasisInfo* info = lookup(rows[i].basis.c_str());
+        if (info) CHECK(info->valid_count(rows[i].n));
+    }
+}
+
 TEST_CASE("Fit rejects a basis that is not orthonormal when told it is", "[imse]") {
     const BasisInfo* sh = lookup("sh");
     REQUIRE(sh);
@@ -265,69 +252,6 @@ TEST_CASE("Fit rejects a basis that is not orthonormal when told it is", "[imse]
 
 // ---------------------------------------------------------------------------------------------
 // HDRI pieces
-
-TEST_CASE("Legendre tables match the library's SH", "[imse]") {
-    const int bands = 40;
-    const imse::detail::Legendre leg(bands);
-    std::vector<double> p(leg.size()), y(static_cast<std::size_t>(bands * bands));
-    for (int t = 0; t < 12; ++t) {
-        const double th = 0.05 + 0.26 * t, ph = 0.3 + 0.7 * t;
-        const double x = std::sin(th) * std::cos(ph), yy = std::sin(th) * std::sin(ph),
-                     z = std::cos(th);
-        sh::eval(bands, x, yy, z, y.data());
-        leg.eval(z, std::sin(th), p.data());
-        for (int l = 0; l < bands; ++l)
-            for (int m = -l; m <= l; ++m) {
-                const int am = m < 0 ? -m : m;
-                const double trig = m > 0   ? constants::sqrt2 * std::cos(m * ph)
-                                    : m < 0 ? constants::sqrt2 * std::sin(am * ph)
-                                            : 1.0;
-                CHECK(p[leg.index(l, am)] * trig ==
-                      Approx(y[static_cast<std::size_t>(sh::index(l, m))]).margin(1e-12));
-            }
-    }
-}
-
-TEST_CASE("latlong_to_sh integrates piecewise-constant texels exactly", "[imse]") {
-    // Constant map: only y_00, with coefficient sqrt(4 pi).
-    imse::LatLongMap one{32, 16, std::vector<double>(32 * 16, 1.0)};
-    const std::vector<double> c1 = imse::latlong_to_sh(one, 6);
-    CHECK(c1[0] == Approx(std::sqrt(constants::four_pi)).epsilon(1e-14));
-    for (std::size_t k = 1; k < c1.size(); ++k) CHECK(c1[k] == Approx(0).margin(1e-14));
-    CHECK(imse::squared_norm(one) == Approx(constants::four_pi).epsilon(1e-14));
-    // A rough map against brute-force 2D Gauss-Legendre inside every texel; a width that is not
-    // a power of two takes the direct DFT.
-    for (int width : {24, 20}) {
-        const int height = 12, bands = 8;
-        imse::LatLongMap m{width, height, {}};
-        for (int j = 0; j < height; ++j)
-            for (int i = 0; i < width; ++i)
-                m.values.push_back(std::sin(0.37 * i + 0.1 * j * j) + 0.5);
-        const std::vector<double> c = imse::latlong_to_sh(m, bands);
-        std::vector<double> ref(static_cast<std::size_t>(bands * bands), 0.0);
-        std::vector<double> yv(ref.size()), gt, gw;
-        gauss_legendre(16, gt, gw);
-        for (int j = 0; j < height; ++j)
-            for (int i = 0; i < width; ++i) {
-                const double t0 = constants::pi * j / height, t1 = constants::pi * (j + 1) / height;
-                const double p0 = constants::two_pi * i / width,
-                             p1 = constants::two_pi * (i + 1) / width;
-                for (std::size_t a = 0; a < gt.size(); ++a)
-                    for (std::size_t b = 0; b < gt.size(); ++b) {
-                        const double t = 0.5 * (t0 + t1) + 0.5 * (t1 - t0) * gt[a];
-                        const double ph = 0.5 * (p0 + p1) + 0.5 * (p1 - p0) * gt[b];
-                        const double wt =
-                            0.25 * (t1 - t0) * (p1 - p0) * gw[a] * gw[b] * std::sin(t);
-                        sh::eval(bands, std::sin(t) * std::cos(ph), std::sin(t) * std::sin(ph),
-                                 std::cos(t), yv.data());
-                        const double v = m.values[static_cast<std::size_t>(j * width + i)];
-                        for (std::size_t k = 0; k < ref.size(); ++k) ref[k] += wt * v * yv[k];
-                    }
-            }
-        for (std::size_t k = 0; k < ref.size(); ++k) CHECK(c[k] == Approx(ref[k]).margin(1e-12));
-    }
-    CHECK_THROWS_AS(imse::latlong_to_sh(imse::LatLongMap{4, 2, {1.0}}, 4), std::invalid_argument);
-}
 
 TEST_CASE("hemispherical SH Gram, truncation bound and ShFits against direct quadrature",
           "[imse]") {
@@ -349,7 +273,7 @@ TEST_CASE("hemispherical SH Gram, truncation bound and ShFits against direct qua
     std::vector<bool> ortho;
     std::vector<const BasisInfo*> infos;
     for (const auto& row : kRows) {
-        const BasisInfo* info = lookup(row.basis);
+        const BasisInfo* info = lookup(row.basis.c_str());
         if (!info) continue;
         fns.push_back(info->functions(row.n));
         ortho.push_back(imse::orthonormal_on_hemisphere(*info));
@@ -374,18 +298,17 @@ TEST_CASE("hemispherical SH Gram, truncation bound and ShFits against direct qua
         rad[static_cast<std::size_t>(i)] = std::cos(0.7 * i) / (1 + 0.2 * i);
     double norm2 = 0;
     for (double v : rad) norm2 += v * v;
-    const std::vector<double> energies = imse::band_energies(rad, bands);
+    const std::vector<double> energies = sh::band_energies(bands, rad.data());
     const int cut = 4;
     const double tail = imse::truncation_bound(energies, norm2, cut);
     Eigen::VectorXd full(k), trunc = Eigen::VectorXd::Zero(k);
     for (int i = 0; i < k; ++i) {
-        full(i) = imse::clamped_cosine(sh::degree_of(i)) * rad[static_cast<std::size_t>(i)];
+        full(i) = clamped_cosine(sh::degree_of(i)) * rad[static_cast<std::size_t>(i)];
         if (i < cut * cut) trunc(i) = full(i);
     }
     double exact_tail = 0;
     for (int l = cut; l < bands; ++l)
-        exact_tail += imse::clamped_cosine(l) * imse::clamped_cosine(l) *
-                      energies[static_cast<std::size_t>(l)];
+        exact_tail += clamped_cosine(l) * clamped_cosine(l) * energies[static_cast<std::size_t>(l)];
     CHECK(tail >= exact_tail);
     CHECK(tail == Approx(exact_tail).epsilon(1e-12));  // no radiance energy beyond `bands`
     Eigen::MatrixXd both(k, 2);

@@ -64,7 +64,7 @@ TEST_CASE("projection: least squares on the hemisphere for a non-orthogonal set"
     CHECK(squared_error(sh3, p, f, rule) > 1e-3);
 }
 
-TEST_CASE("projection: SH -> modified H-basis matrix reproduces thesis Listing 2.1",
+TEST_CASE("projection: SH -> modified H-basis matrix reproduces Ishmukhametov, Listing 2.1",
           "[projection]") {
     // Least squares over the upper hemisphere of 3-band SH (irradiance) into the 6-function
     // modified H-basis. Listing 2.1 prints the nonzeros to 5 significant digits.

@@ -9,6 +9,7 @@
 
 #include "sphbasis/core/quadrature.hpp"
 #include "sphbasis/ops/sh_convolution.hpp"
+#include "sphbasis/ops/sh_minimum.hpp"
 #include "sphbasis/ops/sh_rotation.hpp"
 
 namespace sh = sphbasis::sh;
@@ -280,5 +281,5 @@ TEST_CASE("convolution: bad input throws", "[convolution]") {
     c[3] = std::nan("");
     CHECK_THROWS_WITH(sh::minimum(3, c.data()), Catch::Contains("expected finite coefficients"));
     CHECK_THROWS_WITH(sh::convolve(3, static_cast<const double*>(nullptr), c.data(), c.data()),
-                      Catch::Contains("sphbasis::sh::convolve(): expected non-null"));
+                      Catch::Contains("sphbasis::sh::convolve(): expected a non-null"));
 }

@@ -37,6 +37,7 @@
 
 #include "../config.hpp"
 #include "../core/constants.hpp"
+#include "../core/legendre.hpp"
 #include "../core/scalar.hpp"
 #include "../core/scaled.hpp"
 #include "../core/simd.hpp"
@@ -288,12 +289,9 @@ inline void column(int bands, int m, Scaled pmm, double z, Out&& out) {
     emit(m + 1, p0);
     p2 = p1;
     p1 = p0;
-    const double dm = m;
     for (int l = m + 2; l < bands; ++l) {
-        const double dl = l;
-        const double al = std::sqrt((4 * dl * dl - 1) / ((dl - dm) * (dl + dm)));
-        const double bl =
-            std::sqrt(((dl - 1 - dm) * (dl - 1 + dm)) / (4 * (dl - 1) * (dl - 1) - 1));
+        const double al = sphbasis::legendre_a(l, m);  // core/legendre.hpp
+        const double bl = sphbasis::legendre_b(l, m);
         p0 = al * (z * p1 - bl * p2);
         sphbasis::detail::shed_magnitude(p0, p1, e);
         emit(l, p0);

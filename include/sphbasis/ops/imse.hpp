@@ -2,11 +2,18 @@
 // fitted in a basis over the upper hemisphere), as reusable pieces for the `sphbasis imse`
 // benchmark and for users who want to score their own basis or signal.
 //
-// Reference: the source thesis (Ishmukhametov, "Irradiance Normal Mapping"), section 3.1,
-// eq. (3.1):  IMSE = int_{Omega+} ( sum_i c_i B_i(n) - E(n) )^2 dn,  and section 2.2.1, eq. (2.3):
+// Reference: Ishmukhametov, "Irradiance Normal Mapping" (thesis), section 3.1, eq. (3.1):
+//   IMSE = int_{Omega+} ( sum_i c_i B_i(n) - E(n) )^2 dn,  and section 2.2.1, eq. (2.3):
 // the irradiance of radiance L = sum c_lm y_lm is E = sum a_l c_lm y_lm with the normalised
-// clamped-cosine factors a_0 = 1, a_1 = 2/3, a_2 = 1/4 (Ramamoorthi & Hanrahan 2001, A_l / pi;
-// E is the exitant radiance of a white Lambertian surface, the 1/pi folded into the kernel).
+// clamped-cosine factors a_0 = 1, a_1 = 2/3, a_2 = 1/4 (core/clamped_cosine.hpp; Ramamoorthi and
+// Hanrahan, "An Efficient Representation for Irradiance Environment Maps", SIGGRAPH 2001, A_l /
+// pi; E is the exitant radiance of a white Lambertian surface, the 1/pi folded into the kernel).
+//
+// This header holds the experiment only. Its general tools live in their own headers:
+// the fit (LeastSquares, ops/projection.hpp), the clamped-cosine factors (clamped_cosine(),
+// core/clamped_cosine.hpp), the normalised Legendre tables (Legendre, core/legendre.hpp), the
+// lat-long projector (LatLongMap, squared_norm, sh::project_latlong: ops/sh_latlong.hpp) and the
+// band energies (sh::band_energies, ops/sh_convolution.hpp).
 //
 // Conventions.
 //   * Domain: the upper hemisphere z >= 0 (the tangent-space normals), solid-angle measure,
@@ -39,20 +46,20 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <complex>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
-#include <memory>
 #include <random>
-#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "../basis/registry.hpp"
 #include "../basis/sh.hpp"
+#include "../core/clamped_cosine.hpp"
 #include "../core/constants.hpp"
+#include "../core/error.hpp"
+#include "../core/legendre.hpp"
 #include "../core/quadrature.hpp"
 #include "projection.hpp"
 
@@ -60,24 +67,6 @@ namespace sphbasis::imse {
 
 // ---------------------------------------------------------------------------------------------
 // Kernel factors and quadrature
-
-/// The normalised clamped-cosine factor a_l = A_l / pi of degree l >= 0 (thesis eq. 2.3;
-/// Ramamoorthi & Hanrahan 2001): a_0 = 1, a_1 = 2/3, a_l = 0 for odd l > 1 and, for even l,
-/// a_l = 2 (-1)^(l/2 - 1) / ((l + 2)(l - 1)) * l! / (2^l ((l/2)!)^2), so a_2 = 1/4,
-/// a_4 = -1/24, a_6 = 1/64; |a_l| ~ 1.6 l^(-5/2) decreases for even l >= 2. Throws
-/// std::invalid_argument for l < 0.
-inline double clamped_cosine(int l) {
-    if (l < 0)
-        throw std::invalid_argument("sphbasis::imse::clamped_cosine(): expected l >= 0, got " +
-                                    std::to_string(l));
-    if (l == 0) return 1;
-    if (l == 1) return 2.0 / 3.0;
-    if (l % 2) return 0;
-    double r = 1;  // C(l, l/2) / 2^l, by r_l = r_{l-2} (l - 1) / l
-    for (int k = 2; k <= l; k += 2) r *= static_cast<double>(k - 1) / k;
-    const double sign = (l / 2) % 2 ? 1.0 : -1.0;  // (-1)^(l/2 - 1)
-    return sign * 2 * r / (static_cast<double>(l + 2) * (l - 1));
-}
 
 // hemisphere_rule_sqrt(nu, nphi) lives in core/quadrature.hpp; the name is kept here too.
 using sphbasis::hemisphere_rule_sqrt;
@@ -91,16 +80,35 @@ inline DirectionalRule paper_check_rule() { return hemisphere_rule_sqrt(64, 48);
 // ---------------------------------------------------------------------------------------------
 // The signal space and the fit
 
+/// One row of the benchmark's table: a registered basis (registry name) and its number of
+/// functions.
+struct Row {
+    std::string basis;
+    int n;
+};
+
+/// The rows of the paper protocol, in table order: SH 4, 9, 16, 25; HSH 4, 9, 16; Makhotkin 4,
+/// 9, 16; Zernike 3, 6, 10, 15; H-basis 4, 6; modified H-basis 4, 6; HL2 3.
+inline std::vector<Row> paper_rows() {
+    return {{"sh", 4},         {"sh", 9},         {"sh", 16},     {"sh", 25},
+            {"hsh", 4},        {"hsh", 9},        {"hsh", 16},    {"makhotkin", 4},
+            {"makhotkin", 9},  {"makhotkin", 16}, {"zernike", 3}, {"zernike", 6},
+            {"zernike", 10},   {"zernike", 15},   {"hbasis", 4},  {"hbasis", 6},
+            {"hbasis-mod", 4}, {"hbasis-mod", 6}, {"hl2", 3}};
+}
+
+/// The rows of the HDRI protocol, in table order: the same rows as paper_rows().
+inline std::vector<Row> hdri_rows() { return paper_rows(); }
+
 /// Number of radiance coefficients of the paper protocol: SH bands 0-2.
 inline constexpr int signal_coeffs = 9;
 
 /// The clamped-cosine factors per ACN coefficient, a_{l(k)} for k < count (count a square).
 inline Eigen::VectorXd irradiance_factors(int count = signal_coeffs) {
     if (!SH::valid_count(count))
-        throw std::invalid_argument(
-            "sphbasis::imse::irradiance_factors(): expected a square number of coefficients, "
-            "got " +
-            std::to_string(count));
+        sphbasis::detail::throw_invalid(
+            "imse::irradiance_factors",
+            "a square number of coefficients, got " + std::to_string(count));
     Eigen::VectorXd a(count);
     for (int k = 0; k < count; ++k) a(k) = clamped_cosine(sh::degree_of(k));
     return a;
@@ -113,86 +121,16 @@ inline bool orthonormal_on_hemisphere(const BasisInfo& info) {
     return info.orthonormal && info.domain == Domain::hemisphere;
 }
 
-/// The least-squares fit of functions sampled on a rule's points, for one basis: precomputes
-/// the evaluation matrix and the Gram factorisation once; then fits and scores many signals.
-/// With orthonormal = true the fit is the orthogonal projection c = <B, f>, after checking that
-/// the Gram matrix on the rule is the identity within `tolerance` (std::runtime_error if not:
-/// the basis or the rule is wrong); otherwise G c = <B, f> (GramSolver: std::runtime_error if the
-/// functions are dependent on the domain). Cost: rule.size() * n evaluations to build.
-class Fit {
+/// The least-squares fit of the experiment: LeastSquares (ops/projection.hpp) with the IMSE of
+/// each sampled signal, the squared residual of its fit integrated by the rule.
+class Fit : public LeastSquares {
   public:
-    Fit(const BasisFunctions& b, bool orthonormal, const DirectionalRule& rule,
-        double tolerance = 1e-10)
-        : n_(b.n),
-          orthonormal_(orthonormal),
-          w_(Eigen::Map<const Eigen::VectorXd>(rule.w.data(),
-                                               static_cast<Eigen::Index>(rule.w.size()))),
-          phi_(evaluation_matrix(b, rule)) {
-        gram_ = phi_.transpose() * w_.asDiagonal() * phi_;
-        if (orthonormal_) {
-            const double dev = (gram_ - Eigen::MatrixXd::Identity(n_, n_)).cwiseAbs().maxCoeff();
-            if (!(dev <= tolerance))
-                throw std::runtime_error(
-                    "sphbasis::imse::Fit(): expected an orthonormal basis on the rule's domain, "
-                    "got max |G - I| = " +
-                    std::to_string(dev));
-        } else {
-            solver_ = std::make_shared<GramSolver>(gram_);
-        }
-    }
-
-    int size() const noexcept { return n_; }
-    bool orthonormal() const noexcept { return orthonormal_; }
-    /// Phi(i, k) = B_k(d_i) over the rule's points.
-    const Eigen::MatrixXd& evaluation() const noexcept { return phi_; }
-    /// G = Phi^T W Phi.
-    const Eigen::MatrixXd& gram() const noexcept { return gram_; }
-
-    /// Solves G c = r (or c = r for an orthonormal basis) for the right-hand sides r = <B, f>.
-    Eigen::MatrixXd solve(const Eigen::MatrixXd& r) const {
-        return orthonormal_ ? r : solver_->solve(r);
-    }
-    /// Least-squares coefficients (n x S) of S signals sampled on the rule's points
-    /// (samples: rule.size() x S).
-    Eigen::MatrixXd coefficients(const Eigen::MatrixXd& samples) const {
-        check_rows(samples, "coefficients");
-        return solve(phi_.transpose() * (w_.asDiagonal() * samples));
-    }
-    /// IMSE of each of S sampled signals: the squared residual of the fit integrated by the
-    /// rule, sum_i w_i (sum_k c_k B_k(d_i) - f(d_i))^2. Never negative.
+    using LeastSquares::LeastSquares;
+    /// IMSE of each of S sampled signals (samples: rule.size() x S), Ishmukhametov eq. 3.1:
+    /// sum_i w_i (sum_k c_k B_k(d_i) - f(d_i))^2. Never negative.
     Eigen::VectorXd imse(const Eigen::MatrixXd& samples) const {
-        check_rows(samples, "imse");
-        Eigen::VectorXd out(samples.cols());
-        // In blocks of columns: the temporaries stay in cache and allocations small.
-        const Eigen::Index block = 64;
-        Eigen::MatrixXd r;
-        for (Eigen::Index c0 = 0; c0 < samples.cols(); c0 += block) {
-            const Eigen::Index len = std::min(block, samples.cols() - c0);
-            const auto s = samples.middleCols(c0, len);
-            r.noalias() = phi_ * solve(phi_.transpose() * (w_.asDiagonal() * s));
-            r -= s;
-            out.segment(c0, len) = (w_.asDiagonal() * r.cwiseAbs2()).colwise().sum().transpose();
-        }
-        return out;
+        return squared_residuals(samples);
     }
-    /// The matrix T (n x m) that maps coefficients of the functions `from` to the fit's
-    /// coefficients: T = G^-1 <B, from> (conversion()).
-    Eigen::MatrixXd conversion(const Eigen::MatrixXd& from_evaluation) const {
-        check_rows(from_evaluation, "conversion");
-        return solve(phi_.transpose() * (w_.asDiagonal() * from_evaluation));
-    }
-
-  private:
-    void check_rows(const Eigen::MatrixXd& m, const char* fn) const {
-        if (m.rows() != phi_.rows())
-            throw std::invalid_argument(std::string("sphbasis::imse::Fit::") + fn +
-                                        "(): expected one row per rule point");
-    }
-    int n_;
-    bool orthonormal_;
-    Eigen::VectorXd w_;
-    Eigen::MatrixXd phi_, gram_;
-    std::shared_ptr<GramSolver> solver_;
 };
 
 /// The irradiance of the paper protocol sampled on the rule's points: for radiance SH-9
@@ -200,8 +138,9 @@ class Fit {
 inline Eigen::MatrixXd irradiance_samples(const Eigen::MatrixXd& radiance,
                                           const DirectionalRule& rule) {
     if (radiance.rows() != signal_coeffs)
-        throw std::invalid_argument(
-            "sphbasis::imse::irradiance_samples(): expected 9 radiance coefficients per column");
+        sphbasis::detail::throw_invalid(
+            "imse::irradiance_samples",
+            "9 radiance coefficients per column, got " + std::to_string(radiance.rows()));
     return evaluation_matrix(evaluator<SH>(signal_coeffs), rule) *
            (irradiance_factors().asDiagonal() * radiance);
 }
@@ -252,8 +191,8 @@ inline double imse_of(const Eigen::MatrixXd& q, const Eigen::VectorXd& radiance)
     return radiance.dot(q * radiance);
 }
 
-/// IMSE of one signal computed the long way (thesis eq. 3.1): irradiance sampled on the rule,
-/// least-squares fit, squared residual integrated by the rule.
+/// IMSE of one signal computed the long way (Ishmukhametov, eq. 3.1): irradiance sampled on the
+/// rule, least-squares fit, squared residual integrated by the rule.
 inline double imse_direct(const BasisFunctions& b, bool orthonormal,
                           const Eigen::VectorXd& radiance,
                           const DirectionalRule& rule = paper_rule()) {
@@ -266,7 +205,8 @@ inline double imse_direct(const BasisFunctions& b, bool orthonormal,
 /// (u = top 53 bits / 2^53, c = 2u - 1): the same numbers on every platform and library.
 inline Eigen::MatrixXd random_radiance(std::uint64_t seed, int count) {
     if (count < 0)
-        throw std::invalid_argument("sphbasis::imse::random_radiance(): expected count >= 0");
+        sphbasis::detail::throw_invalid("imse::random_radiance",
+                                        "count >= 0, got " + std::to_string(count));
     std::mt19937_64 gen(seed);
     Eigen::MatrixXd c(signal_coeffs, count);
     for (int s = 0; s < count; ++s)
@@ -292,284 +232,6 @@ inline Summary summarize(const Eigen::VectorXd& v) {
 // ---------------------------------------------------------------------------------------------
 // HDRI protocol: radiance from latitude-longitude maps, irradiance in SH of high degree
 
-namespace detail {
-
-/// Fully normalised associated Legendre functions without the Condon-Shortley phase,
-/// Pbar_l^m(cos t) with 2 pi int_{-1}^{1} Pbar^2 dz = 1, so that y_l0 = Pbar_l^0 and
-/// y_lm = sqrt(2) Pbar_l^|m| cos(m phi) / sin(|m| phi) are the library's SH (sh.hpp).
-/// Values for 0 <= m <= l < bands, order-major: (l, m) at index(l, m), contiguous in l.
-/// Sectoral values that underflow (sin^m t below 1e-300 near the poles) end the m loop: the
-/// functions they start are negligible there (below ~1e-280 for any l < bands <= 4096).
-class Legendre {
-  public:
-    explicit Legendre(int bands) : bands_(bands) {
-        a_.assign(size(), 0.0);
-        b_.assign(size(), 0.0);
-        for (int m = 0; m < bands; ++m)
-            for (int l = m + 2; l < bands; ++l) {
-                const double ll = l, mm = m;
-                a_[index(l, m)] = std::sqrt((4 * ll * ll - 1) / (ll * ll - mm * mm));
-                b_[index(l, m)] =
-                    std::sqrt(((ll - 1) * (ll - 1) - mm * mm) / (4 * (ll - 1) * (ll - 1) - 1));
-            }
-    }
-    int bands() const noexcept { return bands_; }
-    /// Number of values, bands (bands + 1) / 2.
-    std::size_t size() const noexcept {
-        return static_cast<std::size_t>(bands_) * static_cast<std::size_t>(bands_ + 1) / 2;
-    }
-    /// Position of (l, m), 0 <= m <= l < bands: m bands - m (m - 1) / 2 + l - m.
-    std::size_t index(int l, int m) const noexcept {
-        const long long mm = m;
-        return static_cast<std::size_t>(mm * bands_ - mm * (mm - 1) / 2 + (l - m));
-    }
-
-    /// Fills out[0 .. size()) from z = cos t and s = sin t >= 0 (zeros where the sectoral
-    /// value underflowed); returns the number of orders m computed.
-    int eval(double z, double s, double* out) const {
-        std::fill(out, out + size(), 0.0);
-        double pmm = constants::inv_sqrt_four_pi;
-        int m = 0;
-        for (; m < bands_; ++m) {
-            if (m > 0) pmm *= std::sqrt((2.0 * m + 1) / (2.0 * m)) * s;
-            if (std::fabs(pmm) < 1e-300) break;
-            double* o = out + index(m, m);
-            o[0] = pmm;
-            if (m + 1 >= bands_) continue;
-            const double* a = a_.data() + index(m, m);
-            const double* b = b_.data() + index(m, m);
-            double p1 = pmm, p2 = std::sqrt(2.0 * m + 3) * z * pmm;
-            o[1] = p2;
-            for (int k = 2; k < bands_ - m; ++k) {
-                const double p = a[k] * (z * p2 - b[k] * p1);
-                o[k] = p;
-                p1 = p2;
-                p2 = p;
-            }
-        }
-        return m;
-    }
-
-    /// out[index(l, m)] = sum_g w[g] Pbar_l^m(z[g]) for up to 8 points at once (the
-    /// recurrences run interleaved, which hides their latency). Same underflow rule as eval().
-    void eval_weighted_sum(int count, const double* z, const double* s, const double* w,
-                           double* out) const {
-        constexpr int G = 8;
-        SPHBASIS_ASSERT(count >= 1 && count <= G);
-        std::fill(out, out + size(), 0.0);
-        double zz[G], ss[G], ww[G], pmm[G], p1[G], p2[G];
-        for (int g = 0; g < G; ++g) {
-            const bool on = g < count;
-            zz[g] = on ? z[g] : 0.0;
-            ss[g] = on ? s[g] : 0.0;
-            ww[g] = on ? w[g] : 0.0;
-            pmm[g] = on ? constants::inv_sqrt_four_pi : 0.0;
-        }
-        for (int m = 0; m < bands_; ++m) {
-            double big = 0;
-            if (m > 0) {
-                const double f = std::sqrt((2.0 * m + 1) / (2.0 * m));
-                for (int g = 0; g < G; ++g) {
-                    pmm[g] *= f * ss[g];
-                    if (std::fabs(pmm[g]) < 1e-300) pmm[g] = 0;  // no denormals
-                }
-            }
-            for (int g = 0; g < G; ++g) big = std::max(big, std::fabs(pmm[g]));
-            if (big == 0) break;
-            double* o = out + index(m, m);
-            const double* a = a_.data() + index(m, m);
-            const double* b = b_.data() + index(m, m);
-            const double c1 = std::sqrt(2.0 * m + 3);
-            double s0 = 0, s1 = 0;
-            for (int g = 0; g < G; ++g) {
-                p1[g] = pmm[g];
-                p2[g] = c1 * zz[g] * pmm[g];
-                s0 += ww[g] * p1[g];
-                s1 += ww[g] * p2[g];
-            }
-            o[0] = s0;
-            if (m + 1 >= bands_) continue;
-            o[1] = s1;
-            for (int k = 2; k < bands_ - m; ++k) {
-                double acc = 0;
-                for (int g = 0; g < G; ++g) {
-                    const double p = a[k] * (zz[g] * p2[g] - b[k] * p1[g]);
-                    p1[g] = p2[g];
-                    p2[g] = p;
-                    acc += ww[g] * p;
-                }
-                o[k] = acc;
-            }
-        }
-    }
-
-  private:
-    int bands_;
-    std::vector<double> a_, b_;
-};
-
-/// In-place radix-2 FFT, X_k = sum_j x_j exp(-2 pi i j k / n), n a power of two.
-inline void fft(std::vector<std::complex<double>>& x) {
-    const std::size_t n = x.size();
-    for (std::size_t i = 1, j = 0; i < n; ++i) {
-        std::size_t bit = n >> 1;
-        for (; j & bit; bit >>= 1) j ^= bit;
-        j ^= bit;
-        if (i < j) std::swap(x[i], x[j]);
-    }
-    for (std::size_t len = 2; len <= n; len <<= 1) {
-        const double ang = -constants::two_pi / static_cast<double>(len);
-        for (std::size_t i = 0; i < n; i += len)
-            for (std::size_t k = 0; k < len / 2; ++k) {
-                // Twiddles from std::polar each time: no accumulated rounding.
-                const std::complex<double> w = std::polar(1.0, ang * static_cast<double>(k));
-                const std::complex<double> a = x[i + k], b = x[i + k + len / 2] * w;
-                x[i + k] = a + b;
-                x[i + k + len / 2] = a - b;
-            }
-    }
-}
-
-}  // namespace detail
-
-/// A latitude-longitude map of one channel with piecewise-constant texels: texel (i, j)
-/// (column i < width, row j < height, row-major values[j * width + i]) is the radiance over
-/// phi in [2 pi i / width, 2 pi (i + 1) / width), theta in [pi j / height, pi (j + 1) / height],
-/// theta the polar angle from +z (row 0 at the north pole), as param/latlong.hpp.
-struct LatLongMap {
-    int width = 0, height = 0;
-    std::vector<double> values;
-};
-
-/// Squared L2 norm over the sphere of the map's piecewise-constant radiance, exact:
-/// sum L_ij^2 * (2 pi / width) (cos theta_j - cos theta_j+1).
-inline double squared_norm(const LatLongMap& map) {
-    if (map.width < 1 || map.height < 1 ||
-        map.values.size() !=
-            static_cast<std::size_t>(map.width) * static_cast<std::size_t>(map.height))
-        throw std::invalid_argument(
-            "sphbasis::imse::squared_norm(): expected width x height values");
-    double s = 0;
-    for (int j = 0; j < map.height; ++j) {
-        const double t0 = constants::pi * j / map.height, t1 = constants::pi * (j + 1) / map.height;
-        const double omega = constants::two_pi / map.width * (std::cos(t0) - std::cos(t1));
-        double row = 0;
-        for (int i = 0; i < map.width; ++i) {
-            const double v =
-                map.values[static_cast<std::size_t>(j) * static_cast<std::size_t>(map.width) +
-                           static_cast<std::size_t>(i)];
-            row += v * v;
-        }
-        s += row * omega;
-    }
-    return s;
-}
-
-/// SH coefficients (bands^2, ACN, the library's convention) of the map's piecewise-constant
-/// radiance: L_lm = sum_texels L_ij int_texel y_lm dw with the texel integrals done exactly in
-/// phi (int cos(m phi) over a texel = 2 sin(m dphi / 2)/m cos(m phi_centre), via one FFT per row)
-/// and by Gauss-Legendre in theta with `theta_nodes` nodes per row (integrand
-/// Pbar(cos t) sin t, smooth in t: for a row of height h the relative error is about
-/// (l h)^(2 theta_nodes) / (2 theta_nodes)!, below 1e-13 for l h < 1.2 at 6 nodes). Cost
-/// O(height * theta_nodes * bands^2) plus one FFT of the width per row (a direct DFT when the
-/// width is not a power of two). Throws std::invalid_argument for an empty or inconsistent map
-/// or bands < 1.
-inline std::vector<double> latlong_to_sh(const LatLongMap& map, int bands, int theta_nodes = 6) {
-    if (map.width < 1 || map.height < 1 ||
-        map.values.size() !=
-            static_cast<std::size_t>(map.width) * static_cast<std::size_t>(map.height) ||
-        bands < 1 || bands > 4096 || theta_nodes < 1)
-        throw std::invalid_argument(
-            "sphbasis::imse::latlong_to_sh(): expected width x height values, 1 <= bands <= "
-            "4096 and theta_nodes >= 1");
-    const int w = map.width, h = map.height;
-    const double dphi = constants::two_pi / w;
-    const detail::Legendre leg(bands);
-    std::vector<double> gt, gw;
-    gauss_legendre(theta_nodes, gt, gw);
-    // Accumulators in the Legendre layout (contiguous in l for each m): cos and sin parts.
-    const std::size_t ntri = leg.size();
-    std::vector<double> cc(ntri, 0.0), ss(ntri, 0.0), p(ntri);
-    // Per row: fc[m], fs[m] = sum_i L_ij int_texel (cos m phi, sin m phi) dphi.
-    std::vector<double> fc(static_cast<std::size_t>(bands)), fs(static_cast<std::size_t>(bands));
-    std::vector<std::complex<double>> buf(static_cast<std::size_t>(w));
-    const bool pow2 = (w & (w - 1)) == 0;
-    for (int j = 0; j < h; ++j) {
-        const double* row =
-            map.values.data() + static_cast<std::size_t>(j) * static_cast<std::size_t>(w);
-        if (pow2) {
-            for (int i = 0; i < w; ++i) buf[static_cast<std::size_t>(i)] = row[i];
-            detail::fft(buf);
-        } else {
-            for (int k = 0; k < std::min(w, bands); ++k) {
-                std::complex<double> acc = 0;
-                for (int i = 0; i < w; ++i) {
-                    const long long ik = (static_cast<long long>(i) * k) % w;
-                    acc +=
-                        row[i] * std::polar(1.0, -constants::two_pi * static_cast<double>(ik) / w);
-                }
-                buf[static_cast<std::size_t>(k)] = acc;
-            }
-        }
-        for (int m = 0; m < bands; ++m) {
-            // sum_i L_i e^{i m phi_i} with phi_i = (i + 1/2) dphi is e^{i m dphi/2} conj(X_m),
-            // X periodic in m with period w.
-            const std::complex<double> xm = buf[static_cast<std::size_t>(m % w)];
-            const std::complex<double> e = std::polar(1.0, 0.5 * m * dphi) * std::conj(xm);
-            const double box = m == 0 ? dphi : 2 * std::sin(0.5 * m * dphi) / m;
-            const double norm = m == 0 ? 1.0 : constants::sqrt2;
-            fc[static_cast<std::size_t>(m)] = norm * box * e.real();
-            fs[static_cast<std::size_t>(m)] = norm * box * e.imag();
-        }
-        // Row integrals of Pbar_l^m(cos t) sin t over [t0, t1], Gauss-Legendre in t.
-        const double t0 = constants::pi * j / h, t1 = constants::pi * (j + 1) / h;
-        for (std::size_t g0 = 0; g0 < gt.size(); g0 += 8) {
-            const int cnt = static_cast<int>(std::min<std::size_t>(8, gt.size() - g0));
-            double zs[8], ssn[8], ws[8];
-            for (int g = 0; g < cnt; ++g) {
-                const std::size_t ug = g0 + static_cast<std::size_t>(g);
-                const double t = 0.5 * (t0 + t1) + 0.5 * (t1 - t0) * gt[ug];
-                zs[g] = std::cos(t);
-                ssn[g] = std::sin(t);
-                ws[g] = 0.5 * (t1 - t0) * gw[ug] * ssn[g];
-            }
-            leg.eval_weighted_sum(cnt, zs, ssn, ws, p.data());
-            for (int m = 0; m < bands; ++m) {
-                const double c = fc[static_cast<std::size_t>(m)];
-                const double s = fs[static_cast<std::size_t>(m)];
-                const std::size_t k0 = leg.index(m, m);
-                double* cm = cc.data() + k0;
-                double* sm = ss.data() + k0;
-                const double* pm = p.data() + k0;
-                for (int k = 0; k < bands - m; ++k) {
-                    cm[k] += c * pm[k];
-                    sm[k] += s * pm[k];
-                }
-            }
-        }
-    }
-    std::vector<double> coef(static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands),
-                             0.0);
-    for (int l = 0; l < bands; ++l)
-        for (int m = 0; m <= l; ++m) {
-            const std::size_t k = leg.index(l, m);
-            coef[static_cast<std::size_t>(sh::index(l, m))] = cc[k];
-            if (m) coef[static_cast<std::size_t>(sh::index(l, -m))] = ss[k];
-        }
-    return coef;
-}
-
-/// Energy per band, e_l = sum_m c_lm^2, of SH coefficients of `bands` bands.
-inline std::vector<double> band_energies(const std::vector<double>& coeffs, int bands) {
-    std::vector<double> e(static_cast<std::size_t>(bands), 0.0);
-    for (int l = 0; l < bands; ++l)
-        for (int m = -l; m <= l; ++m) {
-            const double c = coeffs[static_cast<std::size_t>(sh::index(l, m))];
-            e[static_cast<std::size_t>(l)] += c * c;
-        }
-    return e;
-}
-
 /// Upper bound on the squared L2 norm over the sphere of the irradiance left out when the
 /// irradiance of a radiance L is truncated to `bands` bands:
 ///   sum_{l >= bands} a_l^2 e_l  <=  sum_{bands <= l < known} a_l^2 e_l
@@ -581,8 +243,9 @@ inline double truncation_bound(const std::vector<double>& energies, double squar
                                int bands) {
     const int known = static_cast<int>(energies.size());
     if (bands < 1 || bands > known)
-        throw std::invalid_argument(
-            "sphbasis::imse::truncation_bound(): expected 1 <= bands <= energies.size()");
+        sphbasis::detail::throw_invalid("imse::truncation_bound",
+                                        "1 <= bands <= energies.size() = " + std::to_string(known) +
+                                            ", got " + std::to_string(bands));
     double tail = 0, seen = 0;
     for (int l = 0; l < known; ++l) {
         seen += energies[static_cast<std::size_t>(l)];
@@ -605,11 +268,11 @@ class HemisphereShGram {
   public:
     explicit HemisphereShGram(int bands) : bands_(bands) {
         if (bands < 1 || bands > 1024)
-            throw std::invalid_argument(
-                "sphbasis::imse::HemisphereShGram(): expected 1 <= bands <= 1024");
+            sphbasis::detail::throw_invalid("imse::HemisphereShGram",
+                                            "1 <= bands <= 1024, got " + std::to_string(bands));
         std::vector<double> t, w;
         gauss_legendre(bands + 1, t, w);
-        const detail::Legendre leg(bands);
+        const Legendre leg(bands);  // core/legendre.hpp
         std::vector<double> p(leg.size());
         blocks_.resize(static_cast<std::size_t>(bands));
         for (int m = 0; m < bands; ++m)
@@ -682,8 +345,7 @@ class ShFits {
            int bands, int nu, int nphi)
         : bands_(bands) {
         if (bases.size() != orthonormal.size())
-            throw std::invalid_argument(
-                "sphbasis::imse::ShFits(): expected one orthonormal flag per basis");
+            sphbasis::detail::throw_invalid("imse::ShFits", "one orthonormal flag per basis");
         const DirectionalRule rule = hemisphere_rule_sqrt(nu, nphi);
         const Eigen::Index npts = static_cast<Eigen::Index>(rule.size());
         const int k = bands * bands;
@@ -730,10 +392,10 @@ class ShFits {
             if (orthonormal[r]) {
                 const double dev = (g - Eigen::MatrixXd::Identity(n, n)).cwiseAbs().maxCoeff();
                 if (!(dev <= 1e-10))
-                    throw std::runtime_error(
-                        "sphbasis::imse::ShFits(): expected an orthonormal basis on the "
-                        "hemisphere, got max |G - I| = " +
-                        std::to_string(dev));
+                    sphbasis::detail::throw_runtime(
+                        "imse::ShFits",
+                        "an orthonormal basis on the hemisphere, got max |G - I| = " +
+                            std::to_string(dev));
                 d_.middleRows(o, n) = c;
             } else {
                 const GramSolver check(g);  // throws for dependent functions

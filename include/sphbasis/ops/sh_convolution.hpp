@@ -1,6 +1,6 @@
-// sphbasis: convolution of spherical-harmonic expansions with zonal kernels, the
-// Ramamoorthi-Hanrahan irradiance formula, and a certified lower bound of an expansion's
-// minimum over the sphere.
+// sphbasis: convolution of spherical-harmonic expansions with zonal kernels, band energies, and
+// the Ramamoorthi-Hanrahan irradiance formula. (The certified minimum over the sphere is in
+// ops/sh_minimum.hpp, the windows against ringing in ops/sh_windowing.hpp.)
 //
 // Funk-Hecke: for a kernel h(cos theta) about the pole, the convolution
 //   (h * f)(n) = integral over the sphere of h(n . w) f(w) dw
@@ -11,13 +11,14 @@
 // a_0 = 1), and convolve() applies them.
 //
 // Clamped cosine max(cos theta, 0) (Ramamoorthi and Hanrahan, "An efficient representation for
-// irradiance environment maps", SIGGRAPH 2001, eq. 8; thesis 001 eq. 2.3):
+// irradiance environment maps", SIGGRAPH 2001, eq. 8; Ishmukhametov, "Irradiance Normal
+// Mapping" (thesis), eq. 2.3; the closed form lives in core/clamped_cosine.hpp):
 //   Lambda_0 = pi, Lambda_1 = 2 pi/3, Lambda_l = 0 for odd l > 1, and for even l
 //   Lambda_l = 2 pi (-1)^(l/2 + 1) / ((l + 2)(l - 1)) * binom(l, l/2) / 2^l,
 // so normalized a_0 = 1, a_1 = 2/3, a_2 = 1/4, a_4 = -1/24, a_6 = 1/64, ...
 // binom(l, l/2)/2^l is carried as a running product (it is < 1), so nothing overflows at any l.
 // The irradiance of radiance L is E = (Lambda * L); the exit radiance of a white Lambertian
-// surface is E/pi, i.e. the normalized factors (thesis 001 builds the 1/pi in).
+// surface is E/pi, i.e. the normalized factors (Ishmukhametov, eq. 2.3, builds the 1/pi in).
 //
 // Phong lobes max(cos theta, 0)^s, any real s > -1: with I_l = integral_0^1 t^s P_l(t) dt,
 //   I_0 = 1/(s+1),  I_1 = 1/(s+2),  I_{l+2} = I_l (s - l)/(s + l + 3),   Lambda_l = 2 pi I_l,
@@ -35,20 +36,6 @@
 // c4 = sqrt(pi)/2, c5 = sqrt(5 pi)/16 (their 0.429043, 0.511664, 0.743125, 0.886227,
 // 0.247708 rounded). The quadratic form equals clamped-cosine convolution + evaluation
 // exactly.
-//
-// Minimum over the sphere (minimum()): a certified lower bound by subdivision. For a spherical
-// polynomial f of degree L, restricted to any great circle it is a trigonometric polynomial of
-// degree L in arc length, so Bernstein's inequality gives |g''| <= L^2 ||f - c||_inf for any
-// constant c. At a global minimiser w* the gradient vanishes, so every point p at geodesic
-// distance d from w* has f(p) <= f(w*) + L^2 F d^2 / 2, F >= ||f - f_00 y_00||_inf. The sphere
-// is covered by latitude-longitude cells; if w* is in a cell with centre c and radius delta
-// (the largest distance from c to the cell, attained at a corner), then
-//   f(w*) >= f(c) - L^2 F delta^2 / 2.
-// The bound is the minimum of that over the cells that can still hold w*; cells whose bound
-// exceeds the best value found are dropped and the rest split in four, so the gap shrinks by
-// ~4 per level. F is the smaller of a Cauchy-Schwarz bound (sum_m y_lm^2 = (2l+1)/(4 pi)) and
-// the sampled maximum inflated by the same argument; a rounding margin is subtracted. Cost:
-// about 60 L^2 evaluations for the first grid plus 4 per surviving cell per level, each O(n^2).
 #pragma once
 
 #include <algorithm>
@@ -63,8 +50,12 @@
 #include <vector>
 
 #include "../basis/sh.hpp"
+#include "../core/clamped_cosine.hpp"
 #include "../core/constants.hpp"
+#include "../core/contiguous.hpp"
+#include "../core/error.hpp"
 #include "../core/quadrature.hpp"
+#include "../core/scalar.hpp"
 #include "../core/vec.hpp"
 
 namespace sphbasis::sh {
@@ -79,9 +70,8 @@ namespace detail {
 inline void normalize_kernel(std::vector<double>& k, KernelScale scale, const char* fn) {
     if (scale == KernelScale::unnormalized || k.empty()) return;
     if (!(k[0] != 0) || !std::isfinite(k[0]))
-        throw std::invalid_argument(std::string("sphbasis::") + fn +
-                                    "(): expected a kernel with a finite non-zero integral "
-                                    "(Lambda_0) for KernelScale::normalized");
+        sphbasis::detail::throw_invalid(
+            fn, "a kernel with a finite non-zero integral (Lambda_0) for KernelScale::normalized");
     const double inv = 1 / k[0];
     for (double& v : k) v *= inv;
 }
@@ -100,18 +90,10 @@ std::vector<T> cast_vector(const std::vector<double>& v) {
 template <class T = double>
 std::vector<T> clamped_cosine_kernel(int bands, KernelScale scale = KernelScale::unnormalized) {
     check_bands(bands, "sh::clamped_cosine_kernel");
-    std::vector<double> k(static_cast<std::size_t>(bands), 0.0);
-    double c = 1;  // binom(l, l/2) / 2^l for even l
-    for (int l = 0; l < bands; ++l) {
-        const std::size_t i = static_cast<std::size_t>(l);
-        if (l == 1) {
-            k[i] = constants::two_pi / 3;
-        } else if (l % 2 == 0) {
-            if (l >= 2) c *= (l - 1.0) / l;  // c_l = c_{l-2} (l-1)/l
-            const double sign = (l / 2) % 2 == 1 ? 1.0 : -1.0;
-            k[i] = l == 0 ? constants::pi : constants::two_pi * sign * c / ((l + 2.0) * (l - 1.0));
-        }
-    }
+    std::vector<double> k(static_cast<std::size_t>(bands));
+    clamped_cosine_factors(bands, k.data());  // a_l = Lambda_l / pi (core/clamped_cosine.hpp)
+    if (scale == KernelScale::unnormalized)
+        for (double& v : k) v *= constants::pi;
     detail::normalize_kernel(k, scale, "sh::clamped_cosine_kernel");
     return detail::cast_vector<T>(k);
 }
@@ -124,8 +106,8 @@ template <class T = double>
 std::vector<T> phong_kernel(int bands, double s, KernelScale scale = KernelScale::unnormalized) {
     check_bands(bands, "sh::phong_kernel");
     if (!(s > -1) || !std::isfinite(s))
-        throw std::invalid_argument(
-            "sphbasis::sh::phong_kernel(): expected an exponent s > -1, got " + std::to_string(s));
+        sphbasis::detail::throw_invalid("sh::phong_kernel",
+                                        "an exponent s > -1, got " + std::to_string(s));
     std::vector<double> k(static_cast<std::size_t>(bands), 0.0);
     double ie = 1 / (s + 1), io = 1 / (s + 2);  // I_l for the current even and odd l
     for (int l = 0; l < bands; ++l) {
@@ -152,9 +134,9 @@ std::vector<T> zonal_kernel(int bands, F&& h, KernelScale scale = KernelScale::u
                             int nodes = 0) {
     check_bands(bands, "sh::zonal_kernel");
     if (nodes < 0 || nodes > 100000)
-        throw std::invalid_argument(
-            "sphbasis::sh::zonal_kernel(): expected 0 <= nodes <= 100000 (0: automatic), got " +
-            std::to_string(nodes));
+        sphbasis::detail::throw_invalid(
+            "sh::zonal_kernel",
+            "0 <= nodes <= 100000 (0: automatic), got " + std::to_string(nodes));
     const int nq = nodes > 0 ? nodes : bands + 32;
     std::vector<double> t, w;
     gauss_legendre(nq, t, w);
@@ -189,6 +171,9 @@ std::vector<T> zonal_kernel(int bands, F&& h, KernelScale scale = KernelScale::u
 template <class T>
 void zonal_to_kernel(int bands, const T* z, T* out) {
     check_bands(bands, "sh::zonal_to_kernel");
+    sphbasis::detail::check_buffer("sh::zonal_to_kernel", "z", z, static_cast<std::size_t>(bands));
+    sphbasis::detail::check_buffer("sh::zonal_to_kernel", "out", out,
+                                   static_cast<std::size_t>(bands));
     for (int l = 0; l < bands; ++l)
         out[l] = z[l] * static_cast<T>(std::sqrt(constants::four_pi / (2 * l + 1)));
 }
@@ -196,19 +181,102 @@ void zonal_to_kernel(int bands, const T* z, T* out) {
 template <class T>
 void kernel_to_zonal(int bands, const T* kernel, T* out) {
     check_bands(bands, "sh::kernel_to_zonal");
+    sphbasis::detail::check_buffer("sh::kernel_to_zonal", "kernel", kernel,
+                                   static_cast<std::size_t>(bands));
+    sphbasis::detail::check_buffer("sh::kernel_to_zonal", "out", out,
+                                   static_cast<std::size_t>(bands));
     for (int l = 0; l < bands; ++l)
         out[l] = kernel[l] * static_cast<T>(std::sqrt((2 * l + 1) / constants::four_pi));
 }
 
-/// out_lm = kernel[l] in_lm for `bands` bands (in == out allowed). C is any type with C * T.
+namespace detail {
+
+/// out_lm = kernel[l] in_lm, the one implementation of convolve() and apply_window(), with the
+/// checks of their API boundary under the caller's name. The kernel is rounded once to the
+/// coefficients' scalar (coefficient_scalar_t<C>: float for float and glm::vec3, double for
+/// double), so float coefficients stay float and RGB types need only C * their own scalar.
+template <class T, class C>
+void scale_bands(const char* fn, int bands, const T* kernel, const C* in, C* out) {
+    using S = coefficient_scalar_t<C>;
+    static_assert(sphbasis::detail::is_scalable<C, S>::value,
+                  "sphbasis::sh::convolve: the coefficient type C needs C * "
+                  "coefficient_scalar_t<C> (specialise sphbasis::coefficient_scalar).");
+    static_assert(std::is_arithmetic_v<T>,
+                  "sphbasis::sh::convolve: the kernel is float or double.");
+    check_bands(bands, fn);
+    const std::size_t n = static_cast<std::size_t>(bands);
+    sphbasis::detail::check_buffer(fn, "kernel", kernel, n);
+    sphbasis::detail::check_buffer(fn, "in", in, n * n);
+    sphbasis::detail::check_buffer(fn, "out", out, n * n);
+    for (int l = 0; l < bands; ++l) {
+        const S f = static_cast<S>(kernel[l]);
+        for (int k = l * l; k < (l + 1) * (l + 1); ++k) out[k] = in[k] * f;
+    }
+}
+
+/// scale_bands() for buffers given as pointers or contiguous ranges (sizes checked).
+template <class K, class In, class Out>
+void scale_bands_any(const char* fn, int bands, K&& kernel, In&& in, Out&& out) {
+    check_bands(bands, fn);
+    const std::size_t n = static_cast<std::size_t>(bands);
+    auto pk = sphbasis::detail::buffer_pointer(fn, "kernel", kernel, n);
+    auto pi = sphbasis::detail::buffer_pointer(fn, "in", in, n * n);
+    auto po = sphbasis::detail::buffer_pointer(fn, "out", out, n * n);
+    using C = std::remove_cv_t<std::remove_pointer_t<decltype(po)>>;
+    scale_bands(fn, bands,
+                static_cast<const std::remove_cv_t<std::remove_pointer_t<decltype(pk)>>*>(pk),
+                static_cast<const C*>(pi), po);
+}
+
+}  // namespace detail
+
+/// out_lm = kernel[l] in_lm for `bands` bands (in == out allowed). C is any coefficient type
+/// with C * coefficient_scalar_t<C> (float, double, glm::vec3, an RGB struct); the kernel (float
+/// or double, e.g. clamped_cosine_kernel()) is rounded to that scalar. Throws
+/// std::invalid_argument for bad bands or a null buffer.
 template <class T, class C>
 void convolve(int bands, const T* kernel, const C* in, C* out) {
-    check_bands(bands, "sh::convolve");
-    if (bands == 0) return;
-    if (!kernel || !in || !out)
-        throw std::invalid_argument("sphbasis::sh::convolve(): expected non-null arrays");
+    detail::scale_bands("sh::convolve", bands, kernel, in, out);
+}
+
+/// convolve() with any of kernel, in, out given as a contiguous range (std::vector, std::array,
+/// std::span): kernel of at least bands values, in and out of at least bands^2 (checked).
+template <
+    class K, class In, class Out,
+    std::enable_if_t<!(std::is_pointer_v<std::decay_t<K>> && std::is_pointer_v<std::decay_t<In>> &&
+                       std::is_pointer_v<std::decay_t<Out>>),
+                     int> = 0>
+void convolve(int bands, K&& kernel, In&& in, Out&& out) {
+    detail::scale_bands_any("sh::convolve", bands, kernel, in, out);
+}
+
+/// Energy per band, e_l = sum_m c_lm^2 for l < bands, of SH coefficients (bands^2 values, ACN):
+/// by Parseval the squared L2 norm over the sphere of band l, invariant under rotation. T is
+/// float or double. Throws std::invalid_argument for bad bands or a null coeffs.
+template <class T>
+std::vector<T> band_energies(int bands, const T* coeffs) {
+    static_assert(std::is_floating_point_v<T>,
+                  "sphbasis::sh::band_energies: the coefficients are float or double.");
+    check_bands(bands, "sh::band_energies");
+    sphbasis::detail::check_buffer("sh::band_energies", "coeffs", coeffs,
+                                   static_cast<std::size_t>(bands));
+    std::vector<T> e(static_cast<std::size_t>(bands), T(0));
     for (int l = 0; l < bands; ++l)
-        for (int k = l * l; k < (l + 1) * (l + 1); ++k) out[k] = in[k] * kernel[l];
+        for (int m = -l; m <= l; ++m) {
+            const T c = coeffs[index(l, m)];
+            e[static_cast<std::size_t>(l)] += c * c;
+        }
+    return e;
+}
+
+/// band_energies() of a contiguous range of at least bands^2 coefficients (checked).
+template <class R, std::enable_if_t<sphbasis::detail::is_contiguous_range_v<R>, int> = 0>
+auto band_energies(int bands, const R& coeffs) {
+    check_bands(bands, "sh::band_energies");
+    return band_energies(bands,
+                         sphbasis::detail::checked_data(
+                             "sh::band_energies", "coeffs", coeffs,
+                             static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands)));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -224,11 +292,18 @@ inline constexpr double c5 = 0.24770795610037569;  // sqrt(5 pi)/16
 
 /// The symmetric 4x4 matrix M (row-major) with irradiance E(n) = n^T M n, n = (x, y, z, 1), from
 /// the 9 radiance coefficients L (3 bands, this library's convention), Ramamoorthi-Hanrahan
-/// eq. 12. C is any coefficient type with C * T and C + C; T is the scalar of the constants.
+/// eq. 12. C is any coefficient type with C + C and C * S, S = coefficient_scalar_t<C> (float,
+/// double, glm::vec3, an RGB struct); the constants are rounded to T, then to S.
 template <class T = double, class C>
 std::array<C, 16> irradiance_matrix(const C* L) {
+    using S = coefficient_scalar_t<C>;
+    static_assert(sphbasis::detail::is_scalable<C, S>::value,
+                  "sphbasis::sh::irradiance_matrix: the coefficient type C needs C + C and C * "
+                  "coefficient_scalar_t<C> (specialise sphbasis::coefficient_scalar).");
+    sphbasis::detail::check_buffer("sh::irradiance_matrix", "L", L, 9);
     namespace k = irradiance_constants;
-    const T c1 = T(k::c1), c2 = T(k::c2), c3 = T(k::c3), c4 = T(k::c4), c5 = T(k::c5);
+    const S c1 = S(T(k::c1)), c2 = S(T(k::c2)), c3 = S(T(k::c3)), c4 = S(T(k::c4)),
+            c5 = S(T(k::c5));
     // ACN: 0 L00, 1 L1-1, 2 L10, 3 L11, 4 L2-2, 5 L2-1, 6 L20, 7 L21, 8 L22.
     const C m01 = L[4] * c1, m02 = L[7] * c1, m03 = L[3] * c2, m12 = L[5] * c1, m13 = L[1] * c2,
             m23 = L[2] * c2;
@@ -238,207 +313,63 @@ std::array<C, 16> irradiance_matrix(const C* L) {
             m03,       m13,          m23,       L[0] * c4 + L[6] * (-c5)};
 }
 
-/// n^T M n with n = (x, y, z, 1), (x, y, z) normalised as by sh::eval. 10 multiply-adds.
+/// irradiance_matrix() of a contiguous range of at least 9 coefficients (checked).
+template <class T = double, class R,
+          std::enable_if_t<sphbasis::detail::is_contiguous_range_v<R>, int> = 0>
+auto irradiance_matrix(const R& L) {
+    return irradiance_matrix<T>(sphbasis::detail::checked_data("sh::irradiance_matrix", "L", L, 9));
+}
+
+/// n^T M n with n = (x, y, z, 1), (x, y, z) normalised as by sh::eval. 10 multiply-adds; the
+/// direction terms are computed in T and rounded to coefficient_scalar_t<C>.
 template <class C, class T>
 C eval_irradiance_matrix(const std::array<C, 16>& M, T x, T y, T z) {
+    using S = coefficient_scalar_t<C>;
     normalize_or_pole(x, y, z);
     // Symmetric: diagonal once, off-diagonal twice.
-    C e = M[15] + M[0] * (x * x) + M[5] * (y * y) + M[10] * (z * z);
-    e = e + M[1] * (T(2) * x * y) + M[2] * (T(2) * x * z) + M[6] * (T(2) * y * z);
-    e = e + M[3] * (T(2) * x) + M[7] * (T(2) * y) + M[11] * (T(2) * z);
+    C e = M[15] + M[0] * S(x * x) + M[5] * S(y * y) + M[10] * S(z * z);
+    e = e + M[1] * S(T(2) * x * y) + M[2] * S(T(2) * x * z) + M[6] * S(T(2) * y * z);
+    e = e + M[3] * S(T(2) * x) + M[7] * S(T(2) * y) + M[11] * S(T(2) * z);
     return e;
+}
+
+/// eval_irradiance_matrix() at a normal of any 3-vector type (glm::vec3, Eigen::Vector3d).
+template <class C, class D, std::enable_if_t<sphbasis::detail::is_direction_v<D>, int> = 0>
+C eval_irradiance_matrix(const std::array<C, 16>& M, const D& n) {
+    using T = direction_scalar_t<D>;
+    return eval_irradiance_matrix(M, T(component<0>(n)), T(component<1>(n)), T(component<2>(n)));
 }
 
 /// Irradiance at normal (x, y, z) from 9 radiance coefficients, Ramamoorthi-Hanrahan eq. 13:
 /// c1 L22 (x^2 - y^2) + c3 L20 z^2 + c4 L00 - c5 L20 + 2 c1 (L2-2 xy + L21 xz + L2-1 yz)
 /// + 2 c2 (L11 x + L1-1 y + L10 z). Equal to convolve(clamped_cosine_kernel) + eval_sum.
+/// C is any coefficient type with C + C and C * coefficient_scalar_t<C>; the direction terms
+/// are computed in T and rounded to that scalar. Hot path: no checks beyond SPHBASIS_ASSERT.
 template <class C, class T>
 C irradiance(const C* L, T x, T y, T z) {
+    using S = coefficient_scalar_t<C>;
+    static_assert(sphbasis::detail::is_scalable<C, S>::value,
+                  "sphbasis::sh::irradiance: the coefficient type C needs C + C and C * "
+                  "coefficient_scalar_t<C> (specialise sphbasis::coefficient_scalar).");
+    SPHBASIS_ASSERT(L != nullptr);
     namespace k = irradiance_constants;
     normalize_or_pole(x, y, z);
     const T c1 = T(k::c1), c2 = T(k::c2), c3 = T(k::c3), c4 = T(k::c4), c5 = T(k::c5);
-    C e = L[8] * (c1 * (x * x - y * y)) + L[6] * (c3 * z * z - c5) + L[0] * c4;
-    e = e + L[4] * (T(2) * c1 * x * y) + L[7] * (T(2) * c1 * x * z) + L[5] * (T(2) * c1 * y * z);
-    e = e + L[3] * (T(2) * c2 * x) + L[1] * (T(2) * c2 * y) + L[2] * (T(2) * c2 * z);
+    C e = L[8] * S(c1 * (x * x - y * y)) + L[6] * S(c3 * z * z - c5) + L[0] * S(c4);
+    e = e + L[4] * S(T(2) * c1 * x * y) + L[7] * S(T(2) * c1 * x * z) + L[5] * S(T(2) * c1 * y * z);
+    e = e + L[3] * S(T(2) * c2 * x) + L[1] * S(T(2) * c2 * y) + L[2] * S(T(2) * c2 * z);
     return e;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Minimum over the sphere
-
-/// Result of minimum(): the true minimum m* of the expansion satisfies
-/// lower_bound <= m* <= value, and value = f(direction).
-template <class T>
-struct MinimumBound {
-    T lower_bound;          ///< certified: f(w) >= lower_bound for every unit w
-    T value;                ///< the smallest value found, attained at `direction`
-    vec3<T> direction;      ///< where `value` was found
-    long long evaluations;  ///< expansion evaluations spent
-    bool converged;         ///< value - lower_bound <= tolerance (else the budget ran out)
-};
-
-namespace detail {
-
-struct MinCell {
-    double t0, t1, p0, p1;  // theta and phi ranges
-    double f;               // value at the centre
-    double delta;           // largest geodesic distance from the centre to the cell
-};
-
-inline vec3<double> polar_dir(double t, double p) noexcept {
-    const double st = std::sin(t);
-    return {st * std::cos(p), st * std::sin(p), std::cos(t)};
-}
-
-inline double cell_radius(const MinCell& c) noexcept {
-    const vec3<double> m = polar_dir(0.5 * (c.t0 + c.t1), 0.5 * (c.p0 + c.p1));
-    double r = 0;
-    const double ts[2] = {c.t0, c.t1}, ps[2] = {c.p0, c.p1};
-    for (double t : ts)
-        for (double p : ps) {
-            const vec3<double> q = polar_dir(t, p);
-            const double dx = q.x - m.x, dy = q.y - m.y, dz = q.z - m.z;
-            const double chord = std::sqrt(dx * dx + dy * dy + dz * dz);
-            r = std::max(r, 2 * std::asin(std::min(1.0, 0.5 * chord)));
-        }
-    return r * (1 + 1e-12) + 1e-15;
-}
-
-}  // namespace detail
-
-/// A certified lower bound of min over the sphere of f = sum_k coeffs[k] y_k, and the smallest
-/// value found, by the subdivision in the header comment. Stops when value - lower_bound <=
-/// rel_tolerance * F (F: the bound on |f - mean| it computes) or after about max_evaluations
-/// evaluations (then converged = false; the bound is still valid). Work is done in double; for
-/// float the bound is rounded down. Use it to detect negative irradiance:
-/// minimum(...).lower_bound >= 0 proves the reconstruction non-negative everywhere.
-/// Throws std::invalid_argument for bad bands, a null array, non-finite coefficients or
-/// rel_tolerance <= 0.
-template <class T>
-MinimumBound<T> minimum(int bands, const T* coeffs, double rel_tolerance = 1e-6,
-                        long long max_evaluations = 4000000) {
-    static_assert(std::is_floating_point_v<T>, "sphbasis::sh::minimum: T is float or double.");
-    check_bands(bands, "sh::minimum");
-    if (bands < 1)
-        throw std::invalid_argument("sphbasis::sh::minimum(): expected bands >= 1, got 0");
-    if (!coeffs) throw std::invalid_argument("sphbasis::sh::minimum(): expected non-null coeffs");
-    if (!(rel_tolerance > 0))
-        throw std::invalid_argument("sphbasis::sh::minimum(): expected rel_tolerance > 0");
-    const int n = bands, L = bands - 1;
-    const std::size_t nc = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
-    std::vector<double> c(nc);
-    // Work on coefficients scaled to max |c| = 1 (so no square overflows), scale back at the end.
-    double cmax = 0;
-    for (std::size_t k = 0; k < nc; ++k) {
-        c[k] = static_cast<double>(coeffs[k]);
-        if (!std::isfinite(c[k]))
-            throw std::invalid_argument(
-                "sphbasis::sh::minimum(): expected finite coefficients, got a NaN or Inf");
-        cmax = std::max(cmax, std::fabs(c[k]));
-    }
-    const double cscale = cmax > 0 ? cmax : 1.0;
-    double norm2 = 0, norm2_ac = 0;
-    for (std::size_t k = 0; k < nc; ++k) {
-        c[k] /= cscale;
-        norm2 += c[k] * c[k];
-        if (k > 0) norm2_ac += c[k] * c[k];
-    }
-    const double dc = c[0] * constants::inv_sqrt_four_pi;
-    const double bound_all = std::sqrt(norm2) * n * constants::inv_sqrt_four_pi;
-    const double eps = std::numeric_limits<double>::epsilon();
-    const double rho = 8.0 * (double(nc) + n) * eps * bound_all;  // rounding margin
-    // Cauchy-Schwarz: |f - dc| <= ||c_ac|| sqrt((n^2 - 1)/(4 pi)).
-    double F = std::sqrt(norm2_ac) * std::sqrt((double(nc) - 1) / constants::four_pi);
-
-    auto finish = [&](double lb, double val, vec3<double> dir, long long evals, bool conv) {
-        MinimumBound<T> r;
-        lb *= cscale;
-        val *= cscale;
-        T l = static_cast<T>(lb);
-        if (static_cast<double>(l) > lb) l = std::nextafter(l, -std::numeric_limits<T>::infinity());
-        r.lower_bound = l;
-        r.value = static_cast<T>(val);
-        r.direction = {static_cast<T>(dir.x), static_cast<T>(dir.y), static_cast<T>(dir.z)};
-        r.evaluations = evals;
-        r.converged = conv;
-        return r;
-    };
-    if (L == 0 || !(F > 0)) return finish(dc - rho, dc, {0, 0, 1}, 0, true);
-
-    std::vector<detail::MinCell> cells;
-    // First grid: rings of width dt, phi cells no wider (in arc length) than dt.
-    const int nt = std::max(2, static_cast<int>(std::ceil(constants::pi * L / 0.45)));
-    const double dt = constants::pi / nt;
-    for (int i = 0; i < nt; ++i) {
-        const double t0 = i * dt, t1 = (i + 1) * dt;
-        const double smax = (t0 <= constants::pi / 2 && t1 >= constants::pi / 2)
-                                ? 1.0
-                                : std::max(std::sin(t0), std::sin(t1));
-        const int np = std::max(3, static_cast<int>(std::ceil(constants::two_pi * smax / dt)));
-        const double dp = constants::two_pi / np;
-        for (int j = 0; j < np; ++j) cells.push_back({t0, t1, j * dp, (j + 1) * dp, 0, 0});
-    }
-    std::vector<double> xs, ys, zs, fv;
-    long long evals = 0;
-    double best = std::numeric_limits<double>::infinity();
-    vec3<double> best_dir{0, 0, 1};
-    auto evaluate = [&](std::vector<detail::MinCell>& cs) {
-        xs.resize(cs.size());
-        ys.resize(cs.size());
-        zs.resize(cs.size());
-        fv.resize(cs.size());
-        for (std::size_t i = 0; i < cs.size(); ++i) {
-            const vec3<double> d =
-                detail::polar_dir(0.5 * (cs[i].t0 + cs[i].t1), 0.5 * (cs[i].p0 + cs[i].p1));
-            xs[i] = d.x;
-            ys[i] = d.y;
-            zs[i] = d.z;
-            cs[i].delta = detail::cell_radius(cs[i]);
-        }
-        eval_sum_batch(n, c.data(), cs.size(), xs.data(), ys.data(), zs.data(), fv.data());
-        for (std::size_t i = 0; i < cs.size(); ++i) {
-            cs[i].f = fv[i];
-            if (fv[i] < best) {
-                best = fv[i];
-                best_dir = {xs[i], ys[i], zs[i]};
-            }
-        }
-        evals += static_cast<long long>(cs.size());
-    };
-    evaluate(cells);
-    {
-        // Sampled bound on |f - dc|: its maximum is a critical point too.
-        double dmax = 0, hmax = 0;
-        for (const auto& cl : cells) {
-            dmax = std::max(dmax, cl.delta);
-            hmax = std::max(hmax, std::fabs(cl.f - dc));
-        }
-        const double q = 0.5 * L * L * dmax * dmax;
-        if (q < 1) F = std::min(F, (hmax + rho) / (1 - q));
-    }
-    const double K = 0.5 * double(L) * double(L) * F;  // f(c) - f(w*) <= K delta^2
-    const double tol = rel_tolerance * F;
-    std::vector<detail::MinCell> next;
-    double lb = -std::numeric_limits<double>::infinity();
-    for (int level = 0; level < 64; ++level) {
-        lb = std::numeric_limits<double>::infinity();
-        for (const auto& cl : cells) lb = std::min(lb, cl.f - K * cl.delta * cl.delta);
-        lb -= rho;
-        if (best - lb <= tol) return finish(lb, best, best_dir, evals, true);
-        next.clear();
-        for (const auto& cl : cells) {
-            if (cl.f - K * cl.delta * cl.delta - rho > best) continue;  // cannot hold w*
-            const double tm = 0.5 * (cl.t0 + cl.t1), pm = 0.5 * (cl.p0 + cl.p1);
-            next.push_back({cl.t0, tm, cl.p0, pm, 0, 0});
-            next.push_back({cl.t0, tm, pm, cl.p1, 0, 0});
-            next.push_back({tm, cl.t1, cl.p0, pm, 0, 0});
-            next.push_back({tm, cl.t1, pm, cl.p1, 0, 0});
-        }
-        if (evals + static_cast<long long>(next.size()) > max_evaluations) break;
-        evaluate(next);
-        cells.swap(next);
-    }
-    return finish(lb, best, best_dir, evals, best - lb <= tol);
+/// irradiance() at a normal of any 3-vector type (glm::vec3, Eigen::Vector3f, sphbasis::vec3),
+/// with the 9 coefficients as C* or as a contiguous range of at least 9 (checked).
+template <class LC, class D, std::enable_if_t<sphbasis::detail::is_direction_v<D>, int> = 0>
+auto irradiance(const LC& L, const D& n) {
+    using T = direction_scalar_t<D>;
+    const auto* p = sphbasis::detail::buffer_pointer("sh::irradiance", "L", L, 9);
+    if constexpr (std::is_pointer_v<LC>)
+        sphbasis::detail::check_buffer("sh::irradiance", "L", p, 9);
+    return irradiance(p, T(component<0>(n)), T(component<1>(n)), T(component<2>(n)));
 }
 
 }  // namespace sphbasis::sh

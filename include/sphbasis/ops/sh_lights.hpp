@@ -28,15 +28,8 @@
 //
 // Lights and maps take any coefficient/texel type C with C + C and C * S, where
 // S = coefficient_scalar<C>::type (C for float/double, C::value_type, else the type of a member
-// r or x, else double; specialise it for other types). Environment maps:
-//   * latitude-longitude, W x H texels, row-major, texel (col, row) covering
-//     phi in [2 pi col/W, 2 pi (col+1)/W], theta in [pi row/H, pi (row+1)/H] from +z (row 0 at
-//     the north pole), phi = atan2(y, x): param/latlong.hpp's convention (which uses W = 2H).
-//     The map is read as piecewise constant and projected EXACTLY: the phi integrals of cos(m
-//     phi), sin(m phi) over a column are closed form, and the theta integrals of each
-//     y_lm(theta, 0) sin(theta) over a row use Gauss-Legendre in theta with enough nodes to be
-//     exact to rounding. A constant map gives exactly (c sqrt(4 pi), 0, ...); cost O(W H n)
-//     plus O(H n^2);
+// r or x, else double: core/scalar.hpp; specialise it for other types). Environment maps:
+//   * latitude-longitude: ops/sh_latlong.hpp (sh::project_latlong, included here);
 //   * cube maps, 6 faces of N x N, face-major then row-major (texel (face, col, row) at
 //     (face N + row) N + col), faces +X, -X, +Y, -Y, +Z, -Z oriented as D3D/OpenGL
 //     (param/cubemap.hpp: +X: (1, -t, -s), -X: (-1, -t, s), +Y: (s, 1, t), -Y: (s, -1, -t),
@@ -60,76 +53,23 @@
 #include <vector>
 
 #include "../basis/sh.hpp"
+#include "../core/clamped_cosine.hpp"
 #include "../core/constants.hpp"
+#include "../core/contiguous.hpp"
+#include "../core/error.hpp"
 #include "../core/quadrature.hpp"
+#include "../core/scalar.hpp"
+#include "../core/small_buffer.hpp"
 #include "../core/vec.hpp"
 #include "../param/cubemap.hpp"
+#include "sh_latlong.hpp"
 
 namespace sphbasis::sh {
 
-/// The scalar a coefficient type C is multiplied by: C itself for float and double, else
-/// C::value_type (glm::vec3, Eigen vectors), else the type of a member `r` or `x` (RGB-like
-/// structs), else double. Specialise it for other types.
-template <class C, class = void>
-struct coefficient_scalar {
-    using type = double;
-};
-
-namespace detail {
-template <class C, class = void>
-struct has_value_type : std::false_type {};
-template <class C>
-struct has_value_type<C, std::void_t<typename C::value_type>> : std::true_type {};
-template <class C, class = void>
-struct has_member_r : std::false_type {};
-template <class C>
-struct has_member_r<C, std::void_t<decltype(std::declval<const C&>().r)>> : std::true_type {};
-template <class C, class = void>
-struct has_member_x : std::false_type {};
-template <class C>
-struct has_member_x<C, std::void_t<decltype(std::declval<const C&>().x)>> : std::true_type {};
-template <class C>
-constexpr auto coefficient_scalar_probe() {
-    if constexpr (std::is_floating_point_v<C>)
-        return C{};
-    else if constexpr (has_value_type<C>::value)
-        return typename C::value_type{};
-    else if constexpr (has_member_r<C>::value)
-        return std::decay_t<decltype(std::declval<const C&>().r)>{};
-    else if constexpr (has_member_x<C>::value)
-        return std::decay_t<decltype(std::declval<const C&>().x)>{};
-    else
-        return double{};
-}
-}  // namespace detail
-
-template <class C>
-struct coefficient_scalar<
-    C,
-    std::enable_if_t<std::is_floating_point_v<decltype(detail::coefficient_scalar_probe<C>())>>> {
-    using type = decltype(detail::coefficient_scalar_probe<C>());
-};
-
 namespace detail {
 
-template <class C>
-using coeff_scalar_t = typename coefficient_scalar<C>::type;
-
-/// Small buffer of doubles: on the stack up to 8 bands.
-class LightBuf {
-  public:
-    explicit LightBuf(std::size_t n) {
-        if (n > stack_.size()) heap_.resize(n);
-        p_ = n > stack_.size() ? heap_.data() : stack_.data();
-    }
-    double* data() noexcept { return p_; }
-    double& operator[](std::size_t i) noexcept { return p_[i]; }
-
-  private:
-    std::array<double, 64> stack_;  // not value-initialised: always written before it is read
-    std::vector<double> heap_;
-    double* p_;
-};
+/// Scratch of doubles for the per-call factors and basis values: on the stack up to 8 bands.
+using LightScratch = sphbasis::detail::SmallBuffer<double, 64>;
 
 /// Funk-Hecke factors of the indicator of the cap 1 - cos(theta) <= u, 0 <= u <= 2, into
 /// out[0..bands). Stable for small u (header comment).
@@ -147,23 +87,31 @@ inline void cap_factors(int bands, double u, double* out) noexcept {
     }
 }
 
-template <class T>
-void check_light(int bands, T x, T y, T z, const void* out, const char* fn) {
+template <class T, class C>
+void check_light(int bands, T x, T y, T z, const C* out, const char* fn) {
+    static_assert(sphbasis::detail::is_scalable<C, coefficient_scalar_t<C>>::value,
+                  "sphbasis::sh lights: the coefficient type C needs C + C and "
+                  "C * coefficient_scalar_t<C> (specialise sphbasis::coefficient_scalar).");
     check_bands(bands, fn);
-    if (bands > 0 && !out)
-        throw std::invalid_argument(std::string("sphbasis::") + fn +
-                                    "(): expected a non-null output array");
+    sphbasis::detail::check_buffer(fn, "out", out, static_cast<std::size_t>(bands));
     if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) ||
         (x == T(0) && y == T(0) && z == T(0)))
-        throw std::invalid_argument(std::string("sphbasis::") + fn +
-                                    "(): expected a finite non-zero direction");
+        sphbasis::detail::throw_invalid(fn, "a finite non-zero direction");
+}
+
+/// The pointer of an output buffer given as C* or as a contiguous range of >= bands^2 values.
+template <class Out>
+auto light_out(int bands, Out&& out, const char* fn) {
+    check_bands(bands, fn);
+    return sphbasis::detail::buffer_pointer(
+        fn, "out", out, static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands));
 }
 
 /// out_k = a_l y_k(d) * colour for l < bands, from the factors a[0..bands).
 template <class T, class C>
 void zonal_out(int bands, T x, T y, T z, const double* a, const C& colour, C* out) {
-    using S = coeff_scalar_t<C>;
-    LightBuf yv(static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands));
+    using S = coefficient_scalar_t<C>;
+    LightScratch yv(static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands));
     eval(bands, static_cast<double>(x), static_cast<double>(y), static_cast<double>(z), yv.data());
     for (int l = 0; l < bands; ++l)
         for (int k = l * l; k < (l + 1) * (l + 1); ++k)
@@ -198,9 +146,8 @@ template <class T = double>
 std::vector<T> cap_kernel(int bands, double one_minus_cos) {
     check_bands(bands, "sh::cap_kernel");
     if (!(one_minus_cos >= 0 && one_minus_cos <= 2))
-        throw std::invalid_argument(
-            "sphbasis::sh::cap_kernel(): expected 0 <= 1 - cos(angle) <= 2, got " +
-            std::to_string(one_minus_cos));
+        sphbasis::detail::throw_invalid(
+            "sh::cap_kernel", "0 <= 1 - cos(angle) <= 2, got " + std::to_string(one_minus_cos));
     std::vector<double> a(static_cast<std::size_t>(bands));
     detail::cap_factors(bands, one_minus_cos, a.data());
     return std::vector<T>(a.begin(), a.end());
@@ -212,9 +159,9 @@ std::vector<T> cap_kernel(int bands, double one_minus_cos) {
 template <class T, class K, class C>
 void zonal_light(int bands, T x, T y, T z, const K* kernel, const C& colour, C* out) {
     detail::check_light(bands, x, y, z, out, "sh::zonal_light");
-    if (bands > 0 && !kernel)
-        throw std::invalid_argument("sphbasis::sh::zonal_light(): expected a non-null kernel");
-    detail::LightBuf a(static_cast<std::size_t>(bands));
+    sphbasis::detail::check_buffer("sh::zonal_light", "kernel", kernel,
+                                   static_cast<std::size_t>(bands));
+    detail::LightScratch a(static_cast<std::size_t>(bands));
     for (int l = 0; l < bands; ++l) a[static_cast<std::size_t>(l)] = static_cast<double>(kernel[l]);
     detail::zonal_out(bands, x, y, z, a.data(), colour, out);
 }
@@ -226,7 +173,7 @@ void zonal_light(int bands, T x, T y, T z, const K* kernel, const C& colour, C* 
 template <class T, class C>
 void directional_light(int bands, T x, T y, T z, const C& irradiance, C* out) {
     detail::check_light(bands, x, y, z, out, "sh::directional_light");
-    detail::LightBuf a(static_cast<std::size_t>(bands));
+    detail::LightScratch a(static_cast<std::size_t>(bands));
     for (int l = 0; l < bands; ++l) a[static_cast<std::size_t>(l)] = 1.0;
     detail::zonal_out(bands, x, y, z, a.data(), irradiance, out);
 }
@@ -238,19 +185,11 @@ void directional_light(int bands, T x, T y, T z, const C& irradiance, C* out) {
 /// Condon-Shortley signs (to_condon_shortley).
 inline double directional_light_peak(int bands) {
     check_bands(bands, "sh::directional_light_peak");
-    double s = 0, c = 1;
-    for (int l = 0; l < bands; ++l) {
-        double a = 0;
-        if (l == 0)
-            a = constants::pi;
-        else if (l == 1)
-            a = constants::two_pi / 3;
-        else if (l % 2 == 0) {
-            c *= (l - 1.0) / l;
-            a = constants::two_pi * ((l / 2) % 2 == 1 ? 1.0 : -1.0) * c / ((l + 2.0) * (l - 1.0));
-        }
-        s += a * (2 * l + 1) * constants::inv_four_pi;
-    }
+    detail::LightScratch a(static_cast<std::size_t>(bands));
+    clamped_cosine_factors(bands, a.data());  // core/clamped_cosine.hpp: Lambda_l = pi a_l
+    double s = 0;
+    for (int l = 0; l < bands; ++l)
+        s += constants::pi * a[static_cast<std::size_t>(l)] * (2 * l + 1) * constants::inv_four_pi;
     return s;
 }
 
@@ -262,10 +201,10 @@ void cone_light(int bands, T x, T y, T z, T half_angle, const C& radiance, C* ou
     detail::check_light(bands, x, y, z, out, "sh::cone_light");
     const double a = static_cast<double>(half_angle);
     if (!(a >= 0 && a <= constants::pi))
-        throw std::invalid_argument(
-            "sphbasis::sh::cone_light(): expected 0 <= half_angle <= pi, got " + std::to_string(a));
+        sphbasis::detail::throw_invalid("sh::cone_light",
+                                        "0 <= half_angle <= pi, got " + std::to_string(a));
     const double s = std::sin(0.5 * a);
-    detail::LightBuf f(static_cast<std::size_t>(bands));
+    detail::LightScratch f(static_cast<std::size_t>(bands));
     detail::cap_factors(bands, 2 * s * s, f.data());  // 1 - cos a = 2 sin^2(a/2)
     detail::zonal_out(bands, x, y, z, f.data(), radiance, out);
 }
@@ -279,9 +218,8 @@ void spherical_light(int bands, T px, T py, T pz, T radius, const C& radiance, C
     detail::check_light(bands, px, py, pz, out, "sh::spherical_light");
     const double r = static_cast<double>(radius);
     if (!(r >= 0) || !std::isfinite(r))
-        throw std::invalid_argument(
-            "sphbasis::sh::spherical_light(): expected a finite radius >= 0, got " +
-            std::to_string(r));
+        sphbasis::detail::throw_invalid("sh::spherical_light",
+                                        "a finite radius >= 0, got " + std::to_string(r));
     const double x = px, y = py, z = pz;
     const double big = std::max(std::fabs(x), std::max(std::fabs(y), std::fabs(z)));
     const double dist =
@@ -291,7 +229,7 @@ void spherical_light(int bands, T px, T py, T pz, T radius, const C& radiance, C
         const double s = r / dist;
         u = s * s / (1 + std::sqrt((1 - s) * (1 + s)));  // 1 - cos a without cancellation
     }
-    detail::LightBuf f(static_cast<std::size_t>(bands));
+    detail::LightScratch f(static_cast<std::size_t>(bands));
     detail::cap_factors(bands, u, f.data());
     detail::zonal_out(bands, px, py, pz, f.data(), radiance, out);
 }
@@ -304,11 +242,9 @@ void spherical_light_solid_angle(int bands, T x, T y, T z, T solid_angle, const 
     detail::check_light(bands, x, y, z, out, "sh::spherical_light_solid_angle");
     const double om = static_cast<double>(solid_angle);
     if (!(om >= 0 && om <= constants::four_pi))
-        throw std::invalid_argument(
-            "sphbasis::sh::spherical_light_solid_angle(): expected 0 <= solid_angle <= 4 pi, "
-            "got " +
-            std::to_string(om));
-    detail::LightBuf f(static_cast<std::size_t>(bands));
+        sphbasis::detail::throw_invalid("sh::spherical_light_solid_angle",
+                                        "0 <= solid_angle <= 4 pi, got " + std::to_string(om));
+    detail::LightScratch f(static_cast<std::size_t>(bands));
     detail::cap_factors(bands, om * constants::inv_two_pi, f.data());
     detail::zonal_out(bands, x, y, z, f.data(), radiance, out);
 }
@@ -318,10 +254,10 @@ void spherical_light_solid_angle(int bands, T x, T y, T z, T solid_angle, const 
 template <class T, class C>
 void hemisphere_light(int bands, T x, T y, T z, const C& sky, const C& ground, C* out) {
     detail::check_light(bands, x, y, z, out, "sh::hemisphere_light");
-    using S = detail::coeff_scalar_t<C>;
-    detail::LightBuf f(static_cast<std::size_t>(bands));
+    using S = coefficient_scalar_t<C>;
+    detail::LightScratch f(static_cast<std::size_t>(bands));
     detail::cap_factors(bands, 1.0, f.data());
-    detail::LightBuf yv(static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands));
+    detail::LightScratch yv(static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands));
     eval(bands, static_cast<double>(x), static_cast<double>(y), static_cast<double>(z), yv.data());
     for (int l = 0; l < bands; ++l) {
         // sky * cap + ground * (sphere - cap); the sphere's factors are 4 pi, 0, 0, ...
@@ -335,104 +271,65 @@ void hemisphere_light(int bands, T x, T y, T z, const C& sky, const C& ground, C
 }
 
 // ---------------------------------------------------------------------------------------------
+// The lights for the types users hold: a direction (or position) of any 3-vector type
+// (glm::vec3, Eigen::Vector3d, sphbasis::vec3, std::array<double, 3>) and the output as C* or
+// as a contiguous range of at least bands^2 coefficients (checked). The scalar of the
+// direction type is used for the angle or radius.
+
+#define SPHBASIS_LIGHT_DIRECTION_OVERLOAD_REQUIRES(D) \
+    std::enable_if_t<sphbasis::detail::is_direction_v<D>, int> = 0
+
+/// zonal_light() with a direction of any 3-vector type and out as C* or a range.
+template <class D, class K, class C, class Out, SPHBASIS_LIGHT_DIRECTION_OVERLOAD_REQUIRES(D)>
+void zonal_light(int bands, const D& dir, const K* kernel, const C& colour, Out&& out) {
+    using T = direction_scalar_t<D>;
+    zonal_light(bands, T(component<0>(dir)), T(component<1>(dir)), T(component<2>(dir)), kernel,
+                colour, detail::light_out(bands, out, "sh::zonal_light"));
+}
+/// directional_light() with a direction of any 3-vector type and out as C* or a range.
+template <class D, class C, class Out, SPHBASIS_LIGHT_DIRECTION_OVERLOAD_REQUIRES(D)>
+void directional_light(int bands, const D& dir, const C& irradiance, Out&& out) {
+    using T = direction_scalar_t<D>;
+    directional_light(bands, T(component<0>(dir)), T(component<1>(dir)), T(component<2>(dir)),
+                      irradiance, detail::light_out(bands, out, "sh::directional_light"));
+}
+/// cone_light() with a direction of any 3-vector type and out as C* or a range.
+template <class D, class A, class C, class Out, SPHBASIS_LIGHT_DIRECTION_OVERLOAD_REQUIRES(D)>
+void cone_light(int bands, const D& dir, A half_angle, const C& radiance, Out&& out) {
+    using T = direction_scalar_t<D>;
+    cone_light(bands, T(component<0>(dir)), T(component<1>(dir)), T(component<2>(dir)),
+               static_cast<T>(half_angle), radiance,
+               detail::light_out(bands, out, "sh::cone_light"));
+}
+/// spherical_light() with a position of any 3-vector type and out as C* or a range.
+template <class D, class A, class C, class Out, SPHBASIS_LIGHT_DIRECTION_OVERLOAD_REQUIRES(D)>
+void spherical_light(int bands, const D& position, A radius, const C& radiance, Out&& out) {
+    using T = direction_scalar_t<D>;
+    spherical_light(bands, T(component<0>(position)), T(component<1>(position)),
+                    T(component<2>(position)), static_cast<T>(radius), radiance,
+                    detail::light_out(bands, out, "sh::spherical_light"));
+}
+/// spherical_light_solid_angle() with a direction of any 3-vector type and out as C* or a range.
+template <class D, class A, class C, class Out, SPHBASIS_LIGHT_DIRECTION_OVERLOAD_REQUIRES(D)>
+void spherical_light_solid_angle(int bands, const D& dir, A solid_angle, const C& radiance,
+                                 Out&& out) {
+    using T = direction_scalar_t<D>;
+    spherical_light_solid_angle(bands, T(component<0>(dir)), T(component<1>(dir)),
+                                T(component<2>(dir)), static_cast<T>(solid_angle), radiance,
+                                detail::light_out(bands, out, "sh::spherical_light_solid_angle"));
+}
+/// hemisphere_light() with an up direction of any 3-vector type and out as C* or a range.
+template <class D, class C, class Out, SPHBASIS_LIGHT_DIRECTION_OVERLOAD_REQUIRES(D)>
+void hemisphere_light(int bands, const D& up, const C& sky, const C& ground, Out&& out) {
+    using T = direction_scalar_t<D>;
+    hemisphere_light(bands, T(component<0>(up)), T(component<1>(up)), T(component<2>(up)), sky,
+                     ground, detail::light_out(bands, out, "sh::hemisphere_light"));
+}
+
+#undef SPHBASIS_LIGHT_DIRECTION_OVERLOAD_REQUIRES
+
+// ---------------------------------------------------------------------------------------------
 // Environment maps
-
-/// Projects a latitude-longitude map (width x height texels; texel(col, row) returns its
-/// radiance, any type C) onto `bands` bands, exactly for the piecewise-constant map (header
-/// comment). Throws std::invalid_argument for bad bands, sizes < 1 or a null out.
-template <class C, class F>
-void project_latlong_fn(int bands, int width, int height, F&& texel, C* out) {
-    check_bands(bands, "sh::project_latlong");
-    if (width < 1 || height < 1 || width > (1 << 20) || height > (1 << 20))
-        throw std::invalid_argument(
-            "sphbasis::sh::project_latlong(): expected 1 <= width, height "
-            "<= 2^20, got " +
-            std::to_string(width) + " x " + std::to_string(height));
-    if (bands == 0) return;
-    if (!out)
-        throw std::invalid_argument("sphbasis::sh::project_latlong(): expected a non-null out");
-    using S = detail::coeff_scalar_t<C>;
-    const int L = bands - 1;
-    const std::size_t n2 = static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands);
-    const std::size_t nm = static_cast<std::size_t>(L + 1);
-    // phi: column centre angles and per-order factors (2/m) sin(m dphi/2) (dphi for m = 0).
-    const double dphi = constants::two_pi / width;
-    std::vector<double> cosm(static_cast<std::size_t>(width) * nm),
-        sinm(static_cast<std::size_t>(width) * nm), sfac(nm);
-    for (int m = 0; m <= L; ++m)
-        sfac[static_cast<std::size_t>(m)] = m == 0 ? dphi : 2 * std::sin(0.5 * m * dphi) / m;
-    for (int i = 0; i < width; ++i) {
-        const double pc = (i + 0.5) * dphi;
-        for (int m = 0; m <= L; ++m) {
-            cosm[static_cast<std::size_t>(i) * nm + static_cast<std::size_t>(m)] = std::cos(m * pc);
-            sinm[static_cast<std::size_t>(i) * nm + static_cast<std::size_t>(m)] = std::sin(m * pc);
-        }
-    }
-    // theta: Gauss-Legendre nodes per row, enough for the trigonometric degree L + 1.
-    const double dth = constants::pi / height;
-    const int q = std::min(1024, 6 + static_cast<int>(std::ceil(1.5 * (L + 2) * dth)));
-    std::vector<double> gt, gw;
-    gauss_legendre(q, gt, gw);
-    std::vector<double> theta_int(n2), yv(n2);
-    std::vector<C> rc(nm), rs(nm);  // row sums against cos(m phi) and sin(m phi)
-    std::vector<C> acc(n2, C{});
-    for (int j = 0; j < height; ++j) {
-        // Theta integrals of y_lm(theta, 0) sin(theta) over the row (m >= 0 entries).
-        std::fill(theta_int.begin(), theta_int.end(), 0.0);
-        const double t0 = j * dth;
-        for (int g = 0; g < q; ++g) {
-            const double t = t0 + 0.5 * dth * (gt[static_cast<std::size_t>(g)] + 1);
-            const double w = 0.5 * dth * gw[static_cast<std::size_t>(g)] * std::sin(t);
-            eval_unit(bands, std::sin(t), 0.0, std::cos(t), yv.data());
-            for (int l = 0; l <= L; ++l)
-                for (int m = 0; m <= l; ++m)
-                    theta_int[static_cast<std::size_t>(index(l, m))] +=
-                        w * yv[static_cast<std::size_t>(index(l, m))];
-        }
-        // Row sums.
-        for (std::size_t m = 0; m < nm; ++m) rc[m] = rs[m] = C{};
-        for (int i = 0; i < width; ++i) {
-            const C v = texel(i, j);
-            const double* cm = cosm.data() + static_cast<std::size_t>(i) * nm;
-            const double* sm = sinm.data() + static_cast<std::size_t>(i) * nm;
-            rc[0] = rc[0] + v;
-            for (std::size_t m = 1; m < nm; ++m) {
-                rc[m] = rc[m] + v * static_cast<S>(cm[m]);
-                rs[m] = rs[m] + v * static_cast<S>(sm[m]);
-            }
-        }
-        for (int l = 0; l <= L; ++l) {
-            acc[static_cast<std::size_t>(index(l, 0))] =
-                acc[static_cast<std::size_t>(index(l, 0))] +
-                rc[0] * static_cast<S>(theta_int[static_cast<std::size_t>(index(l, 0))] * sfac[0]);
-            for (int m = 1; m <= l; ++m) {
-                const double f = theta_int[static_cast<std::size_t>(index(l, m))] *
-                                 sfac[static_cast<std::size_t>(m)];
-                acc[static_cast<std::size_t>(index(l, m))] =
-                    acc[static_cast<std::size_t>(index(l, m))] +
-                    rc[static_cast<std::size_t>(m)] * static_cast<S>(f);
-                acc[static_cast<std::size_t>(index(l, -m))] =
-                    acc[static_cast<std::size_t>(index(l, -m))] +
-                    rs[static_cast<std::size_t>(m)] * static_cast<S>(f);
-            }
-        }
-    }
-    for (std::size_t k = 0; k < n2; ++k) out[k] = acc[k];
-}
-
-/// project_latlong_fn for texels stored row-major: texels[row * width + col].
-template <class C>
-void project_latlong(int bands, int width, int height, const C* texels, C* out) {
-    if (!texels)
-        throw std::invalid_argument("sphbasis::sh::project_latlong(): expected non-null texels");
-    project_latlong_fn(
-        bands, width, height,
-        [&](int col, int row) -> const C& {
-            return texels[static_cast<std::size_t>(row) * static_cast<std::size_t>(width) +
-                          static_cast<std::size_t>(col)];
-        },
-        out);
-}
 
 /// Projects a cube map (6 faces of size x size; texel(face, col, row) returns its radiance)
 /// onto `bands` bands: exact texel solid angles, texel values at `supersample`^2 sub-texel
@@ -444,14 +341,13 @@ void project_cubemap_fn(int bands, int size, F&& texel, C* out, int supersample 
     check_bands(bands, "sh::project_cubemap");
     if (size < 1 || supersample < 1 || size > 32768 || supersample > 64 ||
         static_cast<long long>(size) * supersample > 32768)
-        throw std::invalid_argument(
-            "sphbasis::sh::project_cubemap(): expected 1 <= size, 1 <= supersample <= 64 and "
-            "size * supersample <= 32768, got size " +
-            std::to_string(size) + ", supersample " + std::to_string(supersample));
+        sphbasis::detail::throw_invalid(
+            "sh::project_cubemap",
+            "1 <= size, 1 <= supersample <= 64 and size * supersample <= 32768, got size " +
+                std::to_string(size) + ", supersample " + std::to_string(supersample));
     if (bands == 0) return;
-    if (!out)
-        throw std::invalid_argument("sphbasis::sh::project_cubemap(): expected a non-null out");
-    using S = detail::coeff_scalar_t<C>;
+    sphbasis::detail::check_buffer("sh::project_cubemap", "out", out, 1);
+    using S = coefficient_scalar_t<C>;
     const int nf = size * supersample;  // fine texels per face edge
     const std::size_t n2 = static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands);
     const param::CubeMap<double> cube(nf, param::CubeFilter::dx9_clamped);
@@ -557,8 +453,7 @@ void project_cubemap_fn(int bands, int size, F&& texel, C* out, int supersample 
 /// col] (param::CubeMap::texel_index).
 template <class C>
 void project_cubemap(int bands, int size, const C* texels, C* out, int supersample = 1) {
-    if (!texels)
-        throw std::invalid_argument("sphbasis::sh::project_cubemap(): expected non-null texels");
+    if (size > 0) sphbasis::detail::check_buffer("sh::project_cubemap", "texels", texels, 1);
     const std::size_t n = static_cast<std::size_t>(size > 0 ? size : 0);
     project_cubemap_fn(
         bands, size,

@@ -26,20 +26,22 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "../basis/sh.hpp"
 #include "../core/constants.hpp"
+#include "../core/error.hpp"
 #include "sh_convolution.hpp"
+#include "sh_minimum.hpp"
 
 namespace sphbasis::sh {
 
 namespace detail {
 inline void check_width(double width, const char* fn) {
     if (!(width > 0) || !std::isfinite(width))
-        throw std::invalid_argument(std::string("sphbasis::") + fn +
-                                    "(): expected a finite window width > 0, got " +
-                                    std::to_string(width));
+        sphbasis::detail::throw_invalid(fn,
+                                        "a finite window width > 0, got " + std::to_string(width));
 }
 }  // namespace detail
 
@@ -75,8 +77,8 @@ template <class T = double>
 std::vector<T> sloan_window(int bands, double lambda) {
     check_bands(bands, "sh::sloan_window");
     if (!(lambda >= 0))
-        throw std::invalid_argument("sphbasis::sh::sloan_window(): expected lambda >= 0, got " +
-                                    std::to_string(lambda));
+        sphbasis::detail::throw_invalid("sh::sloan_window",
+                                        "lambda >= 0, got " + std::to_string(lambda));
     std::vector<T> w(static_cast<std::size_t>(bands));
     for (int l = 0; l < bands; ++l) {
         const double e = double(l) * double(l) * double(l + 1) * double(l + 1);
@@ -86,15 +88,22 @@ std::vector<T> sloan_window(int bands, double lambda) {
     return w;
 }
 
-/// out_lm = window[l] in_lm (in == out allowed). Same as convolve().
+/// out_lm = window[l] in_lm (in == out allowed): convolve() under this name (the same
+/// implementation, sh::detail::scale_bands, and the same coefficient types). Throws
+/// std::invalid_argument for bad bands or a null buffer.
 template <class T, class C>
 void apply_window(int bands, const T* window, const C* in, C* out) {
-    check_bands(bands, "sh::apply_window");
-    if (bands == 0) return;
-    if (!window || !in || !out)
-        throw std::invalid_argument("sphbasis::sh::apply_window(): expected non-null arrays");
-    for (int l = 0; l < bands; ++l)
-        for (int k = l * l; k < (l + 1) * (l + 1); ++k) out[k] = in[k] * window[l];
+    detail::scale_bands("sh::apply_window", bands, window, in, out);
+}
+
+/// apply_window() with any of window, in, out given as a contiguous range (sizes checked).
+template <
+    class W, class In, class Out,
+    std::enable_if_t<!(std::is_pointer_v<std::decay_t<W>> && std::is_pointer_v<std::decay_t<In>> &&
+                       std::is_pointer_v<std::decay_t<Out>>),
+                     int> = 0>
+void apply_window(int bands, W&& window, In&& in, Out&& out) {
+    detail::scale_bands_any("sh::apply_window", bands, window, in, out);
 }
 
 /// What a window costs: for g (the coefficients, convolved with the kernel if one was given)
@@ -110,8 +119,9 @@ struct WindowCost {
 template <class T>
 WindowCost window_cost(int bands, const T* coeffs, const T* window, const T* kernel = nullptr) {
     check_bands(bands, "sh::window_cost");
-    if (bands > 0 && (!coeffs || !window))
-        throw std::invalid_argument("sphbasis::sh::window_cost(): expected non-null arrays");
+    const std::size_t n = static_cast<std::size_t>(bands);
+    sphbasis::detail::check_buffer("sh::window_cost", "coeffs", coeffs, n * n);
+    sphbasis::detail::check_buffer("sh::window_cost", "window", window, n);
     double change2 = 0, norm2 = 0, maxb = 0;
     for (int l = 0; l < bands; ++l) {
         const double k = kernel ? static_cast<double>(kernel[l]) : 1.0;
@@ -155,9 +165,8 @@ RingingWindow<T> ringing_window(int bands, const T* coeffs, int channels = 1,
                                 const T* kernel = nullptr, double target = 0) {
     check_bands(bands, "sh::ringing_window");
     if (bands < 1 || channels < 1 || !coeffs || !std::isfinite(target))
-        throw std::invalid_argument(
-            "sphbasis::sh::ringing_window(): expected bands >= 1, channels >= 1, non-null "
-            "coeffs and a finite target");
+        sphbasis::detail::throw_invalid(
+            "sh::ringing_window", "bands >= 1, channels >= 1, non-null coeffs and a finite target");
     const std::size_t n2 = static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands);
     std::vector<double> work(n2);
     // Lower bound over all channels of the windowed, convolved reconstruction.

@@ -1,4 +1,4 @@
-// Tests for ops/windowing.hpp: window shapes, reduced negativity, Sloan's ringing window
+// Tests for ops/sh_windowing.hpp: window shapes, reduced negativity, Sloan's ringing window
 // against the analytic answer for a 3-band light, and the reported cost against quadrature.
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "sphbasis/core/quadrature.hpp"
-#include "sphbasis/ops/windowing.hpp"
+#include "sphbasis/ops/sh_windowing.hpp"
 
 namespace sh = sphbasis::sh;
 
@@ -161,5 +161,5 @@ TEST_CASE("windowing: bad input throws", "[windowing]") {
     CHECK_THROWS_WITH(sh::ringing_window(3, c.data(), 0),
                       Catch::Contains("sphbasis::sh::ringing_window(): expected"));
     CHECK_THROWS_WITH(sh::apply_window(3, static_cast<const double*>(nullptr), c.data(), c.data()),
-                      Catch::Contains("sphbasis::sh::apply_window(): expected non-null"));
+                      Catch::Contains("sphbasis::sh::apply_window(): expected a non-null"));
 }
