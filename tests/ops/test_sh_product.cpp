@@ -123,7 +123,7 @@ double max_abs(const std::vector<double>& v) {
 
 // Tolerances of gaunt() against exact values: with the x87 long double working precision the
 // results are within an ulp or so; with double (MSVC, ARM) a few ulp of the largest symbol.
-constexpr bool extended = std::is_same_v<sh::detail::gaunt_real, long double>;
+constexpr bool extended = std::is_same_v<sphbasis::extended, long double>;
 constexpr double gaunt_abs_tol = extended ? 5e-17 : 1e-15;
 constexpr double gaunt_rel_tol = extended ? 4e-16 : 3e-14;
 
