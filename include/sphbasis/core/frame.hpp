@@ -501,14 +501,13 @@ auto buffer_data(const char* fn, const char* name, B& b, std::size_t n) {
         return static_cast<P>(b);
     } else if constexpr (std::is_array_v<P>) {
         if (std::extent_v<P> < n)
-            throw_invalid(fn, std::string("a ") + name + " buffer of at least " +
-                                  std::to_string(n) + " values, got " +
-                                  std::to_string(std::extent_v<P>));
+            throw_invalid(fn, "at least " + std::to_string(n) + " values in the " + name +
+                                  " buffer, got " + std::to_string(std::extent_v<P>));
         return &b[0];
     } else if constexpr (has_data_size<B>::value) {
         if (static_cast<std::size_t>(b.size()) < n)
-            throw_invalid(fn, std::string("a ") + name + " buffer of at least " +
-                                  std::to_string(n) + " values, got " + std::to_string(b.size()));
+            throw_invalid(fn, "at least " + std::to_string(n) + " values in the " + name +
+                                  " buffer, got " + std::to_string(b.size()));
         return b.data();
     } else {
         static_assert(always_false<B>,
