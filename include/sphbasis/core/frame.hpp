@@ -491,23 +491,33 @@ struct has_data_size<
     B, std::void_t<decltype(std::declval<B&>().data()), decltype(std::declval<B&>().size())>>
     : std::true_type {};
 
+/// The messages of buffer_data(), built out of line so that a check inlines to one compare.
+[[noreturn]] SPHBASIS_NOINLINE inline void throw_null_buffer(const char* fn, const char* name) {
+    throw_invalid(fn, std::string("a non-null ") + name + " buffer");
+}
+[[noreturn]] SPHBASIS_NOINLINE inline void throw_short_buffer(const char* fn, const char* name,
+                                                              std::size_t n, std::size_t size) {
+    throw_invalid(fn, "at least " + std::to_string(n) + " values in the " + name + " buffer, got " +
+                          std::to_string(size));
+}
+
 /// The pointer of a buffer that must hold n elements: a pointer is checked for null (when
-/// n > 0), a range for size() >= n; std::invalid_argument "sphbasis::fn(): expected ...".
+/// n > 0), a C array or a range (.data(), .size()) for a size >= n; std::invalid_argument
+/// "sphbasis::fn(): expected a non-null <name> buffer" / "expected at least n values in the
+/// <name> buffer, got size".
 template <class B>
-auto buffer_data(const char* fn, const char* name, B& b, std::size_t n) {
+SPHBASIS_FORCEINLINE auto buffer_data(const char* fn, const char* name, B& b, std::size_t n) {
     using P = std::remove_cv_t<B>;
     if constexpr (std::is_pointer_v<P>) {
-        check_buffer(fn, name, static_cast<P>(b), n);
-        return static_cast<P>(b);
+        const P p = b;
+        if (p == nullptr && n > 0) throw_null_buffer(fn, name);
+        return p;
     } else if constexpr (std::is_array_v<P>) {
-        if (std::extent_v<P> < n)
-            throw_invalid(fn, "at least " + std::to_string(n) + " values in the " + name +
-                                  " buffer, got " + std::to_string(std::extent_v<P>));
+        if (std::extent_v<P> < n) throw_short_buffer(fn, name, n, std::extent_v<P>);
         return &b[0];
     } else if constexpr (has_data_size<B>::value) {
         if (static_cast<std::size_t>(b.size()) < n)
-            throw_invalid(fn, "at least " + std::to_string(n) + " values in the " + name +
-                                  " buffer, got " + std::to_string(b.size()));
+            throw_short_buffer(fn, name, n, static_cast<std::size_t>(b.size()));
         return b.data();
     } else {
         static_assert(always_false<B>,

@@ -553,14 +553,32 @@ class Rotation {
     /// out = D in for coefficient vectors of bands() bands (bands()^2 values): raw pointers or
     /// contiguous ranges (.data(), .size() >= bands()^2). The coefficient type C is any type
     /// with C + C and C * T (float, double, RGB). in == out is allowed. Cost sum (2l+1)^2.
-    template <class In, class Out>
-    void apply(const In& in, Out&& out) const {
+    template <class C>
+    void apply(const C* in, C* out) const {
         apply_impl<false>(in, out, "sh::Rotation::apply");
     }
+    /// apply() on contiguous ranges (.data(), .size() >= bands()^2; checked).
+    template <
+        class In, class Out,
+        std::enable_if_t<!(std::is_pointer_v<In> && std::is_pointer_v<std::decay_t<Out>>), int> = 0>
+    void apply(const In& in, Out&& out) const {
+        const char* fn = "sh::Rotation::apply";
+        const auto p = detail::coefficient_buffers(fn, in, out, detail::coefficient_count(bands_));
+        apply_impl<false>(p.first, p.second, fn);
+    }
     /// out = D^T in: the inverse rotation.
-    template <class In, class Out>
-    void apply_transposed(const In& in, Out&& out) const {
+    template <class C>
+    void apply_transposed(const C* in, C* out) const {
         apply_impl<true>(in, out, "sh::Rotation::apply_transposed");
+    }
+    /// apply_transposed() on contiguous ranges.
+    template <
+        class In, class Out,
+        std::enable_if_t<!(std::is_pointer_v<In> && std::is_pointer_v<std::decay_t<Out>>), int> = 0>
+    void apply_transposed(const In& in, Out&& out) const {
+        const char* fn = "sh::Rotation::apply_transposed";
+        const auto p = detail::coefficient_buffers(fn, in, out, detail::coefficient_count(bands_));
+        apply_impl<true>(p.first, p.second, fn);
     }
     /// apply() on a std::vector; throws std::invalid_argument unless it has bands()^2 entries.
     template <class C>
@@ -588,12 +606,11 @@ class Rotation {
     }
 
   private:
-    template <bool Transposed, class In, class Out>
-    void apply_impl(const In& in_, Out& out_, const char* fn) const {
-        const auto [in, out] =
-            detail::coefficient_buffers(fn, in_, out_, detail::coefficient_count(bands_));
+    template <bool Transposed, class C>
+    void apply_impl(const C* in, C* out, const char* fn) const {
         if (bands_ == 0) return;
-        using C = std::remove_pointer_t<decltype(out)>;
+        if (!in) sphbasis::detail::throw_null_buffer(fn, "input");
+        if (!out) sphbasis::detail::throw_null_buffer(fn, "output");
         out[0] = in[0] * data_[0];
         detail::SmallBuffer<C, 16> buf(static_cast<std::size_t>(2 * bands_ - 1));
         for (int l = 1; l < bands_; ++l) {
