@@ -546,3 +546,31 @@ TEST_CASE("gaunt: the sphbasis gaunt command", "[gaunt][cli]") {
     }
 }
 #endif
+
+TEST_CASE("product: ranges and pointers, checked at the boundary", "[product]") {
+    std::mt19937 rng(17);
+    std::normal_distribution<double> nd;
+    std::vector<double> a(16), b(16), p1(16), p2(16), p3(16);
+    for (auto& v : a) v = nd(rng);
+    for (auto& v : b) v = nd(rng);
+    sh::product(4, a.data(), b.data(), p1.data());
+    sh::product(4, a, b, p2);  // std::vector ranges
+    CHECK(p1 == p2);
+    std::array<double, 16> p4{};
+    sh::product<4>(a, b, p4);
+    sh::product(sh::triple_table(4, 4, 4), a, b, p3);
+    for (std::size_t i = 0; i < 16; ++i) {
+        CHECK(p4[i] == Approx(p1[i]).margin(1e-14));
+        CHECK(p3[i] == Approx(p1[i]).margin(1e-14));
+    }
+    std::vector<double> small(9);
+    CHECK_THROWS_WITH(sh::product(4, a, b, small),
+                      Catch::Contains("sphbasis::sh::product(): expected at least 16 values in "
+                                      "the out buffer, got 9"));
+    CHECK_THROWS_WITH(sh::product(4, a.data(), static_cast<const double*>(nullptr), p1.data()),
+                      Catch::Contains("sphbasis::sh::product(): expected a non-null b buffer"));
+    CHECK_THROWS_WITH(sh::product<3>(a.data(), b.data(), static_cast<double*>(nullptr)),
+                      Catch::Contains("sphbasis::sh::product(): expected a non-null out buffer"));
+    CHECK_THROWS_WITH(sh::product(0, a.data(), b.data(), p1.data()),
+                      Catch::Contains("sphbasis::sh::product(): expected 1 <= bands"));
+}

@@ -518,6 +518,19 @@ void product_checked(const TripleTable& t, const C* a, const T* b, C* out) noexc
     }
 }
 
+template <class A, class B, class Out>
+inline constexpr bool any_range_v =
+    !(std::is_pointer_v<A> && std::is_pointer_v<B> && std::is_pointer_v<std::decay_t<Out>>);
+
+/// Null checks of product()'s pointers (one compare each; the message is built out of line).
+template <class C, class T>
+SPHBASIS_FORCEINLINE void check_product_pointers(const char* fn, const C* a, const T* b,
+                                                 const C* out) {
+    if (!a) sphbasis::detail::throw_null_buffer(fn, "a");
+    if (!b) sphbasis::detail::throw_null_buffer(fn, "b");
+    if (!out) sphbasis::detail::throw_null_buffer(fn, "out");
+}
+
 /// The pointers of product()'s a, b and out, checked (null pointers, short ranges): a holds
 /// na^2, b nb^2 and out nc^2 coefficients. One static_assert sentence for misuse.
 template <class A, class B, class Out>
@@ -545,27 +558,42 @@ SPHBASIS_FORCEINLINE auto product_buffers(const char* fn, const A& a, const B& b
 /// bands_c()^2 coefficients (std::invalid_argument if null or short). out must not overlap a
 /// or b. Cost: one multiply-add per stored entry; with equal band counts of a and b the
 /// symmetric layout (has_pairs()) halves the entries.
-template <class A, class B, class Out>
+template <class C, class T>
+void product(const TripleTable& t, const C* a, const T* b, C* out) {
+    static_assert(std::is_floating_point_v<T>, "sphbasis::sh::product: b is float or double.");
+    detail::check_product_pointers("sh::product", a, b, out);
+    detail::product_checked(t, a, b, out);
+}
+/// product(table, ...) on contiguous ranges (.data(), .size(); sizes checked).
+template <class A, class B, class Out, std::enable_if_t<detail::any_range_v<A, B, Out>, int> = 0>
 void product(const TripleTable& t, const A& a, const B& b, Out&& out) {
-    const auto [pa, pb, po] =
+    const auto p =
         detail::product_buffers("sh::product", a, b, out, t.bands_a(), t.bands_b(), t.bands_c());
-    detail::product_checked(t, pa, pb, po);
+    product(t, std::get<0>(p), std::get<1>(p), std::get<2>(p));
 }
 
 /// Compile-time band counts: project(a b) onto N bands for a, b of N bands. N <= 6: unrolled code
 /// (ops/sh_product_fixed.hpp; symmetric pairs, constants folded, no tables), larger N: the
 /// generic kernel with the shared table. C as in product(table, ...); a, b and out are raw
 /// pointers or contiguous ranges of N^2 coefficients (checked); out may not overlap a or b.
-template <int N, class A, class B, class Out>
-void product(const A& a, const B& b, Out&& out) {
+template <int N, class C, class T>
+void product(const C* a, const T* b, C* out) {
     static_assert(N >= 1 && N <= max_bands, "sphbasis::sh::product<N>: N is 1..max_bands.");
-    const auto [pa, pb, po] = detail::product_buffers("sh::product", a, b, out, N, N, N);
+    static_assert(std::is_floating_point_v<T>, "sphbasis::sh::product: b is float or double.");
+    detail::check_product_pointers("sh::product", a, b, out);
     if constexpr (N <= detail::max_fixed_product_bands) {
-        detail::product_fixed<N>(pa, pb, po);
+        detail::product_fixed<N>(a, b, out);
     } else {
         static const TripleTable& table = triple_table(N, N, N);  // no lock after the first call
-        detail::product_checked(table, pa, pb, po);
+        detail::product_checked(table, a, b, out);
     }
+}
+/// product<N>() on contiguous ranges of at least N^2 coefficients (checked).
+template <int N, class A, class B, class Out,
+          std::enable_if_t<detail::any_range_v<A, B, Out>, int> = 0>
+void product(const A& a, const B& b, Out&& out) {
+    const auto p = detail::product_buffers("sh::product", a, b, out, N, N, N);
+    product<N>(std::get<0>(p), std::get<1>(p), std::get<2>(p));
 }
 
 /// Runtime band counts: out (nc^2 coefficients) = projection of the product of a (na bands) and
@@ -573,28 +601,37 @@ void product(const A& a, const B& b, Out&& out) {
 /// for na = nb = nc <= 6, else the generic kernel with the shared table (built on first use).
 /// a, b and out are raw pointers or contiguous ranges (checked). Throws std::invalid_argument
 /// for band counts outside [1, max_bands] and null or short buffers.
-template <class A, class B, class Out>
-void product(int na, const A& a, int nb, const B& b, int nc, Out&& out) {
+template <class C, class T>
+void product(int na, const C* a, int nb, const T* b, int nc, C* out) {
+    static_assert(std::is_floating_point_v<T>, "sphbasis::sh::product: b is float or double.");
     const char* fn = "sh::product";
     for (int v : {na, nb, nc}) sphbasis::detail::check_range(fn, "bands", v, 1, max_bands);
-    const auto [pa, pb, po] = detail::product_buffers(fn, a, b, out, na, nb, nc);
+    detail::check_product_pointers(fn, a, b, out);
     if (na == nb && nb == nc && na <= detail::max_fixed_product_bands) {
         switch (na) {
             case 1:
-                return detail::product_fixed<1>(pa, pb, po);
+                return detail::product_fixed<1>(a, b, out);
             case 2:
-                return detail::product_fixed<2>(pa, pb, po);
+                return detail::product_fixed<2>(a, b, out);
             case 3:
-                return detail::product_fixed<3>(pa, pb, po);
+                return detail::product_fixed<3>(a, b, out);
             case 4:
-                return detail::product_fixed<4>(pa, pb, po);
+                return detail::product_fixed<4>(a, b, out);
             case 5:
-                return detail::product_fixed<5>(pa, pb, po);
+                return detail::product_fixed<5>(a, b, out);
             default:
-                return detail::product_fixed<6>(pa, pb, po);
+                return detail::product_fixed<6>(a, b, out);
         }
     }
-    detail::product_checked(triple_table(na, nb, nc), pa, pb, po);
+    detail::product_checked(triple_table(na, nb, nc), a, b, out);
+}
+/// product(na, a, nb, b, nc, out) on contiguous ranges (sizes checked).
+template <class A, class B, class Out, std::enable_if_t<detail::any_range_v<A, B, Out>, int> = 0>
+void product(int na, const A& a, int nb, const B& b, int nc, Out&& out) {
+    const char* fn = "sh::product";
+    for (int v : {na, nb, nc}) sphbasis::detail::check_range(fn, "bands", v, 1, max_bands);
+    const auto p = detail::product_buffers(fn, a, b, out, na, nb, nc);
+    product(na, std::get<0>(p), nb, std::get<1>(p), nc, std::get<2>(p));
 }
 
 /// product(n, a, n, b, n, out): n bands in and out (DirectXMath's XMSHMultiplyN truncation).
