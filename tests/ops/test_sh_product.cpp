@@ -569,7 +569,7 @@ TEST_CASE("product: ranges and pointers, checked at the boundary", "[product]") 
                                       "the out buffer, got 9"));
     CHECK_THROWS_WITH(sh::product(4, a.data(), static_cast<const double*>(nullptr), p1.data()),
                       Catch::Contains("sphbasis::sh::product(): expected a non-null b buffer"));
-    CHECK_THROWS_WITH(sh::product<3>(a.data(), b.data(), static_cast<double*>(nullptr)),
+    CHECK_THROWS_WITH(sh::product(3, a.data(), 3, b.data(), 3, static_cast<double*>(nullptr)),
                       Catch::Contains("sphbasis::sh::product(): expected a non-null out buffer"));
     CHECK_THROWS_WITH(sh::product(0, a.data(), b.data(), p1.data()),
                       Catch::Contains("sphbasis::sh::product(): expected 1 <= bands"));

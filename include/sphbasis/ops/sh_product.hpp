@@ -522,13 +522,15 @@ template <class A, class B, class Out>
 inline constexpr bool any_range_v =
     !(std::is_pointer_v<A> && std::is_pointer_v<B> && std::is_pointer_v<std::decay_t<Out>>);
 
-/// Null checks of product()'s pointers (one compare each; the message is built out of line).
+/// The message of a null product() buffer, built out of line.
+[[noreturn]] SPHBASIS_NOINLINE inline void throw_null_product(const char* fn, bool a, bool b) {
+    sphbasis::detail::throw_null_buffer(fn, a ? "a" : (b ? "b" : "out"));
+}
+/// Null checks of product()'s pointers: one branch on the fast path.
 template <class C, class T>
 SPHBASIS_FORCEINLINE void check_product_pointers(const char* fn, const C* a, const T* b,
                                                  const C* out) {
-    if (!a) sphbasis::detail::throw_null_buffer(fn, "a");
-    if (!b) sphbasis::detail::throw_null_buffer(fn, "b");
-    if (!out) sphbasis::detail::throw_null_buffer(fn, "out");
+    if (!a || !b || !out) throw_null_product(fn, !a, !b);
 }
 
 /// The pointers of product()'s a, b and out, checked (null pointers, short ranges): a holds
@@ -575,12 +577,14 @@ void product(const TripleTable& t, const A& a, const B& b, Out&& out) {
 /// Compile-time band counts: project(a b) onto N bands for a, b of N bands. N <= 6: unrolled code
 /// (ops/sh_product_fixed.hpp; symmetric pairs, constants folded, no tables), larger N: the
 /// generic kernel with the shared table. C as in product(table, ...); a, b and out are raw
-/// pointers or contiguous ranges of N^2 coefficients (checked); out may not overlap a or b.
+/// pointers (non-null: a kernel precondition, SPHBASIS_ASSERT) or contiguous ranges of N^2
+/// coefficients (checked); out may not overlap a or b.
 template <int N, class C, class T>
 void product(const C* a, const T* b, C* out) {
     static_assert(N >= 1 && N <= max_bands, "sphbasis::sh::product<N>: N is 1..max_bands.");
     static_assert(std::is_floating_point_v<T>, "sphbasis::sh::product: b is float or double.");
-    detail::check_product_pointers("sh::product", a, b, out);
+    // A kernel: non-null pointers are a precondition (the range overload checks sizes).
+    SPHBASIS_ASSERT(a != nullptr && b != nullptr && out != nullptr);
     if constexpr (N <= detail::max_fixed_product_bands) {
         detail::product_fixed<N>(a, b, out);
     } else {
