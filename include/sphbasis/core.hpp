@@ -16,6 +16,7 @@
 #include "core/vec.hpp"
 #include "core/scaled.hpp"
 #include "core/small_buffer.hpp"
+#include "core/frame.hpp"
 #include "core/quadrature.hpp"
 #include "core/sampling.hpp"
 #include "core/jacobi.hpp"

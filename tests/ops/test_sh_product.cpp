@@ -438,8 +438,8 @@ TEST_CASE("product: RGB coefficients times scalar visibility", "[product]") {
 
 TEST_CASE("product: the product matrix reproduces the product", "[product]") {
     std::mt19937 rng(17);
-    // Source document 000 §3: lighting L (5 bands) times visibility V (4 bands) projected onto
-    // the 3 bands of the clamped cosine: 9 rows, 16 columns.
+    // Iwanicki and Sloan (JGT 2009, Sec. 3): lighting L (5 bands) times visibility V (4 bands)
+    // projected onto the 3 bands of the clamped cosine: 9 rows, 16 columns.
     const std::array<std::array<int, 3>, 4> cases = {{{5, 4, 3}, {3, 6, 3}, {4, 4, 7}, {2, 3, 5}}};
     for (const auto& c : cases) {
         const int na = c[0], nb = c[1], nc = c[2];
