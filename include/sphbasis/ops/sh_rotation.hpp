@@ -720,6 +720,27 @@ void rotate_checked(int bands, const Mat3<T>& r, const C* in, C* out) {
 }  // namespace detail
 
 namespace detail {
+/// The buffer checks of rotate() and rotate_quaternion(), then rotate_checked(). Pointers take
+/// the direct path (one null compare each); ranges are size-checked first.
+template <class T, class In, class Out>
+SPHBASIS_FORCEINLINE void rotate_entry(const char* fn, int bands, const Mat3<T>& r, const In& in,
+                                       Out& out) {
+    if constexpr (std::is_pointer_v<In> && std::is_pointer_v<std::remove_cv_t<Out>>) {
+        static_assert(std::is_same_v<std::remove_const_t<std::remove_pointer_t<In>>,
+                                     std::remove_pointer_t<std::remove_cv_t<Out>>>,
+                      "sphbasis::sh: the output coefficient buffer must be writable and hold the "
+                      "coefficient type of the input.");
+        if (bands == 0) return;
+        if (!in) sphbasis::detail::throw_null_buffer(fn, "input");
+        if (!out) sphbasis::detail::throw_null_buffer(fn, "output");
+        rotate_checked(bands, r, in, static_cast<std::remove_cv_t<Out>>(out));
+    } else {
+        const auto p = coefficient_buffers(fn, in, out, coefficient_count(bands));
+        if (bands == 0) return;
+        rotate_checked(bands, r, p.first, p.second);
+    }
+}
+
 /// The row-major matrix of a rotation argument: a matrix type checked to be orthonormal within
 /// tol, or a quaternion type (orthonormal by construction).
 template <class R>
@@ -753,10 +774,7 @@ void rotate(int bands, const R& r, const In& in, Out&& out,
     const char* fn = "sh::rotate";
     sphbasis::detail::check_range(fn, "bands", bands, 0, max_bands);
     const Mat3<T> m = detail::checked_rotation_matrix(r, tolerance, fn);
-    const auto [pin, pout] =
-        detail::coefficient_buffers(fn, in, out, detail::coefficient_count(bands));
-    if (bands == 0) return;
-    detail::rotate_checked(bands, m, pin, pout);
+    detail::rotate_entry(fn, bands, m, in, out);
 }
 
 /// rotate() by the quaternion (w, x, y, z) (normalised if not unit; zero/non-finite throws).
@@ -766,10 +784,7 @@ void rotate_quaternion(int bands, T w, T x, T y, T z, const In& in, Out&& out) {
     const char* fn = "sh::rotate_quaternion";
     sphbasis::detail::check_range(fn, "bands", bands, 0, max_bands);
     const Mat3<T> r = matrix_from_quaternion(w, x, y, z);
-    const auto [pin, pout] =
-        detail::coefficient_buffers(fn, in, out, detail::coefficient_count(bands));
-    if (bands == 0) return;
-    detail::rotate_checked(bands, r, pin, pout);
+    detail::rotate_entry(fn, bands, r, in, out);
 }
 /// rotate() by a quaternion type (glm::quat / dquat, Eigen::Quaternionf / d, sphbasis::Quat).
 template <class Q, class In, class Out>
