@@ -17,6 +17,7 @@
 #include "core/scaled.hpp"
 #include "core/small_buffer.hpp"
 #include "core/contiguous.hpp"
+#include "core/frame.hpp"
 #include "core/clamped_cosine.hpp"
 #include "core/legendre.hpp"
 #include "core/quadrature.hpp"

@@ -123,7 +123,7 @@ double max_abs(const std::vector<double>& v) {
 
 // Tolerances of gaunt() against exact values: with the x87 long double working precision the
 // results are within an ulp or so; with double (MSVC, ARM) a few ulp of the largest symbol.
-constexpr bool extended = std::is_same_v<sh::detail::gaunt_real, long double>;
+constexpr bool extended = std::is_same_v<sphbasis::extended, long double>;
 constexpr double gaunt_abs_tol = extended ? 5e-17 : 1e-15;
 constexpr double gaunt_rel_tol = extended ? 4e-16 : 3e-14;
 
@@ -438,8 +438,8 @@ TEST_CASE("product: RGB coefficients times scalar visibility", "[product]") {
 
 TEST_CASE("product: the product matrix reproduces the product", "[product]") {
     std::mt19937 rng(17);
-    // Source document 000 §3: lighting L (5 bands) times visibility V (4 bands) projected onto
-    // the 3 bands of the clamped cosine: 9 rows, 16 columns.
+    // Iwanicki and Sloan (JGT 2009, Sec. 3): lighting L (5 bands) times visibility V (4 bands)
+    // projected onto the 3 bands of the clamped cosine: 9 rows, 16 columns.
     const std::array<std::array<int, 3>, 4> cases = {{{5, 4, 3}, {3, 6, 3}, {4, 4, 7}, {2, 3, 5}}};
     for (const auto& c : cases) {
         const int na = c[0], nb = c[1], nc = c[2];
@@ -546,3 +546,31 @@ TEST_CASE("gaunt: the sphbasis gaunt command", "[gaunt][cli]") {
     }
 }
 #endif
+
+TEST_CASE("product: ranges and pointers, checked at the boundary", "[product]") {
+    std::mt19937 rng(17);
+    std::normal_distribution<double> nd;
+    std::vector<double> a(16), b(16), p1(16), p2(16), p3(16);
+    for (auto& v : a) v = nd(rng);
+    for (auto& v : b) v = nd(rng);
+    sh::product(4, a.data(), b.data(), p1.data());
+    sh::product(4, a, b, p2);  // std::vector ranges
+    CHECK(p1 == p2);
+    std::array<double, 16> p4{};
+    sh::product<4>(a, b, p4);
+    sh::product(sh::triple_table(4, 4, 4), a, b, p3);
+    for (std::size_t i = 0; i < 16; ++i) {
+        CHECK(p4[i] == Approx(p1[i]).margin(1e-14));
+        CHECK(p3[i] == Approx(p1[i]).margin(1e-14));
+    }
+    std::vector<double> small(9);
+    CHECK_THROWS_WITH(sh::product(4, a, b, small),
+                      Catch::Contains("sphbasis::sh::product(): expected at least 16 values in "
+                                      "the out buffer, got 9"));
+    CHECK_THROWS_WITH(sh::product(4, a.data(), static_cast<const double*>(nullptr), p1.data()),
+                      Catch::Contains("sphbasis::sh::product(): expected a non-null b buffer"));
+    CHECK_THROWS_WITH(sh::product(3, a.data(), 3, b.data(), 3, static_cast<double*>(nullptr)),
+                      Catch::Contains("sphbasis::sh::product(): expected a non-null out buffer"));
+    CHECK_THROWS_WITH(sh::product(0, a.data(), b.data(), p1.data()),
+                      Catch::Contains("sphbasis::sh::product(): expected 1 <= bands"));
+}

@@ -1,12 +1,17 @@
 // Tests for ops/sh_rotation.hpp: orthogonality to 200 bands, composition, inverse, agreement
 // with evaluation at rotated directions, band energy, and the special cases (z rotation,
 // quarter turns, reflections, tangent frames) against the general matrix.
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <limits>
 #include <random>
 #include <sstream>
@@ -372,6 +377,148 @@ TEST_CASE("rotation: Euler ZYZ is Rz Ry Rz and matches z rotations", "[rotation]
     CHECK(max_abs_diff(a, b) <= 1e-13);
 }
 
+TEST_CASE("rotation: rotate_zyz equals rotate() of the Euler matrix", "[rotation]") {
+    std::mt19937 rng(12);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int bands : {1, 2, 3, 5, 8, 16, 24, 25, 32}) {
+        for (int trial = 0; trial < 4; ++trial) {
+            const double al = 2 * pi * u(rng), be = pi * u(rng), ga = 2 * pi * u(rng);
+            const auto f = random_coeffs<double>(bands, rng);
+            std::vector<double> a(f.size()), b(f.size());
+            sh::rotate(bands, sh::matrix_from_euler_zyz(al, be, ga), f.data(), a.data());
+            sh::rotate_zyz(bands, al, be, ga, f.data(), b.data());
+            INFO("bands " << bands);
+            CHECK(max_abs_diff(a, b) <= 1e-12);
+            // In place, and with ranges.
+            std::vector<double> c = f;
+            sh::rotate_zyz(bands, al, be, ga, c, c);
+            CHECK(max_abs_diff(b, c) == 0);
+        }
+    }
+    // beta = 0 and pi (where Euler angles are singular) are exact cases, not special ones.
+    for (double be : {0.0, pi}) {
+        const int bands = 6;
+        const auto f = random_coeffs<double>(bands, rng);
+        std::vector<double> a(f.size()), b(f.size());
+        sh::rotate(bands, sh::matrix_from_euler_zyz(0.3, be, -1.2), f.data(), a.data());
+        sh::rotate_zyz(bands, 0.3, be, -1.2, f.data(), b.data());
+        CHECK(max_abs_diff(a, b) <= 1e-13);
+    }
+    // RGB coefficients and float.
+    {
+        const int bands = 5;
+        const auto f = random_coeffs<double>(bands, rng);
+        std::vector<RGB> rgb(f.size()), out(f.size());
+        for (std::size_t i = 0; i < f.size(); ++i) rgb[i] = {f[i], -f[i], 2 * f[i]};
+        std::vector<double> a(f.size());
+        sh::rotate_zyz(bands, 0.4, 1.1, -2.2, f.data(), a.data());
+        sh::rotate_zyz(bands, 0.4, 1.1, -2.2, rgb.data(), out.data());
+        for (std::size_t i = 0; i < f.size(); ++i) {
+            CHECK(out[i].r == Approx(a[i]).margin(1e-15));
+            CHECK(out[i].b == Approx(2 * a[i]).margin(1e-15));
+        }
+        std::vector<float> ff(f.begin(), f.end()), fo(f.size());
+        sh::rotate_zyz(bands, 0.4f, 1.1f, -2.2f, ff, fo);
+        for (std::size_t i = 0; i < f.size(); ++i) CHECK(fo[i] == Approx(a[i]).margin(2e-6));
+    }
+    std::vector<double> c(9), o(4);
+    CHECK_THROWS_WITH(sh::rotate_zyz(3, 0.1, 0.2, 0.3, c, o),
+                      Catch::Contains("sphbasis::sh::rotate_zyz(): expected at least 9 values in "
+                                      "the output buffer, got 4"));
+    CHECK_THROWS_WITH(sh::rotate_zyz(-1, 0.1, 0.2, 0.3, c, o),
+                      Catch::Contains("sphbasis::sh::rotate_zyz(): expected 0 <= bands"));
+}
+
+TEST_CASE("rotation: glm, Eigen and row-major matrices and quaternions give one rotation",
+          "[rotation]") {
+    const double w = 0.9, x = -0.3, y = 0.2, z = -0.1;
+    const sh::Mat3<double> r = sh::matrix_from_quaternion(w, x, y, z);  // row-major
+    const glm::dquat gq(w, x, y, z);
+    const glm::dmat3 gm = glm::mat3_cast(glm::normalize(gq));  // column-major
+    const Eigen::Quaterniond eq(w, x, y, z);
+    const Eigen::Matrix3d em = eq.normalized().toRotationMatrix();
+    const sphbasis::Quatd sq{w, x, y, z};
+    std::mt19937 rng(41);
+    for (int bands : {3, 7, 26}) {
+        INFO("bands " << bands);
+        const auto f = random_coeffs<double>(bands, rng);
+        std::vector<double> ref(f.size()), g(f.size());
+        sh::rotate(bands, r, f.data(), ref.data());
+        sh::rotate(bands, gm, f.data(), g.data());
+        CHECK(max_abs_diff(ref, g) <= 1e-13);
+        sh::rotate(bands, em, f, g);  // ranges
+        CHECK(max_abs_diff(ref, g) <= 1e-13);
+        sh::rotate(bands, gq, f, g);  // a quaternion through rotate()
+        CHECK(max_abs_diff(ref, g) <= 1e-13);
+        sh::rotate_quaternion(bands, eq, f, g);
+        CHECK(max_abs_diff(ref, g) <= 1e-13);
+        sh::rotate_quaternion(bands, sq, f.data(), g.data());
+        CHECK(max_abs_diff(ref, g) <= 1e-13);
+        sh::rotation_from_matrix(bands, gm).apply(f, g);
+        CHECK(max_abs_diff(ref, g) <= 1e-13);
+        sh::rotation_from_matrix(bands, em).apply(f, g);
+        CHECK(max_abs_diff(ref, g) <= 1e-13);
+        sh::rotation_from_quaternion(bands, gq).apply(f, g);
+        CHECK(max_abs_diff(ref, g) <= 1e-13);
+        sh::Rotation<double>::from_quaternion(bands, eq).apply(f, g);
+        CHECK(max_abs_diff(ref, g) <= 1e-13);
+        // Copying glm's memory into a row-major array would give the inverse rotation.
+        sh::Mat3<double> wrong;
+        std::copy(&gm[0][0], &gm[0][0] + 9, wrong.begin());
+        sh::rotate(bands, wrong, f.data(), g.data());
+        if (bands > 1) CHECK(max_abs_diff(ref, g) > 1e-3);
+    }
+    // float types: glm::mat3, glm::quat, Eigen::Matrix3f, Eigen::Quaternionf.
+    {
+        const int bands = 4;
+        const auto fd = random_coeffs<double>(bands, rng);
+        std::vector<double> ref(fd.size());
+        sh::rotate(bands, r, fd.data(), ref.data());
+        std::vector<float> f(fd.begin(), fd.end());
+        std::array<float, 16> g{};
+        const auto wf = static_cast<float>(w), xf = static_cast<float>(x),
+                   yf = static_cast<float>(y), zf = static_cast<float>(z);
+        const glm::quat gqf(wf, xf, yf, zf);
+        const Eigen::Quaternionf eqf(wf, xf, yf, zf);
+        auto check = [&] {
+            for (std::size_t i = 0; i < ref.size(); ++i) CHECK(g[i] == Approx(ref[i]).margin(2e-6));
+        };
+        sh::rotate(bands, glm::mat3_cast(glm::normalize(gqf)), f, g);
+        check();
+        sh::rotate(bands, eqf.normalized().toRotationMatrix(), f, g);
+        check();
+        sh::rotate_quaternion(bands, gqf, f, g);
+        check();
+        sh::rotate_quaternion(bands, eqf, f, g);
+        check();
+    }
+    // Directions as any 3-vector type.
+    const glm::dvec3 n(0.3, -0.4, 0.866);
+    const auto d1 = sh::rotation_to_normal(5, n), d2 = sh::rotation_to_normal(5, n.x, n.y, n.z);
+    const auto d3 = sh::rotation_to_normal(5, Eigen::Vector3d(n.x, n.y, n.z));
+    const auto d4 = sh::rotation_to_normal(5, glm::vec3(n));
+    for (std::size_t i = 0; i < d1.size(); ++i) {
+        CHECK(d1.data()[i] == d2.data()[i]);
+        CHECK(d3.data()[i] == d2.data()[i]);
+        CHECK(d4.data()[i] == Approx(d2.data()[i]).margin(1e-6));
+    }
+    const auto fr = sh::frame_to_normal(Eigen::Vector3f(0.f, 0.f, 1.f));
+    CHECK(fr[8] == 1.0f);
+    // Sizes of ranges are checked; a dynamic Eigen matrix must be 3x3.
+    std::vector<double> c(9), shortv(8);
+    CHECK_THROWS_WITH(sh::rotate(3, gm, shortv, c),
+                      Catch::Contains("sphbasis::sh::rotate(): expected at least 9 values in the "
+                                      "input buffer, got 8"));
+    CHECK_THROWS_WITH(sh::rotation_from_matrix(3, gm).apply(c, shortv),
+                      Catch::Contains("sphbasis::sh::Rotation::apply(): expected at least 9"));
+    CHECK_THROWS_WITH(sh::rotate(3, Eigen::MatrixXd::Identity(4, 4).eval(), c, c),
+                      Catch::Contains("sphbasis::sh::rotate(): expected a 3x3 matrix, got 4x4"));
+    CHECK_THROWS_WITH(sh::rotate(3, glm::dmat3(2.0), c, c),
+                      Catch::Contains("sphbasis::sh::rotate(): expected an orthonormal"));
+    CHECK_THROWS_WITH(sh::rotate_z(3, 0.1, c.data(), static_cast<double*>(nullptr)),
+                      Catch::Contains("sphbasis::sh::rotate_z(): expected a non-null output"));
+}
+
 TEST_CASE("rotation: tangent frame taking +z to a normal", "[rotation]") {
     std::mt19937 rng(21);
     std::vector<vec3<double>> normals = {{0, 0, 1},          {0, 0, -1},    {1, 0, 0},
@@ -409,9 +556,8 @@ TEST_CASE("rotation: tangent frame taking +z to a normal", "[rotation]") {
     // From an explicit frame.
     const auto t = sh::matrix_from_frame<double>({0, 1, 0}, {-1, 0, 0}, {0, 0, 1});
     CHECK(t[1] == -1.0);
-    CHECK_THROWS_WITH(
-        (sh::matrix_from_frame<double>({0, 1, 0}, {0, 1, 0}, {0, 0, 1})),
-        Catch::Contains("sphbasis::sh::matrix_from_frame(): expected an orthonormal"));
+    CHECK_THROWS_WITH((sh::matrix_from_frame<double>({0, 1, 0}, {0, 1, 0}, {0, 0, 1})),
+                      Catch::Contains("sphbasis::matrix_from_frame(): expected an orthonormal"));
 }
 
 TEST_CASE("rotation: float agrees with double", "[rotation]") {
@@ -452,7 +598,7 @@ TEST_CASE("rotation: bad input throws with the function name", "[rotation]") {
         Catch::Contains("non-finite"));
     CHECK_THROWS_WITH(
         sh::rotation_from_quaternion(3, 0.0, 0.0, 0.0, 0.0),
-        Catch::Contains("sphbasis::sh::matrix_from_quaternion(): expected a finite non-zero"));
+        Catch::Contains("sphbasis::matrix_from_quaternion(): expected a finite non-zero"));
     CHECK_THROWS_WITH(
         sh::rotation_from_quaternion(3, 1.0, std::numeric_limits<double>::infinity(), 0.0, 0.0),
         Catch::Contains("expected a finite non-zero"));
@@ -461,9 +607,9 @@ TEST_CASE("rotation: bad input throws with the function name", "[rotation]") {
     CHECK_THROWS_WITH(sh::reflect(3, 3, c.data(), o.data()),
                       Catch::Contains("sphbasis::sh::reflect(): expected axis"));
     CHECK_THROWS_WITH(sh::matrix_90<double>(5, 1),
-                      Catch::Contains("sphbasis::sh::matrix_90(): expected axis"));
+                      Catch::Contains("sphbasis::matrix_90(): expected axis"));
     CHECK_THROWS_WITH(sh::rotate(3, id, static_cast<const double*>(nullptr), o.data()),
-                      Catch::Contains("sphbasis::sh::rotate(): expected non-null"));
+                      Catch::Contains("sphbasis::sh::rotate(): expected a non-null input buffer"));
     const auto d = sh::rotation_from_matrix(3, id);
     CHECK_THROWS_WITH(d.apply(std::vector<double>(4)),
                       Catch::Contains("sphbasis::sh::Rotation::apply(): expected 9 coefficients"));

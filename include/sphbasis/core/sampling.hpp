@@ -1,19 +1,25 @@
 // sphbasis: sample points on the sphere and the hemisphere for Monte Carlo projection.
 //
-// Warps from the unit square (named as Mitsuba's warp.h: square_to_X, X_pdf), and generators
-// of square points: the Hammersley point set (low discrepancy, fixed N), the R2 sequence
-// (Roberts 2018; low discrepancy, extensible) and jittered stratification (sqrt(N) x sqrt(N)
-// strata, seeded). Pdfs are with respect to solid angle.
+// Warps from the unit square (named as Mitsuba's warp.h: square_to_X, X_pdf), warps from the
+// unit cube to uniformly distributed rotations, and generators of square points: the
+// Hammersley point set (low discrepancy, fixed N), the R2 sequence (M. Roberts, "The Unreasonable
+// Effectiveness of Quasirandom Sequences", 2018; low discrepancy, extensible) and jittered
+// stratification (sqrt(N) x sqrt(N) strata, seeded). Pdfs are with respect to solid angle.
+// Uniform rotations: K. Shoemake, "Uniform Random Rotations", Graphics Gems III (1992), 124-132.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "constants.hpp"
+#include "error.hpp"
+#include "frame.hpp"
 #include "vec.hpp"
 
 namespace sphbasis {
@@ -57,6 +63,30 @@ T cosine_hemisphere_pdf(const vec3<T>& d) noexcept {
     return d.z > T(0) ? d.z * T(constants::inv_pi) : T(0);
 }
 
+/// A uniformly distributed rotation (Haar measure on SO(3)) from a point of the unit cube, as
+/// a unit quaternion (w, x, y, z), by Shoemake's method (Graphics Gems III, 1992): with
+/// r1 = sqrt(1 - u1), r2 = sqrt(u1), t1 = 2 pi u2, t2 = 2 pi u3,
+///   q = (r2 cos t2, r1 sin t1, r1 cos t1, r2 sin t2),
+/// uniform on the unit 3-sphere, hence (q and -q being one rotation) uniform on SO(3).
+/// matrix_from_quaternion() (core/frame.hpp) gives the matrix.
+template <class T>
+Quat<T> cube_to_rotation(T u1, T u2, T u3) noexcept {
+    const T r1 = std::sqrt(std::fmax(T(0), T(1) - u1)), r2 = std::sqrt(std::fmax(T(0), u1));
+    const T t1 = T(constants::two_pi) * u2, t2 = T(constants::two_pi) * u3;
+    return {r2 * std::cos(t2), r1 * std::sin(t1), r1 * std::cos(t1), r2 * std::sin(t2)};
+}
+
+/// A uniformly distributed rotation as ZYZ Euler angles {alpha, beta, gamma} (R = Rz(alpha)
+/// Ry(beta) Rz(gamma), core/frame.hpp's matrix_from_euler_zyz and ops/sh_rotation.hpp's
+/// rotate_zyz): alpha = 2 pi u1, cos(beta) = 2 u2 - 1, gamma = 2 pi u3 (the Haar measure is
+/// sin(beta) dalpha dbeta dgamma / (8 pi^2)).
+template <class T>
+std::array<T, 3> cube_to_euler_zyz(T u1, T u2, T u3) noexcept {
+    const T c = T(2) * u2 - T(1);
+    return {T(constants::two_pi) * u1, std::acos(c < T(-1) ? T(-1) : (c > T(1) ? T(1) : c)),
+            T(constants::two_pi) * u3};
+}
+
 /// Base-2 radical inverse (van der Corput) of i, in [0, 1).
 inline double radical_inverse2(std::uint32_t i) noexcept {
     i = (i << 16) | (i >> 16);
@@ -87,7 +117,7 @@ inline void r2_sequence(std::uint64_t i, double& u, double& v) noexcept {
 /// Throws std::invalid_argument for k < 1.
 inline void stratified(int k, std::uint64_t seed, std::vector<double>& u, std::vector<double>& v) {
     if (k < 1)
-        throw std::invalid_argument("sphbasis::stratified(): expected k >= 1 strata per axis");
+        detail::throw_invalid("stratified", "k >= 1 strata per axis, got " + std::to_string(k));
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> uni(0.0, 1.0);
     u.clear();

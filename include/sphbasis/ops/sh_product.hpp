@@ -8,8 +8,9 @@
 //     project(a b)_k = sum_ij Gamma_ijk a_i b_j,                                            (1)
 // and the integral of a product of three expansions, sum_ijk Gamma_ijk a_i b_j c_k
 // (Ng, Ramamoorthi & Hanrahan 2004, "Triple product wavelet integrals for all-frequency
-// relighting"; Sloan 2008, "Stupid spherical harmonics tricks"; the source document 000 §3
-// tabulates (1) for the lighting times the clamped cosine).
+// relighting", SIGGRAPH 2004; Sloan, "Stupid Spherical Harmonics (SH) Tricks", GDC 2008;
+// Iwanicki and Sloan, "Normal Mapping with Low-Frequency Precomputed Visibility", JGT 2009,
+// Sec. 3, tabulate (1) for the lighting times the clamped cosine).
 //
 // How they are computed (no factorials, any degree):
 //   * the complex Gaunt coefficient is a product of two Wigner 3j symbols,
@@ -80,21 +81,22 @@
 #include "../basis/sh.hpp"
 #include "../config.hpp"
 #include "../core/constants.hpp"
+#include "../core/error.hpp"
+#include "../core/frame.hpp"
+#include "../core/scalar.hpp"
 #include "sh_product_fixed.hpp"
 
 namespace sphbasis::sh {
 
 namespace detail {
 
-/// The working precision of the 3j recurrence: the x87 80-bit long double where it is a
-/// hardware type (64-bit mantissa: results then round to within about one ulp of the exact
-/// double), else double (MSVC, and targets whose long double is a software quad).
-using gaunt_real =
-    std::conditional_t<std::numeric_limits<long double>::digits == 64, long double, double>;
-inline constexpr gaunt_real gaunt_inv_four_pi =
-    gaunt_real(0.0795774715459476678844418816862571810L);  // 1/(4 pi)
-inline constexpr gaunt_real gaunt_inv_sqrt2 =
-    gaunt_real(0.707106781186547524400844362104849039L);  // 1/sqrt(2)
+// The 3j recurrence runs in sphbasis::extended (core/scalar.hpp): the x87 80-bit long double
+// where it is a hardware type (results then round to within about one ulp of the exact double),
+// else double.
+inline constexpr extended gaunt_inv_four_pi =
+    extended(0.0795774715459476678844418816862571810L);  // 1/(4 pi)
+inline constexpr extended gaunt_inv_sqrt2 =
+    extended(0.707106781186547524400844362104849039L);  // 1/sqrt(2)
 
 /// Wigner 3j symbols (j1 j2 j3; m1 m2 m3) with m1 = -m2 - m3 for every j1 in [j1min, j1max],
 /// j1min = max(|j2 - j3|, |m1|), j1max = j2 + j3, into w[j1 - j1min]; returns j1min, and leaves
@@ -103,8 +105,8 @@ inline constexpr gaunt_real gaunt_inv_sqrt2 =
 /// two non-oscillating ends are also accurate relative to themselves (they are computed in the
 /// direction in which they grow), except below ~1e-120 of the largest, where they may be 0.
 /// Accidental zeros (see the header comment) are returned as exact zeros.
-inline int wigner3j_sweep(int j2, int j3, int m2, int m3, std::vector<gaunt_real>& w,
-                          std::vector<gaunt_real>& tmp) {
+inline int wigner3j_sweep(int j2, int j3, int m2, int m3, std::vector<extended>& w,
+                          std::vector<extended>& tmp) {
     w.clear();
     const int m1 = -m2 - m3;
     const int jmin = std::max(std::abs(j2 - j3), std::abs(m1));
@@ -112,16 +114,16 @@ inline int wigner3j_sweep(int j2, int j3, int m2, int m3, std::vector<gaunt_real
     if (std::abs(m2) > j2 || std::abs(m3) > j3 || jmin > jmax) return jmin;
     const std::size_t n = static_cast<std::size_t>(jmax - jmin + 1);
     w.assign(n, 0.0);
-    const gaunt_real d23 = j2 - j3, s23 = j2 + j3 + 1, dm1 = m1;
-    const gaunt_real c23 =
-        static_cast<gaunt_real>(j2) * (j2 + 1) - static_cast<gaunt_real>(j3) * (j3 + 1);
-    const gaunt_real dm32 = static_cast<gaunt_real>(m3) - m2;
+    const extended d23 = j2 - j3, s23 = j2 + j3 + 1, dm1 = m1;
+    const extended c23 =
+        static_cast<extended>(j2) * (j2 + 1) - static_cast<extended>(j3) * (j3 + 1);
+    const extended dm32 = static_cast<extended>(m3) - m2;
     // A(j) and B(j) of the recurrence j A(j+1) f(j+1) + B(j) f(j) + (j+1) A(j) f(j-1) = 0.
-    auto A = [&](gaunt_real j) {
+    auto A = [&](extended j) {
         return std::sqrt((j - d23) * (j + d23) * (s23 - j) * (s23 + j) * (j - dm1) * (j + dm1));
     };
-    auto B = [&](gaunt_real j) { return -(2 * j + 1) * (dm1 * c23 - j * (j + 1) * dm32); };
-    const gaunt_real big = std::ldexp(gaunt_real(1), 400), small = std::ldexp(gaunt_real(1), -400);
+    auto B = [&](extended j) { return -(2 * j + 1) * (dm1 * c23 - j * (j + 1) * dm32); };
+    const extended big = std::ldexp(extended(1), 400), small = std::ldexp(extended(1), -400);
     if (n == 1) {
         w[0] = 1;
     } else {
@@ -132,13 +134,13 @@ inline int wigner3j_sweep(int j2, int j3, int m2, int m3, std::vector<gaunt_real
         std::size_t kf = 1;  // forward values valid for k < kf
         w[0] = 1;
         {
-            const gaunt_real j = jmin;
+            const extended j = jmin;
             w[1] = jmin == 0 ? -dm32 * w[0] / A(1) : -B(j) * w[0] / (j * A(j + 1));
             kf = 2;
         }
         while (kf < n) {
-            const gaunt_real j = jmin + static_cast<gaunt_real>(kf) - 1;  // computing f(j + 1)
-            const gaunt_real v = -(B(j) * w[kf - 1] + (j + 1) * A(j) * w[kf - 2]) / (j * A(j + 1));
+            const extended j = jmin + static_cast<extended>(kf) - 1;  // computing f(j + 1)
+            const extended v = -(B(j) * w[kf - 1] + (j + 1) * A(j) * w[kf - 2]) / (j * A(j + 1));
             if (!two_term && std::fabs(v) <= std::fabs(w[kf - 1])) break;
             w[kf++] = v;
             if (std::fabs(v) > big)
@@ -151,39 +153,38 @@ inline int wigner3j_sweep(int j2, int j3, int m2, int m3, std::vector<gaunt_real
             tmp.assign(n, 0.0);
             tmp[n - 1] = 1;
             {
-                const gaunt_real j = jmax;
+                const extended j = jmax;
                 tmp[n - 2] = -B(j) * tmp[n - 1] / ((j + 1) * A(j));
             }
             for (std::size_t k = n - 2; k > km; --k) {
-                const gaunt_real j = jmin + static_cast<gaunt_real>(k);  // computing f(j - 1)
-                const gaunt_real v =
-                    -(B(j) * tmp[k] + j * A(j + 1) * tmp[k + 1]) / ((j + 1) * A(j));
+                const extended j = jmin + static_cast<extended>(k);  // computing f(j - 1)
+                const extended v = -(B(j) * tmp[k] + j * A(j + 1) * tmp[k + 1]) / ((j + 1) * A(j));
                 tmp[k - 1] = v;
                 if (std::fabs(v) > big)
                     for (std::size_t q = k - 1; q < n; ++q) tmp[q] *= small;
             }
-            const gaunt_real num = w[km] * tmp[km] + w[km + 1] * tmp[km + 1];
-            const gaunt_real den = tmp[km] * tmp[km] + tmp[km + 1] * tmp[km + 1];
-            const gaunt_real s = num / den;
+            const extended num = w[km] * tmp[km] + w[km + 1] * tmp[km + 1];
+            const extended den = tmp[km] * tmp[km] + tmp[km + 1] * tmp[km + 1];
+            const extended s = num / den;
             for (std::size_t k = km; k < n; ++k) w[k] = s * tmp[k];
         }
     }
     // Normalise: sum (2 j1 + 1) w^2 = 1, after dividing by the largest value (no overflow).
-    gaunt_real mx = 0;
-    for (gaunt_real v : w) mx = std::max(mx, std::fabs(v));
-    gaunt_real sum = 0;
+    extended mx = 0;
+    for (extended v : w) mx = std::max(mx, std::fabs(v));
+    extended sum = 0;
     for (std::size_t k = 0; k < n; ++k) {
         w[k] /= mx;
-        sum += (2 * (jmin + static_cast<gaunt_real>(k)) + 1) * w[k] * w[k];
+        sum += (2 * (jmin + static_cast<extended>(k)) + 1) * w[k] * w[k];
     }
     // Sign: (j1max j2 j3; ...) has the sign (-1)^(j2 - j3 - m1).
     const bool neg = ((j2 - j3 - m1) % 2 != 0);
-    gaunt_real scale = 1 / std::sqrt(sum);
+    extended scale = 1 / std::sqrt(sum);
     if ((w[n - 1] < 0) != neg) scale = -scale;
     for (std::size_t k = 0; k < n; ++k) w[k] *= scale;
     // Accidental zeros: an isolated dip to rounding level between two values of the sweep.
     for (std::size_t k = 1; k + 1 < n; ++k) {
-        const gaunt_real v = std::fabs(w[k]);
+        const extended v = std::fabs(w[k]);
         if (v != 0 && v < 1e-12 * std::fabs(w[k - 1]) && v < 1e-12 * std::fabs(w[k + 1])) w[k] = 0;
     }
     return jmin;
@@ -191,17 +192,17 @@ inline int wigner3j_sweep(int j2, int j3, int m2, int m3, std::vector<gaunt_real
 
 /// The real-basis factor R(m1, m2, m3) and the complex orders mu* of the header comment:
 /// Gamma = R * G(l, mu*). Returns false (R = 0) when the m rules forbid a nonzero value.
-inline bool real_factor(int m1, int m2, int m3, gaunt_real& r, int mu[3]) noexcept {
+inline bool real_factor(int m1, int m2, int m3, extended& r, int mu[3]) noexcept {
     struct Comp {
         int mu;
-        gaunt_real re, im;
+        extended re, im;
     };
     const int ms[3] = {m1, m2, m3};
     Comp c[3][2];
     int cnt[3];
     for (int t = 0; t < 3; ++t) {
         const int m = ms[t], a = m < 0 ? -m : m;
-        const gaunt_real h = gaunt_inv_sqrt2, par = (a & 1) ? -1 : 1;
+        const extended h = gaunt_inv_sqrt2, par = (a & 1) ? -1 : 1;
         if (m == 0) {
             c[t][0] = {0, 1, 0};
             cnt[t] = 1;
@@ -223,7 +224,7 @@ inline bool real_factor(int m1, int m2, int m3, gaunt_real& r, int mu[3]) noexce
                 const Comp &x = c[0][p], &y = c[1][q], &z = c[2][s];
                 if (x.mu + y.mu + z.mu != 0) continue;
                 // Re(x y z) for x, y, z each real or imaginary.
-                const gaunt_real xr = x.re * y.re - x.im * y.im, xi = x.re * y.im + x.im * y.re;
+                const extended xr = x.re * y.re - x.im * y.im, xi = x.re * y.im + x.im * y.re;
                 r += xr * z.re - xi * z.im;
                 if (!found) {
                     mu[0] = x.mu;
@@ -237,34 +238,20 @@ inline bool real_factor(int m1, int m2, int m3, gaunt_real& r, int mu[3]) noexce
     return found && r != 0;
 }
 
-/// The scalar a coefficient type is multiplied by: C itself for float/double, else its
-/// value_type (glm vectors, Eigen arrays), else double.
-template <class C, class = void>
-struct coeff_scalar {
-    using type = double;
-};
-template <class C>
-struct coeff_scalar<C, std::enable_if_t<std::is_floating_point_v<C>>> {
-    using type = C;
-};
-template <class C>
-struct coeff_scalar<C, std::void_t<typename C::value_type>> {
-    using type = typename C::value_type;
-};
-
 /// Gamma = R sqrt((2l1+1)(2l2+1)(2l3+1)/(4 pi)) W000 Wmu, rounded once to double.
-inline double gaunt_value(gaunt_real r, int l1, int l2, int l3, gaunt_real w000,
-                          gaunt_real wmu) noexcept {
-    const gaunt_real k = std::sqrt(gaunt_real(2 * l1 + 1) * gaunt_real(2 * l2 + 1) *
-                                   gaunt_real(2 * l3 + 1) * gaunt_inv_four_pi);
+inline double gaunt_value(extended r, int l1, int l2, int l3, extended w000,
+                          extended wmu) noexcept {
+    const extended k = std::sqrt(extended(2 * l1 + 1) * extended(2 * l2 + 1) *
+                                 extended(2 * l3 + 1) * gaunt_inv_four_pi);
     return static_cast<double>(r * k * w000 * wmu);
 }
 
 inline void check_lm(int l, int m, const char* what) {
     if (l < 0 || l >= max_bands || m < -l || m > l)
-        throw std::invalid_argument(std::string("sphbasis::sh::gaunt(): expected 0 <= ") + what +
-                                    " < " + std::to_string(max_bands) + " and |m| <= l, got l = " +
-                                    std::to_string(l) + ", m = " + std::to_string(m));
+        sphbasis::detail::throw_invalid(
+            "sh::gaunt", std::string("0 <= ") + what + " < " + std::to_string(max_bands) +
+                             " and |m| <= l, got l = " + std::to_string(l) +
+                             ", m = " + std::to_string(m));
 }
 
 }  // namespace detail
@@ -291,8 +278,8 @@ inline double gaunt(int l1, int m1, int l2, int m2, int l3, int m3) {
     detail::check_lm(l2, m2, "l2");
     detail::check_lm(l3, m3, "l3");
     if (!gaunt_allowed(l1, m1, l2, m2, l3, m3)) return 0.0;
-    detail::gaunt_real r;
-    int mu[3];
+    extended r = 0;
+    int mu[3] = {0, 0, 0};  // written by real_factor when it returns true
     if (!detail::real_factor(m1, m2, m3, r, mu)) return 0.0;
     // Sweep the largest degree so the sweep is as short as possible: put it first. Gamma is
     // invariant under any permutation of the columns (l1 + l2 + l3 is even).
@@ -301,7 +288,7 @@ inline double gaunt(int l1, int m1, int l2, int m2, int l3, int m3) {
     if (ls[1] > ls[big]) big = 1;
     if (ls[2] > ls[big]) big = 2;
     const int o1 = (big + 1) % 3, o2 = (big + 2) % 3;
-    std::vector<detail::gaunt_real> w0, wm, tmp;
+    std::vector<extended> w0, wm, tmp;
     const int j0 = detail::wigner3j_sweep(ls[o1], ls[o2], 0, 0, w0, tmp);
     const int jm = detail::wigner3j_sweep(ls[o1], ls[o2], mu[o1], mu[o2], wm, tmp);
     const int l = ls[big];
@@ -325,9 +312,9 @@ class TripleTable {
     TripleTable(int na, int nb, int nc) : na_(na), nb_(nb), nc_(nc) {
         for (int v : {na, nb, nc})
             if (v < 1 || v > max_bands)
-                throw std::invalid_argument(
-                    "sphbasis::sh::TripleTable(): expected 1 <= band counts <= " +
-                    std::to_string(max_bands) + ", got " + std::to_string(v));
+                sphbasis::detail::throw_invalid("sh::TripleTable",
+                                                "1 <= band counts <= " + std::to_string(max_bands) +
+                                                    ", got " + std::to_string(v));
         build();
     }
 
@@ -397,7 +384,7 @@ class TripleTable {
 
     void build() {
         std::vector<Entry> ent;
-        std::vector<detail::gaunt_real> w0, wm, tmp;
+        std::vector<extended> w0, wm, tmp;
         for (int l1 = 0; l1 < na_; ++l1)
             for (int l2 = 0; l2 < nb_; ++l2) {
                 const int lo = std::abs(l1 - l2), hi = std::min(l1 + l2, nc_ - 1);
@@ -418,8 +405,8 @@ class TripleTable {
                         }
                         for (int q = 0; q < nc; ++q) {
                             const int m3 = cand[q];
-                            detail::gaunt_real r;
-                            int mu[3];
+                            extended r = 0;
+                            int mu[3] = {0, 0, 0};  // written by real_factor when it succeeds
                             if (!detail::real_factor(m1, m2, m3, r, mu)) continue;
                             // (l3 l1 l2; mu3 mu1 mu2) = (l1 l2 l3; mu1 mu2 mu3): sweep in l3.
                             const int jm = detail::wigner3j_sweep(l1, l2, mu[0], mu[1], wm, tmp);
@@ -491,14 +478,10 @@ inline const TripleTable& triple_table(int na, int nb, int nc) {
     return *slot;
 }
 
-/// The generic sparse kernel: out[k] = sum_ij Gamma_ijk a[i] b[j] for k < bands_c()^2, i.e. the
-/// projection of the product of a (bands_a() bands) and b (bands_b() bands) onto bands_c()
-/// bands. C is the coefficient type (C + C, C * T, C{} zero), T float or double. out must not
-/// overlap a or b. Cost: one multiply-add per stored entry; with equal band counts of a and b
-/// the symmetric layout (has_pairs()) halves the entries.
+namespace detail {
+/// product(table, ...) after its checks.
 template <class C, class T>
-void product(const TripleTable& t, const C* a, const T* b, C* out) {
-    static_assert(std::is_floating_point_v<T>, "sphbasis::sh::product: b is float or double.");
+void product_checked(const TripleTable& t, const C* a, const T* b, C* out) noexcept {
     const int nk = t.bands_c() * t.bands_c();
     if (t.has_pairs()) {
         const T* v = t.pair_values<T>();
@@ -535,27 +518,100 @@ void product(const TripleTable& t, const C* a, const T* b, C* out) {
     }
 }
 
+template <class A, class B, class Out>
+inline constexpr bool any_range_v =
+    !(std::is_pointer_v<A> && std::is_pointer_v<B> && std::is_pointer_v<std::decay_t<Out>>);
+
+/// The message of a null product() buffer, built out of line.
+[[noreturn]] SPHBASIS_NOINLINE inline void throw_null_product(const char* fn, bool a, bool b) {
+    sphbasis::detail::throw_null_buffer(fn, a ? "a" : (b ? "b" : "out"));
+}
+/// Null checks of product()'s pointers: one branch on the fast path.
+template <class C, class T>
+SPHBASIS_FORCEINLINE void check_product_pointers(const char* fn, const C* a, const T* b,
+                                                 const C* out) {
+    if (!a || !b || !out) throw_null_product(fn, !a, !b);
+}
+
+/// The pointers of product()'s a, b and out, checked (null pointers, short ranges): a holds
+/// na^2, b nb^2 and out nc^2 coefficients. One static_assert sentence for misuse.
+template <class A, class B, class Out>
+SPHBASIS_FORCEINLINE auto product_buffers(const char* fn, const A& a, const B& b, Out& out, int na,
+                                          int nb, int nc) {
+    using CA = std::remove_const_t<sphbasis::detail::buffer_element_t<const A>>;
+    using TB = std::remove_const_t<sphbasis::detail::buffer_element_t<const B>>;
+    using CO = sphbasis::detail::buffer_element_t<Out>;
+    static_assert(std::is_floating_point_v<TB>,
+                  "sphbasis::sh::product: b holds float or double coefficients.");
+    static_assert(!std::is_const_v<CO> && std::is_same_v<CA, CO>,
+                  "sphbasis::sh::product: out is writable and holds the coefficient type of a.");
+    auto sq = [](int n) { return static_cast<std::size_t>(n) * static_cast<std::size_t>(n); };
+    const CA* pa = sphbasis::detail::buffer_data(fn, "a", a, sq(na));
+    const TB* pb = sphbasis::detail::buffer_data(fn, "b", b, sq(nb));
+    CO* po = sphbasis::detail::buffer_data(fn, "out", out, sq(nc));
+    return std::tuple<const CA*, const TB*, CO*>(pa, pb, po);
+}
+}  // namespace detail
+
+/// The generic sparse kernel: out[k] = sum_ij Gamma_ijk a[i] b[j] for k < bands_c()^2, i.e. the
+/// projection of the product of a (bands_a() bands) and b (bands_b() bands) onto bands_c()
+/// bands. C is the coefficient type (C + C, C * T, C{} zero), T float or double. a, b and out
+/// are raw pointers or contiguous ranges (.data(), .size()) of bands_a()^2, bands_b()^2 and
+/// bands_c()^2 coefficients (std::invalid_argument if null or short). out must not overlap a
+/// or b. Cost: one multiply-add per stored entry; with equal band counts of a and b the
+/// symmetric layout (has_pairs()) halves the entries.
+template <class C, class T>
+void product(const TripleTable& t, const C* a, const T* b, C* out) {
+    static_assert(std::is_floating_point_v<T>, "sphbasis::sh::product: b is float or double.");
+    detail::check_product_pointers("sh::product", a, b, out);
+    detail::product_checked(t, a, b, out);
+}
+/// product(table, ...) on contiguous ranges (.data(), .size(); sizes checked).
+template <class A, class B, class Out, std::enable_if_t<detail::any_range_v<A, B, Out>, int> = 0>
+void product(const TripleTable& t, const A& a, const B& b, Out&& out) {
+    const auto p =
+        detail::product_buffers("sh::product", a, b, out, t.bands_a(), t.bands_b(), t.bands_c());
+    product(t, std::get<0>(p), std::get<1>(p), std::get<2>(p));
+}
+
 /// Compile-time band counts: project(a b) onto N bands for a, b of N bands. N <= 6: unrolled code
 /// (ops/sh_product_fixed.hpp; symmetric pairs, constants folded, no tables), larger N: the
-/// generic kernel with the shared table. C as in product(table, ...); out may not overlap a or b.
+/// generic kernel with the shared table. C as in product(table, ...); a, b and out are raw
+/// pointers (non-null: a kernel precondition, SPHBASIS_ASSERT) or contiguous ranges of N^2
+/// coefficients (checked); out may not overlap a or b.
 template <int N, class C, class T>
 void product(const C* a, const T* b, C* out) {
     static_assert(N >= 1 && N <= max_bands, "sphbasis::sh::product<N>: N is 1..max_bands.");
+    static_assert(std::is_floating_point_v<T>, "sphbasis::sh::product: b is float or double.");
+    // A kernel: non-null pointers are a precondition (the range overload checks sizes).
+    SPHBASIS_ASSERT(a != nullptr && b != nullptr && out != nullptr);
     if constexpr (N <= detail::max_fixed_product_bands) {
         detail::product_fixed<N>(a, b, out);
     } else {
         static const TripleTable& table = triple_table(N, N, N);  // no lock after the first call
-        product(table, a, b, out);
+        detail::product_checked(table, a, b, out);
     }
+}
+/// product<N>() on contiguous ranges of at least N^2 coefficients (checked).
+template <int N, class A, class B, class Out,
+          std::enable_if_t<detail::any_range_v<A, B, Out>, int> = 0>
+void product(const A& a, const B& b, Out&& out) {
+    const auto p = detail::product_buffers("sh::product", a, b, out, N, N, N);
+    product<N>(std::get<0>(p), std::get<1>(p), std::get<2>(p));
 }
 
 /// Runtime band counts: out (nc^2 coefficients) = projection of the product of a (na bands) and
 /// b (nb bands) onto nc bands; exact when nc >= na + nb - 1. Dispatches to the unrolled kernels
 /// for na = nb = nc <= 6, else the generic kernel with the shared table (built on first use).
-/// Throws std::invalid_argument for band counts outside [1, max_bands].
+/// a, b and out are raw pointers or contiguous ranges (checked). Throws std::invalid_argument
+/// for band counts outside [1, max_bands] and null or short buffers.
 template <class C, class T>
 void product(int na, const C* a, int nb, const T* b, int nc, C* out) {
-    if (na == nb && nb == nc && na >= 1 && na <= detail::max_fixed_product_bands) {
+    static_assert(std::is_floating_point_v<T>, "sphbasis::sh::product: b is float or double.");
+    const char* fn = "sh::product";
+    for (int v : {na, nb, nc}) sphbasis::detail::check_range(fn, "bands", v, 1, max_bands);
+    detail::check_product_pointers(fn, a, b, out);
+    if (na == nb && nb == nc && na <= detail::max_fixed_product_bands) {
         switch (na) {
             case 1:
                 return detail::product_fixed<1>(a, b, out);
@@ -571,28 +627,40 @@ void product(int na, const C* a, int nb, const T* b, int nc, C* out) {
                 return detail::product_fixed<6>(a, b, out);
         }
     }
-    product(triple_table(na, nb, nc), a, b, out);
+    detail::product_checked(triple_table(na, nb, nc), a, b, out);
+}
+/// product(na, a, nb, b, nc, out) on contiguous ranges (sizes checked).
+template <class A, class B, class Out, std::enable_if_t<detail::any_range_v<A, B, Out>, int> = 0>
+void product(int na, const A& a, int nb, const B& b, int nc, Out&& out) {
+    const char* fn = "sh::product";
+    for (int v : {na, nb, nc}) sphbasis::detail::check_range(fn, "bands", v, 1, max_bands);
+    const auto p = detail::product_buffers(fn, a, b, out, na, nb, nc);
+    product(na, std::get<0>(p), nb, std::get<1>(p), nc, std::get<2>(p));
 }
 
 /// product(n, a, n, b, n, out): n bands in and out (DirectXMath's XMSHMultiplyN truncation).
-template <class C, class T>
-void product(int bands, const C* a, const T* b, C* out) {
+template <class A, class B, class Out>
+void product(int bands, const A& a, const B& b, Out&& out) {
     product(bands, a, bands, b, bands, out);
 }
 
 /// The product matrix M(a): project(a b) = M(a) b for every b of bands_b() bands, projected onto
 /// bands_c() bands. Row-major, bands_c()^2 rows by bands_b()^2 columns, into out:
-/// M[k][j] = sum_i Gamma_ijk a[i]. Source document 000 §3 uses it for the lighting a with
+/// M[k][j] = sum_i Gamma_ijk a[i]. Iwanicki and Sloan (2009, Sec. 3) use it for the lighting a with
 /// bands_c() = 3 (9 rows: the clamped cosine has no energy above band 3 worth keeping, so its
 /// coefficients h give L x H . V = h . (M(L) V)) and bands_b() = the visibility's band count.
-/// C as in product(); it is multiplied by its value_type (glm, Eigen) or by double.
+/// C as in product(); it is multiplied by coefficient_scalar_t<C> (core/scalar.hpp).
 /// out must not overlap a. Cost: one multiply-add per table entry.
 template <class C>
 void product_matrix(const TripleTable& t, const C* a, C* out) {
     const int cols = t.bands_b() * t.bands_b();
     const int rows = t.bands_c() * t.bands_c();
+    sphbasis::detail::check_buffer("sh::product_matrix", "a", a,
+                                   static_cast<std::size_t>(t.bands_a() * t.bands_a()));
+    sphbasis::detail::check_buffer("sh::product_matrix", "out", out,
+                                   static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols));
     std::fill(out, out + static_cast<std::ptrdiff_t>(rows) * cols, C{});
-    using S = typename detail::coeff_scalar<C>::type;
+    using S = coefficient_scalar_t<C>;
     const std::uint32_t* ii = t.i_data();
     const std::uint32_t* jj = t.j_data();
     const std::size_t* row = t.row_data();
@@ -620,6 +688,10 @@ std::vector<C> product_matrix(int na, const C* a, int nb, int nc) {
 /// coefficient type of a and the result (an RGB lighting), T that of b and c.
 template <class C, class T>
 C triple_integral(const TripleTable& t, const C* a, const T* b, const T* c) {
+    const char* fn = "sh::triple_integral";
+    sphbasis::detail::check_buffer(fn, "a", a, static_cast<std::size_t>(t.bands_a() * t.bands_a()));
+    sphbasis::detail::check_buffer(fn, "b", b, static_cast<std::size_t>(t.bands_b() * t.bands_b()));
+    sphbasis::detail::check_buffer(fn, "c", c, static_cast<std::size_t>(t.bands_c() * t.bands_c()));
     const T* v = t.values<T>();
     const std::uint32_t* ii = t.i_data();
     const std::uint32_t* jj = t.j_data();
