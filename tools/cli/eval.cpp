@@ -28,8 +28,7 @@ struct EvalOptions {
     std::string basis, lm, dirs_in;
     long long coeffs = 0;
     std::vector<std::string> dirs;
-    CLI::Option *coeffs_opt = nullptr, *lm_opt = nullptr, *dir_opt = nullptr,
-                *dirs_opt = nullptr;
+    CLI::Option *coeffs_opt = nullptr, *lm_opt = nullptr, *dir_opt = nullptr, *dirs_opt = nullptr;
 };
 
 std::vector<double> check_direction(std::vector<double> d, const std::string& where) {
@@ -132,7 +131,7 @@ int run_eval(const EvalOptions& o) {
 
 Run setup_eval(CLI::App& app) {
     auto o = std::make_shared<EvalOptions>();
-    app.description(
+    app.footer(
         "Evaluate a basis at directions; prints one JSON line per direction,\n"
         "{\"basis\":NAME,\"dir\":[x,y,z],\"values\":[...]}, numbers with 17 significant digits.");
     app.add_option("--basis", o->basis, "the basis: sh, hsh, makhotkin, zernike, hbasis, ...")
@@ -145,7 +144,7 @@ Run setup_eval(CLI::App& app) {
     o->lm_opt = app.add_option("--lm", o->lm, "evaluate the one function of degree L, order M")
                     ->type_name("L,M");
     o->dir_opt = app.add_option("--dir", o->dirs, "one or more directions (any non-zero length)")
-                     ->type_name("X,Y,Z ...");
+                     ->type_name("X,Y,Z");
     o->dirs_opt =
         app.add_option("--dirs", o->dirs_in, "'-': read 'x y z' lines from standard input")
             ->type_name("-");

@@ -4,7 +4,7 @@
 // the sphere (this library's real SH: no Condon-Shortley phase, y_1-1 = +0.4886 y) with 17
 // significant digits on one line, e.g.
 //     $ sphbasis gaunt 1 1 1 -1 2 -2
-//     0.21850968611841584
+//     0.21850968611841581
 // Negative orders are plain arguments (`sphbasis gaunt 2 -1 3 2 3 -3`); a coefficient that a
 // selection rule forbids prints 0. Exactly six integers (the CLI's integer grammar,
 // support/args.hpp) are expected; l outside 0..8191, |m| > l or a wrong count exit with status 2
@@ -22,11 +22,11 @@ namespace sphbasis::cli {
 
 Run setup_gaunt(CLI::App& app) {
     static const char* names[6] = {"L1", "M1", "L2", "M2", "L3", "M3"};
-    static const char* help[6] = {"degree of the first function", "its order",
+    static const char* help[6] = {"degree of the first function",  "its order",
                                   "degree of the second function", "its order",
-                                  "degree of the third function", "its order"};
+                                  "degree of the third function",  "its order"};
     auto v = std::make_shared<std::array<long long, 6>>();
-    app.description(
+    app.footer(
         "Print the real Gaunt coefficient: the integral of y_L1M1 y_L2M2 y_L3M3 over the sphere\n"
         "(real SH without the Condon-Shortley phase), with 17 significant digits.");
     const long long lmax = sh::max_bands - 1;
@@ -43,9 +43,9 @@ Run setup_gaunt(CLI::App& app) {
                                  ", got " + names[i] + " = " + std::to_string(l) + ", " +
                                  names[i + 1] + " = " + std::to_string(m));
         }
-        const double g = sh::gaunt(static_cast<int>(a[0]), static_cast<int>(a[1]),
-                                   static_cast<int>(a[2]), static_cast<int>(a[3]),
-                                   static_cast<int>(a[4]), static_cast<int>(a[5]));
+        const double g =
+            sh::gaunt(static_cast<int>(a[0]), static_cast<int>(a[1]), static_cast<int>(a[2]),
+                      static_cast<int>(a[3]), static_cast<int>(a[4]), static_cast<int>(a[5]));
         std::printf("%.17g\n", g == 0 ? 0.0 : g);  // no "-0"
         return 0;
     };

@@ -120,10 +120,10 @@ std::vector<Row> benchmark_rows() {
         int coeffs;
     };
     static const Spec specs[] = {
-        {"sh", 4},         {"sh", 9},         {"sh", 16},     {"sh", 25},     {"hsh", 4},
-        {"hsh", 9},        {"hsh", 16},       {"makhotkin", 4}, {"makhotkin", 9},
-        {"makhotkin", 16}, {"zernike", 3},    {"zernike", 6}, {"zernike", 10}, {"zernike", 15},
-        {"hbasis", 4},     {"hbasis", 6},     {"hbasis-mod", 4}, {"hbasis-mod", 6}, {"hl2", 3}};
+        {"sh", 4},      {"sh", 9},         {"sh", 16},        {"sh", 25},       {"hsh", 4},
+        {"hsh", 9},     {"hsh", 16},       {"makhotkin", 4},  {"makhotkin", 9}, {"makhotkin", 16},
+        {"zernike", 3}, {"zernike", 6},    {"zernike", 10},   {"zernike", 15},  {"hbasis", 4},
+        {"hbasis", 6},  {"hbasis-mod", 4}, {"hbasis-mod", 6}, {"hl2", 3}};
     std::vector<Row> rows;
     for (const auto& spec : specs) rows.push_back({&find_basis(spec.basis), spec.coeffs});
     return rows;
@@ -556,7 +556,7 @@ void print_table(std::ostream& os, const ProtocolResult& p) {
 
 Json protocol_json(const ProtocolResult& p) {
     const bool hdri = p.protocol == "hdri";
-    Json o = {{"protocol", p.protocol}, {"signals", p.signals},  {"seed", p.seed},
+    Json o = {{"protocol", p.protocol}, {"signals", p.signals}, {"seed", p.seed},
               {"relative", hdri},       {"seconds", p.seconds}, {"notes", p.notes}};
     if (!p.maps.empty()) {
         Json& maps = o["maps"] = Json::array();
@@ -567,12 +567,9 @@ Json protocol_json(const ProtocolResult& p) {
     }
     Json& rows = o["rows"] = Json::array();
     for (const RowResult& r : p.rows) {
-        Json row = {{"basis", r.basis},
-                    {"coeffs", r.coeffs},
-                    {"imse", r.imse},
-                    {"stderr", r.stderr_imse},
-                    {"expected", r.expected},
-                    {"expected_stderr", r.expected_stderr},
+        Json row = {{"basis", r.basis},       {"coeffs", r.coeffs},
+                    {"imse", r.imse},         {"stderr", r.stderr_imse},
+                    {"expected", r.expected}, {"expected_stderr", r.expected_stderr},
                     {"quad_err", r.quad_err}};
         if (hdri) {
             row["trunc_bound"] = r.trunc_bound;
@@ -697,7 +694,7 @@ int run_imse(const ImseOptions& o) {
 
 Run setup_imse(CLI::App& app) {
     auto o = std::make_shared<ImseOptions>();
-    app.description(
+    app.footer(
         "The IMSE basis comparison (Ishmukhametov, section 3.1): the least-squares fit error of\n"
         "irradiance over the upper hemisphere per basis and size, beside evaluation, projection\n"
         "and storage costs.");

@@ -61,8 +61,8 @@ int run_params(const ParamsOptions& o) {
     std::printf("%-20s %6s %8s %14s %14s\n", "parameterization", "n", "texels", "MSE 3 bands",
                 "MSE 6 bands");
     {
-        Progress bar("params", static_cast<long long>(cases.size()) *
-                                   param::reconstruction_budgets);
+        Progress bar("params",
+                     static_cast<long long>(cases.size()) * param::reconstruction_budgets);
         for (const auto& c : cases) {
             for (int k = 0; k < param::reconstruction_budgets; ++k) {
                 const int n = param::reconstruction_resolution(c, k);
@@ -101,7 +101,7 @@ int run_params(const ParamsOptions& o) {
     std::printf("\n%lld points, %lld threads, %.1f s\n", o.points, o.threads, seconds);
 
     if (json.is_open()) {
-        Json j = {{"experiment", "params"}, {"points", o.points},     {"seed", o.seed},
+        Json j = {{"experiment", "params"},  {"points", o.points},    {"seed", o.seed},
                   {"subtexel_bits", o.bits}, {"table_type", "float"}, {"seconds", seconds}};
         Json& ps = j["parameterizations"] = Json::array();
         for (const auto& c : cases) ps.push_back({{"name", c.name}, {"label", c.label}});
@@ -130,7 +130,7 @@ int run_params(const ParamsOptions& o) {
 Run setup_params(CLI::App& app) {
     auto o = std::make_shared<ParamsOptions>();
     o->threads = std::max(1u, std::thread::hardware_concurrency());
-    app.description(
+    app.footer(
         "The parameterization experiment of Iwanicki and Sloan (JGT 2009, appendix A): MSE of\n"
         "bilinearly reconstructed SH basis functions (3 and 6 bands) per spherical\n"
         "parameterization against the total texel count. The results do not depend on\n"

@@ -6,7 +6,7 @@
 // (ops/sh_rotation.hpp). A non-unit quaternion is normalised; a zero one is an error. Prints one
 // JSON line, numbers with 17 significant digits, "quat" echoing the input:
 //   $ sphbasis rotate --bands 2 --quat 0.70710678118654752,0,0,0.70710678118654752 --coeffs 1,0,0,1
-//   {"bands":2,"quat":[0.70710678118654757,0,0,0.70710678118654757],"coeffs":[1,1,0,2.2204460492503131e-16]}
+//   {"bands":2,"quat":[0.70710678118654757,0,0,0.70710678118654757],"coeffs":[1,1,0,0]}
 // Both `--bands 3` and `--bands=3` work, and lists may hold negative numbers (`--coeffs -1,2`).
 // Bad input (missing or repeated options, a wrong number of coefficients, non-numbers, a zero
 // quaternion, bands outside 1..8192) exits with status 2 and a one-line message.
@@ -63,7 +63,7 @@ int run_rotate(const RotateOptions& o) {
 
 Run setup_rotate(CLI::App& app) {
     auto o = std::make_shared<RotateOptions>();
-    app.description(
+    app.footer(
         "Rotate N^2 real SH coefficients (no Condon-Shortley phase, ACN order) by a quaternion\n"
         "(normalised if not unit); prints {\"bands\":N,\"quat\":[...],\"coeffs\":[...]}.");
     add_integer(app, "--bands", o->bands, 1, sh::max_bands, "number of bands N")

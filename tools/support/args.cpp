@@ -103,7 +103,7 @@ CLI::Option* add_integer(CLI::App& app, const std::string& name, long long& out,
             return ok;
         },
         help);
-    o->check(CLI::Validator(check, var, var))
+    o->check(CLI::Validator(check, "", ""))
         ->type_name(var)
         ->default_str(std::to_string(out))
         ->expected(1);
@@ -116,7 +116,7 @@ CLI::Option* add_path(CLI::App& app, const std::string& name, std::string& out,
         ->type_name("PATH")
         ->check(CLI::Validator(
             [](const std::string& s) { return s.empty() ? std::string("expected a path") : ""; },
-            "PATH", "PATH"));
+            "", ""));
 }
 
 }  // namespace sphbasis::cli

@@ -4,10 +4,11 @@
 // writes its own output slot, and sums are formed afterwards in index order.
 #pragma once
 
-#include <cstddef>
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+
+#include <cstddef>
 
 namespace sphbasis::cli {
 

@@ -93,8 +93,7 @@ void Progress::draw(long long done_units, bool final) {
     if (final)
         tail = duration_text(elapsed);
     else if (d > 0 && rate > 0)
-        tail = rate_text(rate) + ", ETA " +
-               duration_text(static_cast<double>(total_ - d) / rate);
+        tail = rate_text(rate) + ", ETA " + duration_text(static_cast<double>(total_ - d) / rate);
     std::fprintf(stderr, "\r%-24s [%s%s] %3d%% %-24s", label_.c_str(),
                  std::string(static_cast<std::size_t>(fill), '#').c_str(),
                  std::string(static_cast<std::size_t>(width - fill), ' ').c_str(),

@@ -75,8 +75,7 @@ inline DirectionSet reconstruction_directions(std::size_t count, std::uint64_t s
         const auto qv = static_cast<std::uint64_t>(std::fmin(s.y * 65536.0, 65535.0));
         p.key = spread(qu) | (spread(qv) << 1);
     }
-    std::sort(pts.begin(), pts.end(),
-              [](const Keyed& a, const Keyed& b) { return a.key < b.key; });
+    std::sort(pts.begin(), pts.end(), [](const Keyed& a, const Keyed& b) { return a.key < b.key; });
     DirectionSet out;
     out.x.resize(count);
     out.y.resize(count);
@@ -100,7 +99,8 @@ struct ShReconstructionError {
     /// Mean squared error over the directions and the first bands * bands functions
     /// (1 <= bands <= Bands); NaN before any direction was added.
     double mse(int bands) const {
-        sphbasis::detail::check_range("param::ShReconstructionError::mse", "bands", bands, 1, Bands);
+        sphbasis::detail::check_range("param::ShReconstructionError::mse", "bands", bands, 1,
+                                      Bands);
         return sum[static_cast<std::size_t>(bands - 1)] /
                (double(bands) * double(bands) * double(points));
     }
@@ -136,12 +136,13 @@ ShReconstructionError<Bands> sh_reconstruction_error(const P& p, const std::vect
     const char* fn = "param::sh_reconstruction_error";
     if (table.size() < p.texel_count() * std::size_t(k))
         sphbasis::detail::throw_invalid(fn, "a table of " + std::to_string(p.texel_count() * k) +
-                                      " values, got " + std::to_string(table.size()));
+                                                " values, got " + std::to_string(table.size()));
     if (d.y.size() != d.size() || d.z.size() != d.size())
         sphbasis::detail::throw_invalid(fn, "x, y and z of equal length");
     if (begin > end || end > d.size())
-        sphbasis::detail::throw_invalid(fn, "begin <= end <= " + std::to_string(d.size()) + ", got [" +
-                                      std::to_string(begin) + ", " + std::to_string(end) + ")");
+        sphbasis::detail::throw_invalid(fn, "begin <= end <= " + std::to_string(d.size()) +
+                                                ", got [" + std::to_string(begin) + ", " +
+                                                std::to_string(end) + ")");
     ShReconstructionError<Bands> e;
     e.points = end - begin;
     V rec[k];
@@ -184,8 +185,8 @@ ShReconstructionError<Bands> sh_reconstruction_error(const P& p, const std::vect
     std::vector<ShReconstructionError<Bands>> part(blocks);
     for_each(blocks, [&](std::size_t b) {
         const std::size_t lo = b * reconstruction_block;
-        part[b] = sh_reconstruction_error<Bands>(p, table, d, lo,
-                                                 std::min(n, lo + reconstruction_block));
+        part[b] =
+            sh_reconstruction_error<Bands>(p, table, d, lo, std::min(n, lo + reconstruction_block));
     });
     ShReconstructionError<Bands> total;
     for (const auto& e : part) total += e;
@@ -277,9 +278,8 @@ struct ReconstructionResult {
 /// and reconstructed at the directions d. Throws std::invalid_argument for a resolution or
 /// subtexel_bits the parameterization rejects. Cost: O(texels + d.size()) 6-band evaluations.
 template <class ForEach = SerialFor>
-ReconstructionResult run_reconstruction_case(const ReconstructionCase& c, int n,
-                                             int subtexel_bits, const DirectionSet& d,
-                                             ForEach&& for_each = {}) {
+ReconstructionResult run_reconstruction_case(const ReconstructionCase& c, int n, int subtexel_bits,
+                                             const DirectionSet& d, ForEach&& for_each = {}) {
     return with_parameterization(c.id, n, subtexel_bits, [&](const auto& p) {
         const std::vector<float> table = tabulate_sh<6, float>(p);
         const ShReconstructionError<6> e = sh_reconstruction_error<6>(p, table, d, for_each);
@@ -299,8 +299,8 @@ ReconstructionResult run_reconstruction_case(const ReconstructionCase& c, int n,
 inline double reconstruction_mse_at(const std::vector<ReconstructionResult>& results,
                                     const std::string& name, double texels, int bands) {
     if (bands != 3 && bands != 6)
-        sphbasis::detail::throw_invalid("param::reconstruction_mse_at", "bands 3 or 6, got " +
-                                                                  std::to_string(bands));
+        sphbasis::detail::throw_invalid("param::reconstruction_mse_at",
+                                        "bands 3 or 6, got " + std::to_string(bands));
     const bool six = bands == 6;
     double lx0 = 0, ly0 = 0;
     bool have = false;
