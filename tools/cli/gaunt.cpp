@@ -33,6 +33,7 @@ Run setup_gaunt(CLI::App& app) {
     for (std::size_t i = 0; i < 6; ++i)
         add_integer(app, names[i], (*v)[i], i % 2 ? -lmax : 0, lmax, help[i], names[i])
             ->required()
+            ->type_name("INT")
             ->default_str("");
     return [v] {
         const auto& a = *v;
