@@ -43,6 +43,7 @@
 #include "param/cubemap.hpp"
 #include "param/latlong.hpp"
 #include "param/octahedral.hpp"
+#include "param/reconstruction_error.hpp"
 
 #include "shading/toksvig.hpp"
 // clang-format on

@@ -6,7 +6,7 @@ sphbasis_cli_test(imse_paper_small "protocol paper: 200 signals, seed 7.*\nsh +9
                   imse --signals 200 --seed 7)
 sphbasis_cli_test(imse_paper_closed_form "closed form vs sample mean: largest \\|mean - expected\\| = [0-4]\\.[0-9]+ standard errors\n"
                   imse --protocol=paper --signals 2000)
-# Files: JSON with the issue's schema, CSV and Markdown.
+# Files: JSON with the documented schema, CSV and Markdown.
 add_test(NAME cli_imse_files
          COMMAND sh -c "\"$<TARGET_FILE:sphbasis_cli>\" imse --signals 50 --seed 3 --json imse_test.json --csv imse_test.csv --md imse_test.md >/dev/null && grep -q '\"protocol\":\"paper\",\"signals\":50,\"seed\":3' imse_test.json && grep -q '{\"basis\":\"sh\",\"coeffs\":4,\"imse\":' imse_test.json && grep -q 'bytes_per_texel_rgb8\":12' imse_test.json && grep -q '^paper,hl2,3,' imse_test.csv && grep -q '^| hbasis | 6 |' imse_test.md && echo files-ok")
 set_tests_properties(cli_imse_files PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "files-ok")

@@ -1,7 +1,8 @@
 // sphbasis CLI: `sphbasis imse [--protocol paper|hdri|all] [--signals N] [--seed S]
 //                              [--json PATH] [--csv PATH] [--md PATH]`
 //
-// The IMSE basis comparison (issue 3; thesis section 3.1, eq. 3.1): for every row (basis and
+// The IMSE basis comparison (Ishmukhametov, "Irradiance Normal Mapping" (thesis), section 3.1,
+// eq. 3.1): for every row (basis and
 // size) the integrated mean square error of the least-squares fit of an irradiance signal over
 // the upper hemisphere, averaged over N signals, beside what the basis costs to evaluate, to
 // project and to store. The library side is sphbasis/ops/imse.hpp; this file runs the two
@@ -29,57 +30,37 @@
 //   1024 points of paper_rule(), the basis evaluated there (eval_batch_f) and the weighted
 //   sums and Gram solve done per signal, as a baker with per-texel sample directions does.
 //   Each is the fastest of several repetitions.
-// Rows whose basis is not registered are skipped with a warning on stderr and listed under
-// "skipped" in the JSON.
+// The long loops run on TBB's threads (support/parallel.hpp); every number but the timings is
+// the same whatever the thread count.
+#include <CLI/CLI.hpp>
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <exception>
 #include <fstream>
 #include <iostream>
 #include <limits>
-#include <mutex>
+#include <memory>
 #include <random>
 #include <sphbasis/basis/registry.hpp>
+#include <sphbasis/core/sampling.hpp>
 #include <sphbasis/ops/imse.hpp>
 #include <sphbasis/ops/sh_rotation.hpp>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
-#if defined(SPHBASIS_HAVE_OPENEXR)
-#include <ImfArray.h>
-#include <ImfRgbaFile.h>
-#endif
-
-#if defined(__unix__) || defined(__APPLE__)
-#include <unistd.h>
-#define SPHBASIS_IMSE_ISATTY(f) isatty(fileno(f))
-#else
-#define SPHBASIS_IMSE_ISATTY(f) 0
-#endif
-
+#include "../support/exr.hpp"
+#include "../support/json.hpp"
+#include "../support/parallel.hpp"
+#include "../support/progress.hpp"
 #include "cli.hpp"
 
 namespace sphbasis::cli {
 
 namespace {
-
-// The rows of the issue, in table order.
-struct RowSpec {
-    const char* basis;
-    int coeffs;
-};
-const RowSpec kRows[] = {{"sh", 4},         {"sh", 9},         {"sh", 16},     {"sh", 25},
-                         {"hsh", 4},        {"hsh", 9},        {"hsh", 16},    {"makhotkin", 4},
-                         {"makhotkin", 9},  {"makhotkin", 16}, {"zernike", 3}, {"zernike", 6},
-                         {"zernike", 10},   {"zernike", 15},   {"hbasis", 4},  {"hbasis", 6},
-                         {"hbasis-mod", 4}, {"hbasis-mod", 6}, {"hl2", 3}};
 
 constexpr int kMapBands = 256;    // radiance bands projected per map (for the tail bound)
 constexpr int kSignalBands = 64;  // irradiance bands of the hdri signals (degree 63)
@@ -93,47 +74,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
-
-/// A progress bar on stderr, drawn only when stderr is a terminal.
-class Progress {
-  public:
-    Progress(std::string label, long long total)
-        : label_(std::move(label)), total_(total), on_(SPHBASIS_IMSE_ISATTY(stderr) != 0) {
-        draw(0);
-    }
-    void update(long long done) {
-        if (!on_) return;
-        const std::lock_guard<std::mutex> lock(mutex_);
-        const int pct = total_ > 0 ? static_cast<int>(100 * done / total_) : 100;
-        if (pct == last_) return;
-        draw(done);
-    }
-    void finish() {
-        if (!on_) return;
-        draw(total_);
-        std::fprintf(stderr, "\n");
-        std::fflush(stderr);
-        on_ = false;
-    }
-    ~Progress() { finish(); }
-
-  private:
-    void draw(long long done) {
-        if (!on_) return;
-        const int width = 30;
-        last_ = total_ > 0 ? static_cast<int>(100 * done / total_) : 100;
-        const int fill = last_ * width / 100;
-        std::fprintf(stderr, "\r%-24s [%s%s] %3d%%", label_.c_str(),
-                     std::string(static_cast<std::size_t>(fill), '#').c_str(),
-                     std::string(static_cast<std::size_t>(width - fill), ' ').c_str(), last_);
-        std::fflush(stderr);
-    }
-    std::string label_;
-    long long total_;
-    bool on_;
-    int last_ = -1;
-    std::mutex mutex_;
-};
 
 struct Timing {
     double eval_ns = 0, eval_batch_ns = 0, project_ns = 0;
@@ -155,7 +95,6 @@ struct ProtocolResult {
     long long signals = 0;
     std::uint64_t seed = 0;
     std::vector<RowResult> rows;
-    std::vector<std::string> skipped;
     std::vector<std::string> notes;
     std::vector<std::string> maps;
     std::vector<long long> map_signals;
@@ -163,34 +102,33 @@ struct ProtocolResult {
     double seconds = 0;
 };
 
-/// The registered rows: (info, n) for each row spec whose basis exists; the others are
-/// reported in `skipped` with a warning.
+// ---------------------------------------------------------------------------------------------
+// The benchmark's rows: BEGIN (to be replaced by the library's row list in ops/imse.hpp)
+
+/// One row of the table: a basis of the registry and its size.
 struct Row {
     const BasisInfo* info;
     int n;
 };
-std::vector<Row> registered_rows(std::vector<std::string>& skipped) {
+
+/// The rows of the benchmark, in table order. Every basis named here is registered (a test
+/// runs the whole list), so find_basis does not throw.
+std::vector<Row> benchmark_rows() {
+    struct Spec {
+        const char* basis;
+        int coeffs;
+    };
+    static const Spec specs[] = {
+        {"sh", 4},      {"sh", 9},         {"sh", 16},        {"sh", 25},       {"hsh", 4},
+        {"hsh", 9},     {"hsh", 16},       {"makhotkin", 4},  {"makhotkin", 9}, {"makhotkin", 16},
+        {"zernike", 3}, {"zernike", 6},    {"zernike", 10},   {"zernike", 15},  {"hbasis", 4},
+        {"hbasis", 6},  {"hbasis-mod", 4}, {"hbasis-mod", 6}, {"hl2", 3}};
     std::vector<Row> rows;
-    for (const auto& spec : kRows) {
-        try {
-            const BasisInfo& info = find_basis(spec.basis);
-            if (!info.valid_count(spec.coeffs))
-                throw std::invalid_argument(std::string("size ") + std::to_string(spec.coeffs) +
-                                            " not supported");
-            rows.push_back({&info, spec.coeffs});
-        } catch (const std::invalid_argument&) {
-            const std::string name = std::string(spec.basis) + " " + std::to_string(spec.coeffs);
-            if (skipped.empty() || skipped.back().rfind(spec.basis, 0) != 0 ||
-                skipped.back().substr(0, skipped.back().find(' ')) != spec.basis)
-                std::fprintf(
-                    stderr,
-                    "sphbasis imse: warning: basis '%s' is not registered; its rows are skipped\n",
-                    spec.basis);
-            skipped.push_back(name);
-        }
-    }
+    for (const auto& spec : specs) rows.push_back({&find_basis(spec.basis), spec.coeffs});
     return rows;
 }
+
+// The benchmark's rows: END
 
 // ---------------------------------------------------------------------------------------------
 // Timings
@@ -198,6 +136,7 @@ std::vector<Row> registered_rows(std::vector<std::string>& skipped) {
 struct Normals {
     std::vector<float> x, y, z;
 };
+/// Normals uniform on the upper hemisphere (for the timings only).
 Normals random_normals(std::size_t count, std::uint64_t seed) {
     std::mt19937_64 gen(seed);
     auto u01 = [&] { return static_cast<double>(gen() >> 11) * 0x1.0p-53; };
@@ -206,11 +145,12 @@ Normals random_normals(std::size_t count, std::uint64_t seed) {
     n.y.resize(count);
     n.z.resize(count);
     for (std::size_t i = 0; i < count; ++i) {
-        const double z = u01(), phi = constants::two_pi * u01();
-        const double s = std::sqrt(std::max(0.0, 1 - z * z));
-        n.x[i] = static_cast<float>(s * std::cos(phi));
-        n.y[i] = static_cast<float>(s * std::sin(phi));
-        n.z[i] = static_cast<float>(z);
+        const double u = u01();
+        const double v = u01();
+        const vec3<double> d = square_to_uniform_hemisphere(u, v);
+        n.x[i] = static_cast<float>(d.x);
+        n.y[i] = static_cast<float>(d.y);
+        n.z[i] = static_cast<float>(d.z);
     }
     return n;
 }
@@ -305,9 +245,9 @@ std::vector<Timing> measure_all(const std::vector<Row>& rows) {
     Progress bar("timing", static_cast<long long>(rows.size()));
     for (std::size_t r = 0; r < rows.size(); ++r) {
         out.push_back(measure(*rows[r].info, rows[r].n, small, big, rule));
-        bar.update(static_cast<long long>(r + 1));
+        bar.update();
     }
-    bar.finish();
+    bar.done();
     return out;
 }
 
@@ -348,9 +288,9 @@ ProtocolResult run_paper(const std::vector<Row>& rows, long long signals, std::u
         row.expected_stderr = imse::stddev_uniform(q) / std::sqrt(static_cast<double>(signals));
         row.quad_err = std::fabs(imse::expected(qf) - imse::expected(q));
         res.rows.push_back(row);
-        bar.update(static_cast<long long>(r + 1));
+        bar.update();
     }
-    bar.finish();
+    bar.done();
     res.notes.push_back("radiance: 9 SH coefficients i.i.d. uniform on [-1,1] (mt19937_64, seed " +
                         std::to_string(seed) + "); irradiance factors 1, 2/3, 1/4");
     res.notes.push_back(
@@ -372,64 +312,14 @@ std::string envmap_dir() {
 #endif
 }
 
-/// Luminance of an EXR lat-long map, channels clamped to >= 0 (DWAB is lossy and leaves small
-/// negative values), non-finite values taken as 0.
+/// The luminance of an EXR lat-long map (support/exr.hpp) as the library's map type.
 imse::LatLongMap load_map(const std::string& path) {
-#if defined(SPHBASIS_HAVE_OPENEXR)
-    Imf::RgbaInputFile file(path.c_str());
-    const Imath::Box2i dw = file.dataWindow();
-    const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
-    if (w < 2 || h < 1) throw std::runtime_error("sphbasis imse: empty image " + path);
-    Imf::Array2D<Imf::Rgba> px(h, w);
-    file.setFrameBuffer(&px[0][0] - dw.min.x - static_cast<std::ptrdiff_t>(dw.min.y) * w, 1,
-                        static_cast<std::size_t>(w));
-    file.readPixels(dw.min.y, dw.max.y);
+    LuminanceImage img = load_exr_luminance(path);
     imse::LatLongMap m;
-    m.width = w;
-    m.height = h;
-    m.values.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
-    auto clamp = [](float v) { return std::isfinite(v) && v > 0 ? static_cast<double>(v) : 0.0; };
-    for (int j = 0; j < h; ++j)
-        for (int i = 0; i < w; ++i) {
-            const Imf::Rgba& p = px[j][i];
-            m.values[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
-                     static_cast<std::size_t>(i)] = 0.2126 * clamp(float(p.r)) +
-                                                    0.7152 * clamp(float(p.g)) +
-                                                    0.0722 * clamp(float(p.b));
-        }
+    m.width = img.width;
+    m.height = img.height;
+    m.values = std::move(img.values);
     return m;
-#else
-    throw std::runtime_error(
-        "sphbasis imse: the hdri protocol needs OpenEXR, and this build has none (" + path + ")");
-#endif
-}
-
-/// Runs body(i) for i in [0, count) on up to `threads` threads, in contiguous ranges.
-template <class F>
-void parallel_for(int count, int threads, F&& body) {
-    threads = std::max(1, std::min(threads, count));
-    if (threads == 1) {
-        for (int i = 0; i < count; ++i) body(i);
-        return;
-    }
-    std::vector<std::thread> pool;
-    std::vector<std::exception_ptr> errors(static_cast<std::size_t>(threads));
-    for (int t = 0; t < threads; ++t)
-        pool.emplace_back([&, t] {
-            try {
-                for (int i = t; i < count; i += threads) body(i);
-            } catch (...) {
-                errors[static_cast<std::size_t>(t)] = std::current_exception();
-            }
-        });
-    for (auto& th : pool) th.join();
-    for (auto& e : errors)
-        if (e) std::rethrow_exception(e);
-}
-
-int worker_count() {
-    const unsigned hc = std::thread::hardware_concurrency();
-    return hc == 0 ? 1 : static_cast<int>(std::min(hc, 8u));
 }
 
 ProtocolResult run_hdri(const std::vector<Row>& rows, long long signals, std::uint64_t seed) {
@@ -439,7 +329,6 @@ ProtocolResult run_hdri(const std::vector<Row>& rows, long long signals, std::ui
     res.signals = signals;
     res.seed = seed;
     const int nmaps = static_cast<int>(sizeof kMaps / sizeof kMaps[0]);
-    const int threads = worker_count();
     const std::string dir = envmap_dir();
     const int nb = kSignalBands, k = nb * nb;
 
@@ -448,8 +337,7 @@ ProtocolResult run_hdri(const std::vector<Row>& rows, long long signals, std::ui
     std::vector<double> tail(static_cast<std::size_t>(nmaps));
     {
         Progress bar("hdri: projecting maps", nmaps);
-        std::atomic<int> done{0};
-        parallel_for(nmaps, threads, [&](int i) {
+        parallel_for(static_cast<std::size_t>(nmaps), [&](std::size_t i) {
             const imse::LatLongMap map = load_map(dir + "/" + kMaps[i] + ".exr");
             const std::vector<double> rad = imse::latlong_to_sh(map, kMapBands);
             const std::vector<double> energies = imse::band_energies(rad, kMapBands);
@@ -460,7 +348,7 @@ ProtocolResult run_hdri(const std::vector<Row>& rows, long long signals, std::ui
                 e[static_cast<std::size_t>(c)] =
                     imse::clamped_cosine(sh::degree_of(c)) * rad[static_cast<std::size_t>(c)];
             irr[static_cast<std::size_t>(i)] = std::move(e);
-            bar.update(++done);
+            bar.update();
         });
     }
 
@@ -507,8 +395,7 @@ ProtocolResult run_hdri(const std::vector<Row>& rows, long long signals, std::ui
     Eigen::VectorXd energy(signals);
     const int nbatches = static_cast<int>((signals + kBatch - 1) / kBatch);
     Progress bar("hdri: signals", signals);
-    std::atomic<long long> done{0};
-    parallel_for(nbatches, threads, [&](int bi) {
+    parallel_for(static_cast<std::size_t>(nbatches), [&](std::size_t bi) {
         const long long s0 = static_cast<long long>(bi) * kBatch;
         const int len = static_cast<int>(std::min<long long>(kBatch, signals - s0));
         Eigen::MatrixXd e(k, len), eh = Eigen::MatrixXd::Zero(k, len);
@@ -546,9 +433,9 @@ ProtocolResult run_hdri(const std::vector<Row>& rows, long long signals, std::ui
                 bound(r, s) = imse::relative_error_bound(im, en, t);
             }
         }
-        bar.update(done += len);
+        bar.update(len);
     });
-    bar.finish();
+    bar.done();
 
     for (int i = 0; i < nmaps; ++i) res.maps.push_back(kMaps[i]);
     // Tail bound relative to the mean hemisphere energy of the map's signals (for the report).
@@ -664,61 +551,39 @@ void print_table(std::ostream& os, const ProtocolResult& p) {
            << " standard errors";
         os << (worst_z > 5 ? "  WARNING: mismatch, this is a bug\n" : "\n");
     }
-    for (const auto& sk : p.skipped) os << "  skipped (basis not registered): " << sk << "\n";
 }
 
-std::string json_string(const std::string& s) {
-    std::string o = "\"";
-    for (char c : s) {
-        if (c == '"' || c == '\\') o += '\\';
-        o += c;
-    }
-    return o + "\"";
-}
-
-std::string protocol_json(const ProtocolResult& p) {
-    std::ostringstream o;
-    o << "{\"protocol\":" << json_string(p.protocol) << ",\"signals\":" << p.signals
-      << ",\"seed\":" << p.seed << ",\"relative\":" << (p.protocol == "hdri" ? "true" : "false")
-      << ",\"seconds\":" << json_number(p.seconds) << ",\"notes\":[";
-    for (std::size_t i = 0; i < p.notes.size(); ++i) o << (i ? "," : "") << json_string(p.notes[i]);
-    o << "]";
+Json protocol_json(const ProtocolResult& p) {
+    const bool hdri = p.protocol == "hdri";
+    Json o = {{"protocol", p.protocol}, {"signals", p.signals}, {"seed", p.seed},
+              {"relative", hdri},       {"seconds", p.seconds}, {"notes", p.notes}};
     if (!p.maps.empty()) {
-        o << ",\"maps\":[";
+        Json& maps = o["maps"] = Json::array();
         for (std::size_t i = 0; i < p.maps.size(); ++i)
-            o << (i ? "," : "") << "{\"name\":" << json_string(p.maps[i])
-              << ",\"signals\":" << p.map_signals[i]
-              << ",\"tail_bound_rel\":" << json_number(p.map_tail[i]) << "}";
-        o << "]";
+            maps.push_back({{"name", p.maps[i]},
+                            {"signals", p.map_signals[i]},
+                            {"tail_bound_rel", p.map_tail[i]}});
     }
-    o << ",\"rows\":[";
-    for (std::size_t i = 0; i < p.rows.size(); ++i) {
-        const RowResult& r = p.rows[i];
-        o << (i ? ",\n  " : "\n  ") << "{\"basis\":" << json_string(r.basis)
-          << ",\"coeffs\":" << r.coeffs << ",\"imse\":" << json_number(r.imse)
-          << ",\"stderr\":" << json_number(r.stderr_imse)
-          << ",\"expected\":" << json_number(r.expected)
-          << ",\"expected_stderr\":" << json_number(r.expected_stderr)
-          << ",\"quad_err\":" << json_number(r.quad_err);
-        if (p.protocol == "hdri") {
-            o << ",\"trunc_bound\":" << json_number(r.trunc_bound)
-              << ",\"trunc_half\":" << json_number(r.trunc_half) << ",\"per_map\":[";
-            for (std::size_t m = 0; m < r.per_map.size(); ++m)
-                o << (m ? "," : "") << json_number(r.per_map[m]);
-            o << "]";
+    Json& rows = o["rows"] = Json::array();
+    for (const RowResult& r : p.rows) {
+        Json row = {{"basis", r.basis},       {"coeffs", r.coeffs},
+                    {"imse", r.imse},         {"stderr", r.stderr_imse},
+                    {"expected", r.expected}, {"expected_stderr", r.expected_stderr},
+                    {"quad_err", r.quad_err}};
+        if (hdri) {
+            row["trunc_bound"] = r.trunc_bound;
+            row["trunc_half"] = r.trunc_half;
+            row["per_map"] = r.per_map;
         }
-        o << ",\"eval_ns\":" << json_number(r.t.eval_ns)
-          << ",\"eval_batch_ns\":" << json_number(r.t.eval_batch_ns)
-          << ",\"project_ns\":" << json_number(r.t.project_ns)
-          << ",\"bytes_per_texel_rgb8\":" << 3 * r.coeffs
-          << ",\"bytes_per_texel_rgb16f\":" << 6 * r.coeffs
-          << ",\"bytes_per_texel_rgb32f\":" << 12 * r.coeffs << "}";
+        row["eval_ns"] = r.t.eval_ns;
+        row["eval_batch_ns"] = r.t.eval_batch_ns;
+        row["project_ns"] = r.t.project_ns;
+        row["bytes_per_texel_rgb8"] = 3 * r.coeffs;
+        row["bytes_per_texel_rgb16f"] = 6 * r.coeffs;
+        row["bytes_per_texel_rgb32f"] = 12 * r.coeffs;
+        rows.push_back(std::move(row));
     }
-    o << "\n],\"skipped\":[";
-    for (std::size_t i = 0; i < p.skipped.size(); ++i)
-        o << (i ? "," : "") << json_string(p.skipped[i]);
-    o << "]}";
-    return o.str();
+    return o;
 }
 
 void write_file(const std::string& path, const std::string& text) {
@@ -734,13 +599,13 @@ std::string csv_of(const std::vector<ProtocolResult>& ps) {
          "project_ns,bytes_per_texel_rgb8,bytes_per_texel_rgb16f,bytes_per_texel_rgb32f\n";
     for (const auto& p : ps)
         for (const auto& r : p.rows)
-            o << p.protocol << "," << r.basis << "," << r.coeffs << "," << json_number(r.imse)
-              << "," << json_number(r.stderr_imse) << ","
-              << (std::isfinite(r.expected) ? json_number(r.expected) : "") << ","
-              << json_number(r.quad_err) << ","
-              << (std::isfinite(r.trunc_bound) ? json_number(r.trunc_bound) : "") << ","
-              << json_number(r.t.eval_ns) << "," << json_number(r.t.eval_batch_ns) << ","
-              << json_number(r.t.project_ns) << "," << 3 * r.coeffs << "," << 6 * r.coeffs << ","
+            o << p.protocol << "," << r.basis << "," << r.coeffs << "," << format_real(r.imse)
+              << "," << format_real(r.stderr_imse) << ","
+              << (std::isfinite(r.expected) ? format_real(r.expected) : "") << ","
+              << format_real(r.quad_err) << ","
+              << (std::isfinite(r.trunc_bound) ? format_real(r.trunc_bound) : "") << ","
+              << format_real(r.t.eval_ns) << "," << format_real(r.t.eval_batch_ns) << ","
+              << format_real(r.t.project_ns) << "," << 3 * r.coeffs << "," << 6 * r.coeffs << ","
               << 12 * r.coeffs << "\n";
     return o.str();
 }
@@ -769,71 +634,87 @@ std::string md_of(const std::vector<ProtocolResult>& ps) {
               << fmt("%.2f", r.t.eval_batch_ns) << " | " << fmt("%.0f", r.t.project_ns) << " | "
               << 3 * r.coeffs << " / " << 6 * r.coeffs << " / " << 12 * r.coeffs << " |\n";
         }
-        for (const auto& sk : p.skipped) o << "\nSkipped (basis not registered): " << sk << "\n";
         o << "\n";
     }
     return o.str();
 }
 
-}  // namespace
+struct ImseOptions {
+    std::string protocol = "paper";
+    long long signals = 10000, seed = 1;
+    std::string json_path, csv_path, md_path;
+};
 
-int cmd_imse(const Args& args) {
-    Options o(args, {"--protocol", "--signals", "--seed", "--json", "--csv", "--md"});
-    if (!o.positional().empty())
-        throw UsageError("unexpected argument '" + o.positional()[0] + "'");
-    const std::string protocol = o.get("--protocol", "paper");
-    if (protocol != "paper" && protocol != "hdri" && protocol != "all")
-        throw UsageError("--protocol: expected paper, hdri or all, got '" + protocol + "'");
-    const long long signals = parse_int(o.get("--signals", "10000"), "--signals");
-    if (signals < 2 || signals > 10000000)
-        throw UsageError("--signals: expected 2 <= N <= 10000000, got " + o.get("--signals"));
-    const long long seed_in = parse_int(o.get("--seed", "1"), "--seed");
-    if (seed_in < 0)
-        throw UsageError("--seed: expected a non-negative integer, got " + o.get("--seed"));
-    const std::uint64_t seed = static_cast<std::uint64_t>(seed_in);
-    for (const char* f : {"--json", "--csv", "--md"}) {
-        if (!o.has(f)) continue;
-        if (o.get(f).empty()) throw UsageError(std::string(f) + ": expected a path");
+int run_imse(const ImseOptions& o) {
+    const long long signals = o.signals;
+    const std::uint64_t seed = static_cast<std::uint64_t>(o.seed);
+    for (const std::string* f : {&o.json_path, &o.csv_path, &o.md_path}) {
+        if (f->empty()) continue;
         // Fail before the long run, not after it (append mode: nothing is truncated yet).
-        std::ofstream probe(o.get(f), std::ios::app);
-        if (!probe) throw std::runtime_error("cannot open '" + o.get(f) + "' for writing");
+        std::ofstream probe(*f, std::ios::app);
+        if (!probe) throw std::runtime_error("cannot open '" + *f + "' for writing");
     }
 
     const auto t0 = Clock::now();
-    std::vector<std::string> skipped;
-    const std::vector<Row> rows = registered_rows(skipped);
-    if (rows.empty()) throw std::runtime_error("no basis of the benchmark is registered");
+    const std::vector<Row> rows = benchmark_rows();
     const std::vector<Timing> timing = measure_all(rows);
 
     std::vector<ProtocolResult> results;
-    if (protocol == "paper" || protocol == "all") results.push_back(run_paper(rows, signals, seed));
-    if (protocol == "hdri" || protocol == "all") results.push_back(run_hdri(rows, signals, seed));
-    for (auto& p : results) {
-        p.skipped = skipped;
+    if (o.protocol == "paper" || o.protocol == "all")
+        results.push_back(run_paper(rows, signals, seed));
+    if (o.protocol == "hdri" || o.protocol == "all")
+        results.push_back(run_hdri(rows, signals, seed));
+    for (auto& p : results)
         for (std::size_t r = 0; r < p.rows.size(); ++r) p.rows[r].t = timing[r];
-    }
     for (const auto& p : results) {
         print_table(std::cout, p);
         std::cout << "\n";
     }
     std::cout << "total " << fmt("%.1f", seconds_since(t0)) << " s\n";
 
-    if (o.has("--json")) {
-        std::string j;
+    if (!o.json_path.empty()) {
+        const JsonLayout layout = {{"rows", 2}, {"protocols", 0}};
+        Json j;
         if (results.size() == 1) {
             j = protocol_json(results[0]);
         } else {
-            j = "{\"protocol\":\"all\",\"signals\":" + std::to_string(signals) +
-                ",\"seed\":" + std::to_string(seed) + ",\"protocols\":[\n" +
-                protocol_json(results[0]);
-            for (std::size_t i = 1; i < results.size(); ++i) j += ",\n" + protocol_json(results[i]);
-            j += "\n]}";
+            j = {{"protocol", "all"}, {"signals", signals}, {"seed", seed}};
+            Json& ps = j["protocols"] = Json::array();
+            for (const auto& p : results) ps.push_back(protocol_json(p));
         }
-        write_file(o.get("--json"), j + "\n");
+        write_file(o.json_path, dump_json(j, layout) + "\n");
     }
-    if (o.has("--csv")) write_file(o.get("--csv"), csv_of(results));
-    if (o.has("--md")) write_file(o.get("--md"), md_of(results));
+    if (!o.csv_path.empty()) write_file(o.csv_path, csv_of(results));
+    if (!o.md_path.empty()) write_file(o.md_path, md_of(results));
     return 0;
+}
+
+}  // namespace
+
+Run setup_imse(CLI::App& app) {
+    auto o = std::make_shared<ImseOptions>();
+    app.footer(
+        "The IMSE basis comparison (Ishmukhametov, section 3.1): the least-squares fit error of\n"
+        "irradiance over the upper hemisphere per basis and size, beside evaluation, projection\n"
+        "and storage costs.");
+    app.add_option("--protocol", o->protocol,
+                   "paper: random 9-coefficient radiance; hdri: the maps in data/envmaps; all")
+        ->type_name("paper|hdri|all")
+        ->capture_default_str()
+        ->check(CLI::Validator(
+            [](const std::string& s) {
+                return s == "paper" || s == "hdri" || s == "all"
+                           ? std::string()
+                           : "expected paper, hdri or all, got '" + s + "'";
+            },
+            "", ""));
+    add_integer(app, "--signals", o->signals, 2, 10000000, "signals averaged per row");
+    add_integer(app, "--seed", o->seed, 0, std::numeric_limits<long long>::max(), "random seed",
+                "S");
+    add_path(app, "--json", o->json_path, "write the results as JSON (tools/plot/plot_imse.py)");
+    add_path(app, "--csv", o->csv_path, "write the results as CSV");
+    add_path(app, "--md", o->md_path, "write the results as Markdown tables");
+    return [o] { return run_imse(*o); };
 }
 
 }  // namespace sphbasis::cli

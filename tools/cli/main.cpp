@@ -1,8 +1,14 @@
-// sphbasis: the command-line tool. `sphbasis <subcommand> [options]`.
+// sphbasis: the command-line tool. `sphbasis <command> [options]`, `sphbasis [<command>] --help`.
+//
+// Exit status: 0 on success and for --help/-h; 2 for bad input (unknown command or option, a
+// malformed or out-of-range value), with one line "sphbasis[ <command>]: <message>" on stderr;
+// 1 when the work itself fails (a file that cannot be read or written).
+#include <CLI/CLI.hpp>
 #include <cstdio>
-#include <cstring>
 #include <exception>
+#include <iostream>
 #include <string>
+#include <vector>
 
 #include "cli.hpp"
 
@@ -10,47 +16,70 @@ namespace {
 
 struct Command {
     const char* name;
-    int (*run)(const sphbasis::cli::Args&);
     const char* help;
+    sphbasis::cli::Run (*setup)(CLI::App&);
 };
 
 const Command commands[] = {
-    {"eval", sphbasis::cli::cmd_eval, "evaluate a basis at directions (JSON lines)"},
-    {"imse", sphbasis::cli::cmd_imse, "the IMSE basis comparison benchmark"},
-    {"params", sphbasis::cli::cmd_params, "the spherical parameterization experiment"},
-    {"gaunt", sphbasis::cli::cmd_gaunt, "a real Gaunt (SH tripling) coefficient"},
-    {"rotate", sphbasis::cli::cmd_rotate, "rotate SH coefficients"},
+    {"eval", "evaluate a basis at directions (JSON lines)", sphbasis::cli::setup_eval},
+    {"imse", "the IMSE basis comparison benchmark", sphbasis::cli::setup_imse},
+    {"params", "the spherical parameterization experiment", sphbasis::cli::setup_params},
+    {"gaunt", "a real Gaunt (SH tripling) coefficient", sphbasis::cli::setup_gaunt},
+    {"rotate", "rotate SH coefficients", sphbasis::cli::setup_rotate},
 };
-
-void usage(std::FILE* f) {
-    std::fprintf(f, "usage: sphbasis <command> [options]\n\ncommands:\n");
-    for (const auto& c : commands) std::fprintf(f, "  %-8s %s\n", c.name, c.help);
-}
 
 }  // namespace
 
 int main(int argc, char** argv) {
+    CLI::App app("sphbasis: spherical and hemispherical basis functions", "sphbasis");
+    app.require_subcommand(1);
+    std::vector<std::pair<CLI::App*, sphbasis::cli::Run>> subs;
+    for (const auto& c : commands) {
+        CLI::App* sub = app.add_subcommand(c.name, c.help);
+        subs.emplace_back(sub, c.setup(*sub));
+    }
+
     if (argc < 2) {
-        usage(stderr);
+        std::cerr << app.help();
         return 2;
     }
-    if (!std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
-        usage(stdout);
-        return 0;
+    const std::string first = argv[1];
+    std::string prefix = "sphbasis";
+    bool known = first.size() > 0 && first[0] == '-';
+    for (const auto& c : commands)
+        if (first == c.name) {
+            prefix += std::string(" ") + c.name;
+            known = true;
+        }
+    if (!known) {
+        std::fprintf(stderr, "sphbasis: unknown command '%s' (try sphbasis --help)\n", argv[1]);
+        return 2;
     }
-    for (const auto& c : commands) {
-        if (std::strcmp(argv[1], c.name) != 0) continue;
-        sphbasis::cli::Args args(argv + 2, argv + argc);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);  // the help of the command given, on stdout; 0
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "%s: %s\n", prefix.c_str(), e.what());
+        return 2;
+    } catch (const sphbasis::cli::UsageError& e) {
+        std::fprintf(stderr, "%s: %s\n", prefix.c_str(), e.what());
+        return 2;
+    }
+    for (auto& [sub, run] : subs) {
+        if (!sub->parsed()) continue;
         try {
-            return c.run(args);
+            return run();
         } catch (const sphbasis::cli::UsageError& e) {
-            std::fprintf(stderr, "sphbasis %s: %s\n", c.name, e.what());
+            std::fprintf(stderr, "%s: %s\n", prefix.c_str(), e.what());
             return 2;
         } catch (const std::exception& e) {
-            std::fprintf(stderr, "sphbasis %s: %s\n", c.name, e.what());
+            std::fprintf(stderr, "%s: %s\n", prefix.c_str(), e.what());
             return 1;
         }
     }
-    std::fprintf(stderr, "sphbasis: unknown command '%s' (try sphbasis --help)\n", argv[1]);
-    return 2;
+    return 2;  // not reached: require_subcommand(1)
 }

@@ -6,47 +6,40 @@
 // (ops/sh_rotation.hpp). A non-unit quaternion is normalised; a zero one is an error. Prints one
 // JSON line, numbers with 17 significant digits, "quat" echoing the input:
 //   $ sphbasis rotate --bands 2 --quat 0.70710678118654752,0,0,0.70710678118654752 --coeffs 1,0,0,1
-//   {"bands":2,"quat":[0.70710678118654757,0,0,0.70710678118654757],"coeffs":[1,1,0,2.2204460492503131e-16]}
+//   {"bands":2,"quat":[0.70710678118654757,0,0,0.70710678118654757],"coeffs":[1,1,0,0]}
 // Both `--bands 3` and `--bands=3` work, and lists may hold negative numbers (`--coeffs -1,2`).
 // Bad input (missing or repeated options, a wrong number of coefficients, non-numbers, a zero
 // quaternion, bands outside 1..8192) exits with status 2 and a one-line message.
+#include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "../support/json.hpp"
 #include "cli.hpp"
 #include "sphbasis/ops/sh_rotation.hpp"
 
 namespace sphbasis::cli {
 
-int cmd_rotate(const Args& args) {
-    Options o(args, {"--bands", "--quat", "--coeffs"}, {"--help"});
-    if (o.has("--help")) {
-        std::printf(
-            "usage: sphbasis rotate --bands N --quat W,X,Y,Z --coeffs C0,C1,...\n"
-            "rotates N^2 real SH coefficients (no Condon-Shortley phase, ACN order) by the\n"
-            "quaternion (normalised if not unit); prints {\"bands\":N,\"quat\":[...],"
-            "\"coeffs\":[...]}\n");
-        return 0;
-    }
-    if (!o.positional().empty())
-        throw UsageError("unexpected argument '" + o.positional()[0] + "'");
-    for (const char* req : {"--bands", "--quat", "--coeffs"})
-        if (!o.has(req)) throw UsageError(std::string(req) + " is required");
+namespace {
 
-    const long long bands = parse_int(o.get("--bands"), "--bands");
-    if (bands < 1 || bands > sh::max_bands)
-        throw UsageError("--bands: expected 1 <= N <= " + std::to_string(sh::max_bands) + ", got " +
-                         std::to_string(bands));
-    const std::vector<double> q = parse_doubles(o.get("--quat"), "--quat");
+struct RotateOptions {
+    long long bands = 0;
+    std::string quat, coeffs;
+};
+
+int run_rotate(const RotateOptions& o) {
+    const long long bands = o.bands;
+    const std::vector<double> q = to_reals(o.quat, "--quat");
     if (q.size() != 4)
         throw UsageError("--quat: expected four numbers W,X,Y,Z, got " + std::to_string(q.size()));
     const double big = std::max(std::max(std::fabs(q[0]), std::fabs(q[1])),
                                 std::max(std::fabs(q[2]), std::fabs(q[3])));
     if (!(big > 0)) throw UsageError("--quat: expected a non-zero quaternion");
-    std::vector<double> c = parse_doubles(o.get("--coeffs"), "--coeffs");
+    std::vector<double> c = to_reals(o.coeffs, "--coeffs");
     const std::size_t want = static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands);
     if (c.size() != want)
         throw UsageError("--coeffs: expected N^2 = " + std::to_string(want) +
@@ -61,17 +54,28 @@ int cmd_rotate(const Args& args) {
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
-
-    std::string out = "{\"bands\":" + std::to_string(n) + ",\"quat\":[";
-    for (std::size_t i = 0; i < 4; ++i) out += (i ? "," : "") + json_number(q[i]);
-    out += "],\"coeffs\":[";
-    for (std::size_t i = 0; i < c.size(); ++i) {
-        if (i) out += ',';
-        out += json_number(c[i]);
-    }
-    out += "]}\n";
-    std::fwrite(out.data(), 1, out.size(), stdout);
+    const Json out = {{"bands", n}, {"quat", q}, {"coeffs", c}};
+    std::cout << dump_json(out) << '\n';
     return 0;
+}
+
+}  // namespace
+
+Run setup_rotate(CLI::App& app) {
+    auto o = std::make_shared<RotateOptions>();
+    app.footer(
+        "Rotate N^2 real SH coefficients (no Condon-Shortley phase, ACN order) by a quaternion\n"
+        "(normalised if not unit); prints {\"bands\":N,\"quat\":[...],\"coeffs\":[...]}.");
+    add_integer(app, "--bands", o->bands, 1, sh::max_bands, "number of bands N")
+        ->required()
+        ->default_str("");
+    app.add_option("--quat", o->quat, "the rotation as a quaternion")
+        ->type_name("W,X,Y,Z")
+        ->required();
+    app.add_option("--coeffs", o->coeffs, "the N^2 coefficients")
+        ->type_name("C0,C1,...")
+        ->required();
+    return [o] { return run_rotate(*o); };
 }
 
 }  // namespace sphbasis::cli

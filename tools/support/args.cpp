@@ -1,0 +1,122 @@
+// sphbasis CLI support: the number grammar (see args.hpp) and its CLI11 options.
+#include "args.hpp"
+
+#include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+
+namespace sphbasis::cli {
+
+namespace {
+
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+// Length of the run of digits of s starting at i.
+std::size_t digits(const std::string& s, std::size_t i) {
+    std::size_t n = 0;
+    while (i + n < s.size() && is_digit(s[i + n])) ++n;
+    return n;
+}
+
+}  // namespace
+
+bool parse_integer(const std::string& s, long long& out) {
+    std::size_t i = (!s.empty() && (s[0] == '-' || s[0] == '+')) ? 1 : 0;
+    if (digits(s, i) == 0 || i + digits(s, i) != s.size()) return false;
+    errno = 0;
+    char* end = nullptr;
+    const long long v = std::strtoll(s.c_str(), &end, 10);
+    if (errno == ERANGE) return false;
+    out = v;
+    return true;
+}
+
+bool parse_real(const std::string& s, double& out) {
+    std::size_t i = (!s.empty() && (s[0] == '-' || s[0] == '+')) ? 1 : 0;
+    const std::size_t whole = digits(s, i);
+    i += whole;
+    std::size_t frac = 0;
+    if (i < s.size() && s[i] == '.') {
+        frac = digits(s, i + 1);
+        i += 1 + frac;
+    }
+    if (whole + frac == 0) return false;
+    if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+        ++i;
+        if (i < s.size() && (s[i] == '-' || s[i] == '+')) ++i;
+        const std::size_t exp = digits(s, i);
+        if (exp == 0) return false;
+        i += exp;
+    }
+    if (i != s.size()) return false;
+    errno = 0;
+    char* end = nullptr;
+    const double v = std::strtod(s.c_str(), &end);
+    if (errno == ERANGE || !std::isfinite(v)) return false;
+    out = v;
+    return true;
+}
+
+long long to_integer(const std::string& s, const std::string& what) {
+    long long v = 0;
+    if (!parse_integer(s, v)) throw UsageError(what + ": expected an integer, got '" + s + "'");
+    return v;
+}
+
+double to_real(const std::string& s, const std::string& what) {
+    double v = 0;
+    if (!parse_real(s, v)) throw UsageError(what + ": expected a finite number, got '" + s + "'");
+    return v;
+}
+
+std::vector<double> to_reals(const std::string& s, const std::string& what) {
+    std::vector<double> out;
+    std::size_t start = 0;
+    while (true) {
+        const auto comma = s.find(',', start);
+        out.push_back(to_real(s.substr(start, comma - start), what));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    return out;
+}
+
+CLI::Option* add_integer(CLI::App& app, const std::string& name, long long& out, long long lo,
+                         long long hi, const std::string& help, const std::string& var) {
+    auto check = [lo, hi, var](const std::string& s) -> std::string {
+        long long v = 0;
+        if (!parse_integer(s, v)) return "expected an integer, got '" + s + "'";
+        if (v >= lo && v <= hi) return {};
+        if (lo == 0 && hi == std::numeric_limits<long long>::max())
+            return "expected a non-negative integer, got " + s;
+        return "expected " + std::to_string(lo) + " <= " + var + " <= " + std::to_string(hi) +
+               ", got " + s;
+    };
+    CLI::Option* o = app.add_option(
+        name,
+        [&out](const CLI::results_t& r) {
+            long long v = 0;
+            const bool ok = parse_integer(r.at(0), v);  // checked above
+            out = v;
+            return ok;
+        },
+        help);
+    o->check(CLI::Validator(check, "", ""))
+        ->type_name(var)
+        ->default_str(std::to_string(out))
+        ->expected(1);
+    return o;
+}
+
+CLI::Option* add_path(CLI::App& app, const std::string& name, std::string& out,
+                      const std::string& help) {
+    return app.add_option(name, out, help)
+        ->type_name("PATH")
+        ->check(CLI::Validator(
+            [](const std::string& s) { return s.empty() ? std::string("expected a path") : ""; },
+            "", ""));
+}
+
+}  // namespace sphbasis::cli
