@@ -34,6 +34,7 @@
 // the same whatever the thread count.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -47,6 +48,8 @@
 #include <sphbasis/basis/registry.hpp>
 #include <sphbasis/core/sampling.hpp>
 #include <sphbasis/ops/imse.hpp>
+#include <sphbasis/ops/sh_convolution.hpp>
+#include <sphbasis/ops/sh_latlong.hpp>
 #include <sphbasis/ops/sh_rotation.hpp>
 #include <sstream>
 #include <string>
@@ -103,7 +106,7 @@ struct ProtocolResult {
 };
 
 // ---------------------------------------------------------------------------------------------
-// The benchmark's rows: BEGIN (to be replaced by the library's row list in ops/imse.hpp)
+// The benchmark's rows (imse::paper_rows(), the same for both protocols), resolved in the registry.
 
 /// One row of the table: a basis of the registry and its size.
 struct Row {
@@ -111,24 +114,11 @@ struct Row {
     int n;
 };
 
-/// The rows of the benchmark, in table order. Every basis named here is registered (a test
-/// runs the whole list), so find_basis does not throw.
 std::vector<Row> benchmark_rows() {
-    struct Spec {
-        const char* basis;
-        int coeffs;
-    };
-    static const Spec specs[] = {
-        {"sh", 4},      {"sh", 9},         {"sh", 16},        {"sh", 25},       {"hsh", 4},
-        {"hsh", 9},     {"hsh", 16},       {"makhotkin", 4},  {"makhotkin", 9}, {"makhotkin", 16},
-        {"zernike", 3}, {"zernike", 6},    {"zernike", 10},   {"zernike", 15},  {"hbasis", 4},
-        {"hbasis", 6},  {"hbasis-mod", 4}, {"hbasis-mod", 6}, {"hl2", 3}};
     std::vector<Row> rows;
-    for (const auto& spec : specs) rows.push_back({&find_basis(spec.basis), spec.coeffs});
+    for (const imse::Row& r : imse::paper_rows()) rows.push_back({&find_basis(r.basis), r.n});
     return rows;
 }
-
-// The benchmark's rows: END
 
 // ---------------------------------------------------------------------------------------------
 // Timings
@@ -313,9 +303,9 @@ std::string envmap_dir() {
 }
 
 /// The luminance of an EXR lat-long map (support/exr.hpp) as the library's map type.
-imse::LatLongMap load_map(const std::string& path) {
+LatLongMap load_map(const std::string& path) {
     LuminanceImage img = load_exr_luminance(path);
-    imse::LatLongMap m;
+    LatLongMap m;
     m.width = img.width;
     m.height = img.height;
     m.values = std::move(img.values);
@@ -338,15 +328,15 @@ ProtocolResult run_hdri(const std::vector<Row>& rows, long long signals, std::ui
     {
         Progress bar("hdri: projecting maps", nmaps);
         parallel_for(static_cast<std::size_t>(nmaps), [&](std::size_t i) {
-            const imse::LatLongMap map = load_map(dir + "/" + kMaps[i] + ".exr");
-            const std::vector<double> rad = imse::latlong_to_sh(map, kMapBands);
-            const std::vector<double> energies = imse::band_energies(rad, kMapBands);
+            const LatLongMap map = load_map(dir + "/" + kMaps[i] + ".exr");
+            const std::vector<double> rad = sh::project_latlong(map, kMapBands);
+            const std::vector<double> energies = sh::band_energies(kMapBands, rad.data());
             tail[static_cast<std::size_t>(i)] =
-                imse::truncation_bound(energies, imse::squared_norm(map), nb);
+                imse::truncation_bound(energies, squared_norm(map), nb);
             std::vector<double> e(static_cast<std::size_t>(k));
             for (int c = 0; c < k; ++c)
                 e[static_cast<std::size_t>(c)] =
-                    imse::clamped_cosine(sh::degree_of(c)) * rad[static_cast<std::size_t>(c)];
+                    clamped_cosine(sh::degree_of(c)) * rad[static_cast<std::size_t>(c)];
             irr[static_cast<std::size_t>(i)] = std::move(e);
             bar.update();
         });
@@ -365,7 +355,6 @@ ProtocolResult run_hdri(const std::vector<Row>& rows, long long signals, std::ui
     const imse::HemisphereShGram gram(nb);
     const int half = nb / 2;
     const imse::HemisphereShGram gram_half(half);
-    const sh::Rotation<double> x90 = sh::rotation_90<double>(nb, 0, 1);
 
     // Signals: map-major, N / 8 per map (the first N % 8 maps get one more); orientation
     // angles drawn in signal order from mt19937_64(seed ^ 0x9e3779b97f4a7c15).
@@ -382,10 +371,9 @@ ProtocolResult run_hdri(const std::vector<Row>& rows, long long signals, std::ui
         std::mt19937_64 gen(seed ^ 0x9e3779b97f4a7c15ULL);
         auto u01 = [&] { return static_cast<double>(gen() >> 11) * 0x1.0p-53; };
         for (long long s = 0; s < signals; ++s) {
-            angles[static_cast<std::size_t>(3 * s)] = constants::two_pi * u01();
-            angles[static_cast<std::size_t>(3 * s + 1)] =
-                std::acos(std::clamp(2 * u01() - 1, -1.0, 1.0));
-            angles[static_cast<std::size_t>(3 * s + 2)] = constants::two_pi * u01();
+            const double u1 = u01(), u2 = u01(), u3 = u01();
+            const std::array<double, 3> e = cube_to_euler_zyz(u1, u2, u3);
+            std::copy(e.begin(), e.end(), angles.begin() + 3 * s);
         }
     }
 
@@ -399,19 +387,13 @@ ProtocolResult run_hdri(const std::vector<Row>& rows, long long signals, std::ui
         const long long s0 = static_cast<long long>(bi) * kBatch;
         const int len = static_cast<int>(std::min<long long>(kBatch, signals - s0));
         Eigen::MatrixXd e(k, len), eh = Eigen::MatrixXd::Zero(k, len);
-        std::vector<double> a(static_cast<std::size_t>(k)), b(static_cast<std::size_t>(k));
+        std::vector<double> a(static_cast<std::size_t>(k));
         for (int c = 0; c < len; ++c) {
             const long long s = s0 + c;
             const std::vector<double>& src =
                 irr[static_cast<std::size_t>(map_of[static_cast<std::size_t>(s)])];
             const double* ang = angles.data() + 3 * s;
-            // D(Rz(a) Ry(b) Rz(c)) = Z(a) X^T Z(b) X Z(c) with X the quarter turn about x:
-            // conjugating a z rotation by it gives a rotation about the y axis.
-            sh::rotate_z(nb, ang[2], src.data(), a.data());
-            x90.apply(a.data(), b.data());
-            sh::rotate_z(nb, ang[1], b.data(), a.data());
-            x90.apply_transposed(a.data(), b.data());
-            sh::rotate_z(nb, ang[0], b.data(), a.data());
+            sh::rotate_zyz(nb, ang[0], ang[1], ang[2], src.data(), a.data());
             for (int q = 0; q < k; ++q) e(q, c) = a[static_cast<std::size_t>(q)];
             for (int q = 0; q < half * half; ++q) eh(q, c) = a[static_cast<std::size_t>(q)];
         }
