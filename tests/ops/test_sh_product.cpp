@@ -565,8 +565,8 @@ TEST_CASE("product: ranges and pointers, checked at the boundary", "[product]") 
     }
     std::vector<double> small(9);
     CHECK_THROWS_WITH(sh::product(4, a, b, small),
-                      Catch::Contains("sphbasis::sh::product(): expected at least 16 values in "
-                                      "the out buffer, got 9"));
+                      Catch::Contains("sphbasis::sh::product(): expected out buffer of at least 16 "
+                                      "elements, got 9"));
     CHECK_THROWS_WITH(sh::product(4, a.data(), static_cast<const double*>(nullptr), p1.data()),
                       Catch::Contains("sphbasis::sh::product(): expected a non-null b buffer"));
     CHECK_THROWS_WITH(sh::product(3, a.data(), 3, b.data(), 3, static_cast<double*>(nullptr)),

@@ -422,9 +422,10 @@ TEST_CASE("rotation: rotate_zyz equals rotate() of the Euler matrix", "[rotation
         for (std::size_t i = 0; i < f.size(); ++i) CHECK(fo[i] == Approx(a[i]).margin(2e-6));
     }
     std::vector<double> c(9), o(4);
-    CHECK_THROWS_WITH(sh::rotate_zyz(3, 0.1, 0.2, 0.3, c, o),
-                      Catch::Contains("sphbasis::sh::rotate_zyz(): expected at least 9 values in "
-                                      "the output buffer, got 4"));
+    CHECK_THROWS_WITH(
+        sh::rotate_zyz(3, 0.1, 0.2, 0.3, c, o),
+        Catch::Contains("sphbasis::sh::rotate_zyz(): expected output buffer of at least 9 "
+                        "elements, got 4"));
     CHECK_THROWS_WITH(sh::rotate_zyz(-1, 0.1, 0.2, 0.3, c, o),
                       Catch::Contains("sphbasis::sh::rotate_zyz(): expected 0 <= bands"));
 }
@@ -507,10 +508,11 @@ TEST_CASE("rotation: glm, Eigen and row-major matrices and quaternions give one 
     // Sizes of ranges are checked; a dynamic Eigen matrix must be 3x3.
     std::vector<double> c(9), shortv(8);
     CHECK_THROWS_WITH(sh::rotate(3, gm, shortv, c),
-                      Catch::Contains("sphbasis::sh::rotate(): expected at least 9 values in the "
-                                      "input buffer, got 8"));
-    CHECK_THROWS_WITH(sh::rotation_from_matrix(3, gm).apply(c, shortv),
-                      Catch::Contains("sphbasis::sh::Rotation::apply(): expected at least 9"));
+                      Catch::Contains("sphbasis::sh::rotate(): expected input buffer of at least 9 "
+                                      "elements, got 8"));
+    CHECK_THROWS_WITH(
+        sh::rotation_from_matrix(3, gm).apply(c, shortv),
+        Catch::Contains("sphbasis::sh::Rotation::apply(): expected output buffer of at least 9"));
     CHECK_THROWS_WITH(sh::rotate(3, Eigen::MatrixXd::Identity(4, 4).eval(), c, c),
                       Catch::Contains("sphbasis::sh::rotate(): expected a 3x3 matrix, got 4x4"));
     CHECK_THROWS_WITH(sh::rotate(3, glm::dmat3(2.0), c, c),

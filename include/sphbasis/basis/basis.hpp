@@ -56,6 +56,7 @@
 #include <type_traits>
 
 #include "../config.hpp"
+#include "../core/contiguous.hpp"
 #include "../core/error.hpp"
 #include "../core/scalar.hpp"
 #include "../core/simd.hpp"
@@ -83,11 +84,6 @@ template <class B>
     if (bands < 0 || bands > max_bands) throw_bad_bands(fn, bands, max_bands);
     throw_invalid(fn, "a non-null output buffer");
 }
-[[noreturn]] SPHBASIS_NOINLINE inline void throw_small_buffer(const char* fn, const char* name,
-                                                              std::size_t need, std::size_t size) {
-    throw_invalid(fn, std::string(name) + " buffer of at least " + std::to_string(need) +
-                          " elements, got " + std::to_string(size));
-}
 }  // namespace detail
 
 namespace detail {
@@ -109,48 +105,6 @@ SPHBASIS_FORCEINLINE void check_count(int count, const char* fn) {
 namespace detail {
 
 // ---- Buffers and directions as users hold them -------------------------------------------------
-
-template <class R, class = void>
-struct is_contiguous_range : std::false_type {};
-template <class R>
-struct is_contiguous_range<
-    R, std::void_t<decltype(std::declval<R&>().data()), decltype(std::declval<R&>().size())>>
-    : std::is_pointer<decltype(std::declval<R&>().data())> {};
-
-/// A buffer argument: a pointer (trusted for its size, checked for null), or a contiguous range
-/// (anything with .data() and .size(): std::vector, std::array, std::span; size checked).
-template <class Buf>
-constexpr bool is_buffer_v = std::is_pointer_v<std::decay_t<Buf>> ||
-                             is_contiguous_range<std::remove_reference_t<Buf>>::value;
-
-template <class Buf>
-SPHBASIS_FORCEINLINE auto buffer_data(Buf& b) noexcept {
-    if constexpr (std::is_pointer_v<std::decay_t<Buf>>)
-        return static_cast<std::decay_t<Buf>>(b);
-    else
-        return b.data();
-}
-
-/// The element type of a buffer argument (const kept: an input buffer may hold const values).
-template <class Buf>
-using buffer_element_t =
-    std::remove_pointer_t<decltype(buffer_data(std::declval<std::remove_reference_t<Buf>&>()))>;
-
-/// Throws unless the buffer can hold `need` elements: a pointer must not be null when need > 0,
-/// an array or a range must have at least `need` elements. One compare (none for an array large
-/// enough); the message is built out of line.
-template <class Buf>
-SPHBASIS_FORCEINLINE void check_buffer_size(const char* fn, const char* name, const Buf& b,
-                                            std::size_t need) {
-    if constexpr (std::is_array_v<Buf>) {
-        if (std::extent_v<Buf> < need) throw_small_buffer(fn, name, need, std::extent_v<Buf>);
-    } else if constexpr (std::is_pointer_v<Buf>) {
-        check_buffer(fn, name, static_cast<const void*>(b), need);
-    } else {
-        if (static_cast<std::size_t>(b.size()) < need)
-            throw_small_buffer(fn, name, need, static_cast<std::size_t>(b.size()));
-    }
-}
 
 /// The scalar in which a direction given as components is evaluated: their common type, which
 /// must be float or double.

@@ -1,6 +1,9 @@
-// sphbasis: contiguous ranges at the API boundary. An entry point that takes a buffer as a raw
-// pointer also takes anything with .data() and .size() (std::vector, std::array, std::span,
-// Eigen vectors), checks the size and forwards the pointer. Standard library only.
+// sphbasis: buffers at the API boundary. Every entry point that takes a buffer as a raw pointer
+// also takes a C array or anything with .data() and .size() (std::vector, std::array,
+// std::span, Eigen vectors): the size of an array or a range is checked against what the call
+// needs, a pointer is checked for null where it would be used, and the messages follow
+// core/error.hpp ("sphbasis::fn(): expected <name> buffer of at least N elements, got M",
+// "sphbasis::fn(): expected a non-null <name> buffer"). Standard library only.
 #pragma once
 
 #include <cstddef>
@@ -8,9 +11,14 @@
 #include <type_traits>
 #include <utility>
 
+#include "../config.hpp"
 #include "error.hpp"
 
 namespace sphbasis::detail {
+
+/// For static_assert in the last branch of an if constexpr chain.
+template <class>
+inline constexpr bool always_false = false;
 
 template <class R, class = void>
 struct is_contiguous_range : std::false_type {};
@@ -22,38 +30,65 @@ template <class R>
 inline constexpr bool is_contiguous_range_v =
     is_contiguous_range<std::remove_reference_t<R>>::value;
 
+/// A buffer argument: a pointer, a C array or a contiguous range.
+template <class B>
+inline constexpr bool is_buffer_v =
+    std::is_pointer_v<std::decay_t<B>> || std::is_array_v<std::remove_reference_t<B>> ||
+    is_contiguous_range_v<B>;
+
+/// The first element of a buffer, unchecked.
+template <class B>
+SPHBASIS_FORCEINLINE auto buffer_data(B& b) noexcept {
+    using P = std::remove_cv_t<B>;
+    if constexpr (std::is_pointer_v<P>)
+        return static_cast<P>(b);
+    else if constexpr (std::is_array_v<P>)
+        return &b[0];
+    else
+        return b.data();
+}
+
+/// The element type of a buffer (const-qualified for read-only ranges and const pointers).
+template <class B>
+using buffer_element_t =
+    std::remove_pointer_t<decltype(buffer_data(std::declval<std::remove_reference_t<B>&>()))>;
+
 /// The element type of a contiguous range (const kept for const ranges).
 template <class R>
 using range_value_t = std::remove_pointer_t<decltype(std::declval<R&>().data())>;
 
-/// r.data() after checking r.size() >= needed: "expected <name> of at least <needed> elements,
-/// got <size>".
-template <class R>
-auto checked_data(const char* fn, const char* name, R& r, std::size_t needed) {
-    const std::size_t n = static_cast<std::size_t>(r.size());
-    if (n < needed)
-        throw_invalid(fn, std::string(name) + " of at least " + std::to_string(needed) +
-                              " elements, got " + std::to_string(n));
-    return r.data();
+[[noreturn]] SPHBASIS_NOINLINE inline void throw_small_buffer(const char* fn, const char* name,
+                                                              std::size_t need, std::size_t size) {
+    throw_invalid(fn, std::string(name) + " buffer of at least " + std::to_string(need) +
+                          " elements, got " + std::to_string(size));
 }
 
-}  // namespace sphbasis::detail
-
-namespace sphbasis::detail {
-
-/// An output (or input) buffer given as a pointer or as a contiguous range: the pointer itself
-/// (null is checked by the callee), or the range's data() after checking size() >= needed.
+/// Throws unless the buffer can hold `need` elements: a pointer must not be null when need > 0,
+/// an array or a range must have at least `need` elements. One compare (none for an array
+/// known to be large enough); the message is built out of line.
 template <class B>
-auto buffer_pointer(const char* fn, const char* name, B&& b, std::size_t needed) {
-    using D = std::remove_cv_t<std::remove_reference_t<B>>;
-    if constexpr (std::is_pointer_v<D>) {
-        return b;
+SPHBASIS_FORCEINLINE void check_buffer_size(const char* fn, const char* name, const B& b,
+                                            std::size_t need) {
+    using P = std::remove_cv_t<B>;
+    if constexpr (std::is_array_v<P>) {
+        if (std::extent_v<P> < need) throw_small_buffer(fn, name, need, std::extent_v<P>);
+    } else if constexpr (std::is_pointer_v<P>) {
+        if (b == nullptr && need > 0) throw_null_buffer(fn, name);
+    } else if constexpr (is_contiguous_range_v<P>) {
+        if (static_cast<std::size_t>(b.size()) < need)
+            throw_small_buffer(fn, name, need, static_cast<std::size_t>(b.size()));
     } else {
-        static_assert(is_contiguous_range_v<D>,
-                      "sphbasis: a buffer is a pointer or a contiguous range with .data() and "
-                      ".size() (std::vector, std::array, std::span).");
-        return checked_data(fn, name, b, needed);
+        static_assert(always_false<B>,
+                      "sphbasis: a buffer is a pointer, a C array or a contiguous range with "
+                      ".data() and .size() (std::vector, std::array, std::span).");
     }
+}
+
+/// The first element of a buffer that must hold `need` elements, after check_buffer_size().
+template <class B>
+SPHBASIS_FORCEINLINE auto buffer_data(const char* fn, const char* name, B& b, std::size_t need) {
+    check_buffer_size(fn, name, b, need);
+    return buffer_data(b);
 }
 
 /// Whether C * S and C + C are valid, for the coefficient types of the SH operations.
@@ -64,34 +99,5 @@ struct is_scalable<C, S,
                    std::void_t<decltype(std::declval<const C&>() * std::declval<const S&>()),
                                decltype(std::declval<const C&>() + std::declval<const C&>())>>
     : std::true_type {};
-
-/// Whether D is a 3-vector type as core/vec.hpp's component() reads it (not a number).
-template <class D, class = void>
-struct is_direction : std::false_type {};
-template <class D>
-struct is_direction<D, std::enable_if_t<!std::is_arithmetic_v<D> && !std::is_pointer_v<D>,
-                                        std::void_t<decltype(std::declval<const D&>().x),
-                                                    decltype(std::declval<const D&>().z)>>>
-    : std::true_type {};
-template <class D, class = void>
-struct is_direction_call : std::false_type {};
-template <class D>
-struct is_direction_call<D, std::enable_if_t<!std::is_arithmetic_v<D> && !std::is_pointer_v<D>,
-                                             std::void_t<decltype(std::declval<const D&>().x()),
-                                                         decltype(std::declval<const D&>().z())>>>
-    : std::true_type {};
-template <class D, class = void>
-struct is_direction_index : std::false_type {};
-template <class D>
-struct is_direction_index<
-    D, std::enable_if_t<!std::is_arithmetic_v<D> && !std::is_pointer_v<D> &&
-                        std::is_arithmetic_v<std::remove_cv_t<
-                            std::remove_reference_t<decltype(std::declval<const D&>()[2])>>>>>
-    : std::true_type {};
-template <class D>
-inline constexpr bool is_direction_v =
-    is_direction<std::remove_cv_t<std::remove_reference_t<D>>>::value ||
-    is_direction_call<std::remove_cv_t<std::remove_reference_t<D>>>::value ||
-    is_direction_index<std::remove_cv_t<std::remove_reference_t<D>>>::value;
 
 }  // namespace sphbasis::detail

@@ -17,6 +17,7 @@
 // The message is built out of line (SPHBASIS_NOINLINE), so an inlined check costs one compare.
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -49,12 +50,16 @@ SPHBASIS_FORCEINLINE void check_range(const char* fn, const char* name, I value,
                               ", got " + std::to_string(value));
 }
 
+[[noreturn]] SPHBASIS_NOINLINE inline void throw_null_buffer(const char* fn, const char* name) {
+    throw_invalid(fn, std::string("a non-null ") + name + " buffer");
+}
+
 /// Throws when p is null and n > 0 elements would be accessed through it:
-/// "expected a non-null <name> buffer".
+/// "expected a non-null <name> buffer". (core/contiguous.hpp checks arrays and ranges too.)
 template <class P>
 SPHBASIS_FORCEINLINE void check_buffer(const char* fn, const char* name, const P* p,
                                        std::size_t n) {
-    if (p == nullptr && n > 0) throw_invalid(fn, std::string("a non-null ") + name + " buffer");
+    if (p == nullptr && n > 0) throw_null_buffer(fn, name);
 }
 
 }  // namespace sphbasis::detail

@@ -39,6 +39,7 @@
 #include <utility>
 
 #include "../config.hpp"
+#include "contiguous.hpp"
 #include "error.hpp"
 #include "vec.hpp"
 
@@ -367,8 +368,6 @@ struct has_call_wxyz<
     Q, std::void_t<decltype(std::declval<const Q&>().w()), decltype(std::declval<const Q&>().x()),
                    decltype(std::declval<const Q&>().y()), decltype(std::declval<const Q&>().z())>>
     : std::true_type {};
-template <class>
-inline constexpr bool always_false = false;
 }  // namespace detail
 
 /// True for the 3x3 matrix types to_mat3() reads: std::array<T, 9> (row-major), glm::mat3 /
@@ -479,56 +478,5 @@ Mat3<rotation_scalar_t<R>> to_rotation_matrix(const R& r, const char* fn = "to_r
         return to_mat3(r, fn);
     }
 }
-
-// ---------------------------------------------------------------------------------------------
-// Coefficient buffers: a raw pointer or a contiguous range (.data() and .size()).
-
-namespace detail {
-template <class B, class = void>
-struct has_data_size : std::false_type {};
-template <class B>
-struct has_data_size<
-    B, std::void_t<decltype(std::declval<B&>().data()), decltype(std::declval<B&>().size())>>
-    : std::true_type {};
-
-/// The messages of buffer_data(), built out of line so that a check inlines to one compare.
-[[noreturn]] SPHBASIS_NOINLINE inline void throw_null_buffer(const char* fn, const char* name) {
-    throw_invalid(fn, std::string("a non-null ") + name + " buffer");
-}
-[[noreturn]] SPHBASIS_NOINLINE inline void throw_short_buffer(const char* fn, const char* name,
-                                                              std::size_t n, std::size_t size) {
-    throw_invalid(fn, "at least " + std::to_string(n) + " values in the " + name + " buffer, got " +
-                          std::to_string(size));
-}
-
-/// The pointer of a buffer that must hold n elements: a pointer is checked for null (when
-/// n > 0), a C array or a range (.data(), .size()) for a size >= n; std::invalid_argument
-/// "sphbasis::fn(): expected a non-null <name> buffer" / "expected at least n values in the
-/// <name> buffer, got size".
-template <class B>
-SPHBASIS_FORCEINLINE auto buffer_data(const char* fn, const char* name, B& b, std::size_t n) {
-    using P = std::remove_cv_t<B>;
-    if constexpr (std::is_pointer_v<P>) {
-        const P p = b;
-        if (p == nullptr && n > 0) throw_null_buffer(fn, name);
-        return p;
-    } else if constexpr (std::is_array_v<P>) {
-        if (std::extent_v<P> < n) throw_short_buffer(fn, name, n, std::extent_v<P>);
-        return &b[0];
-    } else if constexpr (has_data_size<B>::value) {
-        if (static_cast<std::size_t>(b.size()) < n)
-            throw_short_buffer(fn, name, n, static_cast<std::size_t>(b.size()));
-        return b.data();
-    } else {
-        static_assert(always_false<B>,
-                      "sphbasis: a coefficient buffer is a pointer or a contiguous range with "
-                      ".data() and .size() (std::vector, std::array, std::span).");
-    }
-}
-/// The element type of a buffer (const-qualified for read-only ranges and const pointers).
-template <class B>
-using buffer_element_t = std::remove_pointer_t<decltype(buffer_data(
-    "", "", std::declval<std::remove_reference_t<B>&>(), std::size_t(0)))>;
-}  // namespace detail
 
 }  // namespace sphbasis

@@ -77,9 +77,10 @@ template <class D>
 struct has_subscript<D, std::void_t<decltype(std::declval<const D&>()[0])>> : std::true_type {};
 
 /// A direction argument: a 3-vector type that component<I>() reads, with arithmetic components.
-template <class D>
-constexpr bool is_direction_v = has_member_xyz<D>::value || has_call_xyz<D>::value ||
-                                (has_subscript<D>::value && !std::is_pointer_v<D>);
+template <class D, class U = std::remove_cv_t<std::remove_reference_t<D>>>
+constexpr bool is_direction_v =
+    !std::is_arithmetic_v<U> && !std::is_pointer_v<U> &&
+    (has_member_xyz<U>::value || has_call_xyz<U>::value || has_subscript<U>::value);
 
 template <class D>
 constexpr void static_check_direction() {

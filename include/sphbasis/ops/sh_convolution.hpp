@@ -219,9 +219,9 @@ template <class K, class In, class Out>
 void scale_bands_any(const char* fn, int bands, K&& kernel, In&& in, Out&& out) {
     check_bands(bands, fn);
     const std::size_t n = static_cast<std::size_t>(bands);
-    auto pk = sphbasis::detail::buffer_pointer(fn, "kernel", kernel, n);
-    auto pi = sphbasis::detail::buffer_pointer(fn, "in", in, n * n);
-    auto po = sphbasis::detail::buffer_pointer(fn, "out", out, n * n);
+    auto pk = sphbasis::detail::buffer_data(fn, "kernel", kernel, n);
+    auto pi = sphbasis::detail::buffer_data(fn, "in", in, n * n);
+    auto po = sphbasis::detail::buffer_data(fn, "out", out, n * n);
     using C = std::remove_cv_t<std::remove_pointer_t<decltype(po)>>;
     scale_bands(fn, bands,
                 static_cast<const std::remove_cv_t<std::remove_pointer_t<decltype(pk)>>*>(pk),
@@ -274,7 +274,7 @@ template <class R, std::enable_if_t<sphbasis::detail::is_contiguous_range_v<R>, 
 auto band_energies(int bands, const R& coeffs) {
     check_bands(bands, "sh::band_energies");
     return band_energies(bands,
-                         sphbasis::detail::checked_data(
+                         sphbasis::detail::buffer_data(
                              "sh::band_energies", "coeffs", coeffs,
                              static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands)));
 }
@@ -317,7 +317,7 @@ std::array<C, 16> irradiance_matrix(const C* L) {
 template <class T = double, class R,
           std::enable_if_t<sphbasis::detail::is_contiguous_range_v<R>, int> = 0>
 auto irradiance_matrix(const R& L) {
-    return irradiance_matrix<T>(sphbasis::detail::checked_data("sh::irradiance_matrix", "L", L, 9));
+    return irradiance_matrix<T>(sphbasis::detail::buffer_data("sh::irradiance_matrix", "L", L, 9));
 }
 
 /// n^T M n with n = (x, y, z, 1), (x, y, z) normalised as by sh::eval. 10 multiply-adds; the
@@ -366,7 +366,7 @@ C irradiance(const C* L, T x, T y, T z) {
 template <class LC, class D, std::enable_if_t<sphbasis::detail::is_direction_v<D>, int> = 0>
 auto irradiance(const LC& L, const D& n) {
     using T = direction_scalar_t<D>;
-    const auto* p = sphbasis::detail::buffer_pointer("sh::irradiance", "L", L, 9);
+    const auto* p = sphbasis::detail::buffer_data("sh::irradiance", "L", L, 9);
     if constexpr (std::is_pointer_v<LC>)
         sphbasis::detail::check_buffer("sh::irradiance", "L", p, 9);
     return irradiance(p, T(component<0>(n)), T(component<1>(n)), T(component<2>(n)));

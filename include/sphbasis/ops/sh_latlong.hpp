@@ -186,8 +186,8 @@ void project_latlong(int bands, int width, int height, const Texels& texels, Out
     const std::size_t nt = static_cast<std::size_t>(std::max(width, 0)) *
                            static_cast<std::size_t>(std::max(height, 0));
     project_latlong(bands, width, height,
-                    sphbasis::detail::checked_data("sh::project_latlong", "texels", texels, nt),
-                    sphbasis::detail::checked_data(
+                    sphbasis::detail::buffer_data("sh::project_latlong", "texels", texels, nt),
+                    sphbasis::detail::buffer_data(
                         "sh::project_latlong", "out", out,
                         static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands)));
 }
@@ -196,7 +196,7 @@ void project_latlong(int bands, int width, int height, const Texels& texels, Out
 /// radiance. Throws std::invalid_argument for an empty or inconsistent map or bands < 1.
 inline std::vector<double> project_latlong(const LatLongMap& map, int bands) {
     sphbasis::detail::check_latlong_map(map, "sh::project_latlong");
-    if (bands < 1 || bands > max_bands) detail::throw_bad_bands(bands, "sh::project_latlong");
+    sphbasis::detail::check_range("sh::project_latlong", "bands", bands, 1, max_bands);
     std::vector<double> out(static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands));
     project_latlong(bands, map.width, map.height, map.values.data(), out.data());
     return out;

@@ -103,7 +103,7 @@ void check_light(int bands, T x, T y, T z, const C* out, const char* fn) {
 template <class Out>
 auto light_out(int bands, Out&& out, const char* fn) {
     check_bands(bands, fn);
-    return sphbasis::detail::buffer_pointer(
+    return sphbasis::detail::buffer_data(
         fn, "out", out, static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands));
 }
 
