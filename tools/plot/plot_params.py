@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Plot the parameterization experiment (seed 000, appendix A) written by `sphbasis params`.
+"""Plot the parameterization experiment (Iwanicki and Sloan, "Normal Mapping with Low-Frequency Precomputed Visibility", JGT 2009, appendix A) written by `sphbasis params`.
 
 Usage: /usr/bin/python3 tools/plot/plot_params.py out/params.json out/params.png
 
