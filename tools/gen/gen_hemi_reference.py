@@ -1,6 +1,9 @@
 #!/usr/bin/python3
 """Generates tests/data/hemi_reference.txt: high-precision reference values of the hemispherical bases.
 
+"The thesis" below is Ishmukhametov, "Irradiance Normal Mapping" (docs/references.md); equation
+numbers are its numbers.
+
 Bases (definitions as in the library headers, x = sin(t)cos(p), y = sin(t)sin(p), z = cos(t), and the
 library's sign convention: cos(m p) functions (m > 0) are positive multiples of x-like terms,
 sin(|m| p) functions (m < 0) of y-like terms; no Condon-Shortley phase):
