@@ -83,8 +83,13 @@ BasisInfo make_info(std::pair<int, int> (*lm)(int, int)) {
 }
 }  // namespace detail
 
+// all_bases() and find_basis() are templates with a defaulted parameter only so that their
+// bodies, which instantiate every basis's kernels for float, double and SIMD batches, are
+// compiled where they are called, not in every file that includes this header.
+
 /// All bases, in the order of the CLI's help text.
-inline const std::vector<BasisInfo>& all_bases() {
+template <class = void>
+const std::vector<BasisInfo>& all_bases() {
     static const std::vector<BasisInfo> v = {
         detail::make_info<SH>(detail::banded_lm),
         detail::make_info<HSH>(detail::banded_lm),
@@ -106,7 +111,8 @@ inline const std::vector<BasisInfo>& all_bases() {
 
 /// The basis called `name` ("sh", "hsh", "makhotkin", "zernike", "hbasis", "hbasis-mod",
 /// "hl2"). Throws std::invalid_argument naming the known bases otherwise.
-inline const BasisInfo& find_basis(std::string_view name) {
+template <class = void>
+const BasisInfo& find_basis(std::string_view name) {
     for (const auto& b : all_bases())
         if (name == b.name) return b;
     std::string known;

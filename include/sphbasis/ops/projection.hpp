@@ -42,8 +42,16 @@
 
 namespace sphbasis {
 
-/// The matrix A with A(i, k) = B_k(d_i) over the rule's points.
-inline Eigen::MatrixXd evaluation_matrix(const BasisFunctions& b, const DirectionalRule& rule) {
+// Why the functions below are templates with a defaulted parameter (Basis = BasisFunctions,
+// Scalar = double) rather than plain inline functions: the Eigen products in a plain inline
+// function are instantiated in every translation unit that includes this header, used or not
+// (that made including the library cost 3x what Eigen/Dense alone costs); a template's body is
+// instantiated only where it is called.
+
+/// The matrix A with A(i, k) = B_k(d_i) over the rule's points. Basis: BasisFunctions or any
+/// type with an int n and an eval(x, y, z, double* out).
+template <class Basis = BasisFunctions>
+Eigen::MatrixXd evaluation_matrix(const Basis& b, const DirectionalRule& rule) {
     Eigen::MatrixXd a(static_cast<Eigen::Index>(rule.size()), b.n);
     std::vector<double> row(static_cast<std::size_t>(b.n));
     for (std::size_t i = 0; i < rule.size(); ++i) {
@@ -120,15 +128,16 @@ Eigen::VectorXd sample(F&& f, const DirectionalRule& rule) {
 }  // namespace detail
 
 /// Inner products <A_j, B_k> over the rule: Aᵀ W B (n_a x n_b).
-inline Eigen::MatrixXd cross_gram(const BasisFunctions& a, const BasisFunctions& b,
-                                  const DirectionalRule& rule) {
+template <class Basis = BasisFunctions>
+Eigen::MatrixXd cross_gram(const Basis& a, const Basis& b, const DirectionalRule& rule) {
     const Eigen::MatrixXd ea = evaluation_matrix(a, rule), eb = evaluation_matrix(b, rule);
     return ea.transpose() * detail::weights_of(rule).asDiagonal() * eb;
 }
 
 /// The Gram matrix G_jk = <B_j, B_k> over the rule (identity for an orthonormal basis on the
 /// rule's domain when the rule is exact).
-inline Eigen::MatrixXd gram(const BasisFunctions& b, const DirectionalRule& rule) {
+template <class Basis = BasisFunctions>
+Eigen::MatrixXd gram(const Basis& b, const DirectionalRule& rule) {
     return cross_gram(b, b, rule);
 }
 
@@ -184,9 +193,14 @@ Eigen::VectorXd project_mc(const BasisFunctions& b, const Dirs& dirs, const Valu
 
 /// A factorised Gram matrix: solves G c = r. Throws std::runtime_error if G is not positive
 /// definite to working precision (the functions are linearly dependent on the domain).
-class GramSolver {
+/// Use it as GramSolver (Scalar = double).
+template <class Scalar = double>
+class BasicGramSolver {
+    static_assert(std::is_same_v<Scalar, double>,
+                  "sphbasis::GramSolver: the Gram solve is in double.");
+
   public:
-    explicit GramSolver(const Eigen::MatrixXd& g) : llt_(g) {
+    explicit BasicGramSolver(const Eigen::MatrixXd& g) : llt_(g) {
         if (llt_.info() != Eigen::Success)
             sphbasis::detail::throw_runtime("GramSolver",
                                             "a positive definite Gram matrix (are the functions "
@@ -206,6 +220,7 @@ class GramSolver {
   private:
     Eigen::LLT<Eigen::MatrixXd> llt_;
 };
+using GramSolver = BasicGramSolver<>;
 
 /// The least-squares fit of functions sampled on a rule's points, for one basis: precomputes
 /// the evaluation matrix, the Gram matrix and its factorisation once; then fits and scores many
@@ -214,14 +229,18 @@ class GramSolver {
 /// (std::runtime_error if not: the basis or the rule is wrong); otherwise G c = <B, f>
 /// (GramSolver: std::runtime_error if the functions are dependent on the domain). Cost to build:
 /// rule.size() * n evaluations and an n x n Cholesky factorisation. Copies share the
-/// factorisation.
-class LeastSquares {
+/// factorisation. Use it as LeastSquares (Scalar = double).
+template <class Scalar = double>
+class BasicLeastSquares {
+    static_assert(std::is_same_v<Scalar, double>,
+                  "sphbasis::LeastSquares: the least-squares fit is in double.");
+
   public:
     /// The Gram solve (any basis).
-    LeastSquares(const BasisFunctions& b, const DirectionalRule& rule)
-        : LeastSquares(b, false, rule) {}
-    LeastSquares(const BasisFunctions& b, bool orthonormal, const DirectionalRule& rule,
-                 double tolerance = 1e-10)
+    BasicLeastSquares(const BasisFunctions& b, const DirectionalRule& rule)
+        : BasicLeastSquares(b, false, rule) {}
+    BasicLeastSquares(const BasisFunctions& b, bool orthonormal, const DirectionalRule& rule,
+                      double tolerance = 1e-10)
         : n_(b.n),
           orthonormal_(orthonormal),
           w_(detail::weights_of(rule)),
@@ -295,6 +314,7 @@ class LeastSquares {
     Eigen::MatrixXd phi_, gram_;
     std::shared_ptr<const GramSolver> solver_;
 };
+using LeastSquares = BasicLeastSquares<>;
 
 /// Least-squares coefficients of f over the rule's domain: minimises sum_i w_i (f - sum c B)^2.
 /// f is called as by project(). One LeastSquares (Gram solve) for one signal.
@@ -306,8 +326,8 @@ Eigen::VectorXd fit(const BasisFunctions& b, F&& f, const DirectionalRule& rule)
 /// Conversion matrix (n_to x n_from) taking coefficients in `from` to the least-squares
 /// coefficients in `to` over the rule's domain: T = G_to^-1 <to, from>. When span(to) contains
 /// span(from) on the domain the conversion is exact.
-inline Eigen::MatrixXd conversion(const BasisFunctions& from, const BasisFunctions& to,
-                                  const DirectionalRule& rule) {
+template <class Basis = BasisFunctions>
+Eigen::MatrixXd conversion(const Basis& from, const Basis& to, const DirectionalRule& rule) {
     return GramSolver(gram(to, rule)).solve(cross_gram(to, from, rule));
 }
 
