@@ -54,12 +54,12 @@ TEST_CASE("hsh: bands 0-2 closed forms and band-1 signs pin the convention", "[h
 // and the uniform phi rule sums cos/sin((m -+ m') phi), 0 < |m -+ m'| < 2 bands - 1, to exactly 0
 // at every z node. Hence hemisphere_rule(2(bands-1)) gives the exact Gram matrix.
 TEST_CASE("hsh: Gram matrix is the identity by exact quadrature", "[hsh]") {
-    test::check_gram_identity<HSH>(
-        test::band_range(10), [](int bands) { return 2 * (bands - 1); }, 1e-13, false);
+    check_gram_identity<HSH>(
+        band_range(10), [](int bands) { return 2 * (bands - 1); }, 1e-13, false);
 }
 
 TEST_CASE("hsh: Gram matrix is the identity by exact quadrature, 16 to 33 bands", "[hsh][slow]") {
-    test::check_gram_identity<HSH>(
+    check_gram_identity<HSH>(
         {16, 24, 33}, [](int bands) { return 2 * (bands - 1); }, 1e-12, true);
 }
 
@@ -67,9 +67,7 @@ TEST_CASE("hsh: column recurrence is orthonormal per order to 512 bands", "[hsh]
     // At phi = 0 the m >= 0 functions are g_lm(z) cos(0) = g_lm(z), and the hemisphere integral of
     // H_lm H_l'm is pi (1 + delta_m0) int_0^1 g_lm g_l'm dz: a polynomial of degree <= 2(bands-1)
     // in z (as in the Gram test), exact with `bands` Gauss-Legendre nodes.
-    const double worst = test::column_gram_residual<Traits>(512, {0, 1, 2, 100, 300, 510, 511}, 1);
-    WARN("hsh per-order Gram residual at 512 bands: " << worst);
-    CHECK(worst < 1e-12);
+    check_column_orthonormal<Traits>({0, 1, 2, 100, 300, 510, 511}, 1);
 }
 
 // The shared cases: reference, kernels, prefix, batch, float (measured worst 3.2 (l + 1)^1.5, near
@@ -85,6 +83,4 @@ TEST_CASE("hsh: pole and horizon are finite and exact", "[hsh]") {
 
 TEST_CASE("hsh: bad sizes throw", "[hsh]") {
     check_bad_counts<HSH>("a square number", "(bands^2, bands <= 2048)", -4, 2049 * 2049, 4, 3);
-    CHECK(HSH::valid_count(2048 * 2048));
-    CHECK_FALSE(HSH::valid_count(2049 * 2049));
 }

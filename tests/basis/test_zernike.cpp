@@ -74,13 +74,13 @@ TEST_CASE("zernike: bands 0-2 closed forms and band-1 signs pin the convention",
 // 0 < |m -+ m'| < 2 bands - 1, to exactly 0 at every z node. Hence hemisphere_rule(2(bands-1))
 // (even hemisphere_rule(bands - 1) for the z part) gives the exact Gram matrix.
 TEST_CASE("zernike: Gram matrix is the identity by exact quadrature", "[zernike]") {
-    test::check_gram_identity<Zernike>(
-        test::band_range(10), [](int bands) { return 2 * (bands - 1); }, 1e-13, false);
+    check_gram_identity<Zernike>(
+        band_range(10), [](int bands) { return 2 * (bands - 1); }, 1e-13, false);
 }
 
 TEST_CASE("zernike: Gram matrix is the identity by exact quadrature, 16 to 48 bands",
           "[zernike][slow]") {
-    test::check_gram_identity<Zernike>(
+    check_gram_identity<Zernike>(
         {16, 32, 48}, [](int bands) { return 2 * (bands - 1); }, 1e-12, true);
 }
 
@@ -88,10 +88,7 @@ TEST_CASE("zernike: column recurrence is orthonormal per order to 512 bands", "[
     // At phi = 0 the m >= 0 functions are g_nm(z) cos(0) = g_nm(z), and the hemisphere integral of
     // Z_nm Z_n'm is pi (1 + delta_m0) int_0^1 g_nm g_n'm dz: a polynomial of degree <= bands - 1 in
     // z (as in the Gram test), exact with `bands` Gauss-Legendre nodes.
-    const double worst =
-        test::column_gram_residual<Traits>(512, {0, 1, 2, 100, 301, 509, 510, 511}, 2);
-    WARN("zernike per-order Gram residual at 512 bands: " << worst);
-    CHECK(worst < 1e-12);
+    check_column_orthonormal<Traits>({0, 1, 2, 100, 301, 509, 510, 511}, 2);
 }
 
 // The shared cases: reference, kernels, prefix, batch, float (measured worst 0.8 (n + 1)^1.5),
@@ -118,7 +115,5 @@ TEST_CASE("zernike: bad sizes throw", "[zernike]") {
                               2049 * 2050 / 2, 3, 4);
     double v[16];
     REQUIRE_THROWS_WITH(basis_eval<Zernike>(9, 0.0, 0.0, 1.0, v), Catch::Contains("got 9"));
-    CHECK(Zernike::valid_count(2048 * 2049 / 2));
-    CHECK_FALSE(Zernike::valid_count(2049 * 2050 / 2));
     CHECK_FALSE(Zernike::valid_count(2147483647));
 }

@@ -210,6 +210,14 @@ double column_gram_residual(int bands, const std::vector<int>& orders, int step)
     return worst;
 }
 
+/// column_gram_residual<Tr>(512, orders, step) < 1e-12, and reports it.
+template <class Tr>
+void check_column_orthonormal(const std::vector<int>& orders, int step) {
+    const double worst = column_gram_residual<Tr>(512, orders, step);
+    WARN(Tr::Basis::name << " per-order Gram residual at 512 bands: " << worst);
+    CHECK(worst < 1e-12);
+}
+
 struct RefValue {
     int k, l, m;
     double ref;
@@ -584,7 +592,8 @@ void check_pole_and_horizon(int step, Pole&& pole, Rim&& rim, bool exact_rim) {
 /// Bad function counts throw: 5 with the full message ("sphbasis::basis_eval(): expected <shape>
 /// <detail> of functions for basis '<name>', got 5"), 0 and `negative` naming the count,
 /// `too_many` naming the 2048-band limit, a batch of `batch_count` with a short stride naming the
-/// stride, and basis_eval_sum of `sum_count` functions naming the shape.
+/// stride, and basis_eval_sum of `sum_count` functions naming the shape; max_count() is a valid
+/// count, `too_many` is not.
 template <class B>
 void check_bad_counts(const std::string& shape, const std::string& detail, int negative,
                       int too_many, int batch_count, int sum_count) {
@@ -602,6 +611,8 @@ void check_bad_counts(const std::string& shape, const std::string& detail, int n
                         Catch::Contains("stride"));
     REQUIRE_THROWS_WITH(basis_eval_sum<B>(sum_count, f, 0.f, 0.f, 1.f),
                         Catch::Contains("sphbasis::basis_eval_sum(): expected " + shape));
+    CHECK(B::valid_count(B::max_count()));
+    CHECK_FALSE(B::valid_count(too_many));
 }
 
 }  // namespace sphbasis::test
