@@ -71,37 +71,41 @@ void one_call(benchmark::State& st) {
                          static_cast<std::int64_t>(count));
 }
 
-template <class B>
-void batch(benchmark::State& st) {
-    const int n = static_cast<int>(st.range(0));
+/// Calls f(d) on the million directions once per iteration; items are directions.
+template <class F>
+void over_million(benchmark::State& st, F&& f) {
     const Dirs& d = million();
-    const std::size_t count = d.x.size();
-    std::vector<float> out(static_cast<std::size_t>(n) * count);
     for (auto _ : st) {
-        sphbasis::basis_eval_batch<B>(n, count, d.x.data(), d.y.data(), d.z.data(), out.data(),
-                                      count);
-        benchmark::DoNotOptimize(out.data());
+        f(d);
         benchmark::ClobberMemory();
     }
     st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations()) *
-                         static_cast<std::int64_t>(count));
+                         static_cast<std::int64_t>(d.x.size()));
+}
+
+template <class B>
+void batch(benchmark::State& st) {
+    const int n = static_cast<int>(st.range(0));
+    const std::size_t count = million().x.size();
+    std::vector<float> out(static_cast<std::size_t>(n) * count);
+    over_million(st, [&](const Dirs& d) {
+        sphbasis::basis_eval_batch<B>(n, count, d.x.data(), d.y.data(), d.z.data(), out.data(),
+                                      count);
+        benchmark::DoNotOptimize(out.data());
+    });
 }
 
 template <class B>
 void sum_batch(benchmark::State& st) {
     const int n = static_cast<int>(st.range(0));
-    const Dirs& d = million();
-    const std::size_t count = d.x.size();
+    const std::size_t count = million().x.size();
     std::vector<float> coeffs(static_cast<std::size_t>(n)), out(count);
     for (std::size_t k = 0; k < coeffs.size(); ++k) coeffs[k] = float(std::sin(double(k) + 1));
-    for (auto _ : st) {
+    over_million(st, [&](const Dirs& d) {
         sphbasis::basis_eval_sum_batch<B>(n, coeffs.data(), count, d.x.data(), d.y.data(),
                                           d.z.data(), out.data());
         benchmark::DoNotOptimize(out.data());
-        benchmark::ClobberMemory();
-    }
-    st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations()) *
-                         static_cast<std::int64_t>(count));
+    });
 }
 
 }  // namespace

@@ -13,7 +13,9 @@
 //                            clamped-cosine convolution + eval_sum
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <sphbasis/ops/sh_convolution.hpp>
 #include <sphbasis/ops/sh_lights.hpp>
@@ -52,70 +54,63 @@ std::vector<sphbasis::vec3<float>> directions() {
     return d;
 }
 
+/// Calls f(q) for each of the kCount quaternions per iteration; items are quaternions.
+template <class F>
+void per_quaternion(benchmark::State& st, F&& f) {
+    const auto q = quaternions();
+    for (auto _ : st)
+        for (const auto& v : q) f(v);
+    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+}
+
 template <int N>
 void rotation_build_apply(benchmark::State& st) {
-    const auto q = quaternions();
     std::vector<float> in(N * N, 0.5f), out(N * N);
-    for (auto _ : st) {
-        for (const auto& v : q) {
-            const auto d = sh::rotation_from_quaternion(N, v[0], v[1], v[2], v[3]);
-            d.apply(in.data(), out.data());
-            benchmark::DoNotOptimize(out.data());
-        }
-    }
-    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+    per_quaternion(st, [&](const std::array<float, 4>& v) {
+        const auto d = sh::rotation_from_quaternion(N, v[0], v[1], v[2], v[3]);
+        d.apply(in.data(), out.data());
+        benchmark::DoNotOptimize(out.data());
+    });
 }
 
+/// sh::rotate_quaternion of N^2 coefficients of type C, all `fill`.
+template <int N, class C>
+void rotate_streaming_of(benchmark::State& st, const C& fill) {
+    std::vector<C> in(N * N, fill), out(N * N);
+    per_quaternion(st, [&](const std::array<float, 4>& v) {
+        sh::rotate_quaternion(N, v[0], v[1], v[2], v[3], in.data(), out.data());
+        benchmark::DoNotOptimize(out.data());
+    });
+}
 template <int N>
 void rotate_streaming(benchmark::State& st) {
-    const auto q = quaternions();
-    std::vector<float> in(N * N, 0.5f), out(N * N);
-    for (auto _ : st) {
-        for (const auto& v : q) {
-            sh::rotate_quaternion(N, v[0], v[1], v[2], v[3], in.data(), out.data());
-            benchmark::DoNotOptimize(out.data());
-        }
-    }
-    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+    rotate_streaming_of<N>(st, 0.5f);
 }
-
 template <int N>
 void rotate_streaming_rgb(benchmark::State& st) {
+    rotate_streaming_of<N>(st, RGB{0.5f, 0.25f, 1.0f});
+}
+
+/// A prebuilt rotation applied to kCount vectors of N^2 coefficients of type C, all `fill`.
+template <int N, class C>
+void rotation_apply_of(benchmark::State& st, const C& fill) {
     const auto q = quaternions();
-    std::vector<RGB> in(N * N, RGB{0.5f, 0.25f, 1.0f}), out(N * N);
+    const auto d = sh::rotation_from_quaternion(N, q[0][0], q[0][1], q[0][2], q[0][3]);
+    std::vector<C> in(N * N * kCount, fill), out(N * N * kCount);
     for (auto _ : st) {
-        for (const auto& v : q) {
-            sh::rotate_quaternion(N, v[0], v[1], v[2], v[3], in.data(), out.data());
-            benchmark::DoNotOptimize(out.data());
-        }
+        for (std::size_t i = 0; i < kCount; ++i)
+            d.apply(in.data() + i * N * N, out.data() + i * N * N);
+        benchmark::DoNotOptimize(out.data());
     }
     st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
 }
-
 template <int N>
 void rotation_apply(benchmark::State& st) {
-    const auto q = quaternions();
-    const auto d = sh::rotation_from_quaternion(N, q[0][0], q[0][1], q[0][2], q[0][3]);
-    std::vector<float> in(N * N * kCount, 0.5f), out(N * N * kCount);
-    for (auto _ : st) {
-        for (std::size_t i = 0; i < kCount; ++i)
-            d.apply(in.data() + i * N * N, out.data() + i * N * N);
-        benchmark::DoNotOptimize(out.data());
-    }
-    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+    rotation_apply_of<N>(st, 0.5f);
 }
-
 template <int N>
 void rotation_apply_rgb(benchmark::State& st) {
-    const auto q = quaternions();
-    const auto d = sh::rotation_from_quaternion(N, q[0][0], q[0][1], q[0][2], q[0][3]);
-    std::vector<RGB> in(N * N * kCount, RGB{0.5f, 0.25f, 1.0f}), out(N * N * kCount);
-    for (auto _ : st) {
-        for (std::size_t i = 0; i < kCount; ++i)
-            d.apply(in.data() + i * N * N, out.data() + i * N * N);
-        benchmark::DoNotOptimize(out.data());
-    }
-    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+    rotation_apply_of<N>(st, RGB{0.5f, 0.25f, 1.0f});
 }
 
 template <int N>

@@ -14,13 +14,9 @@
 #include "../support/basis_checks.hpp"
 
 using namespace sphbasis;
+using namespace sphbasis::test;
 
 namespace {
-
-using test::Dir;
-using test::random_dirs;
-constexpr double pi = constants::pi;
-constexpr double eps = std::numeric_limits<double>::epsilon();
 
 /// The six functions from their definitions (Habel & Wimmer 2010; Ishmukhametov,
 /// "Irradiance Normal Mapping" (thesis), eqs. 1.52-1.58).
@@ -155,28 +151,11 @@ TEST_CASE("hbasis: Gram matrices by exact quadrature", "[hbasis]") {
 }
 
 TEST_CASE("hbasis: values against the mpmath reference", "[hbasis][reference]") {
-    std::ifstream in(SPHBASIS_TEST_DATA_DIR "/hemi_reference.txt");
-    REQUIRE(in.good());
-    std::string line, basis;
-    int count = 0;
-    double worst = 0;
-    while (std::getline(in, line)) {
-        if (line.empty() || line[0] == '#') continue;
-        std::istringstream is(line);
-        int k, l, m;
-        double x, y, z, ref;
-        REQUIRE(static_cast<bool>(is >> basis));
-        if (basis != "hbasis" && basis != "hbasis-mod") continue;
-        REQUIRE(static_cast<bool>(is >> k >> l >> m >> x >> y >> z >> ref));
-        const auto v =
-            basis == "hbasis" ? eval_d<HBasis>(6, x, y, z) : eval_d<HBasisMod>(6, x, y, z);
-        INFO(basis << " k=" << k << " dir=" << x << "," << y << "," << z);
-        REQUIRE(std::fabs(v[static_cast<std::size_t>(k)] - ref) <= 4 * eps);
-        worst = std::max(worst, std::fabs(v[static_cast<std::size_t>(k)] - ref));
-        ++count;
-    }
-    CHECK(count == 2 * 6 * 26);
-    WARN("hbasis reference: " << count << " values, worst |error| = " << worst);
+    const auto [count, worst] = check_reference_values<HBasis>("hbasis", 6, 4 * eps);
+    const auto [count_mod, worst_mod] = check_reference_values<HBasisMod>("hbasis-mod", 6, 4 * eps);
+    CHECK(count + count_mod == 2 * 6 * 26);
+    WARN("hbasis reference: " << count + count_mod
+                              << " values, worst |error| = " << std::max(worst, worst_mod));
 }
 
 TEST_CASE("hbasis: prefix, below the horizon, pole and horizon", "[hbasis]") {

@@ -3,25 +3,19 @@
 #include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <sphbasis/basis/hl2.hpp>
 #include <sphbasis/basis/sh.hpp>
 #include <sphbasis/core/quadrature.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "../support/basis_checks.hpp"
 
 using namespace sphbasis;
+using namespace sphbasis::test;
 
 namespace {
-
-using test::Dir;
-using test::random_dirs;
-constexpr double pi = constants::pi;
-constexpr double eps = std::numeric_limits<double>::epsilon();
 
 /// The basis vectors (1.18)-(1.20).
 std::array<Dir, 3> vectors() {
@@ -104,24 +98,7 @@ TEST_CASE("hl2: orthonormal on the hemisphere, orthogonal with norm^2 = 2 on the
 }
 
 TEST_CASE("hl2: values against the mpmath reference", "[hl2][reference]") {
-    std::ifstream in(SPHBASIS_TEST_DATA_DIR "/hemi_reference.txt");
-    REQUIRE(in.good());
-    std::string line, basis;
-    int count = 0;
-    while (std::getline(in, line)) {
-        if (line.empty() || line[0] == '#') continue;
-        std::istringstream is(line);
-        int k, l, m;
-        double x, y, z, ref;
-        REQUIRE(static_cast<bool>(is >> basis));
-        if (basis != "hl2") continue;
-        REQUIRE(static_cast<bool>(is >> k >> l >> m >> x >> y >> z >> ref));
-        const auto v = eval_d(x, y, z);
-        INFO("k=" << k << " dir=" << x << "," << y << "," << z);
-        REQUIRE(std::fabs(v[static_cast<std::size_t>(k)] - ref) <= 4 * eps);
-        ++count;
-    }
-    CHECK(count == 3 * 26);
+    CHECK(check_reference_values<HL2>("hl2", 3, 4 * eps).first == 3 * 26);
 }
 
 TEST_CASE("hl2: below the horizon the linear polynomials are returned", "[hl2]") {

@@ -5,6 +5,11 @@ function(sphbasis_cli_test name regex)
   add_test(NAME cli_${name} COMMAND ${_cli} ${ARGN})
   set_tests_properties(cli_${name} PROPERTIES PASS_REGULAR_EXPRESSION "${regex}" LABELS cli)
 endfunction()
+# A shell script (sh -c) around the binary that passes when its output matches regex.
+function(sphbasis_cli_script name regex script)
+  add_test(NAME cli_${name} COMMAND sh -c "${script}")
+  set_tests_properties(cli_${name} PROPERTIES PASS_REGULAR_EXPRESSION "${regex}" LABELS cli)
+endfunction()
 function(sphbasis_cli_fails name)
   add_test(NAME cli_${name} COMMAND ${_cli} ${ARGN})
   set_tests_properties(cli_${name} PROPERTIES WILL_FAIL TRUE LABELS cli)
@@ -25,10 +30,8 @@ sphbasis_cli_fails(eval_bad_lm eval --basis sh --lm 2,3 --dir 0,0,1)
 sphbasis_cli_fails(eval_no_dirs eval --basis sh --coeffs 4)
 sphbasis_cli_fails(eval_unknown_option eval --basis sh --coeffs 4 --dir 0,0,1 --bogus 1)
 sphbasis_cli_fails(unknown_command frobnicate)
-add_test(NAME cli_eval_stdin
-         COMMAND sh -c "printf '# comment\\n0 0 2\\n\\n1 0 0\\n' | \"$<TARGET_FILE:sphbasis_cli>\" eval --basis sh --coeffs 4 --dirs -")
-set_tests_properties(cli_eval_stdin PROPERTIES LABELS cli
-  PASS_REGULAR_EXPRESSION "\"dir\":\\[0,0,2\\],\"values\":\\[0.28209479177387814,0,0.48860251190291992,0\\]\\}\n.*\"dir\":\\[1,0,0\\]")
+sphbasis_cli_script(eval_stdin "\"dir\":\\[0,0,2\\],\"values\":\\[0.28209479177387814,0,0.48860251190291992,0\\]\\}\n.*\"dir\":\\[1,0,0\\]"
+                    "printf '# comment\\n0 0 2\\n\\n1 0 0\\n' | \"$<TARGET_FILE:sphbasis_cli>\" eval --basis sh --coeffs 4 --dirs -")
 add_test(NAME cli_eval_stdin_malformed
          COMMAND sh -c "printf '0 0\\n' | \"$<TARGET_FILE:sphbasis_cli>\" eval --basis sh --coeffs 4 --dirs -")
 set_tests_properties(cli_eval_stdin_malformed PROPERTIES LABELS cli WILL_FAIL TRUE)
@@ -60,13 +63,11 @@ sphbasis_cli_test(gaunt_help_short "Usage: sphbasis gaunt.*L1" gaunt -h)
 sphbasis_cli_test(rotate_help "Usage: sphbasis rotate.*--bands N.*--quat W,X,Y,Z.*--coeffs C0,C1" rotate --help)
 sphbasis_cli_test(rotate_help_short "Usage: sphbasis rotate.*--bands" rotate -h)
 # Help is not an error: exit status 0 (a pass regex alone would not check it).
-add_test(NAME cli_help_exit_codes
-         COMMAND sh -c "b=\"$<TARGET_FILE:sphbasis_cli>\"; for a in --help -h; do $b $a >/dev/null || exit 1; for c in eval imse params gaunt rotate; do $b $c $a >/dev/null || exit 1; done; done; echo help-ok")
-set_tests_properties(cli_help_exit_codes PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "help-ok")
+sphbasis_cli_script(help_exit_codes "help-ok"
+                    "b=\"$<TARGET_FILE:sphbasis_cli>\"; for a in --help -h; do $b $a >/dev/null || exit 1; for c in eval imse params gaunt rotate; do $b $c $a >/dev/null || exit 1; done; done; echo help-ok")
 # Bad input: one line "sphbasis <command>: ..." on stderr and exit status 2.
-add_test(NAME cli_bad_input_exit_2
-         COMMAND sh -c "b=\"$<TARGET_FILE:sphbasis_cli>\"; $b imse --signals abc 2>err.txt; s=$?; test $s -eq 2 && test $(wc -l < err.txt) -eq 1 && grep -q '^sphbasis imse: --signals: expected an integer' err.txt && $b gaunt 1 x 1 0 0 0 2>/dev/null; test $? -eq 2 && $b frobnicate 2>/dev/null; test $? -eq 2 && $b 2>/dev/null; test $? -eq 2 && echo exit2-ok")
-set_tests_properties(cli_bad_input_exit_2 PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "exit2-ok")
+sphbasis_cli_script(bad_input_exit_2 "exit2-ok"
+                    "b=\"$<TARGET_FILE:sphbasis_cli>\"; $b imse --signals abc 2>err.txt; s=$?; test $s -eq 2 && test $(wc -l < err.txt) -eq 1 && grep -q '^sphbasis imse: --signals: expected an integer' err.txt && $b gaunt 1 x 1 0 0 0 2>/dev/null; test $? -eq 2 && $b frobnicate 2>/dev/null; test $? -eq 2 && $b 2>/dev/null; test $? -eq 2 && echo exit2-ok")
 # gaunt and rotate: a value and an error each.
 sphbasis_cli_test(gaunt_value "^0.21850968611841581\n$" gaunt 1 1 1 -1 2 -2)
 sphbasis_cli_fails(gaunt_bad_m gaunt 1 2 1 0 0 0)

@@ -1,5 +1,5 @@
 # Tests of `sphbasis imse` (label "cli"). Included by tests/CMakeLists.txt after cli_tests.cmake,
-# whose helpers sphbasis_cli_test / sphbasis_cli_fails it uses.
+# whose helpers sphbasis_cli_test / sphbasis_cli_script / sphbasis_cli_fails it uses.
 
 # A small paper run: prints the table with its seed; SH 9 spans the signal exactly.
 sphbasis_cli_test(imse_paper_small "protocol paper: 200 signals, seed 7.*\nsh +9 +0 \\(<1e-13\\)"
@@ -7,13 +7,11 @@ sphbasis_cli_test(imse_paper_small "protocol paper: 200 signals, seed 7.*\nsh +9
 sphbasis_cli_test(imse_paper_closed_form "closed form vs sample mean: largest \\|mean - expected\\| = [0-4]\\.[0-9]+ standard errors\n"
                   imse --protocol=paper --signals 2000)
 # Files: JSON with the documented schema, CSV and Markdown.
-add_test(NAME cli_imse_files
-         COMMAND sh -c "\"$<TARGET_FILE:sphbasis_cli>\" imse --signals 50 --seed 3 --json imse_test.json --csv imse_test.csv --md imse_test.md >/dev/null && grep -q '\"protocol\":\"paper\",\"signals\":50,\"seed\":3' imse_test.json && grep -q '{\"basis\":\"sh\",\"coeffs\":4,\"imse\":' imse_test.json && grep -q 'bytes_per_texel_rgb8\":12' imse_test.json && grep -q '^paper,hl2,3,' imse_test.csv && grep -q '^| hbasis | 6 |' imse_test.md && echo files-ok")
-set_tests_properties(cli_imse_files PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "files-ok")
+sphbasis_cli_script(imse_files "files-ok"
+                    "\"$<TARGET_FILE:sphbasis_cli>\" imse --signals 50 --seed 3 --json imse_test.json --csv imse_test.csv --md imse_test.md >/dev/null && grep -q '\"protocol\":\"paper\",\"signals\":50,\"seed\":3' imse_test.json && grep -q '{\"basis\":\"sh\",\"coeffs\":4,\"imse\":' imse_test.json && grep -q 'bytes_per_texel_rgb8\":12' imse_test.json && grep -q '^paper,hl2,3,' imse_test.csv && grep -q '^| hbasis | 6 |' imse_test.md && echo files-ok")
 # Same seed, same numbers: two runs write identical CSV apart from the timing columns.
-add_test(NAME cli_imse_stable
-         COMMAND sh -c "b=\"$<TARGET_FILE:sphbasis_cli>\"; $b imse --signals 100 --seed 9 --csv s1.csv >/dev/null && $b imse --signals 100 --seed 9 --csv s2.csv >/dev/null && cut -d, -f1-8 s1.csv > s1.cut && cut -d, -f1-8 s2.csv > s2.cut && cmp s1.cut s2.cut && echo stable-ok")
-set_tests_properties(cli_imse_stable PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "stable-ok")
+sphbasis_cli_script(imse_stable "stable-ok"
+                    "b=\"$<TARGET_FILE:sphbasis_cli>\"; $b imse --signals 100 --seed 9 --csv s1.csv >/dev/null && $b imse --signals 100 --seed 9 --csv s2.csv >/dev/null && cut -d, -f1-8 s1.csv > s1.cut && cut -d, -f1-8 s2.csv > s2.cut && cmp s1.cut s2.cut && echo stable-ok")
 # The hdri protocol on a few signals (needs OpenEXR and data/envmaps).
 sphbasis_cli_test(imse_hdri_small "protocol hdri: 16 signals, seed 1" imse --protocol hdri --signals 16)
 

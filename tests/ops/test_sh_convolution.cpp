@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "../support/sh_checks.hpp"
 #include "sphbasis/core/quadrature.hpp"
 #include "sphbasis/ops/sh_convolution.hpp"
 #include "sphbasis/ops/sh_minimum.hpp"
@@ -14,24 +15,9 @@
 
 namespace sh = sphbasis::sh;
 using sphbasis::vec3;
+using namespace sphbasis::test;
 
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
-
-std::vector<double> random_coeffs(int bands, std::mt19937& rng) {
-    std::normal_distribution<double> nd;
-    std::vector<double> c(static_cast<std::size_t>(bands * bands));
-    for (auto& v : c) v = nd(rng);
-    return c;
-}
-
-vec3<double> random_dir(std::mt19937& rng) {
-    std::normal_distribution<double> nd;
-    double x = nd(rng), y = nd(rng), z = nd(rng);
-    const double r = std::sqrt(x * x + y * y + z * z);
-    return {x / r, y / r, z / r};
-}
 
 /// integral over the sphere of h(n . w) f(w) dw, with the quadrature's pole at n and the two
 /// hemispheres integrated separately (so a kink of h at n . w = 0 costs no accuracy).

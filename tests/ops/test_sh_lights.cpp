@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "../support/sh_checks.hpp"
 #include "sphbasis/core/quadrature.hpp"
 #include "sphbasis/ops/sh_convolution.hpp"
 #include "sphbasis/ops/sh_lights.hpp"
@@ -15,21 +16,9 @@
 
 namespace sh = sphbasis::sh;
 using sphbasis::vec3;
+using namespace sphbasis::test;
 
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
-
-struct RGB {
-    double r = 0, g = 0, b = 0;
-};
-RGB operator+(const RGB& a, const RGB& b) { return {a.r + b.r, a.g + b.g, a.b + b.b}; }
-RGB operator*(const RGB& a, double s) { return {a.r * s, a.g * s, a.b * s}; }
-
-vec3<double> unit(double x, double y, double z) {
-    const double r = std::sqrt(x * x + y * y + z * z);
-    return {x / r, y / r, z / r};
-}
 
 /// integral over the cap of half-angle a about d of y_k(w) dw, by a product rule in the cap's
 /// frame (Gauss-Legendre in cos theta on [cos a, 1], uniform in phi): exact for polynomials.

@@ -19,42 +19,20 @@
 #include <vector>
 
 #include "../support/cli_runner.hpp"
+#include "../support/sh_checks.hpp"
 #include "sphbasis/ops/sh_rotation.hpp"
 
 namespace sh = sphbasis::sh;
 using sphbasis::vec3;
+using namespace sphbasis::test;
 
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
-
-struct RGB {
-    double r = 0, g = 0, b = 0;
-};
-RGB operator+(const RGB& a, const RGB& b) { return {a.r + b.r, a.g + b.g, a.b + b.b}; }
-RGB operator*(const RGB& a, double s) { return {a.r * s, a.g * s, a.b * s}; }
-RGB operator-(const RGB& a) { return {-a.r, -a.g, -a.b}; }
-
-template <class T>
-std::vector<T> random_coeffs(int bands, std::mt19937& rng) {
-    std::normal_distribution<double> nd;
-    std::vector<T> c(static_cast<std::size_t>(bands * bands));
-    for (auto& v : c) v = static_cast<T>(nd(rng));
-    return c;
-}
 
 template <class T>
 sh::Mat3<T> random_rotation(std::mt19937& rng) {
     std::normal_distribution<double> nd;
     const double w = nd(rng), x = nd(rng), y = nd(rng), z = nd(rng);
     return sh::matrix_from_quaternion(T(w), T(x), T(y), T(z));
-}
-
-vec3<double> random_dir(std::mt19937& rng) {
-    std::normal_distribution<double> nd;
-    double x = nd(rng), y = nd(rng), z = nd(rng);
-    const double r = std::sqrt(x * x + y * y + z * z);
-    return {x / r, y / r, z / r};
 }
 
 template <class T>

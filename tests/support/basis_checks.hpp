@@ -1,8 +1,12 @@
 // Shared checks for the basis tests (tests/basis/test_*.cpp): fixed-seed random directions,
 // kernel runs, Gram residuals by exact quadrature, the mpmath reference of the hemispherical
-// bases, the prefix property, batch path against scalar path and float against double.
+// bases, the prefix property, batch path against scalar path and float against double, and
+// SPHBASIS_HEMI_BASIS_TESTS, the test cases every hemispherical basis shares.
 //
-// The checks of the hemispherical bases take a traits type Tr with
+// A test file says `using namespace sphbasis; using namespace sphbasis::test;` and has Dir,
+// random_dirs, pi and eps at hand.
+//
+// The checks of the hemispherical bases take a traits type Tr (HemiTraits below makes one) with
 //   using Basis = ...;                      the basis (basis/basis.hpp interface)
 //   static double scale(int l);             the largest value of band l's functions
 //   static int degree_of(int k);            the band of function k
@@ -26,11 +30,32 @@
 #include <sphbasis/core/simd.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sphbasis::test {
 
 using Dir = std::array<double, 3>;
+using constants::pi;
+constexpr double eps = std::numeric_limits<double>::epsilon();
+
+/// The traits of a hemispherical basis B (see the top of this file): its recurrence kernels RowK
+/// and ColK, and the functions giving the scale of band l, the band of function k and the index of
+/// (l, m).
+template <class B, class RowK, class ColK, double (*Scale)(int), int (*DegreeOf)(int),
+          int (*Index)(int, int)>
+struct HemiTraits {
+    using Basis = B;
+    using RowKernel = RowK;
+    using ColumnKernel = ColK;
+    static double scale(int l) { return Scale(l); }
+    static int degree_of(int k) { return DegreeOf(k); }
+    static int index(int l, int m) { return Index(l, m); }
+    template <class F>
+    static void with_kernel(int bands, F&& f) {
+        B::with_bands_kernel(bands, std::forward<F>(f));
+    }
+};
 
 /// n unit directions from a normal distribution with a fixed seed; `upper` folds them onto z >= 0.
 inline std::vector<Dir> random_dirs(int n, unsigned seed, bool upper = true) {
@@ -185,6 +210,14 @@ double column_gram_residual(int bands, const std::vector<int>& orders, int step)
     return worst;
 }
 
+/// column_gram_residual<Tr>(512, orders, step) < 1e-12, and reports it.
+template <class Tr>
+void check_column_orthonormal(const std::vector<int>& orders, int step) {
+    const double worst = column_gram_residual<Tr>(512, orders, step);
+    WARN(Tr::Basis::name << " per-order Gram residual at 512 bands: " << worst);
+    CHECK(worst < 1e-12);
+}
+
 struct RefValue {
     int k, l, m;
     double ref;
@@ -206,6 +239,26 @@ inline std::map<Dir, std::vector<RefValue>> load_hemi_reference(const std::strin
         out[d].push_back(r);
     }
     return out;
+}
+
+/// B's first n functions against the mpmath reference lines of `name`, each within `tol`. Returns
+/// the number of values checked and the worst |error|.
+template <class B>
+std::pair<long, double> check_reference_values(const std::string& name, int n, double tol) {
+    long count = 0;
+    double worst = 0;
+    std::vector<double> v(static_cast<std::size_t>(n));
+    for (const auto& [d, values] : load_hemi_reference(name)) {
+        basis_eval<B>(n, d[0], d[1], d[2], v.data());
+        for (const auto& r : values) {
+            const double got = v[static_cast<std::size_t>(r.k)];
+            INFO(name << " k=" << r.k << " dir=" << d[0] << "," << d[1] << "," << d[2]);
+            REQUIRE(std::fabs(got - r.ref) <= tol);
+            worst = std::max(worst, std::fabs(got - r.ref));
+            ++count;
+        }
+    }
+    return {count, worst};
 }
 
 /// Accuracy bound: 5e-14 S_l plus the input's own conditioning, ~l ulp of the sectoral factor and,
@@ -446,4 +499,155 @@ void check_hard_directions_finite(int n_pole) {
     for (std::size_t k = 0; k < np; ++k) CHECK(v[k] == pole[k]);
 }
 
+/// The directions of the closed-form checks: 50 random ones on the upper hemisphere (seed 1), one
+/// general direction, the pole and two horizon points.
+inline std::vector<Dir> closed_form_dirs() {
+    auto dirs = random_dirs(50, 1);
+    dirs.push_back({0.48, -0.6, 0.64});
+    dirs.push_back({0, 0, 1});
+    dirs.push_back({1, 0, 0});
+    dirs.push_back({0, -1, 0});
+    return dirs;
+}
+
+/// B's first N functions (3 bands) equal the closed forms f(x, y, z) (a std::array<double, N>)
+/// within `tol` at closed_form_dirs().
+template <class B, class F>
+void check_closed_forms(F&& f, double tol) {
+    for (const auto& d : closed_form_dirs()) {
+        const double x = d[0], y = d[1], z = d[2];
+        const auto c = f(x, y, z);
+        const auto v = eval_bands<B>(3, x, y, z);
+        for (std::size_t k = 0; k < c.size(); ++k) {
+            INFO("k=" << k << " dir=" << x << "," << y << "," << z);
+            REQUIRE(std::fabs(v[k] - c[k]) <= tol);
+        }
+    }
+}
+
+/// Band-1 signs (no Condon-Shortley phase): at (0.6, 0, 0.8) the x-like function kx is positive
+/// and equals `x_value` within 1e-15 (relative), the y-like function 1 is 0; at (0, 0.6, 0.8) the
+/// y-like one is positive and the x-like one below 1e-16. Returns the values at (0.6, 0, 0.8).
+template <class B>
+std::vector<double> check_band1_signs(std::size_t kx, double x_value) {
+    const auto a = eval_bands<B>(2, 0.6, 0.0, 0.8);
+    CHECK(a[kx] > 0);
+    CHECK(a[1] == 0);
+    const auto b = eval_bands<B>(2, 0.0, 0.6, 0.8);
+    CHECK(b[1] > 0);
+    CHECK(std::fabs(b[kx]) < 1e-16);
+    CHECK(a[kx] == Approx(x_value).epsilon(1e-15));
+    return a;
+}
+
+/// The square-count bases' sizes: n bands are n^2 functions, index(l, m) = l (l + 1) + m.
+template <class Tr>
+void check_square_counts() {
+    using B = typename Tr::Basis;
+    CHECK(Tr::index(2, -1) == 5);
+    CHECK(B::count(4) == 16);
+    CHECK(B::bands_of(16) == 4);
+    CHECK(B::bands_of(15) == -1);
+}
+
+/// B's declared traits: its name, the hemisphere domain, orthonormality and its largest count.
+template <class B>
+void check_declared(const std::string& name, int max_count) {
+    CHECK(std::string(B::name) == name);
+    CHECK(B::domain == Domain::hemisphere);
+    CHECK(B::orthonormal);
+    CHECK(B::max_count() == max_count);
+}
+
+/// Pole (0, 0, 1) and horizon (0.6, -0.8, +-0) at band counts up to 300, orders m = -l, -l + step,
+/// ..., l: finite, pole(l, m) and rim(l, m) within 1e-14 + 20 eps bands of the scale (`exact_rim`:
+/// the horizon values equal rim(l, m) exactly), and -0 gives the values of +0 (on the horizon, not
+/// below).
+template <class Tr, class Pole, class Rim>
+void check_pole_and_horizon(int step, Pole&& pole, Rim&& rim, bool exact_rim) {
+    using B = typename Tr::Basis;
+    for (int bands : {1, 3, 8, 20, 64, 65, 300}) {
+        const auto p = eval_bands<B>(bands, 0, 0, 1);
+        const auto h = eval_bands<B>(bands, 0.6, -0.8, 0);
+        const auto hz = eval_bands<B>(bands, 0.6, -0.8, -0.0);
+        double worst = 0;
+        for (int l = 0; l < bands; ++l)
+            for (int m = -l; m <= l; m += step) {
+                const std::size_t k = static_cast<std::size_t>(Tr::index(l, m));
+                const double s = Tr::scale(l);
+                REQUIRE(std::isfinite(p[k]));
+                REQUIRE(std::isfinite(h[k]));
+                worst = std::max(worst, std::fabs(p[k] - pole(l, m)) / s);
+                if (exact_rim)
+                    REQUIRE(h[k] == rim(l, m));
+                else
+                    worst = std::max(worst, std::fabs(h[k] - rim(l, m)) / s);
+                REQUIRE(hz[k] == h[k]);
+            }
+        INFO("bands " << bands);
+        CHECK(worst <= 1e-14 + 20 * eps * bands);
+    }
+}
+
+/// Bad function counts throw: 5 with the full message ("sphbasis::basis_eval(): expected <shape>
+/// <detail> of functions for basis '<name>', got 5"), 0 and `negative` naming the count,
+/// `too_many` naming the 2048-band limit, a batch of `batch_count` with a short stride naming the
+/// stride, and basis_eval_sum of `sum_count` functions naming the shape; max_count() is a valid
+/// count, `too_many` is not.
+template <class B>
+void check_bad_counts(const std::string& shape, const std::string& detail, int negative,
+                      int too_many, int batch_count, int sum_count) {
+    double v[16];
+    float f[4];
+    REQUIRE_THROWS_WITH(basis_eval<B>(5, 0.0, 0.0, 1.0, v),
+                        "sphbasis::basis_eval(): expected " + shape + " " + detail +
+                            " of functions for basis '" + B::name + "', got 5");
+    REQUIRE_THROWS_WITH(basis_eval<B>(0, 0.0, 0.0, 1.0, v), Catch::Contains("got 0"));
+    REQUIRE_THROWS_WITH(basis_eval<B>(negative, 0.0, 0.0, 1.0, v),
+                        Catch::Contains("got " + std::to_string(negative)));
+    REQUIRE_THROWS_WITH(basis_eval<B>(too_many, 0.0, 0.0, 1.0, v),
+                        Catch::Contains("bands <= 2048"));
+    REQUIRE_THROWS_WITH(basis_eval_batch<B>(batch_count, 2, f, f, f, f, 1),
+                        Catch::Contains("stride"));
+    REQUIRE_THROWS_WITH(basis_eval_sum<B>(sum_count, f, 0.f, 0.f, 1.f),
+                        Catch::Contains("sphbasis::basis_eval_sum(): expected " + shape));
+    CHECK(B::valid_count(B::max_count()));
+    CHECK_FALSE(B::valid_count(too_many));
+}
+
 }  // namespace sphbasis::test
+
+/// Registers the test cases every hemispherical basis shares, named "<NAME>: ..." and tagged
+/// [<NAME>] (NAME a string literal, TR the traits type above, N_POLE the function count of the
+/// hard-direction check): mpmath reference (l <= 255; l <= 2047 [slow]), the kernels agree, the
+/// prefix property, batch equals scalar (float, double), float within 6 (l + 1)^1.5 ulp(float) S_l
+/// of double (the float path normalises the direction in float, where near the pole degree-l
+/// functions have slope ~l^2 in z, and rounds each recurrence step, ~l^1.5 ulp near the ends),
+/// 0 below the horizon and finite values at hard directions.
+#define SPHBASIS_HEMI_BASIS_TESTS(NAME, TR, N_POLE)                                               \
+    TEST_CASE(NAME ": values against the mpmath reference (l <= 255)", "[" NAME "][reference]") { \
+        sphbasis::test::check_hemi_reference<TR>(255);                                            \
+    }                                                                                             \
+    TEST_CASE(NAME ": values against the mpmath reference (l <= 2047)",                           \
+              "[" NAME "][reference][slow]") {                                                    \
+        sphbasis::test::check_hemi_reference<TR>(2047);                                           \
+    }                                                                                             \
+    TEST_CASE(NAME ": unrolled kernels, row recurrence and column recurrence agree",              \
+              "[" NAME "]") {                                                                     \
+        sphbasis::test::check_kernels_agree<TR>();                                                \
+    }                                                                                             \
+    TEST_CASE(NAME ": prefix property", "[" NAME "]") {                                           \
+        sphbasis::test::check_prefix_property<TR>();                                              \
+    }                                                                                             \
+    TEMPLATE_TEST_CASE(NAME ": batch path equals scalar path", "[" NAME "]", float, double) {     \
+        sphbasis::test::check_batch_equals_scalar<TR, TestType>();                                \
+    }                                                                                             \
+    TEST_CASE(NAME ": float is within a stated bound of double", "[" NAME "]") {                  \
+        sphbasis::test::check_float_vs_double<TR>();                                              \
+    }                                                                                             \
+    TEST_CASE(NAME ": below the horizon every function is 0", "[" NAME "]") {                     \
+        sphbasis::test::check_zero_below_horizon<typename TR::Basis>();                           \
+    }                                                                                             \
+    TEST_CASE(NAME ": hard directions stay finite", "[" NAME "]") {                               \
+        sphbasis::test::check_hard_directions_finite<typename TR::Basis>(N_POLE);                 \
+    }

@@ -105,6 +105,15 @@ struct ProtocolResult {
     double seconds = 0;
 };
 
+/// An empty result of `protocol` on `signals` signals drawn with `seed`.
+ProtocolResult new_result(const char* protocol, long long signals, std::uint64_t seed) {
+    ProtocolResult res;
+    res.protocol = protocol;
+    res.signals = signals;
+    res.seed = seed;
+    return res;
+}
+
 // ---------------------------------------------------------------------------------------------
 // The benchmark's rows (imse::paper_rows(), the same for both protocols), resolved in the registry.
 
@@ -246,10 +255,7 @@ std::vector<Timing> measure_all(const std::vector<Row>& rows) {
 
 ProtocolResult run_paper(const std::vector<Row>& rows, long long signals, std::uint64_t seed) {
     const auto t0 = Clock::now();
-    ProtocolResult res;
-    res.protocol = "paper";
-    res.signals = signals;
-    res.seed = seed;
+    ProtocolResult res = new_result("paper", signals, seed);
     const DirectionalRule rule = imse::paper_rule(), fine = imse::paper_check_rule();
     const Eigen::MatrixXd radiance = imse::random_radiance(seed, static_cast<int>(signals));
     Progress bar("paper", static_cast<long long>(rows.size()));
@@ -314,10 +320,7 @@ LatLongMap load_map(const std::string& path) {
 
 ProtocolResult run_hdri(const std::vector<Row>& rows, long long signals, std::uint64_t seed) {
     const auto t0 = Clock::now();
-    ProtocolResult res;
-    res.protocol = "hdri";
-    res.signals = signals;
-    res.seed = seed;
+    ProtocolResult res = new_result("hdri", signals, seed);
     const int nmaps = static_cast<int>(sizeof kMaps / sizeof kMaps[0]);
     const std::string dir = envmap_dir();
     const int nb = kSignalBands, k = nb * nb;
