@@ -7,9 +7,6 @@
 #include <cstddef>
 #include <random>
 #include <sphbasis/core/constants.hpp>
-// simd.hpp before vec.hpp: vec.hpp's templates find the batch overload of all() only if it is
-// declared before them (a test including this header first would otherwise not compile).
-#include <sphbasis/core/simd.hpp>
 #include <sphbasis/core/vec.hpp>
 #include <vector>
 

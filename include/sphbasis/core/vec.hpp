@@ -15,6 +15,7 @@
 
 #include "../config.hpp"
 #include "scalar.hpp"
+#include "simd.hpp"  // all()/any() of batch masks must be visible where normalize_or_pole is defined
 
 namespace sphbasis {
 
