@@ -92,10 +92,9 @@ namespace sphbasis::hsh {
 /// direction's cost (~n^2 square roots, ~45 ms at 2048 bands) and the index range reasonable.
 inline constexpr int max_bands = 2048;
 
-/// ACN index of (l, m), |m| <= l.
-constexpr int index(int l, int m) noexcept { return l * (l + 1) + m; }
-/// Number of functions in `bands` bands.
-constexpr int count(int bands) noexcept { return bands * bands; }
+// ACN order and count as SH's: index(l, m) = l(l+1) + m, |m| <= l; count(bands) = bands^2.
+using sh::count;
+using sh::index;
 
 namespace detail {
 
@@ -143,14 +142,7 @@ struct FixedKernel {
         }
     }
 };
-using RowKernel = hemi::RowKernel<HshFamily>;
-using ColumnKernel = hemi::ColumnKernel<HshFamily>;
-
-/// Calls f(kernel) with the fastest kernel for 1 <= bands <= max_bands.
-template <class F>
-inline decltype(auto) with_bands_kernel(int bands, F&& f) {
-    return hemi::with_bands_kernel<FixedKernel, HshFamily>(bands, std::forward<F>(f));
-}
+SPHBASIS_HEMI_KERNELS(HshFamily);
 
 }  // namespace detail
 }  // namespace sphbasis::hsh

@@ -60,16 +60,16 @@
 #include "detail/banded_api.hpp"
 #include "detail/hemi_family.hpp"
 #include "detail/jacobi.hpp"
+#include "sh.hpp"
 
 namespace sphbasis::makhotkin {
 
 /// Largest supported band count (degree 2047, 4194304 functions); see hsh::max_bands.
 inline constexpr int max_bands = 2048;
 
-/// ACN index of (l, m), |m| <= l.
-constexpr int index(int l, int m) noexcept { return l * (l + 1) + m; }
-/// Number of functions in `bands` bands.
-constexpr int count(int bands) noexcept { return bands * bands; }
+// ACN order and count as SH's: index(l, m) = l(l+1) + m, |m| <= l; count(bands) = bands^2.
+using sh::count;
+using sh::index;
 
 namespace detail {
 
@@ -101,14 +101,7 @@ struct MakhotkinFamily : hemi::Acn<MakhotkinFamily> {
 /// bands <= 8: the row recurrence with a compile-time band count.
 template <int N>
 using FixedKernel = hemi::FixedRowKernel<MakhotkinFamily, N>;
-using RowKernel = hemi::RowKernel<MakhotkinFamily>;
-using ColumnKernel = hemi::ColumnKernel<MakhotkinFamily>;
-
-/// Calls f(kernel) with the fastest kernel for 1 <= bands <= max_bands.
-template <class F>
-inline decltype(auto) with_bands_kernel(int bands, F&& f) {
-    return hemi::with_bands_kernel<FixedKernel, MakhotkinFamily>(bands, std::forward<F>(f));
-}
+SPHBASIS_HEMI_KERNELS(MakhotkinFamily);
 
 }  // namespace detail
 }  // namespace sphbasis::makhotkin

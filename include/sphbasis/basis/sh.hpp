@@ -555,19 +555,16 @@ auto eval_lm(int l, int m, const D& dir) {
         return eval_lm(l, m, component<0>(dir), component<1>(dir), component<2>(dir));
 }
 
-/// Converts a coefficient vector of `bands` bands between this library's convention and the
-/// Condon-Shortley one (DirectXMath, google/spherical-harmonics): multiplies the coefficients
-/// with odd |m| by -1. The map is its own inverse. In place; coeffs is a C* or a contiguous
-/// range of C, C any type with unary minus. Throws std::invalid_argument for bad bands or a null
-/// or too small coeffs.
+namespace detail {
+/// Multiplies the coefficients with odd |m| by -1, with fn's checks (to_/from_condon_shortley).
 template <class Cs>
-void to_condon_shortley(int bands, Cs&& coeffs) {
+void flip_odd_m(const char* fn, int bands, Cs& coeffs) {
     static_assert(sphbasis::detail::is_buffer_v<Cs>,
-                  "sphbasis::sh::to_condon_shortley: coefficients are a C* or a contiguous range "
-                  "of C.");
+                  "sphbasis::sh::to_condon_shortley, from_condon_shortley: coefficients are a C* "
+                  "or a contiguous range of C.");
     if constexpr (sphbasis::detail::is_buffer_v<Cs>) {
-        check_bands(bands, "sh::to_condon_shortley");
-        sphbasis::detail::check_buffer_size("sh::to_condon_shortley", "coefficient", coeffs,
+        check_bands(bands, fn);
+        sphbasis::detail::check_buffer_size(fn, "coefficient", coeffs,
                                             static_cast<std::size_t>(count(bands)));
         auto* c = sphbasis::detail::buffer_data(coeffs);
         for (int l = 1; l < bands; ++l)
@@ -577,19 +574,22 @@ void to_condon_shortley(int bands, Cs&& coeffs) {
             }
     }
 }
+}  // namespace detail
+
+/// Converts a coefficient vector of `bands` bands between this library's convention and the
+/// Condon-Shortley one (DirectXMath, google/spherical-harmonics): multiplies the coefficients
+/// with odd |m| by -1. The map is its own inverse. In place; coeffs is a C* or a contiguous
+/// range of C, C any type with unary minus. Throws std::invalid_argument for bad bands or a null
+/// or too small coeffs.
+template <class Cs>
+void to_condon_shortley(int bands, Cs&& coeffs) {
+    detail::flip_odd_m("sh::to_condon_shortley", bands, coeffs);
+}
 /// The inverse of to_condon_shortley (the same sign flip; the same checks, named
 /// from_condon_shortley).
 template <class Cs>
 void from_condon_shortley(int bands, Cs&& coeffs) {
-    static_assert(sphbasis::detail::is_buffer_v<Cs>,
-                  "sphbasis::sh::from_condon_shortley: coefficients are a C* or a contiguous "
-                  "range of C.");
-    if constexpr (sphbasis::detail::is_buffer_v<Cs>) {
-        check_bands(bands, "sh::from_condon_shortley");
-        sphbasis::detail::check_buffer_size("sh::from_condon_shortley", "coefficient", coeffs,
-                                            static_cast<std::size_t>(count(bands)));
-        to_condon_shortley(bands, coeffs);
-    }
+    detail::flip_odd_m("sh::from_condon_shortley", bands, coeffs);
 }
 
 }  // namespace sh

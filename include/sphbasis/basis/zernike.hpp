@@ -161,8 +161,7 @@ struct ZernikeFamily {
 /// bands <= 8: the row recurrence with a compile-time band count.
 template <int N>
 using FixedKernel = hemi::FixedRowKernel<ZernikeFamily, N>;
-using RowKernel = hemi::RowKernel<ZernikeFamily>;
-using ColumnKernel = hemi::ColumnKernel<ZernikeFamily>;
+SPHBASIS_HEMI_KERNELS(ZernikeFamily);
 
 /// Triangular function counts: n bands = n(n+1)/2 functions.
 struct TriangularCount {
@@ -181,12 +180,6 @@ struct TriangularCount {
     }
     static constexpr const char* rule = "a triangular number (bands(bands+1)/2";
 };
-
-/// Calls f(kernel) with the fastest kernel for 1 <= bands <= max_bands.
-template <class F>
-inline decltype(auto) with_bands_kernel(int bands, F&& f) {
-    return hemi::with_bands_kernel<FixedKernel, ZernikeFamily>(bands, std::forward<F>(f));
-}
 
 }  // namespace detail
 }  // namespace sphbasis::zernike

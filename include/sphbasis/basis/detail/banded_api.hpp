@@ -56,46 +56,34 @@
 #include "../basis.hpp"
 
 // clang-format off
+/// eval or eval_unit (NAME), Normalize = NORMALIZE: runtime and compile-time band counts, three
+/// components or a 3-vector.
+#define SPHBASIS_BANDED_EVAL_FORMS(B, NS, NAME, NORMALIZE)                                         \
+    template <class X, class Y, class Z, class Out>                                                \
+    SPHBASIS_FORCEINLINE void NAME(int bands, X x, Y y, Z z, Out&& out) {                          \
+        ::sphbasis::detail::bands_eval<B, NORMALIZE>(NS "::" #NAME, bands, x, y, z, out);          \
+    }                                                                                              \
+    template <class D, class Out>                                                                  \
+    SPHBASIS_FORCEINLINE void NAME(int bands, const D& dir, Out&& out) {                           \
+        ::sphbasis::detail::bands_eval_dir<B, NORMALIZE>(NS "::" #NAME, bands, dir, out);          \
+    }                                                                                              \
+    template <int N, class X, class Y, class Z, class Out>                                         \
+    SPHBASIS_FORCEINLINE void NAME(X x, Y y, Z z, Out&& out) noexcept(                             \
+        std::is_pointer_v<std::remove_reference_t<Out>>) {                                         \
+        ::sphbasis::detail::fixed_bands_eval<B, N, NORMALIZE>(NS "::" #NAME, x, y, z, out);        \
+    }                                                                                              \
+    template <int N, class D, class Out>                                                           \
+    SPHBASIS_FORCEINLINE void NAME(const D& dir, Out&& out) noexcept(                              \
+        std::is_pointer_v<std::remove_reference_t<Out>>) {                                         \
+        ::sphbasis::detail::fixed_bands_eval_dir<B, N, NORMALIZE>(NS "::" #NAME, dir, out);        \
+    }
+
 #define SPHBASIS_BANDED_ENTRY_POINTS(B, NS)                                                        \
     SPHBASIS_FORCEINLINE void check_bands(int bands, const char* fn) {                             \
         ::sphbasis::detail::check_bands_of(bands, max_bands, fn);                                  \
     }                                                                                              \
-    template <class X, class Y, class Z, class Out>                                                \
-    SPHBASIS_FORCEINLINE void eval(int bands, X x, Y y, Z z, Out&& out) {                          \
-        ::sphbasis::detail::Banded<B>::eval(NS "::eval", bands, x, y, z, out);                     \
-    }                                                                                              \
-    template <class D, class Out>                                                                  \
-    SPHBASIS_FORCEINLINE void eval(int bands, const D& dir, Out&& out) {                           \
-        ::sphbasis::detail::bands_eval_dir<B, true>(NS "::eval", bands, dir, out);                 \
-    }                                                                                              \
-    template <class X, class Y, class Z, class Out>                                                \
-    SPHBASIS_FORCEINLINE void eval_unit(int bands, X x, Y y, Z z, Out&& out) {                     \
-        ::sphbasis::detail::Banded<B>::eval_unit(NS "::eval_unit", bands, x, y, z, out);           \
-    }                                                                                              \
-    template <class D, class Out>                                                                  \
-    SPHBASIS_FORCEINLINE void eval_unit(int bands, const D& dir, Out&& out) {                      \
-        ::sphbasis::detail::bands_eval_dir<B, false>(NS "::eval_unit", bands, dir, out);           \
-    }                                                                                              \
-    template <int N, class X, class Y, class Z, class Out>                                         \
-    SPHBASIS_FORCEINLINE void eval(X x, Y y, Z z, Out&& out) noexcept(                             \
-        std::is_pointer_v<std::remove_reference_t<Out>>) {                                         \
-        ::sphbasis::detail::fixed_bands_eval<B, N, true>(NS "::eval", x, y, z, out);               \
-    }                                                                                              \
-    template <int N, class D, class Out>                                                           \
-    SPHBASIS_FORCEINLINE void eval(const D& dir, Out&& out) noexcept(                              \
-        std::is_pointer_v<std::remove_reference_t<Out>>) {                                         \
-        ::sphbasis::detail::fixed_bands_eval_dir<B, N, true>(NS "::eval", dir, out);               \
-    }                                                                                              \
-    template <int N, class X, class Y, class Z, class Out>                                         \
-    SPHBASIS_FORCEINLINE void eval_unit(X x, Y y, Z z, Out&& out) noexcept(                        \
-        std::is_pointer_v<std::remove_reference_t<Out>>) {                                         \
-        ::sphbasis::detail::fixed_bands_eval<B, N, false>(NS "::eval_unit", x, y, z, out);         \
-    }                                                                                              \
-    template <int N, class D, class Out>                                                           \
-    SPHBASIS_FORCEINLINE void eval_unit(const D& dir, Out&& out) noexcept(                         \
-        std::is_pointer_v<std::remove_reference_t<Out>>) {                                         \
-        ::sphbasis::detail::fixed_bands_eval_dir<B, N, false>(NS "::eval_unit", dir, out);         \
-    }                                                                                              \
+    SPHBASIS_BANDED_EVAL_FORMS(B, NS, eval, true)                                                  \
+    SPHBASIS_BANDED_EVAL_FORMS(B, NS, eval_unit, false)                                            \
     template <class Xs, class Ys, class Zs, class Out>                                             \
     void eval_batch(int bands, std::size_t directions, const Xs& xs, const Ys& ys, const Zs& zs,   \
                     Out&& out, std::size_t stride) {                                               \

@@ -35,31 +35,26 @@ struct Acn {
     }
 };
 
-/// bands = N: the row recurrence with a compile-time band count, which the compiler unrolls and
-/// keeps in registers.
+/// The row recurrence: N > 0, exactly N bands (the compiler unrolls it and keeps it in
+/// registers); N = 0, `bands` <= max_row_bands bands.
 template <class Fam, int N>
-struct FixedRowKernel {
+struct RowKernelOf {
+    int bands = N;
     template <class V, class Store>
     SPHBASIS_FORCEINLINE void operator()(const V& x, const V& y, const V& z,
                                          Store&& store) const noexcept {
         V zc, X, Y, E;
         Fam::prep(x, y, z, zc, X, Y, E);
-        Fam::template rows<N>(N, zc, X, Y, E, store);
+        if constexpr (N > 0)
+            Fam::template rows<N>(N, zc, X, Y, E, store);
+        else
+            Fam::template rows<max_row_bands>(bands, zc, X, Y, E, store);
     }
 };
-
-/// bands <= max_row_bands: the row recurrence.
+template <class Fam, int N>
+using FixedRowKernel = RowKernelOf<Fam, N>;
 template <class Fam>
-struct RowKernel {
-    int bands;
-    template <class V, class Store>
-    SPHBASIS_FORCEINLINE void operator()(const V& x, const V& y, const V& z,
-                                         Store&& store) const noexcept {
-        V zc, X, Y, E;
-        Fam::prep(x, y, z, zc, X, Y, E);
-        Fam::template rows<max_row_bands>(bands, zc, X, Y, E, store);
-    }
-};
+using RowKernel = RowKernelOf<Fam, 0>;
 
 /// Any band count: the column recurrence in sphbasis::extended.
 template <class Fam>
@@ -183,3 +178,19 @@ struct HemiBasis {
 };
 
 }  // namespace sphbasis::detail::hemi
+
+/// Expanded in a hemispherical basis' namespace detail after its family Fam and its
+/// FixedKernel<N>: the kernel names RowKernel and ColumnKernel (<= 64 bands, any band count) and
+/// with_bands_kernel(bands, f), which calls f(kernel) with the fastest kernel for
+/// 1 <= bands <= max_bands.
+// clang-format off
+#define SPHBASIS_HEMI_KERNELS(Fam)                                                                 \
+    using RowKernel = ::sphbasis::detail::hemi::RowKernel<Fam>;                                    \
+    using ColumnKernel = ::sphbasis::detail::hemi::ColumnKernel<Fam>;                              \
+    template <class F>                                                                             \
+    inline decltype(auto) with_bands_kernel(int bands, F&& f) {                                    \
+        return ::sphbasis::detail::hemi::with_bands_kernel<FixedKernel, Fam>(                      \
+            bands, std::forward<F>(f));                                                            \
+    }                                                                                              \
+    static_assert(true, "SPHBASIS_HEMI_KERNELS ends with a semicolon")
+// clang-format on
