@@ -102,26 +102,22 @@ struct LargeKernel {
 /// and no reload of the direction between the band-count check and the unrolled kernel.
 template <template <int> class Fixed, class Fam, class F>
 SPHBASIS_FORCEINLINE decltype(auto) with_bands_kernel(int bands, F&& f) {
+#define SPHBASIS_HEMI_FIXED_CASE(N) \
+    case N:                         \
+        return f(Fixed<N>{});
     switch (bands) {
-        case 1:
-            return f(Fixed<1>{});
-        case 2:
-            return f(Fixed<2>{});
-        case 3:
-            return f(Fixed<3>{});
-        case 4:
-            return f(Fixed<4>{});
-        case 5:
-            return f(Fixed<5>{});
-        case 6:
-            return f(Fixed<6>{});
-        case 7:
-            return f(Fixed<7>{});
-        case 8:
-            return f(Fixed<8>{});
+        SPHBASIS_HEMI_FIXED_CASE(1)
+        SPHBASIS_HEMI_FIXED_CASE(2)
+        SPHBASIS_HEMI_FIXED_CASE(3)
+        SPHBASIS_HEMI_FIXED_CASE(4)
+        SPHBASIS_HEMI_FIXED_CASE(5)
+        SPHBASIS_HEMI_FIXED_CASE(6)
+        SPHBASIS_HEMI_FIXED_CASE(7)
+        SPHBASIS_HEMI_FIXED_CASE(8)
         default:
             return f(LargeKernel<Fam>{bands});
     }
+#undef SPHBASIS_HEMI_FIXED_CASE
 }
 
 /// Square function counts: n bands = n^2 functions.
