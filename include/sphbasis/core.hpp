@@ -24,6 +24,7 @@
 #include "core/sampling.hpp"
 
 #include "basis/basis.hpp"
+#include "basis/detail/banded_api.hpp"
 #include "basis/sh_fixed.hpp"
 #include "basis/sh.hpp"
 #include "basis/detail/jacobi.hpp"

@@ -84,9 +84,17 @@ template <class B>
     if (bands < 0 || bands > max_bands) throw_bad_bands(fn, bands, max_bands);
     throw_invalid(fn, "a non-null output buffer");
 }
-}  // namespace detail
 
-namespace detail {
+/// The basis interface members of a hemispherical basis with a few fixed function counts (the
+/// H-bases: 4 or 6, HL2: 3); the basis adds name, count_rule() and with_kernel().
+template <bool Orthonormal, int... Counts>
+struct HemiFixedCounts {
+    static constexpr Domain domain = Domain::hemisphere;
+    static constexpr bool orthonormal = Orthonormal;
+    static bool valid_count(int n) noexcept { return ((n == Counts) || ...); }
+    static int max_count() noexcept { return std::max({Counts...}); }
+};
+
 /// The failure of basis_eval's one check: a bad count, else a null output buffer.
 template <class B>
 [[noreturn]] SPHBASIS_NOINLINE void throw_count_or_null(const char* fn, int count) {
@@ -608,17 +616,10 @@ BasisFunctions evaluator(int count) {
 
 namespace detail {
 
-/// The namespace functions sh::eval, hsh::eval, ... forward here with their name for messages.
+/// The namespace functions sh::eval_sum, hsh::eval_batch, ... forward here with their name for
+/// messages (eval and eval_unit go to bands_eval directly; basis/detail/banded_api.hpp).
 template <class B>
 struct Banded {
-    template <class X, class Y, class Z, class Out>
-    static SPHBASIS_FORCEINLINE void eval(const char* fn, int bands, X x, Y y, Z z, Out& out) {
-        bands_eval<B, true>(fn, bands, x, y, z, out);
-    }
-    template <class X, class Y, class Z, class Out>
-    static SPHBASIS_FORCEINLINE void eval_unit(const char* fn, int bands, X x, Y y, Z z, Out& out) {
-        bands_eval<B, false>(fn, bands, x, y, z, out);
-    }
     template <class Cs, class X, class Y, class Z>
     static auto eval_sum(const char* fn, int bands, const Cs& coeffs, X x, Y y, Z z) {
         return eval_sum_front(

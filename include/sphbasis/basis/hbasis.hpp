@@ -77,36 +77,23 @@ inline decltype(auto) with_kernel(int n, F&& f) {
 
 namespace sphbasis {
 
-/// The H-basis (Habel & Wimmer 2010) as a basis (basis/basis.hpp): 4 or 6 functions,
-/// orthonormal on the upper hemisphere; below the horizon the polynomials are returned.
-struct HBasis {
-    static constexpr const char* name = "hbasis";
-    static constexpr Domain domain = Domain::hemisphere;
-    static constexpr bool orthonormal = true;
-    static bool valid_count(int n) noexcept { return n == 4 || n == 6; }
+/// The H-basis (Habel & Wimmer 2010; Mod = false) and the modified H-basis (Mod = true) as bases
+/// (basis/basis.hpp): 4 or 6 functions on the upper hemisphere; below the horizon the
+/// polynomials are returned.
+template <bool Mod>
+struct HBasisOf : detail::HemiFixedCounts<!Mod, 4, 6> {
+    static constexpr const char* name = Mod ? "hbasis-mod" : "hbasis";
     static const char* count_rule() noexcept { return "4 or 6"; }
-    static int max_count() noexcept { return 6; }
     /// Precondition: valid_count(n).
     template <class F>
     static decltype(auto) with_kernel(int n, F&& f) {
-        return hbasis::detail::with_kernel<false>(n, std::forward<F>(f));
+        return hbasis::detail::with_kernel<Mod>(n, std::forward<F>(f));
     }
 };
 
-/// The modified H-basis (H3 = sqrt(3/(2 pi)) (1 - z)): 4 or 6 functions, NOT orthonormal
-/// (<H1, H3> = sqrt(3)/2); below the horizon the polynomials are returned.
-struct HBasisMod {
-    static constexpr const char* name = "hbasis-mod";
-    static constexpr Domain domain = Domain::hemisphere;
-    static constexpr bool orthonormal = false;
-    static bool valid_count(int n) noexcept { return n == 4 || n == 6; }
-    static const char* count_rule() noexcept { return "4 or 6"; }
-    static int max_count() noexcept { return 6; }
-    /// Precondition: valid_count(n).
-    template <class F>
-    static decltype(auto) with_kernel(int n, F&& f) {
-        return hbasis::detail::with_kernel<true>(n, std::forward<F>(f));
-    }
-};
+/// The H-basis: orthonormal on the upper hemisphere.
+using HBasis = HBasisOf<false>;
+/// The modified H-basis (H3 = sqrt(3/(2 pi)) (1 - z)): NOT orthonormal (<H1, H3> = sqrt(3)/2).
+using HBasisMod = HBasisOf<true>;
 
 }  // namespace sphbasis

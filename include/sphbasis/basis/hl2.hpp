@@ -55,13 +55,9 @@ namespace sphbasis {
 
 /// The Half-Life 2 basis as a basis (basis/basis.hpp): 3 functions, orthonormal on the upper
 /// hemisphere; below the horizon the linear polynomials are returned.
-struct HL2 {
+struct HL2 : detail::HemiFixedCounts<true, 3> {
     static constexpr const char* name = "hl2";
-    static constexpr Domain domain = Domain::hemisphere;
-    static constexpr bool orthonormal = true;
-    static bool valid_count(int n) noexcept { return n == 3; }
     static const char* count_rule() noexcept { return "3"; }
-    static int max_count() noexcept { return 3; }
     /// Precondition: valid_count(n).
     template <class F>
     static decltype(auto) with_kernel(int n, F&& f) {

@@ -57,24 +57,19 @@
 #include "../core/scalar.hpp"
 #include "../core/simd.hpp"
 #include "basis.hpp"
+#include "detail/banded_api.hpp"
 #include "detail/hemi_family.hpp"
 #include "detail/jacobi.hpp"
+#include "sh.hpp"
 
 namespace sphbasis::makhotkin {
 
 /// Largest supported band count (degree 2047, 4194304 functions); see hsh::max_bands.
 inline constexpr int max_bands = 2048;
 
-/// ACN index of (l, m), |m| <= l.
-constexpr int index(int l, int m) noexcept { return l * (l + 1) + m; }
-/// Number of functions in `bands` bands.
-constexpr int count(int bands) noexcept { return bands * bands; }
-
-/// Throws std::invalid_argument unless 0 <= bands <= max_bands (the message is built out of
-/// line, so the check costs a compare).
-SPHBASIS_FORCEINLINE void check_bands(int bands, const char* fn) {
-    sphbasis::detail::check_bands_of(bands, max_bands, fn);
-}
+// ACN order and count as SH's: index(l, m) = l(l+1) + m, |m| <= l; count(bands) = bands^2.
+using sh::count;
+using sh::index;
 
 namespace detail {
 
@@ -106,14 +101,7 @@ struct MakhotkinFamily : hemi::Acn<MakhotkinFamily> {
 /// bands <= 8: the row recurrence with a compile-time band count.
 template <int N>
 using FixedKernel = hemi::FixedRowKernel<MakhotkinFamily, N>;
-using RowKernel = hemi::RowKernel<MakhotkinFamily>;
-using ColumnKernel = hemi::ColumnKernel<MakhotkinFamily>;
-
-/// Calls f(kernel) with the fastest kernel for 1 <= bands <= max_bands.
-template <class F>
-inline decltype(auto) with_bands_kernel(int bands, F&& f) {
-    return hemi::with_bands_kernel<FixedKernel, MakhotkinFamily>(bands, std::forward<F>(f));
-}
+SPHBASIS_HEMI_KERNELS(MakhotkinFamily);
 
 }  // namespace detail
 }  // namespace sphbasis::makhotkin
@@ -132,77 +120,8 @@ struct Makhotkin
 
 namespace sphbasis::makhotkin {
 
-// The banded entry points, as sh:: has them (basis/sh.hpp; sizes in bands, buffers pointers or
-// contiguous ranges, directions three components or any 3-vector type; basis/basis.hpp).
-
-/// Evaluates the count(bands) functions at direction (x, y, z) into out (in out's scalar type,
-/// float or double). The input is normalised first (a zero or non-finite vector is the pole).
-/// Throws std::invalid_argument for bands outside [0, max_bands] or a null or too small out.
-template <class X, class Y, class Z, class Out>
-SPHBASIS_FORCEINLINE void eval(int bands, X x, Y y, Z z, Out&& out) {
-    sphbasis::detail::Banded<Makhotkin>::eval("makhotkin::eval", bands, x, y, z, out);
-}
-/// eval() for any 3-vector type.
-template <class D, class Out>
-SPHBASIS_FORCEINLINE void eval(int bands, const D& dir, Out&& out) {
-    sphbasis::detail::bands_eval_dir<Makhotkin, true>("makhotkin::eval", bands, dir, out);
-}
-/// eval() for a direction already of unit length (no normalisation).
-template <class X, class Y, class Z, class Out>
-SPHBASIS_FORCEINLINE void eval_unit(int bands, X x, Y y, Z z, Out&& out) {
-    sphbasis::detail::Banded<Makhotkin>::eval_unit("makhotkin::eval_unit", bands, x, y, z, out);
-}
-template <class D, class Out>
-SPHBASIS_FORCEINLINE void eval_unit(int bands, const D& dir, Out&& out) {
-    sphbasis::detail::bands_eval_dir<Makhotkin, false>("makhotkin::eval_unit", bands, dir, out);
-}
-/// Compile-time band count N (1..64): unrolled for N <= 8. noexcept for a pointer out.
-template <int N, class X, class Y, class Z, class Out>
-SPHBASIS_FORCEINLINE void eval(X x, Y y, Z z, Out&& out) noexcept(
-    std::is_pointer_v<std::remove_reference_t<Out>>) {
-    sphbasis::detail::fixed_bands_eval<Makhotkin, N, true>("makhotkin::eval", x, y, z, out);
-}
-template <int N, class D, class Out>
-SPHBASIS_FORCEINLINE void eval(const D& dir, Out&& out) noexcept(
-    std::is_pointer_v<std::remove_reference_t<Out>>) {
-    sphbasis::detail::fixed_bands_eval_dir<Makhotkin, N, true>("makhotkin::eval", dir, out);
-}
-template <int N, class X, class Y, class Z, class Out>
-SPHBASIS_FORCEINLINE void eval_unit(X x, Y y, Z z, Out&& out) noexcept(
-    std::is_pointer_v<std::remove_reference_t<Out>>) {
-    sphbasis::detail::fixed_bands_eval<Makhotkin, N, false>("makhotkin::eval_unit", x, y, z, out);
-}
-template <int N, class D, class Out>
-SPHBASIS_FORCEINLINE void eval_unit(const D& dir, Out&& out) noexcept(
-    std::is_pointer_v<std::remove_reference_t<Out>>) {
-    sphbasis::detail::fixed_bands_eval_dir<Makhotkin, N, false>("makhotkin::eval_unit", dir, out);
-}
-/// `bands` bands at `directions` directions (x, y, z arrays), SIMD across directions, into
-/// out[k * stride + i] (stride >= directions).
-template <class Xs, class Ys, class Zs, class Out>
-void eval_batch(int bands, std::size_t directions, const Xs& xs, const Ys& ys, const Zs& zs,
-                Out&& out, std::size_t stride) {
-    sphbasis::detail::Banded<Makhotkin>::eval_batch("makhotkin::eval_batch", bands, directions, xs,
-                                                    ys, zs, out, stride);
-}
-/// The expansion sum_k coeffs[k] f_k(d) at one direction, in the direction's scalar type.
-template <class Cs, class X, class Y, class Z>
-auto eval_sum(int bands, const Cs& coeffs, X x, Y y, Z z) {
-    return sphbasis::detail::Banded<Makhotkin>::eval_sum("makhotkin::eval_sum", bands, coeffs, x, y,
-                                                         z);
-}
-template <class Cs, class D>
-auto eval_sum(int bands, const Cs& coeffs, const D& dir) {
-    sphbasis::detail::static_check_direction<D>();
-    if constexpr (sphbasis::detail::is_direction_v<D>)
-        return eval_sum(bands, coeffs, component<0>(dir), component<1>(dir), component<2>(dir));
-}
-/// The expansion at `directions` directions into out[i], SIMD across directions.
-template <class Cs, class Xs, class Ys, class Zs, class Out>
-void eval_sum_batch(int bands, const Cs& coeffs, std::size_t directions, const Xs& xs, const Ys& ys,
-                    const Zs& zs, Out&& out) {
-    sphbasis::detail::Banded<Makhotkin>::eval_sum_batch("makhotkin::eval_sum_batch", bands, coeffs,
-                                                        directions, xs, ys, zs, out);
-}
+// The banded entry points (check_bands, eval, eval_unit, eval<N>, eval_unit<N>, eval_batch,
+// eval_sum, eval_sum_batch) as sh:: has them: basis/detail/banded_api.hpp documents them.
+SPHBASIS_BANDED_ENTRY_POINTS(Makhotkin, "makhotkin");
 
 }  // namespace sphbasis::makhotkin

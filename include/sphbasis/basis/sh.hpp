@@ -43,6 +43,7 @@
 #include "../core/simd.hpp"
 #include "../core/vec.hpp"
 #include "basis.hpp"
+#include "detail/banded_api.hpp"
 #include "sh_fixed.hpp"
 
 namespace sphbasis::sh {
@@ -72,12 +73,6 @@ inline int bands_of_count(int n) noexcept {
         if (n <= b * b) return n == b * b ? b : -1;
     const int b = degree_of(n - 1) + 1;
     return b * b == n ? b : -1;
-}
-
-/// Throws std::invalid_argument unless 0 <= bands <= max_bands (the message is built out of
-/// line, so the check costs a compare in the one-call paths).
-SPHBASIS_FORCEINLINE void check_bands(int bands, const char* fn) {
-    sphbasis::detail::check_bands_of(bands, max_bands, fn);
 }
 
 namespace detail {
@@ -132,13 +127,11 @@ struct RowTable {
         double q = constants::inv_sqrt_four_pi;  // Q_m^m without the sqrt(2)
         q00 = static_cast<T>(q);
         for (int l = 1; l < n; ++l) {
-            const double dl = l;
             const std::size_t r = static_cast<std::size_t>(row[static_cast<std::size_t>(l)]);
             for (int m = 0; m <= l - 2; ++m) {
-                const double dm = m;
-                const double al = std::sqrt((4 * dl * dl - 1) / (dl * dl - dm * dm));
-                const double bl =
-                    std::sqrt(((dl - 1) * (dl - 1) - dm * dm) / (4 * (dl - 1) * (dl - 1) - 1));
+                // a_lm, b_lm of core/legendre.hpp (integer arithmetic under the roots is exact).
+                const double al = sphbasis::legendre_a(l, m);
+                const double bl = sphbasis::legendre_b(l, m);
                 a[r + static_cast<std::size_t>(m)] = static_cast<T>(al);
                 ab[r + static_cast<std::size_t>(m)] = static_cast<T>(al * bl);
             }
@@ -523,66 +516,12 @@ struct SH {
 
 namespace sh {
 
-// Buffers (out, coeffs, xs, ys, zs) are pointers or contiguous ranges (std::vector, std::array,
-// std::span; sizes checked), directions three components or any 3-vector type (basis/basis.hpp).
-
-/// Evaluates the count(bands) = bands^2 functions at a unit direction, ACN order, into out (in
-/// out's scalar type, float or double). Precondition: (x, y, z) has unit length (checked by
-/// SPHBASIS_ASSERT in debug builds); other finite input gives the polynomial extension
-/// (bands <= 64), never NaN. Use eval() to have the input normalised. Cost: ~bands^2
-/// multiply-adds; unrolled code for bands <= 8. Throws std::invalid_argument for bands outside
-/// [0, max_bands] or a null or too small out.
-template <class X, class Y, class Z, class Out>
-SPHBASIS_FORCEINLINE void eval_unit(int bands, X x, Y y, Z z, Out&& out) {
-    sphbasis::detail::Banded<SH>::eval_unit("sh::eval_unit", bands, x, y, z, out);
-}
-/// eval_unit() for any 3-vector type.
-template <class D, class Out>
-SPHBASIS_FORCEINLINE void eval_unit(int bands, const D& dir, Out&& out) {
-    sphbasis::detail::bands_eval_dir<SH, false>("sh::eval_unit", bands, dir, out);
-}
-
-/// Evaluates the bands^2 functions at direction (x, y, z), ACN order, into out (in out's
-/// scalar type). The input is normalised first; a zero vector or one with a NaN/Inf component
-/// is taken as the pole (0, 0, 1) (see normalize_or_pole). Throws std::invalid_argument for
-/// bands outside [0, max_bands] or a null or too small out.
-template <class X, class Y, class Z, class Out>
-SPHBASIS_FORCEINLINE void eval(int bands, X x, Y y, Z z, Out&& out) {
-    sphbasis::detail::Banded<SH>::eval("sh::eval", bands, x, y, z, out);
-}
-/// eval() for any 3-vector type (glm::vec3, glm::dvec3, Eigen::Vector3d, sphbasis::vec3).
-template <class D, class Out>
-SPHBASIS_FORCEINLINE void eval(int bands, const D& dir, Out&& out) {
-    sphbasis::detail::bands_eval_dir<SH, true>("sh::eval", bands, dir, out);
-}
-
-/// Compile-time band count for a direction already of unit length: eval<N> without the
-/// normalisation (the cheapest call, as a shader would do it). Precondition and outcome for
-/// other input as for eval_unit(); SPHBASIS_ASSERT checks |d| in debug builds. noexcept for a
-/// pointer out (a range's size is checked).
-template <int N, class X, class Y, class Z, class Out>
-SPHBASIS_FORCEINLINE void eval_unit(X x, Y y, Z z, Out&& out) noexcept(
-    std::is_pointer_v<std::remove_reference_t<Out>>) {
-    sphbasis::detail::fixed_bands_eval<SH, N, false>("sh::eval_unit", x, y, z, out);
-}
-template <int N, class D, class Out>
-SPHBASIS_FORCEINLINE void eval_unit(const D& dir, Out&& out) noexcept(
-    std::is_pointer_v<std::remove_reference_t<Out>>) {
-    sphbasis::detail::fixed_bands_eval_dir<SH, N, false>("sh::eval_unit", dir, out);
-}
-
-/// Compile-time band count: unrolled code for N <= 8 (no allocation, no dispatch), the row
-/// recurrence above (N <= 64). Input normalised as by eval(). noexcept for a pointer out.
-template <int N, class X, class Y, class Z, class Out>
-SPHBASIS_FORCEINLINE void eval(X x, Y y, Z z, Out&& out) noexcept(
-    std::is_pointer_v<std::remove_reference_t<Out>>) {
-    sphbasis::detail::fixed_bands_eval<SH, N, true>("sh::eval", x, y, z, out);
-}
-template <int N, class D, class Out>
-SPHBASIS_FORCEINLINE void eval(const D& dir, Out&& out) noexcept(
-    std::is_pointer_v<std::remove_reference_t<Out>>) {
-    sphbasis::detail::fixed_bands_eval_dir<SH, N, true>("sh::eval", dir, out);
-}
+// The banded entry points (check_bands, eval, eval_unit, eval<N>, eval_unit<N>, eval_batch,
+// eval_sum, eval_sum_batch; basis/detail/banded_api.hpp documents them). For SH: ACN order,
+// count(bands) = bands^2; cost ~bands^2 multiply-adds, unrolled code for bands <= 8. eval_unit
+// of a finite direction that is not of unit length gives the polynomial extension (bands <=
+// 64), never NaN.
+SPHBASIS_BANDED_ENTRY_POINTS(SH, "sh");
 
 /// One function y_lm at direction (x, y, z) (normalised as by eval()), in the direction's
 /// scalar type. Cost O(l) with square roots: for many functions at one direction, eval() is far
@@ -616,55 +555,16 @@ auto eval_lm(int l, int m, const D& dir) {
         return eval_lm(l, m, component<0>(dir), component<1>(dir), component<2>(dir));
 }
 
-/// Evaluates `bands` bands at `directions` directions given as separate x, y, z arrays
-/// (normalised as by eval()), SIMD across directions. Output is function-major (SoA): function
-/// k of direction i goes to out[k * stride + i], stride >= directions. Throws
-/// std::invalid_argument for bad bands, stride < directions, or a null or too small buffer.
-template <class Xs, class Ys, class Zs, class Out>
-void eval_batch(int bands, std::size_t directions, const Xs& xs, const Ys& ys, const Zs& zs,
-                Out&& out, std::size_t stride) {
-    sphbasis::detail::Banded<SH>::eval_batch("sh::eval_batch", bands, directions, xs, ys, zs, out,
-                                             stride);
-}
-
-/// The expansion f(d) = sum_k coeffs[k] y_k(d) over `bands` bands at one direction (normalised
-/// as by eval(), evaluated in its scalar type). C (the coefficients' element type) is any type
-/// with C + C and C * scalar (float, double, glm::vec3, an RGB type); the y_k are not stored.
-/// Throws std::invalid_argument for bad bands or a null or too small coeffs.
-template <class Cs, class X, class Y, class Z>
-auto eval_sum(int bands, const Cs& coeffs, X x, Y y, Z z) {
-    return sphbasis::detail::Banded<SH>::eval_sum("sh::eval_sum", bands, coeffs, x, y, z);
-}
-/// eval_sum() for any 3-vector type.
-template <class Cs, class D>
-auto eval_sum(int bands, const Cs& coeffs, const D& dir) {
-    sphbasis::detail::static_check_direction<D>();
-    if constexpr (sphbasis::detail::is_direction_v<D>)
-        return eval_sum(bands, coeffs, component<0>(dir), component<1>(dir), component<2>(dir));
-}
-
-/// The expansion sum_k coeffs[k] y_k(d_i) at `directions` directions (separate x, y, z arrays,
-/// normalised as by eval()) into out[i], SIMD across directions, without storing the y_k.
-template <class Cs, class Xs, class Ys, class Zs, class Out>
-void eval_sum_batch(int bands, const Cs& coeffs, std::size_t directions, const Xs& xs, const Ys& ys,
-                    const Zs& zs, Out&& out) {
-    sphbasis::detail::Banded<SH>::eval_sum_batch("sh::eval_sum_batch", bands, coeffs, directions,
-                                                 xs, ys, zs, out);
-}
-
-/// Converts a coefficient vector of `bands` bands between this library's convention and the
-/// Condon-Shortley one (DirectXMath, google/spherical-harmonics): multiplies the coefficients
-/// with odd |m| by -1. The map is its own inverse. In place; coeffs is a C* or a contiguous
-/// range of C, C any type with unary minus. Throws std::invalid_argument for bad bands or a null
-/// or too small coeffs.
+namespace detail {
+/// Multiplies the coefficients with odd |m| by -1, with fn's checks (to_/from_condon_shortley).
 template <class Cs>
-void to_condon_shortley(int bands, Cs&& coeffs) {
+void flip_odd_m(const char* fn, int bands, Cs& coeffs) {
     static_assert(sphbasis::detail::is_buffer_v<Cs>,
-                  "sphbasis::sh::to_condon_shortley: coefficients are a C* or a contiguous range "
-                  "of C.");
+                  "sphbasis::sh::to_condon_shortley, from_condon_shortley: coefficients are a C* "
+                  "or a contiguous range of C.");
     if constexpr (sphbasis::detail::is_buffer_v<Cs>) {
-        check_bands(bands, "sh::to_condon_shortley");
-        sphbasis::detail::check_buffer_size("sh::to_condon_shortley", "coefficient", coeffs,
+        check_bands(bands, fn);
+        sphbasis::detail::check_buffer_size(fn, "coefficient", coeffs,
                                             static_cast<std::size_t>(count(bands)));
         auto* c = sphbasis::detail::buffer_data(coeffs);
         for (int l = 1; l < bands; ++l)
@@ -674,19 +574,22 @@ void to_condon_shortley(int bands, Cs&& coeffs) {
             }
     }
 }
+}  // namespace detail
+
+/// Converts a coefficient vector of `bands` bands between this library's convention and the
+/// Condon-Shortley one (DirectXMath, google/spherical-harmonics): multiplies the coefficients
+/// with odd |m| by -1. The map is its own inverse. In place; coeffs is a C* or a contiguous
+/// range of C, C any type with unary minus. Throws std::invalid_argument for bad bands or a null
+/// or too small coeffs.
+template <class Cs>
+void to_condon_shortley(int bands, Cs&& coeffs) {
+    detail::flip_odd_m("sh::to_condon_shortley", bands, coeffs);
+}
 /// The inverse of to_condon_shortley (the same sign flip; the same checks, named
 /// from_condon_shortley).
 template <class Cs>
 void from_condon_shortley(int bands, Cs&& coeffs) {
-    static_assert(sphbasis::detail::is_buffer_v<Cs>,
-                  "sphbasis::sh::from_condon_shortley: coefficients are a C* or a contiguous "
-                  "range of C.");
-    if constexpr (sphbasis::detail::is_buffer_v<Cs>) {
-        check_bands(bands, "sh::from_condon_shortley");
-        sphbasis::detail::check_buffer_size("sh::from_condon_shortley", "coefficient", coeffs,
-                                            static_cast<std::size_t>(count(bands)));
-        to_condon_shortley(bands, coeffs);
-    }
+    detail::flip_odd_m("sh::from_condon_shortley", bands, coeffs);
 }
 
 }  // namespace sh

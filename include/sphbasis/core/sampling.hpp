@@ -24,13 +24,20 @@
 
 namespace sphbasis {
 
-/// Uniform on the unit sphere (pdf 1/(4 pi)): z = 1 - 2u, phi = 2 pi v.
+namespace detail {
+/// The unit direction of height z in [-1, 1] and azimuth phi = 2 pi v.
 template <class T>
-vec3<T> square_to_uniform_sphere(T u, T v) noexcept {
-    const T z = T(1) - T(2) * u;
+vec3<T> direction_of_height(T z, T v) noexcept {
     const T s = std::sqrt(std::fmax(T(0), (T(1) - z) * (T(1) + z)));
     const T phi = T(constants::two_pi) * v;
     return {s * std::cos(phi), s * std::sin(phi), z};
+}
+}  // namespace detail
+
+/// Uniform on the unit sphere (pdf 1/(4 pi)): z = 1 - 2u, phi = 2 pi v.
+template <class T>
+vec3<T> square_to_uniform_sphere(T u, T v) noexcept {
+    return detail::direction_of_height(T(1) - T(2) * u, v);
 }
 template <class T>
 constexpr T uniform_sphere_pdf() noexcept {
@@ -40,10 +47,7 @@ constexpr T uniform_sphere_pdf() noexcept {
 /// Uniform on the upper hemisphere z >= 0 (pdf 1/(2 pi)): z = 1 - u.
 template <class T>
 vec3<T> square_to_uniform_hemisphere(T u, T v) noexcept {
-    const T z = T(1) - u;
-    const T s = std::sqrt(std::fmax(T(0), (T(1) - z) * (T(1) + z)));
-    const T phi = T(constants::two_pi) * v;
-    return {s * std::cos(phi), s * std::sin(phi), z};
+    return detail::direction_of_height(T(1) - u, v);
 }
 template <class T>
 constexpr T uniform_hemisphere_pdf() noexcept {

@@ -228,6 +228,13 @@ void scale_bands_any(const char* fn, int bands, K&& kernel, In&& in, Out&& out) 
                 static_cast<const C*>(pi), po);
 }
 
+/// Selects the range overloads of convolve() and apply_window(): not all three buffers pointers.
+template <class K, class In, class Out>
+using not_all_pointers =
+    std::enable_if_t<!(std::is_pointer_v<std::decay_t<K>> && std::is_pointer_v<std::decay_t<In>> &&
+                       std::is_pointer_v<std::decay_t<Out>>),
+                     int>;
+
 }  // namespace detail
 
 /// out_lm = kernel[l] in_lm for `bands` bands (in == out allowed). C is any coefficient type
@@ -241,11 +248,7 @@ void convolve(int bands, const T* kernel, const C* in, C* out) {
 
 /// convolve() with any of kernel, in, out given as a contiguous range (std::vector, std::array,
 /// std::span): kernel of at least bands values, in and out of at least bands^2 (checked).
-template <
-    class K, class In, class Out,
-    std::enable_if_t<!(std::is_pointer_v<std::decay_t<K>> && std::is_pointer_v<std::decay_t<In>> &&
-                       std::is_pointer_v<std::decay_t<Out>>),
-                     int> = 0>
+template <class K, class In, class Out, detail::not_all_pointers<K, In, Out> = 0>
 void convolve(int bands, K&& kernel, In&& in, Out&& out) {
     detail::scale_bands_any("sh::convolve", bands, kernel, in, out);
 }
@@ -273,10 +276,9 @@ std::vector<T> band_energies(int bands, const T* coeffs) {
 template <class R, std::enable_if_t<sphbasis::detail::is_contiguous_range_v<R>, int> = 0>
 auto band_energies(int bands, const R& coeffs) {
     check_bands(bands, "sh::band_energies");
-    return band_energies(bands,
-                         sphbasis::detail::buffer_data(
-                             "sh::band_energies", "coeffs", coeffs,
-                             static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands)));
+    return band_energies(bands, sphbasis::detail::buffer_data("sh::band_energies", "coeffs", coeffs,
+                                                              static_cast<std::size_t>(bands) *
+                                                                  static_cast<std::size_t>(bands)));
 }
 
 // ---------------------------------------------------------------------------------------------

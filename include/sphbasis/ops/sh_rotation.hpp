@@ -550,6 +550,11 @@ class Rotation {
         return data_[offset(l) + static_cast<std::size_t>((m + l) * (2 * l + 1) + n + l)];
     }
 
+    /// The contiguous-range overloads (not both pointers: those take the pointer overloads).
+    template <class In, class Out>
+    using ranges_only =
+        std::enable_if_t<!(std::is_pointer_v<In> && std::is_pointer_v<std::decay_t<Out>>), int>;
+
     /// out = D in for coefficient vectors of bands() bands (bands()^2 values): raw pointers or
     /// contiguous ranges (.data(), .size() >= bands()^2). The coefficient type C is any type
     /// with C + C and C * T (float, double, RGB). in == out is allowed. Cost sum (2l+1)^2.
@@ -558,13 +563,9 @@ class Rotation {
         apply_impl<false>(in, out, "sh::Rotation::apply");
     }
     /// apply() on contiguous ranges (.data(), .size() >= bands()^2; checked).
-    template <
-        class In, class Out,
-        std::enable_if_t<!(std::is_pointer_v<In> && std::is_pointer_v<std::decay_t<Out>>), int> = 0>
+    template <class In, class Out, ranges_only<In, Out> = 0>
     void apply(const In& in, Out&& out) const {
-        const char* fn = "sh::Rotation::apply";
-        const auto p = detail::coefficient_buffers(fn, in, out, detail::coefficient_count(bands_));
-        apply_impl<false>(p.first, p.second, fn);
+        apply_ranges<false>("sh::Rotation::apply", in, out);
     }
     /// out = D^T in: the inverse rotation.
     template <class C>
@@ -572,13 +573,9 @@ class Rotation {
         apply_impl<true>(in, out, "sh::Rotation::apply_transposed");
     }
     /// apply_transposed() on contiguous ranges.
-    template <
-        class In, class Out,
-        std::enable_if_t<!(std::is_pointer_v<In> && std::is_pointer_v<std::decay_t<Out>>), int> = 0>
+    template <class In, class Out, ranges_only<In, Out> = 0>
     void apply_transposed(const In& in, Out&& out) const {
-        const char* fn = "sh::Rotation::apply_transposed";
-        const auto p = detail::coefficient_buffers(fn, in, out, detail::coefficient_count(bands_));
-        apply_impl<true>(p.first, p.second, fn);
+        apply_ranges<true>("sh::Rotation::apply_transposed", in, out);
     }
     /// apply() on a std::vector; throws std::invalid_argument unless it has bands()^2 entries.
     template <class C>
@@ -606,6 +603,11 @@ class Rotation {
     }
 
   private:
+    template <bool Transposed, class In, class Out>
+    void apply_ranges(const char* fn, const In& in, Out& out) const {
+        const auto p = detail::coefficient_buffers(fn, in, out, detail::coefficient_count(bands_));
+        apply_impl<Transposed>(p.first, p.second, fn);
+    }
     template <bool Transposed, class C>
     void apply_impl(const C* in, C* out, const char* fn) const {
         if (bands_ == 0) return;

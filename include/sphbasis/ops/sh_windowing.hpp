@@ -97,11 +97,7 @@ void apply_window(int bands, const T* window, const C* in, C* out) {
 }
 
 /// apply_window() with any of window, in, out given as a contiguous range (sizes checked).
-template <
-    class W, class In, class Out,
-    std::enable_if_t<!(std::is_pointer_v<std::decay_t<W>> && std::is_pointer_v<std::decay_t<In>> &&
-                       std::is_pointer_v<std::decay_t<Out>>),
-                     int> = 0>
+template <class W, class In, class Out, detail::not_all_pointers<W, In, Out> = 0>
 void apply_window(int bands, W&& window, In&& in, Out&& out) {
     detail::scale_bands_any("sh::apply_window", bands, window, in, out);
 }

@@ -102,12 +102,7 @@ SPHBASIS_FORCEINLINE FaceUV<T> cube_to_square(T x, T y, T z) noexcept {
 }
 
 /// cube_to_square() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its scalar type.
-template <class D>
-SPHBASIS_FORCEINLINE auto cube_to_square(const D& d) noexcept {
-    sphbasis::detail::static_check_direction<D>();
-    using T = direction_scalar_t<D>;
-    return cube_to_square<T>(component<0>(d), component<1>(d), component<2>(d));
-}
+SPHBASIS_PARAM_DIRECTION_OVERLOAD(cube_to_square);
 
 /// Cube face (0..5) and (u, v) in [0, 1]^2 -> unit direction.
 template <class T>
@@ -127,51 +122,33 @@ SPHBASIS_FORCEINLINE T square_to_cube_pdf(T x, T y, T z) noexcept {
 
 /// square_to_cube_pdf() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its scalar
 /// type.
-template <class D>
-SPHBASIS_FORCEINLINE auto square_to_cube_pdf(const D& d) noexcept {
-    sphbasis::detail::static_check_direction<D>();
-    using T = direction_scalar_t<D>;
-    return square_to_cube_pdf<T>(component<0>(d), component<1>(d), component<2>(d));
-}
+SPHBASIS_PARAM_DIRECTION_OVERLOAD(square_to_cube_pdf);
 
 /// A cube map of 6 faces of n x n texels, filtered as `filter` says.
 template <class T>
-class CubeMap : public detail::TexelGrid {
+class CubeMap : public detail::TexelGrid, public detail::MapMethods<CubeMap<T>, T> {
   public:
+    using detail::MapMethods<CubeMap<T>, T>::direction_to_uv;
+    using detail::MapMethods<CubeMap<T>, T>::footprint;
+
     /// n >= 1 texels per face edge. Throws std::invalid_argument outside 1 <= n <= 32768 or
     /// 0 <= subtexel_bits <= 24. Cost: O(n) for the seam table of dx10_seamless.
     explicit CubeMap(int resolution, CubeFilter filter = CubeFilter::dx10_seamless,
                      int subtexel_bits = 0)
-        : detail::TexelGrid(6, resolution, resolution),
-          n_(resolution),
-          filter_(filter),
-          bits_(subtexel_bits) {
-        detail::check_resolution("CubeMap", resolution, 1);
-        detail::check_subtexel_bits("CubeMap", subtexel_bits);
+        : detail::TexelGrid("CubeMap", 6, resolution, resolution, resolution, 1, subtexel_bits),
+          filter_(filter) {
         if (filter_ == CubeFilter::dx10_seamless) build_seams();
     }
 
-    int resolution() const noexcept { return n_; }
     CubeFilter filter() const noexcept { return filter_; }
 
     FaceUV<T> direction_to_uv(T x, T y, T z) const noexcept {
         const vec3<T> d = detail::unit(x, y, z);
         return cube_to_square(d.x, d.y, d.z);
     }
-    /// direction_to_uv() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), converted to T.
-    template <class D>
-    FaceUV<T> direction_to_uv(const D& d) const noexcept {
-        sphbasis::detail::static_check_direction<D>();
-        return direction_to_uv(static_cast<T>(component<0>(d)), static_cast<T>(component<1>(d)),
-                               static_cast<T>(component<2>(d)));
-    }
     vec3<T> uv_to_direction(int face, T u, T v) const noexcept {
         return square_to_cube(face, u, v);
     }
-    vec3<T> texel_direction(int face, int col, int row) const noexcept {
-        return square_to_cube(face, u_center<T>(col), v_center<T>(row));
-    }
-
     /// Exact solid angle of the texel (the area of its face rectangle projected onto the
     /// sphere, via atan(st/sqrt(1 + s^2 + t^2)) at the corners), in double.
     T texel_solid_angle(int /*face*/, int col, int row) const noexcept {
@@ -218,13 +195,6 @@ class CubeMap : public detail::TexelGrid {
         }
         return fp;
     }
-    /// footprint() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), converted to T.
-    template <class D>
-    Footprint<T> footprint(const D& d) const noexcept {
-        sphbasis::detail::static_check_direction<D>();
-        return footprint(static_cast<T>(component<0>(d)), static_cast<T>(component<1>(d)),
-                         static_cast<T>(component<2>(d)));
-    }
 
   private:
     // Texel index across edge `edge` of `face` (0: col -1, 1: col n, 2: row -1, 3: row n) at
@@ -267,9 +237,7 @@ class CubeMap : public detail::TexelGrid {
                 }
     }
 
-    int n_;
     CubeFilter filter_;
-    int bits_;
     std::vector<std::size_t> seams_;
 };
 

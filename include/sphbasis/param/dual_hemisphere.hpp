@@ -32,18 +32,17 @@ namespace sphbasis::param {
 ///                                          solid angle per unit area of [-1, 1]^2 at Chebyshev
 ///                                          radius r (so that int g(max|a|,|b|) = 2 pi)
 template <class T, class Proj>
-class DualHemisphere : public detail::TexelGrid {
+class DualHemisphere : public detail::TexelGrid,
+                       public detail::MapMethods<DualHemisphere<T, Proj>, T> {
   public:
+    using detail::MapMethods<DualHemisphere<T, Proj>, T>::direction_to_uv;
+    using detail::MapMethods<DualHemisphere<T, Proj>, T>::footprint;
+
     /// n x n texels per hemisphere, n >= 2 (the shrink needs two rings of centres).
     /// subtexel_bits > 0 quantises bilinear weights as hardware does. Throws
     /// std::invalid_argument outside 2 <= n <= 32768 or 0 <= subtexel_bits <= 24.
     explicit DualHemisphere(int resolution, int subtexel_bits = 0)
-        : detail::TexelGrid(2, resolution, resolution), n_(resolution), bits_(subtexel_bits) {
-        detail::check_resolution(Proj::name, resolution, 2);
-        detail::check_subtexel_bits(Proj::name, subtexel_bits);
-    }
-
-    int resolution() const noexcept { return n_; }
+        : detail::TexelGrid(Proj::name, 2, resolution, resolution, resolution, 2, subtexel_bits) {}
 
     /// Face (0: z >= 0, 1: z < 0) and texture coordinates in [0.5/n, 1 - 0.5/n]^2.
     FaceUV<T> direction_to_uv(T x, T y, T z) const noexcept {
@@ -52,13 +51,6 @@ class DualHemisphere : public detail::TexelGrid {
         const Point2<T> p = Proj::template disk<T>(d.x, d.y, std::fabs(d.z));
         const Point2<T> s = uniform_disk_to_square_concentric(p.x, p.y);
         return {face, detail::shrink(s.x, n_), detail::shrink(s.y, n_)};
-    }
-    /// direction_to_uv() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), converted to T.
-    template <class D>
-    FaceUV<T> direction_to_uv(const D& d) const noexcept {
-        sphbasis::detail::static_check_direction<D>();
-        return direction_to_uv(static_cast<T>(component<0>(d)), static_cast<T>(component<1>(d)),
-                               static_cast<T>(component<2>(d)));
     }
 
     /// Unit direction of (face, u, v); (u, v) outside the shrunk square are clamped onto it
@@ -69,10 +61,6 @@ class DualHemisphere : public detail::TexelGrid {
         vec3<T> d = Proj::template direction<T>(p.x, p.y);
         if (face == 1) d.z = -d.z;
         return d;
-    }
-
-    vec3<T> texel_direction(int face, int col, int row) const noexcept {
-        return uv_to_direction(face, u_center<T>(col), v_center<T>(row));
     }
 
     /// Solid angle of the part of the texel's cell inside the shrunk square (the outer ring
@@ -98,17 +86,8 @@ class DualHemisphere : public detail::TexelGrid {
                 static_cast<std::size_t>(n_),
             detail::axis_taps(t.u, n_, bits_), detail::axis_taps(t.v, n_, bits_), n_, n_);
     }
-    /// footprint() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), converted to T.
-    template <class D>
-    Footprint<T> footprint(const D& d) const noexcept {
-        sphbasis::detail::static_check_direction<D>();
-        return footprint(static_cast<T>(component<0>(d)), static_cast<T>(component<1>(d)),
-                         static_cast<T>(component<2>(d)));
-    }
 
   private:
-    int n_;
-    int bits_;
 };
 
 }  // namespace sphbasis::param

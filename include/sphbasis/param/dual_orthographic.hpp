@@ -55,12 +55,7 @@ SPHBASIS_FORCEINLINE Point2<T> orthographic_to_square(T x, T y, T z) noexcept {
 
 /// orthographic_to_square() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its scalar
 /// type.
-template <class D>
-SPHBASIS_FORCEINLINE auto orthographic_to_square(const D& d) noexcept {
-    sphbasis::detail::static_check_direction<D>();
-    using T = direction_scalar_t<D>;
-    return orthographic_to_square<T>(component<0>(d), component<1>(d), component<2>(d));
-}
+SPHBASIS_PARAM_DIRECTION_OVERLOAD(orthographic_to_square);
 
 /// Density of square_to_orthographic() w.r.t. solid angle, |z|/pi (cosine-weighted).
 template <class T>
@@ -72,12 +67,7 @@ SPHBASIS_FORCEINLINE T square_to_orthographic_pdf(T x, T y, T z) noexcept {
 
 /// square_to_orthographic_pdf() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its
 /// scalar type.
-template <class D>
-SPHBASIS_FORCEINLINE auto square_to_orthographic_pdf(const D& d) noexcept {
-    sphbasis::detail::static_check_direction<D>();
-    using T = direction_scalar_t<D>;
-    return square_to_orthographic_pdf<T>(component<0>(d), component<1>(d), component<2>(d));
-}
+SPHBASIS_PARAM_DIRECTION_OVERLOAD(square_to_orthographic_pdf);
 
 /// The dual orthographic map: 2 faces of n x n texels (see dual_hemisphere.hpp).
 template <class T>

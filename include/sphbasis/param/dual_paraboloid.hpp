@@ -58,12 +58,7 @@ SPHBASIS_FORCEINLINE Point2<T> paraboloid_to_square(T x, T y, T z) noexcept {
 
 /// paraboloid_to_square() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its scalar
 /// type.
-template <class D>
-SPHBASIS_FORCEINLINE auto paraboloid_to_square(const D& d) noexcept {
-    sphbasis::detail::static_check_direction<D>();
-    using T = direction_scalar_t<D>;
-    return paraboloid_to_square<T>(component<0>(d), component<1>(d), component<2>(d));
-}
+SPHBASIS_PARAM_DIRECTION_OVERLOAD(paraboloid_to_square);
 
 /// Density of square_to_paraboloid() w.r.t. solid angle at the unit direction (x, y, z),
 /// 1/(pi (1 + |z|)^2): 1/(4 pi) at the pole, 1/pi on the equator.
@@ -77,12 +72,7 @@ SPHBASIS_FORCEINLINE T square_to_paraboloid_pdf(T x, T y, T z) noexcept {
 
 /// square_to_paraboloid_pdf() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its
 /// scalar type.
-template <class D>
-SPHBASIS_FORCEINLINE auto square_to_paraboloid_pdf(const D& d) noexcept {
-    sphbasis::detail::static_check_direction<D>();
-    using T = direction_scalar_t<D>;
-    return square_to_paraboloid_pdf<T>(component<0>(d), component<1>(d), component<2>(d));
-}
+SPHBASIS_PARAM_DIRECTION_OVERLOAD(square_to_paraboloid_pdf);
 
 /// The dual paraboloid map: 2 faces of n x n texels (see dual_hemisphere.hpp).
 template <class T>

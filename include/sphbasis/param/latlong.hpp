@@ -30,12 +30,7 @@ SPHBASIS_FORCEINLINE Point2<T> latlong_to_square(T x, T y, T z) noexcept {
 }
 
 /// latlong_to_square() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its scalar type.
-template <class D>
-SPHBASIS_FORCEINLINE auto latlong_to_square(const D& d) noexcept {
-    sphbasis::detail::static_check_direction<D>();
-    using T = direction_scalar_t<D>;
-    return latlong_to_square<T>(component<0>(d), component<1>(d), component<2>(d));
-}
+SPHBASIS_PARAM_DIRECTION_OVERLOAD(latlong_to_square);
 
 /// [0, 1]^2 -> unit direction (sin(theta) cos(phi), sin(theta) sin(phi), cos(theta)) with
 /// phi = 2 pi u, theta = pi v.
@@ -59,46 +54,29 @@ SPHBASIS_FORCEINLINE T square_to_latlong_pdf(T x, T y, T /*z*/) noexcept {
 
 /// square_to_latlong_pdf() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its scalar
 /// type.
-template <class D>
-SPHBASIS_FORCEINLINE auto square_to_latlong_pdf(const D& d) noexcept {
-    sphbasis::detail::static_check_direction<D>();
-    using T = direction_scalar_t<D>;
-    return square_to_latlong_pdf<T>(component<0>(d), component<1>(d), component<2>(d));
-}
+SPHBASIS_PARAM_DIRECTION_OVERLOAD(square_to_latlong_pdf);
 
 /// A latitude-longitude map of 2n x n texels.
 template <class T>
-class LatLong : public detail::TexelGrid {
+class LatLong : public detail::TexelGrid, public detail::MapMethods<LatLong<T>, T> {
   public:
+    using detail::MapMethods<LatLong<T>, T>::direction_to_uv;
+    using detail::MapMethods<LatLong<T>, T>::footprint;
+
     /// n >= 1 rows (2n columns). Throws std::invalid_argument outside 1 <= n <= 32768 or
     /// 0 <= subtexel_bits <= 24.
     explicit LatLong(int resolution, int subtexel_bits = 0)
-        : detail::TexelGrid(1, 2 * resolution, resolution), n_(resolution), bits_(subtexel_bits) {
-        detail::check_resolution("LatLong", resolution, 1);
-        detail::check_subtexel_bits("LatLong", subtexel_bits);
-    }
-
-    int resolution() const noexcept { return n_; }
+        : detail::TexelGrid("LatLong", 1, 2 * resolution, resolution, resolution, 1,
+                            subtexel_bits) {}
 
     FaceUV<T> direction_to_uv(T x, T y, T z) const noexcept {
         const vec3<T> d = detail::unit(x, y, z);
         const Point2<T> s = latlong_to_square(d.x, d.y, d.z);
         return {0, s.x, s.y};
     }
-    /// direction_to_uv() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), converted to T.
-    template <class D>
-    FaceUV<T> direction_to_uv(const D& d) const noexcept {
-        sphbasis::detail::static_check_direction<D>();
-        return direction_to_uv(static_cast<T>(component<0>(d)), static_cast<T>(component<1>(d)),
-                               static_cast<T>(component<2>(d)));
-    }
     vec3<T> uv_to_direction(int /*face*/, T u, T v) const noexcept {
         return square_to_latlong(u, v);
     }
-    vec3<T> texel_direction(int face, int col, int row) const noexcept {
-        return uv_to_direction(face, u_center<T>(col), v_center<T>(row));
-    }
-
     /// Exact solid angle (2 pi/(2n)) (cos(theta0) - cos(theta1)), in double.
     T texel_solid_angle(int /*face*/, int /*col*/, int row) const noexcept {
         const double pi = 3.1415926535897932;  // pi
@@ -123,17 +101,8 @@ class LatLong : public detail::TexelGrid {
         return {{r0 + i0, r0 + i1, r1 + i0, r1 + i1},
                 {(T(1) - fx) * (T(1) - fy), fx * (T(1) - fy), (T(1) - fx) * fy, fx * fy}};
     }
-    /// footprint() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), converted to T.
-    template <class D>
-    Footprint<T> footprint(const D& d) const noexcept {
-        sphbasis::detail::static_check_direction<D>();
-        return footprint(static_cast<T>(component<0>(d)), static_cast<T>(component<1>(d)),
-                         static_cast<T>(component<2>(d)));
-    }
 
   private:
-    int n_;
-    int bits_;
 };
 
 }  // namespace sphbasis::param

@@ -48,12 +48,7 @@ SPHBASIS_FORCEINLINE Point2<T> octahedral_to_square(T x, T y, T z) noexcept {
 
 /// octahedral_to_square() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its scalar
 /// type.
-template <class D>
-SPHBASIS_FORCEINLINE auto octahedral_to_square(const D& d) noexcept {
-    sphbasis::detail::static_check_direction<D>();
-    using T = direction_scalar_t<D>;
-    return octahedral_to_square<T>(component<0>(d), component<1>(d), component<2>(d));
-}
+SPHBASIS_PARAM_DIRECTION_OVERLOAD(octahedral_to_square);
 
 /// [0, 1]^2 -> unit direction (inverse of octahedral_to_square).
 template <class T>
@@ -80,30 +75,22 @@ SPHBASIS_FORCEINLINE T square_to_octahedral_pdf(T x, T y, T z) noexcept {
 
 /// square_to_octahedral_pdf() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), in its
 /// scalar type.
-template <class D>
-SPHBASIS_FORCEINLINE auto square_to_octahedral_pdf(const D& d) noexcept {
-    sphbasis::detail::static_check_direction<D>();
-    using T = direction_scalar_t<D>;
-    return square_to_octahedral_pdf<T>(component<0>(d), component<1>(d), component<2>(d));
-}
+SPHBASIS_PARAM_DIRECTION_OVERLOAD(square_to_octahedral_pdf);
 
 /// An octahedral map of n x n texels (one face).
 template <class T>
-class Octahedral : public detail::TexelGrid {
+class Octahedral : public detail::TexelGrid, public detail::MapMethods<Octahedral<T>, T> {
   public:
+    using detail::MapMethods<Octahedral<T>, T>::direction_to_uv;
+    using detail::MapMethods<Octahedral<T>, T>::footprint;
+
     /// n >= 1. Throws std::invalid_argument outside 1 <= n <= 32768 or
     /// 0 <= subtexel_bits <= 24.
     explicit Octahedral(int resolution, OctahedralFilter filter = OctahedralFilter::seamless,
                         int subtexel_bits = 0)
-        : detail::TexelGrid(1, resolution, resolution),
-          n_(resolution),
-          filter_(filter),
-          bits_(subtexel_bits) {
-        detail::check_resolution("Octahedral", resolution, 1);
-        detail::check_subtexel_bits("Octahedral", subtexel_bits);
-    }
+        : detail::TexelGrid("Octahedral", 1, resolution, resolution, resolution, 1, subtexel_bits),
+          filter_(filter) {}
 
-    int resolution() const noexcept { return n_; }
     OctahedralFilter filter() const noexcept { return filter_; }
 
     FaceUV<T> direction_to_uv(T x, T y, T z) const noexcept {
@@ -111,20 +98,9 @@ class Octahedral : public detail::TexelGrid {
         const Point2<T> s = octahedral_to_square(d.x, d.y, d.z);
         return {0, s.x, s.y};
     }
-    /// direction_to_uv() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), converted to T.
-    template <class D>
-    FaceUV<T> direction_to_uv(const D& d) const noexcept {
-        sphbasis::detail::static_check_direction<D>();
-        return direction_to_uv(static_cast<T>(component<0>(d)), static_cast<T>(component<1>(d)),
-                               static_cast<T>(component<2>(d)));
-    }
     vec3<T> uv_to_direction(int /*face*/, T u, T v) const noexcept {
         return square_to_octahedral(u, v);
     }
-    vec3<T> texel_direction(int face, int col, int row) const noexcept {
-        return uv_to_direction(face, u_center<T>(col), v_center<T>(row));
-    }
-
     /// Exact solid angle of the texel: its cell is cut along a = 0, b = 0 and |a| + |b| = 1
     /// into convex pieces that are planar on the octahedron, each measured as spherical
     /// triangles (Van Oosterom-Strackee), in double.
@@ -170,13 +146,6 @@ class Octahedral : public detail::TexelGrid {
         }
         return fp;
     }
-    /// footprint() for any 3-vector type (glm::vec3, Eigen::Vector3f, ...), converted to T.
-    template <class D>
-    Footprint<T> footprint(const D& d) const noexcept {
-        sphbasis::detail::static_check_direction<D>();
-        return footprint(static_cast<T>(component<0>(d)), static_cast<T>(component<1>(d)),
-                         static_cast<T>(component<2>(d)));
-    }
 
   private:
     // A rectangle within one quadrant of [-1, 1]^2, cut by the diamond edge |a| + |b| = 1.
@@ -217,9 +186,7 @@ class Octahedral : public detail::TexelGrid {
         return sum;
     }
 
-    int n_;
     OctahedralFilter filter_;
-    int bits_;
 };
 
 }  // namespace sphbasis::param

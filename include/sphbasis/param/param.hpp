@@ -36,6 +36,21 @@
 #include "../core/error.hpp"
 #include "../core/vec.hpp"
 
+/// Defines fn(const D& d) for any 3-vector type D (glm::vec3, Eigen::Vector3f, ...) as
+/// fn<T>(x, y, z) in D's scalar type T: the direction overloads of the free functions
+/// (X_to_square, square_to_X_pdf) of the parameterization headers.
+// clang-format off
+#define SPHBASIS_PARAM_DIRECTION_OVERLOAD(fn)                                                      \
+    template <class D>                                                                             \
+    SPHBASIS_FORCEINLINE auto fn(const D& d) noexcept {                                            \
+        ::sphbasis::detail::static_check_direction<D>();                                           \
+        using T = ::sphbasis::direction_scalar_t<D>;                                               \
+        return fn<T>(::sphbasis::component<0>(d), ::sphbasis::component<1>(d),                     \
+                     ::sphbasis::component<2>(d));                                                 \
+    }                                                                                              \
+    static_assert(true, "SPHBASIS_PARAM_DIRECTION_OVERLOAD ends with a semicolon")
+// clang-format on
+
 namespace sphbasis::param {
 
 /// A point of the plane (a square or disk sample).
@@ -198,27 +213,21 @@ double chebyshev_rect_integral(double x0, double x1, double y0, double y1, G0&& 
         if (lo < hi) s += (b1 - b0) * (g0(hi) - g0(lo));
         return s;
     };
-    // The integrand is even in x and y: fold each interval onto [0, 1].
-    double xs[2][2];
-    int nx = 0;
-    if (x0 < 0 && x1 > 0) {
-        xs[nx][0] = 0, xs[nx][1] = -x0, ++nx;
-        xs[nx][0] = 0, xs[nx][1] = x1, ++nx;
-    } else if (x1 <= 0) {
-        xs[nx][0] = -x1, xs[nx][1] = -x0, ++nx;
-    } else {
-        xs[nx][0] = x0, xs[nx][1] = x1, ++nx;
-    }
-    double ys[2][2];
-    int ny = 0;
-    if (y0 < 0 && y1 > 0) {
-        ys[ny][0] = 0, ys[ny][1] = -y0, ++ny;
-        ys[ny][0] = 0, ys[ny][1] = y1, ++ny;
-    } else if (y1 <= 0) {
-        ys[ny][0] = -y1, ys[ny][1] = -y0, ++ny;
-    } else {
-        ys[ny][0] = y0, ys[ny][1] = y1, ++ny;
-    }
+    // The integrand is even in x and y: fold each interval onto [0, 1] (one or two pieces).
+    auto fold = [](double a0, double a1, double(&out)[2][2]) {
+        int n = 0;
+        if (a0 < 0 && a1 > 0) {
+            out[n][0] = 0, out[n][1] = -a0, ++n;
+            out[n][0] = 0, out[n][1] = a1, ++n;
+        } else if (a1 <= 0) {
+            out[n][0] = -a1, out[n][1] = -a0, ++n;
+        } else {
+            out[n][0] = a0, out[n][1] = a1, ++n;
+        }
+        return n;
+    };
+    double xs[2][2], ys[2][2];
+    const int nx = fold(x0, x1, xs), ny = fold(y0, y1, ys);
     double sum = 0;
     for (int i = 0; i < nx; ++i)
         for (int j = 0; j < ny; ++j)
@@ -281,21 +290,60 @@ class TexelGrid {
                static_cast<std::size_t>(col);
     }
 
+    /// Texels along a face edge as the constructor was given it (cube face edge, rows of the
+    /// lat-long map, ...).
+    int resolution() const noexcept { return n_; }
+
   protected:
-    TexelGrid(int faces, int width, int height) noexcept
-        : faces_(faces), width_(width), height_(height) {}
-    /// Texture coordinates of the centre of texel (col, row): ((col + 0.5)/w, (row + 0.5)/h).
-    template <class T>
-    T u_center(int col) const noexcept {
-        return (static_cast<T>(col) + T(0.5)) / static_cast<T>(width_);
-    }
-    template <class T>
-    T v_center(int row) const noexcept {
-        return (static_cast<T>(row) + T(0.5)) / static_cast<T>(height_);
+    /// Checks the resolution (min_resolution <= n <= 32768) and the subtexel bits (0..24) in
+    /// `name`'s constructor's messages.
+    TexelGrid(const char* name, int faces, int width, int height, int resolution,
+              int min_resolution, int subtexel_bits)
+        : faces_(faces), width_(width), height_(height), n_(resolution), bits_(subtexel_bits) {
+        check_resolution(name, resolution, min_resolution);
+        check_subtexel_bits(name, subtexel_bits);
     }
 
   private:
     int faces_, width_, height_;
+
+  protected:
+    int n_;     // resolution()
+    int bits_;  // subtexel bits of the bilinear weights
+};
+
+/// The methods every parameterization class Map (texel type T) has in the same form: the
+/// direction overloads for any 3-vector type (glm::vec3, Eigen::Vector3f, ..., converted to T)
+/// and texel_direction(). Map derives from it and says `using MapMethods<Map, T>::...` for the
+/// overloads its own (x, y, z) methods would hide.
+template <class Map, class T>
+class MapMethods {
+  public:
+    /// direction_to_uv(x, y, z) for any 3-vector type.
+    template <class D>
+    FaceUV<T> direction_to_uv(const D& d) const noexcept {
+        sphbasis::detail::static_check_direction<D>();
+        return map().direction_to_uv(static_cast<T>(component<0>(d)),
+                                     static_cast<T>(component<1>(d)),
+                                     static_cast<T>(component<2>(d)));
+    }
+    /// footprint(x, y, z) for any 3-vector type.
+    template <class D>
+    Footprint<T> footprint(const D& d) const noexcept {
+        sphbasis::detail::static_check_direction<D>();
+        return map().footprint(static_cast<T>(component<0>(d)), static_cast<T>(component<1>(d)),
+                               static_cast<T>(component<2>(d)));
+    }
+    /// The direction of the centre of texel (col, row) of `face`, at texture coordinates
+    /// ((col + 0.5)/width, (row + 0.5)/height).
+    vec3<T> texel_direction(int face, int col, int row) const noexcept {
+        return map().uv_to_direction(
+            face, (static_cast<T>(col) + T(0.5)) / static_cast<T>(map().width()),
+            (static_cast<T>(row) + T(0.5)) / static_cast<T>(map().height()));
+    }
+
+  private:
+    const Map& map() const noexcept { return static_cast<const Map&>(*this); }
 };
 
 }  // namespace detail

@@ -35,31 +35,26 @@ struct Acn {
     }
 };
 
-/// bands = N: the row recurrence with a compile-time band count, which the compiler unrolls and
-/// keeps in registers.
+/// The row recurrence: N > 0, exactly N bands (the compiler unrolls it and keeps it in
+/// registers); N = 0, `bands` <= max_row_bands bands.
 template <class Fam, int N>
-struct FixedRowKernel {
+struct RowKernelOf {
+    int bands = N;
     template <class V, class Store>
     SPHBASIS_FORCEINLINE void operator()(const V& x, const V& y, const V& z,
                                          Store&& store) const noexcept {
         V zc, X, Y, E;
         Fam::prep(x, y, z, zc, X, Y, E);
-        Fam::template rows<N>(N, zc, X, Y, E, store);
+        if constexpr (N > 0)
+            Fam::template rows<N>(N, zc, X, Y, E, store);
+        else
+            Fam::template rows<max_row_bands>(bands, zc, X, Y, E, store);
     }
 };
-
-/// bands <= max_row_bands: the row recurrence.
+template <class Fam, int N>
+using FixedRowKernel = RowKernelOf<Fam, N>;
 template <class Fam>
-struct RowKernel {
-    int bands;
-    template <class V, class Store>
-    SPHBASIS_FORCEINLINE void operator()(const V& x, const V& y, const V& z,
-                                         Store&& store) const noexcept {
-        V zc, X, Y, E;
-        Fam::prep(x, y, z, zc, X, Y, E);
-        Fam::template rows<max_row_bands>(bands, zc, X, Y, E, store);
-    }
-};
+using RowKernel = RowKernelOf<Fam, 0>;
 
 /// Any band count: the column recurrence in sphbasis::extended.
 template <class Fam>
@@ -107,26 +102,22 @@ struct LargeKernel {
 /// and no reload of the direction between the band-count check and the unrolled kernel.
 template <template <int> class Fixed, class Fam, class F>
 SPHBASIS_FORCEINLINE decltype(auto) with_bands_kernel(int bands, F&& f) {
+#define SPHBASIS_HEMI_FIXED_CASE(N) \
+    case N:                         \
+        return f(Fixed<N>{});
     switch (bands) {
-        case 1:
-            return f(Fixed<1>{});
-        case 2:
-            return f(Fixed<2>{});
-        case 3:
-            return f(Fixed<3>{});
-        case 4:
-            return f(Fixed<4>{});
-        case 5:
-            return f(Fixed<5>{});
-        case 6:
-            return f(Fixed<6>{});
-        case 7:
-            return f(Fixed<7>{});
-        case 8:
-            return f(Fixed<8>{});
+        SPHBASIS_HEMI_FIXED_CASE(1)
+        SPHBASIS_HEMI_FIXED_CASE(2)
+        SPHBASIS_HEMI_FIXED_CASE(3)
+        SPHBASIS_HEMI_FIXED_CASE(4)
+        SPHBASIS_HEMI_FIXED_CASE(5)
+        SPHBASIS_HEMI_FIXED_CASE(6)
+        SPHBASIS_HEMI_FIXED_CASE(7)
+        SPHBASIS_HEMI_FIXED_CASE(8)
         default:
             return f(LargeKernel<Fam>{bands});
     }
+#undef SPHBASIS_HEMI_FIXED_CASE
 }
 
 /// Square function counts: n bands = n^2 functions.
@@ -183,3 +174,19 @@ struct HemiBasis {
 };
 
 }  // namespace sphbasis::detail::hemi
+
+/// Expanded in a hemispherical basis' namespace detail after its family Fam and its
+/// FixedKernel<N>: the kernel names RowKernel and ColumnKernel (<= 64 bands, any band count) and
+/// with_bands_kernel(bands, f), which calls f(kernel) with the fastest kernel for
+/// 1 <= bands <= max_bands.
+// clang-format off
+#define SPHBASIS_HEMI_KERNELS(Fam)                                                                 \
+    using RowKernel = ::sphbasis::detail::hemi::RowKernel<Fam>;                                    \
+    using ColumnKernel = ::sphbasis::detail::hemi::ColumnKernel<Fam>;                              \
+    template <class F>                                                                             \
+    inline decltype(auto) with_bands_kernel(int bands, F&& f) {                                    \
+        return ::sphbasis::detail::hemi::with_bands_kernel<FixedKernel, Fam>(                      \
+            bands, std::forward<F>(f));                                                            \
+    }                                                                                              \
+    static_assert(true, "SPHBASIS_HEMI_KERNELS ends with a semicolon")
+// clang-format on
