@@ -73,7 +73,7 @@ SPHBASIS_FORCEINLINE void check_buffer_size(const char* fn, const char* name, co
     if constexpr (std::is_array_v<P>) {
         if (std::extent_v<P> < need) throw_small_buffer(fn, name, need, std::extent_v<P>);
     } else if constexpr (std::is_pointer_v<P>) {
-        if (b == nullptr && need > 0) throw_null_buffer(fn, name);
+        check_buffer(fn, name, b, need);
     } else if constexpr (is_contiguous_range_v<P>) {
         if (static_cast<std::size_t>(b.size()) < need)
             throw_small_buffer(fn, name, need, static_cast<std::size_t>(b.size()));

@@ -191,27 +191,33 @@ void kernel_to_zonal(int bands, const T* kernel, T* out) {
 
 namespace detail {
 
-/// out_lm = kernel[l] in_lm, the one implementation of convolve() and apply_window(), with the
-/// checks of their API boundary under the caller's name. The kernel is rounded once to the
+/// out_lm = kernel[l] in_lm, the one loop of convolve() and apply_window(); scale_bands() adds
+/// the checks of their pointer API boundary under the caller's name, scale_bands_any() those of
+/// the range one (each buffer checked once). The kernel is rounded once to the
 /// coefficients' scalar (coefficient_scalar_t<C>: float for float and glm::vec3, double for
 /// double), so float coefficients stay float and RGB types need only C * their own scalar.
 template <class T, class C>
-void scale_bands(const char* fn, int bands, const T* kernel, const C* in, C* out) {
+void scale_bands_unchecked(int bands, const T* kernel, const C* in, C* out) {
     using S = coefficient_scalar_t<C>;
     static_assert(sphbasis::detail::is_scalable<C, S>::value,
                   "sphbasis::sh::convolve: the coefficient type C needs C * "
                   "coefficient_scalar_t<C> (specialise sphbasis::coefficient_scalar).");
     static_assert(std::is_arithmetic_v<T>,
                   "sphbasis::sh::convolve: the kernel is float or double.");
+    for (int l = 0; l < bands; ++l) {
+        const S f = static_cast<S>(kernel[l]);
+        for (int k = l * l; k < (l + 1) * (l + 1); ++k) out[k] = in[k] * f;
+    }
+}
+
+template <class T, class C>
+void scale_bands(const char* fn, int bands, const T* kernel, const C* in, C* out) {
     check_bands(bands, fn);
     const std::size_t n = static_cast<std::size_t>(bands);
     sphbasis::detail::check_buffer(fn, "kernel", kernel, n);
     sphbasis::detail::check_buffer(fn, "in", in, n * n);
     sphbasis::detail::check_buffer(fn, "out", out, n * n);
-    for (int l = 0; l < bands; ++l) {
-        const S f = static_cast<S>(kernel[l]);
-        for (int k = l * l; k < (l + 1) * (l + 1); ++k) out[k] = in[k] * f;
-    }
+    scale_bands_unchecked(bands, kernel, in, out);
 }
 
 /// scale_bands() for buffers given as pointers or contiguous ranges (sizes checked).
@@ -223,7 +229,7 @@ void scale_bands_any(const char* fn, int bands, K&& kernel, In&& in, Out&& out) 
     auto pi = sphbasis::detail::buffer_data(fn, "in", in, n * n);
     auto po = sphbasis::detail::buffer_data(fn, "out", out, n * n);
     using C = std::remove_cv_t<std::remove_pointer_t<decltype(po)>>;
-    scale_bands(fn, bands,
+    scale_bands_unchecked(bands,
                 static_cast<const std::remove_cv_t<std::remove_pointer_t<decltype(pk)>>*>(pk),
                 static_cast<const C*>(pi), po);
 }
@@ -369,8 +375,6 @@ template <class LC, class D, std::enable_if_t<sphbasis::detail::is_direction_v<D
 auto irradiance(const LC& L, const D& n) {
     using T = direction_scalar_t<D>;
     const auto* p = sphbasis::detail::buffer_data("sh::irradiance", "L", L, 9);
-    if constexpr (std::is_pointer_v<LC>)
-        sphbasis::detail::check_buffer("sh::irradiance", "L", p, 9);
     return irradiance(p, T(component<0>(n)), T(component<1>(n)), T(component<2>(n)));
 }
 
