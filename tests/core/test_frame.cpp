@@ -187,3 +187,19 @@ TEST_CASE("frame: glm and Eigen matrices and quaternions are read in their own c
     CHECK_THROWS_WITH(sphbasis::to_mat3(Eigen::MatrixXd::Identity(2, 2).eval(), "sh::rotate"),
                       Catch::Contains("sphbasis::sh::rotate(): expected a 3x3 matrix, got 2x2"));
 }
+
+TEST_CASE("frame: quaternions of any finite magnitude give their rotation", "[frame]") {
+    using namespace sphbasis;
+    const Mat3<double> ref = matrix_from_quaternion(0.5, 0.5, 0.5, 0.5);
+    for (double scale : {1e-310, 1e-300, 1e-150, 1.0, 1e150, 1e300}) {
+        const Mat3<double> r = matrix_from_quaternion(0.5 * scale, 0.5 * scale, 0.5 * scale, 0.5 * scale);
+        for (int i = 0; i < 9; ++i) CHECK(r[i] == Approx(ref[i]).margin(1e-15));
+    }
+    // (1e300, 1e300, 0, 0) is (1, 1, 0, 0) scaled: 90 degrees about x.
+    const Mat3<double> rx = matrix_from_quaternion(1e300, 1e300, 0.0, 0.0);
+    const Mat3<double> rx_ref{1, 0, 0, 0, 0, -1, 0, 1, 0};
+    for (int i = 0; i < 9; ++i) CHECK(rx[i] == Approx(rx_ref[i]).margin(1e-15));
+    CHECK_THROWS_AS(matrix_from_quaternion(0.0, 0.0, 0.0, 0.0), std::invalid_argument);
+    CHECK_THROWS_AS(matrix_from_quaternion(std::nan(""), 0.0, 0.0, 1.0), std::invalid_argument);
+    CHECK_THROWS_AS(matrix_from_quaternion(HUGE_VAL, 0.0, 0.0, 1.0), std::invalid_argument);
+}

@@ -652,3 +652,11 @@ TEST_CASE("rotation: the sphbasis rotate command", "[rotation][cli]") {
     }
 }
 #endif
+
+TEST_CASE("rotation: rotate_z refuses a non-finite angle", "[rotation]") {
+    std::vector<double> in(16, 1.0), out(16, 0.0);
+    CHECK_THROWS_WITH(sphbasis::sh::rotate_z(4, std::nan(""), in, out),
+                      Catch::Contains("sh::rotate_z(): expected a finite angle"));
+    CHECK_THROWS_AS(sphbasis::sh::rotate_z(4, HUGE_VAL, in, out), std::invalid_argument);
+    CHECK_THROWS_AS(sphbasis::sh::rotate_z(4, -HUGE_VALF, in.data(), out.data()), std::invalid_argument);
+}

@@ -451,3 +451,23 @@ TEST_CASE("toksvig: normal maps as glm and Eigen vectors", "[toksvig]") {
                         Catch::Contains("sphbasis::toksvig::build_normal_mips(): expected a normal "
                                         "array of width * height = 16 elements, got 8"));
 }
+
+TEMPLATE_TEST_CASE("toksvig: infinite, NaN and negative shininess give finite values", "[toksvig]",
+                   float, double) {
+    using T = TestType;
+    namespace tk = sphbasis::toksvig;
+    const T inf = std::numeric_limits<T>::infinity(), nan = std::numeric_limits<T>::quiet_NaN();
+    for (T s : {inf, nan, T(-1)})
+        for (T l : {T(0), T(0.5), T(1)})
+            for (T c : {T(0), T(0.5), T(1)}) {
+                CHECK(std::isfinite(tk::specular(c, l, s)));
+                CHECK(std::isfinite(tk::factor(l, s)));
+                CHECK(std::isfinite(tk::relative_intensity(l, s)));
+                CHECK(std::isfinite(tk::aliased_specular(c, l, s)));
+                CHECK(std::isfinite(tk::sensitivity(l, s)));
+                CHECK(std::isfinite(tk::faded_specular(c, l, s, T(0.01), T(0.1))));
+            }
+    // An infinite exponent is the limit of large ones: a mirror lobe (1 at c = 1, 0 below).
+    CHECK(tk::specular(T(1), T(1), inf) == T(1));
+    CHECK(tk::specular(T(0.5), T(1), inf) == T(0));
+}

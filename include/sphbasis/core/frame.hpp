@@ -214,10 +214,15 @@ template <class T>
 Mat3<T> matrix_from_quaternion(T w, T x, T y, T z) {
     static_assert(std::is_floating_point_v<T>,
                   "sphbasis::matrix_from_quaternion: T is float or double.");
-    const T n2 = w * w + x * x + y * y + z * z;
-    if (!std::isfinite(n2) || !(n2 > 0) || !std::isfinite(w) || !std::isfinite(x) ||
-        !std::isfinite(y) || !std::isfinite(z))
+    if (!std::isfinite(w) || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
         detail::throw_invalid("matrix_from_quaternion", "a finite non-zero quaternion");
+    // Scale by the largest magnitude first, so that quaternions of any finite size (1e-310
+    // or 1e300 per component) normalise instead of under- or overflowing in the squared norm.
+    const T big = std::fmax(std::fmax(std::fabs(w), std::fabs(x)), std::fmax(std::fabs(y), std::fabs(z)));
+    if (!(big > T(0)))
+        detail::throw_invalid("matrix_from_quaternion", "a finite non-zero quaternion");
+    w /= big, x /= big, y /= big, z /= big;
+    const T n2 = w * w + x * x + y * y + z * z;
     const T s = T(2) / n2;
     return {T(1) - s * (y * y + z * z), s * (x * y - w * z),        s * (x * z + w * y),
             s * (x * y + w * z),        T(1) - s * (x * x + z * z), s * (y * z - w * x),

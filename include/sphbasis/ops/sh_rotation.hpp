@@ -826,10 +826,13 @@ void rotate_z_checked(int bands, T angle, const C* in, C* out) noexcept {
 ///   c' = c cos(m a) - s sin(m a),   s' = s cos(m a) + c sin(m a).
 /// cos(m a), sin(m a) come from std::cos/std::sin every 16 orders and complex multiplication
 /// between, so the error stays at a few ulp for any band count. in and out are raw pointers or
-/// contiguous ranges of bands^2 coefficients; in == out is allowed.
+/// contiguous ranges of bands^2 coefficients; in == out is allowed. A non-finite angle throws
+/// std::invalid_argument (as rotate() does for a non-finite matrix).
 template <class T, class In, class Out>
 void rotate_z(int bands, T angle, const In& in, Out&& out) {
     check_bands(bands, "sh::rotate_z");
+    if (!std::isfinite(static_cast<double>(angle)))
+        sphbasis::detail::throw_invalid("sh::rotate_z", "a finite angle, got " + std::to_string(static_cast<double>(angle)));
     const auto [pin, pout] =
         detail::coefficient_buffers("sh::rotate_z", in, out, detail::coefficient_count(bands));
     if (bands == 0) return;

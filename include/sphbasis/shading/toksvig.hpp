@@ -13,6 +13,9 @@
 //   eq. 11  fade toward the aliased (Na.H/L)^s where quantisation error * eq. 10 > threshold
 //   eq. 12  L = s s0/(s s0 + s0 - s) gives the shininess s under a maximum shininess s0
 //
+// Every function is finite for every input: lengths and cosines are clamped to [0, 1] (NaN to
+// 0), and a shininess that is NaN or negative is taken as 0, +inf as the largest finite value.
+//
 // Corrections to the printed brief (each pinned by tests/shading/test_toksvig.cpp):
 //  - eq. 8/9 as printed, (1 + f_t s X^(f_t s))/(1 + s), puts the power inside the numerator.
 //    The energy argument of eq. 7 (the widened lobe integrates to 2 pi/(1 + f_t s), so it is
@@ -50,6 +53,12 @@ SPHBASIS_FORCEINLINE T clamp01(T x) noexcept {
     // NaN maps to 0 so every later formula sees a value in [0, 1].
     return x > T(1) ? T(1) : (x > T(0) ? x : T(0));
 }
+/// A shininess in [0, largest finite]: NaN and negative values give 0, +inf the largest finite
+/// value, so no formula below meets inf/inf or 0 * inf.
+template <class T>
+SPHBASIS_FORCEINLINE T finite_shininess(T s) noexcept {
+    return s > T(0) ? (s < std::numeric_limits<T>::max() ? s : std::numeric_limits<T>::max()) : T(0);
+}
 }  // namespace detail
 
 /// eq. 1: the variance sigma^2 of the normals in a footprint from the length L of their
@@ -73,6 +82,7 @@ SPHBASIS_FORCEINLINE T length_from_variance(T sigma2) noexcept {
 /// s >= 0 (s = 0 and L = 0 together give 1). Cost: one division.
 template <class T>
 SPHBASIS_FORCEINLINE T factor(T length, T shininess) noexcept {
+    shininess = detail::finite_shininess(shininess);
     const T l = detail::clamp01(length);
     const T den = l + shininess * (T(1) - l);
     return den > T(0) ? l / den : T(1);
@@ -81,6 +91,7 @@ SPHBASIS_FORCEINLINE T factor(T length, T shininess) noexcept {
 /// eq. 6 from the variance: f_t = 1/(1 + s sigma^2).
 template <class T>
 SPHBASIS_FORCEINLINE T factor_from_variance(T sigma2, T shininess) noexcept {
+    shininess = detail::finite_shininess(shininess);
     return T(1) / (T(1) + shininess * (sigma2 > T(0) ? sigma2 : T(0)));
 }
 
@@ -95,6 +106,7 @@ SPHBASIS_FORCEINLINE T widened_exponent(T length, T shininess) noexcept {
 /// 1/(1 + s) at L = 0.
 template <class T>
 SPHBASIS_FORCEINLINE T relative_intensity(T length, T shininess) noexcept {
+    shininess = detail::finite_shininess(shininess);
     return (T(1) + widened_exponent(length, shininess)) / (T(1) + shininess);
 }
 
@@ -103,6 +115,7 @@ SPHBASIS_FORCEINLINE T relative_intensity(T length, T shininess) noexcept {
 /// half vectors give 0, or the constant 1/(1 + s) when f_t s = 0); L is clamped to [0, 1].
 template <class T>
 SPHBASIS_FORCEINLINE T specular(T na_dot_h, T length, T shininess) noexcept {
+    shininess = detail::finite_shininess(shininess);
     const T l = detail::clamp01(length);
     const T sp = widened_exponent(l, shininess);
     const T c = l > T(0) ? detail::clamp01(na_dot_h / l) : T(0);
@@ -120,18 +133,24 @@ SPHBASIS_FORCEINLINE T specular_from_dots(T na_dot_h, T na_dot_na, T shininess) 
 /// from the table axes. Cosine clamped to [0, 1]; Na.Na = 0 gives 0 (pow(0, s), s > 0).
 template <class T>
 SPHBASIS_FORCEINLINE T aliased_specular(T na_dot_h, T na_dot_na, T shininess) noexcept {
+    shininess = detail::finite_shininess(shininess);
     const T l = std::sqrt(detail::clamp01(na_dot_na));
     const T c = l > T(0) ? detail::clamp01(na_dot_h / l) : T(0);
     return std::pow(c, shininess);
 }
 
 /// eq. 10: the sensitivity of the relative intensity to error in L,
-/// s^2/((1 + s)(L + s(1 - L))^2); s^2/(1 + s) at L = 1. L clamped to [0, 1], s > 0.
+/// s^2/((1 + s)(L + s(1 - L))^2); s^2/(1 + s) at L = 1, and 1 at L = 0, s = 0 (the limit along
+/// L = 0). L clamped to [0, 1], s > 0.
 template <class T>
 SPHBASIS_FORCEINLINE T sensitivity(T length, T shininess) noexcept {
+    shininess = detail::finite_shininess(shininess);
     const T l = detail::clamp01(length);
     const T den = l + shininess * (T(1) - l);
-    return shininess * shininess / ((T(1) + shininess) * den * den);
+    // L = 0 and s = 0 together: the limit along L = 0, 1/(1 + s) -> 1. Factored so that no
+    // intermediate overflows for the largest finite s.
+    if (!(den > T(0))) return T(1);
+    return shininess / (T(1) + shininess) * (shininess / den) / den;
 }
 
 /// The worst-case error in L of a normal stored with `bits`-bit signed normalised (SNORM)
