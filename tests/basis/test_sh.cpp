@@ -4,6 +4,9 @@
 #include <fstream>
 #include <glm/vec3.hpp>
 #include <limits>
+#include <climits>
+#include <sphbasis/basis/hsh.hpp>
+#include <sphbasis/basis/makhotkin.hpp>
 #include <sphbasis/basis/sh.hpp>
 #include <sphbasis/core/quadrature.hpp>
 #include <sstream>
@@ -397,4 +400,24 @@ TEST_CASE("sh: values against the mpmath reference (l <= 2000)", "[sh][reference
     }
     CHECK(count > 1000);
     WARN("sh reference: " << count << " values, worst |error|/S = " << worst);
+}
+
+TEST_CASE("sh: counts near the int range are refused, never wrapped or looped on", "[sh]") {
+    using namespace sphbasis;
+    CHECK(sh::count(46340) == 2147395600);
+    CHECK_THROWS_WITH(sh::count(46341), Catch::Contains("sh::count(): expected 0 <= bands <= 46340"));
+    CHECK_THROWS_AS(sh::count(100000), std::invalid_argument);
+    CHECK_THROWS_AS(sh::count(-1), std::invalid_argument);
+    CHECK(sh::degree_of(2147395599) == 46339);
+    CHECK(sh::degree_of(2147395600) == 46340);
+    CHECK(sh::degree_of(INT_MAX) == 46340);
+    CHECK(sh::bands_of_count(2147395600) == 46340);
+    for (int n : {2147395601, INT_MAX - 1, INT_MAX}) {
+        CHECK(sh::bands_of_count(n) == -1);
+        std::vector<double> y(4);
+        CHECK_THROWS_AS(basis_eval<SH>(n, 0.0, 0.0, 1.0, y.data()), std::invalid_argument);
+        CHECK_THROWS_AS(evaluator<SH>(n), std::invalid_argument);
+        CHECK_THROWS_AS(basis_eval<HSH>(n, 0.0, 0.0, 1.0, y.data()), std::invalid_argument);
+        CHECK_THROWS_AS(basis_eval<Makhotkin>(n, 0.0, 0.0, 1.0, y.data()), std::invalid_argument);
+    }
 }

@@ -1,4 +1,5 @@
 // Tests of param/latlong.hpp: the latitude-longitude map, wrap filtering across the seam.
+#include <climits>
 #include <sphbasis/param/latlong.hpp>
 
 #include "param_checks.hpp"
@@ -88,4 +89,9 @@ TEST_CASE("lat-long: convergence", "[param][latlong]") {
     const double b = smooth_mse(LatLong<double>(32), 20000);
     INFO("MSE " << a << " -> " << b);
     CHECK(a / b > 6);
+}
+
+TEST_CASE("lat-long: a resolution near INT_MAX is refused before 2n is formed", "[param][latlong]") {
+    CHECK_THROWS_WITH(sphbasis::param::LatLong<float>(INT_MAX), Catch::Contains("resolution <= 32768"));
+    CHECK_THROWS_AS(sphbasis::param::LatLong<double>(INT_MAX / 2 + 1), std::invalid_argument);
 }

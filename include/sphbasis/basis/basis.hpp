@@ -276,7 +276,10 @@ SPHBASIS_FORCEINLINE void bands_eval(const char* fn, int bands, X x, Y y, Z z, O
             check_buffer_size(fn, "output", out, static_cast<std::size_t>(B::count(bands)));
         }
         T tx = static_cast<T>(x), ty = static_cast<T>(y), tz = static_cast<T>(z);
-        if constexpr (Normalize) normalize_or_pole(tx, ty, tz);
+        if constexpr (Normalize)
+            normalize_or_pole(tx, ty, tz);
+        else
+            SPHBASIS_ASSERT(std::fabs(tx * tx + ty * ty + tz * tz - T(1)) <= T(1e-3));
         bands_eval_at<B>(fn, bands, tx, ty, tz, static_cast<T*>(buffer_data(out)));
     }
 }

@@ -52,16 +52,30 @@ namespace sphbasis::sh {
 /// range of int and the tables the size of memory.
 inline constexpr int max_bands = 8192;
 
-/// ACN index of (l, m), |m| <= l.
-constexpr int index(int l, int m) noexcept { return l * (l + 1) + m; }
-/// Number of functions in n bands.
-constexpr int count(int bands) noexcept { return bands * bands; }
-/// Degree of the function with ACN index k.
+/// Largest band count whose function count bands^2 fits in an int (46340^2 = 2147395600).
+inline constexpr int max_countable_bands = 46340;
+
+/// ACN index of (l, m), for 0 <= l < max_countable_bands and |m| <= l (SPHBASIS_ASSERT in
+/// debug builds; outside that domain the int result would overflow). A hot helper: unchecked.
+constexpr int index(int l, int m) noexcept {
+    SPHBASIS_ASSERT(l >= 0 && l < max_countable_bands && m >= -l && m <= l);
+    return l * (l + 1) + m;
+}
+/// Number of functions in n bands, n^2. Throws std::invalid_argument for n < 0 or
+/// n > max_countable_bands (46340), where n^2 does not fit in an int; e.g.
+/// std::vector<double> y(sh::count(100000)) throws instead of allocating a wrapped size.
+constexpr int count(int bands) {
+    if (bands < 0 || bands > max_countable_bands)
+        sphbasis::detail::throw_invalid(
+            "sh::count", "0 <= bands <= 46340 (bands^2 must fit in an int), got " + std::to_string(bands));
+    return bands * bands;
+}
+/// Degree of the function with ACN index k >= 0 (computed in 64 bits: valid for every int k).
 inline int degree_of(int k) noexcept {
-    int l = static_cast<int>(std::sqrt(static_cast<double>(k)));
+    long long l = static_cast<long long>(std::sqrt(static_cast<double>(k)));
     while (l * l > k) --l;
     while ((l + 1) * (l + 1) <= k) ++l;
-    return l;
+    return static_cast<int>(l);
 }
 
 /// The band count of n = bands^2 functions, or -1 if n is not a positive square. Sizes up to
@@ -71,8 +85,8 @@ inline int bands_of_count(int n) noexcept {
     if (n < 1) return -1;
     for (int b = 1; b <= 8; ++b)
         if (n <= b * b) return n == b * b ? b : -1;
-    const int b = degree_of(n - 1) + 1;
-    return b * b == n ? b : -1;
+    const long long b = degree_of(n - 1) + 1LL;
+    return b * b == n ? static_cast<int>(b) : -1;
 }
 
 namespace detail {

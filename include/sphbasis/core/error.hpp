@@ -14,14 +14,25 @@
 //     finite result for every finite input, and the pole (0, 0, 1) for directions that are
 //     zero or not finite.
 //   * Compile-time misuse: one static_assert sentence.
+//   * Routines whose tables grow with their size (sphere_rule, sh::Rotation, sh::TripleTable)
+//     state their memory in their doc comment and check it before allocating against
+//     SPHBASIS_MAX_TABLE_BYTES (default 4 GiB; define it before including sphbasis to change
+//     it): std::invalid_argument naming the bytes needed, instead of working for seconds and
+//     failing in operator new.
 // The message is built out of line (SPHBASIS_NOINLINE), so an inlined check costs one compare.
 #pragma once
 
 #include <cstddef>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
 #include "../config.hpp"
+
+/// The largest table (bytes) a routine allocates for its size; see the policy above.
+#ifndef SPHBASIS_MAX_TABLE_BYTES
+#define SPHBASIS_MAX_TABLE_BYTES (4ull << 30)
+#endif
 
 namespace sphbasis::detail {
 
@@ -48,6 +59,19 @@ SPHBASIS_FORCEINLINE void check_range(const char* fn, const char* name, I value,
     if (value < lo || value > hi)
         throw_invalid(fn, std::to_string(lo) + " <= " + name + " <= " + std::to_string(hi) +
                               ", got " + std::to_string(value));
+}
+
+/// Throws unless a table of `bytes` bytes (an estimate in double, so it cannot overflow) fits
+/// under SPHBASIS_MAX_TABLE_BYTES: "expected a table of at most <limit> bytes
+/// (SPHBASIS_MAX_TABLE_BYTES), got <bytes> bytes for <what>".
+SPHBASIS_NOINLINE inline void check_table_bytes(const char* fn, double bytes, const std::string& what) {
+    const double limit = static_cast<double>(SPHBASIS_MAX_TABLE_BYTES);
+    if (!(bytes <= limit)) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "a table of at most %.4g bytes (SPHBASIS_MAX_TABLE_BYTES), got %.4g bytes for ",
+                      limit, bytes);
+        throw_invalid(fn, buf + what);
+    }
 }
 
 [[noreturn]] SPHBASIS_NOINLINE inline void throw_null_buffer(const char* fn, const char* name) {

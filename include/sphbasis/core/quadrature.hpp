@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "constants.hpp"
+#include "error.hpp"
 
 namespace sphbasis {
 
@@ -112,6 +113,8 @@ inline DirectionalRule product_rule(int degree, bool hemisphere, const char* fn)
                                     std::to_string(degree));
     const int nt = degree / 2 + 1;  // 2 nt - 1 >= degree
     const int np = degree + 1;      // uniform phi rule: exact for trig degree <= np - 1
+    // 4 doubles (x, y, z, w) a point.
+    check_table_bytes(fn, 32.0 * nt * np, "a degree-" + std::to_string(degree) + " rule");
     std::vector<double> t, wt;
     gauss_legendre(nt, t, wt);
     return azimuthal_rule(nt, np, [&](std::size_t i, double& z, double& s, double& w) {
@@ -125,7 +128,8 @@ inline DirectionalRule product_rule(int degree, bool hemisphere, const char* fn)
 
 /// Product rule on the unit sphere, exact for polynomials in (x, y, z) of degree <= `degree`
 /// (for the product of two SH of degrees l1 and l2: degree >= l1 + l2). Uses
-/// (degree/2 + 1) * (degree + 1) points. Throws std::invalid_argument for degree < 0.
+/// (degree/2 + 1) * (degree + 1) points, 32 bytes each (degree 16384: 4.3 GB). Throws
+/// std::invalid_argument for degree < 0 or a rule above SPHBASIS_MAX_TABLE_BYTES.
 inline DirectionalRule sphere_rule(int degree) {
     return detail::product_rule(degree, false, "sphere_rule");
 }

@@ -351,6 +351,7 @@ class ShFits {
         const int k = bands * bands;
         int total = 0;
         for (const auto& b : bases) {
+            sphbasis::detail::check_basis_functions(b, "imse::ShFits");
             offsets_.push_back(total);
             total += b.n;
         }

@@ -50,8 +50,23 @@ namespace sphbasis {
 
 /// The matrix A with A(i, k) = B_k(d_i) over the rule's points. Basis: BasisFunctions or any
 /// type with an int n and an eval(x, y, z, double* out).
+namespace detail {
+/// Throws unless b.n >= 1 and, for a BasisFunctions, b.eval is set: a default-constructed or
+/// hand-built BasisFunctions{-1, f} / {4, {}} is an error message, not an Eigen assertion or
+/// std::bad_function_call.
+template <class Basis>
+void check_basis_functions(const Basis& b, const char* fn) {
+    if (b.n < 1)
+        sphbasis::detail::throw_invalid(fn, "a basis of n >= 1 functions, got n = " + std::to_string(b.n));
+    if constexpr (std::is_constructible_v<bool, decltype(b.eval)>)
+        if (!static_cast<bool>(b.eval))
+            sphbasis::detail::throw_invalid(fn, "a basis with an evaluation function, got an empty one");
+}
+}  // namespace detail
+
 template <class Basis = BasisFunctions>
 Eigen::MatrixXd evaluation_matrix(const Basis& b, const DirectionalRule& rule) {
+    detail::check_basis_functions(b, "evaluation_matrix");
     Eigen::MatrixXd a(static_cast<Eigen::Index>(rule.size()), b.n);
     std::vector<double> row(static_cast<std::size_t>(b.n));
     for (std::size_t i = 0; i < rule.size(); ++i) {
@@ -174,6 +189,7 @@ Eigen::VectorXd project_mc(const BasisFunctions& b, const Dirs& dirs, const Valu
             "project_mc", "as many values and weights as directions, got " + std::to_string(n) +
                               " directions, " + std::to_string(values.size()) + " values and " +
                               std::to_string(weights.size()) + " weights");
+    detail::check_basis_functions(b, "project_mc");
     const D* pd = dirs.data();
     const auto* pv = values.data();
     const auto* pw = weights.data();
@@ -241,7 +257,7 @@ class BasicLeastSquares {
         : BasicLeastSquares(b, false, rule) {}
     BasicLeastSquares(const BasisFunctions& b, bool orthonormal, const DirectionalRule& rule,
                       double tolerance = 1e-10)
-        : n_(b.n),
+        : n_((detail::check_basis_functions(b, "LeastSquares"), b.n)),
           orthonormal_(orthonormal),
           w_(detail::weights_of(rule)),
           phi_(evaluation_matrix(b, rule)) {

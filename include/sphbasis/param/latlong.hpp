@@ -66,7 +66,8 @@ class LatLong : public detail::TexelGrid, public detail::MapMethods<LatLong<T>, 
     /// n >= 1 rows (2n columns). Throws std::invalid_argument outside 1 <= n <= 32768 or
     /// 0 <= subtexel_bits <= 24.
     explicit LatLong(int resolution, int subtexel_bits = 0)
-        : detail::TexelGrid("LatLong", 1, 2 * resolution, resolution, resolution, 1,
+        : detail::TexelGrid("LatLong", 1, 2 * detail::checked_resolution("LatLong", resolution, 1),
+                            resolution, resolution, 1,
                             subtexel_bits) {}
 
     FaceUV<T> direction_to_uv(T x, T y, T z) const noexcept {

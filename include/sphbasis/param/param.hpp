@@ -259,6 +259,12 @@ inline void check_resolution(const char* fn, int n, int min_n) {
             (std::string("param::") + fn).c_str(),
             std::to_string(min_n) + " <= resolution <= 32768, got " + std::to_string(n));
 }
+/// n after check_resolution(), for constructor initialiser lists that derive sizes from it
+/// (2 n) before the body could check.
+inline int checked_resolution(const char* fn, int n, int min_n) {
+    check_resolution(fn, n, min_n);
+    return n;
+}
 inline void check_subtexel_bits(const char* fn, int bits) {
     if (bits < 0 || bits > 24)
         sphbasis::detail::throw_invalid((std::string("param::") + fn).c_str(),
