@@ -263,6 +263,53 @@ TEST_CASE("Environment: validate rejects bad structs", "[render][lighting]") {
     }
 }
 
+TEST_CASE("Environment: SH projection, constant and rotated lat-long", "[render][lighting]") {
+    Environment c;
+    c.kind = Environment::Kind::constant;
+    c.constant = {1, 2, 3};
+    c.scale = 2;
+    c.rotation = sphbasis::matrix_from_euler_zyz(0.3, 0.2, 0.1);
+    const std::vector<RGB> pc = render::project_sh(c, 3);
+    CHECK(pc[0][2] == Approx(6 * std::sqrt(4 * constants::pi)).epsilon(1e-14));
+    CHECK(pc[4][0] == 0);
+    // A map sampling f(m) = 1 + m.x at texel centres, rotated: L(w) = 1 + w.(R e_x), whose
+    // coefficients are sqrt(4 pi) and (R e_x) sqrt(4 pi / 3) on (y_1-1, y_10, y_11) = (y, z, x).
+    const int W = 128, H = 64;
+    std::vector<float> tex(W * H * 3);
+    for (int j = 0; j < H; ++j)
+        for (int i = 0; i < W; ++i) {
+            const vec3<double> m = sphbasis::param::square_to_latlong((i + 0.5) / W, (j + 0.5) / H);
+            for (int k = 0; k < 3; ++k)
+                tex[static_cast<std::size_t>(3 * (j * W + i) + k)] = static_cast<float>((k + 1) * (1 + m.x));
+        }
+    Environment e;
+    e.kind = Environment::Kind::latlong;
+    e.texels = tex.data();
+    e.width = W;
+    e.height = H;
+    e.scale = 0.5;
+    e.rotation = sphbasis::matrix_from_euler_zyz(0.7, 1.1, -0.4);
+    const std::vector<RGB> p = render::project_sh(e, 3);
+    const vec3<double> a = sphbasis::multiply(e.rotation, vec3<double>{1, 0, 0});
+    const double s0 = std::sqrt(4 * constants::pi), s1 = std::sqrt(4 * constants::pi / 3);
+    const double expect[9] = {s0, a.y * s1, a.z * s1, a.x * s1, 0, 0, 0, 0, 0};
+    for (std::size_t k = 0; k < 9; ++k)
+        for (std::size_t ch = 0; ch < 3; ++ch)
+            CHECK(p[k][ch] == Approx(0.5 * static_cast<double>(ch + 1) * expect[k]).margin(2e-3));
+    // And against quadrature of radiance() (bilinear, so O(1/H) apart at most).
+    std::vector<double> y(9);
+    std::vector<double> q(9, 0.0);
+    const sphbasis::DirectionalRule rule = sphbasis::sphere_rule(60);
+    for (std::size_t i = 0; i < rule.size(); ++i) {
+        const RGB L = e.radiance({rule.x[i], rule.y[i], rule.z[i]});
+        sphbasis::sh::eval(3, rule.x[i], rule.y[i], rule.z[i], y.data());
+        for (std::size_t k = 0; k < 9; ++k) q[k] += rule.w[i] * L[1] * y[k];
+    }
+    for (std::size_t k = 0; k < 9; ++k) CHECK(p[k][1] == Approx(q[k]).margin(2e-3));
+    CHECK_THROWS_WITH(render::project_sh(Environment{Environment::Kind::latlong}, 2),
+                      Catch::Contains("sphbasis::render::validate()"));
+}
+
 TEST_CASE("Lights: radiance of each type", "[render][lighting]") {
     const vec3<double> d = unit({1, 2, 2});
     const Light cone = cone_light({2, 4, 4}, 20, {1, 2, 3});  // non-unit direction

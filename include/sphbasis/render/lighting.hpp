@@ -44,7 +44,9 @@
 #include "../core/error.hpp"
 #include "../core/frame.hpp"
 #include "../core/vec.hpp"
+#include "../ops/sh_latlong.hpp"
 #include "../ops/sh_lights.hpp"
+#include "../ops/sh_rotation.hpp"
 #include "../param/latlong.hpp"
 
 namespace sphbasis::render {
@@ -143,6 +145,43 @@ inline RGB Environment::radiance(const vec3<double>& w) const noexcept {
     for (std::size_t c = 0; c < 3; ++c)
         out[c] = scale * (w00 * static_cast<double>(t00[c]) + w10 * static_cast<double>(t10[c]) +
                           w01 * static_cast<double>(t01[c]) + w11 * static_cast<double>(t11[c]));
+    return out;
+}
+
+/// SH coefficients (real, no Condon-Shortley phase, ACN, bands^2 RGB values) of the
+/// environment's radiance: Kind::none gives zeros; Kind::constant exactly
+/// (constant scale sqrt(4 pi), 0, ...); Kind::latlong the exact projection of the
+/// piecewise-constant map (every texel constant over its solid angle: ops/sh_latlong.hpp),
+/// times scale, then rotated by `rotation` (ops/sh_rotation.hpp). radiance() interpolates the
+/// same texels bilinearly; the two differ by O(1/height) in the coefficients of the highest
+/// bands (and not at all for a constant map). Cost O(width height bands) + O(bands^3).
+/// Throws std::invalid_argument for an environment validate() rejects, bands outside sh's
+/// range or a map larger than 2^20 texels on a side.
+inline std::vector<RGB> project_sh(const Environment& env, int bands) {
+    validate(env);
+    sh::check_bands(bands, "render::project_sh");
+    const std::size_t n = static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands);
+    std::vector<RGB> out(n, RGB{0, 0, 0});
+    if (bands == 0 || env.kind == Environment::Kind::none) return out;
+    if (env.kind == Environment::Kind::constant) {
+        const double s = env.scale * constants::four_pi * constants::inv_sqrt_four_pi;
+        out[0] = {env.constant[0] * s, env.constant[1] * s, env.constant[2] * s};
+        return out;
+    }
+    std::vector<double> a(n), b(n);
+    const std::size_t W = static_cast<std::size_t>(env.width);
+    for (std::size_t c = 0; c < 3; ++c) {
+        sh::project_latlong_fn(
+            bands, env.width, env.height,
+            [&](int col, int row) {
+                return static_cast<double>(
+                    env.texels[3 * (static_cast<std::size_t>(row) * W +
+                                    static_cast<std::size_t>(col)) + c]);
+            },
+            a.data());
+        sh::rotate(bands, env.rotation, a.data(), b.data(), 1e-6);
+        for (std::size_t k = 0; k < n; ++k) out[k][c] = env.scale * b[k];
+    }
     return out;
 }
 
