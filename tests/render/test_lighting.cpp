@@ -13,6 +13,7 @@
 #include "sphbasis/core/quadrature.hpp"
 #include "sphbasis/core/sampling.hpp"
 #include "sphbasis/param/latlong.hpp"
+#include "sphbasis/render/bake.hpp"  // its Quantity enumerators share the namespace
 #include "sphbasis/render/lighting.hpp"
 
 using sphbasis::vec3;
@@ -313,19 +314,19 @@ TEST_CASE("Environment: SH projection, constant and rotated lat-long", "[render]
 TEST_CASE("Lights: radiance of each type", "[render][lighting]") {
     const vec3<double> d = unit({1, 2, 2});
     const Light cone = cone_light({2, 4, 4}, 20, {1, 2, 3});  // non-unit direction
-    CHECK(render::radiance(cone, d)[1] == 2);
-    CHECK(render::radiance(cone, tilted(d, 0.999 * 20 * constants::pi / 180))[2] == 3);
-    CHECK(render::radiance(cone, tilted(d, 1.001 * 20 * constants::pi / 180))[2] == 0);
+    CHECK(render::light_radiance(cone, d)[1] == 2);
+    CHECK(render::light_radiance(cone, tilted(d, 0.999 * 20 * constants::pi / 180))[2] == 3);
+    CHECK(render::light_radiance(cone, tilted(d, 1.001 * 20 * constants::pi / 180))[2] == 0);
     Light hemi;
     hemi.type = Light::Type::hemisphere;
     hemi.direction = {0, 0, 3};
     hemi.color = {1, 1, 1};
     hemi.ground = {0.2, 0.3, 0.4};
-    CHECK(render::radiance(hemi, {0.1, 0, 0.01})[0] == 1);
-    CHECK(render::radiance(hemi, {0.1, 0, -0.01})[2] == 0.4);
+    CHECK(render::light_radiance(hemi, {0.1, 0, 0.01})[0] == 1);
+    CHECK(render::light_radiance(hemi, {0.1, 0, -0.01})[2] == 0.4);
     Light dir;
     dir.direction = d;
-    CHECK(render::radiance(dir, d)[0] == 0);  // delta: only through irradiance() and sample()
+    CHECK(render::light_radiance(dir, d)[0] == 0);  // delta: only through irradiance() and sample()
     // Sphere light: radiance where the ray meets the ball (independent ray-ball test).
     Light sph;
     sph.type = Light::Type::sphere;
@@ -343,11 +344,11 @@ TEST_CASE("Lights: radiance of each type", "[render][lighting]") {
         const bool hit = b * b - c >= 0 && -b > 0;
         if (std::fabs(b * b - c) < 1e-9) continue;  // grazing: either answer
         hits += hit;
-        CHECK((render::radiance(sph, w, x)[0] == 5) == hit);
+        CHECK((render::light_radiance(sph, w, x)[0] == 5) == hit);
     }
     CHECK(hits > 0);
     // Inside the ball: everywhere.
-    CHECK(render::radiance(sph, {0, 0, -1}, sph.position)[0] == 5);
+    CHECK(render::light_radiance(sph, {0, 0, -1}, sph.position)[0] == 5);
 }
 
 TEST_CASE("Lights: directional and hemisphere irradiance", "[render][lighting]") {
@@ -356,8 +357,8 @@ TEST_CASE("Lights: directional and hemisphere irradiance", "[render][lighting]")
     dir.color = {2, 4, 6};
     const vec3<double> n = unit({0, 1, 1});
     const double c = sphbasis::dot(n, unit(dir.direction));
-    CHECK(render::irradiance(dir, n)[1] == Approx(4 * c).epsilon(1e-14));
-    CHECK(render::irradiance(dir, {0, -3, -4})[0] == 0);
+    CHECK(render::light_irradiance(dir, n)[1] == Approx(4 * c).epsilon(1e-14));
+    CHECK(render::light_irradiance(dir, {0, -3, -4})[0] == 0);
     // Hemisphere: quadrature of radiance() against the closed form, every tilt.
     Light hemi;
     hemi.type = Light::Type::hemisphere;
@@ -366,12 +367,12 @@ TEST_CASE("Lights: directional and hemisphere irradiance", "[render][lighting]")
     hemi.ground = {0.25, 0.5, 0.125};
     for (double beta : {0.0, 0.4, 1.2, constants::pi / 2, 2.0, 3.0, constants::pi}) {
         const vec3<double> nn = tilted(hemi.direction, beta);
-        const RGB e = render::irradiance(hemi, nn);
+        const RGB e = render::light_irradiance(hemi, nn);
         // The clamped cosine splits at w.d = 0 where the radiance jumps: integrate each half.
         const double up = band_cosine_integral(0, 1, std::cos(beta));
         const double down = band_cosine_integral(-1, 0, std::cos(beta));
-        const RGB rs = render::radiance(hemi, hemi.direction);
-        const RGB rg = render::radiance(hemi, {-hemi.direction.x, -hemi.direction.y,
+        const RGB rs = render::light_radiance(hemi, hemi.direction);
+        const RGB rg = render::light_radiance(hemi, {-hemi.direction.x, -hemi.direction.y,
                                                -hemi.direction.z});
         for (std::size_t k = 0; k < 3; ++k)
             CHECK(e[k] == Approx(rs[k] * up + rg[k] * down).epsilon(1e-7).margin(1e-9));
@@ -391,7 +392,7 @@ TEST_CASE("Lights: cone irradiance against quadrature, horizon crossings include
                             2.9, 3.14159}) {
             const double cb = std::cos(beta);
             const double ref = band_cosine_integral(std::cos(a), 1, cb);
-            const RGB e = render::irradiance(l, tilted(d, beta));
+            const RGB e = render::light_irradiance(l, tilted(d, beta));
             INFO("angle " << deg << " beta " << beta);
             CHECK(e[0] == Approx(ref).epsilon(1e-6).margin(1e-9));
             CHECK(e[1] == Approx(2 * ref).epsilon(1e-6).margin(1e-9));
@@ -402,10 +403,10 @@ TEST_CASE("Lights: cone irradiance against quadrature, horizon crossings include
         }
     }
     // A full-sphere cone is the constant sky: pi at every normal.
-    CHECK(render::irradiance(cone_light(d, 180, {1, 1, 1}), {0, 1, 0})[0] ==
+    CHECK(render::light_irradiance(cone_light(d, 180, {1, 1, 1}), {0, 1, 0})[0] ==
           Approx(constants::pi).epsilon(1e-12));
     // 90 degrees: the hemisphere's pi (1 + cos)/2.
-    CHECK(render::irradiance(cone_light(d, 90, {1, 1, 1}), tilted(d, 1.0))[0] ==
+    CHECK(render::light_irradiance(cone_light(d, 90, {1, 1, 1}), tilted(d, 1.0))[0] ==
           Approx(constants::pi * (1 + std::cos(1.0)) / 2).epsilon(1e-12));
 }
 
@@ -416,7 +417,7 @@ TEST_CASE("Lights: sphere light irradiance as a function of the point", "[render
     s.radius = 1;
     s.color = {3, 3, 3};
     // On the plane z = 0 below the centre facing up: pi L sin^2(a) = pi L r^2 / D^2.
-    CHECK(render::irradiance(s, {0, 0, 1}, {0, 0, 0})[0] ==
+    CHECK(render::light_irradiance(s, {0, 0, 1}, {0, 0, 0})[0] ==
           Approx(3 * constants::pi / 4).epsilon(1e-12));
     // Points on a line, normals fixed: the ball crosses the horizon of the tilted normal.
     for (double xoff : {0.0, 0.5, 1.5, 3.0, 6.0}) {
@@ -427,16 +428,16 @@ TEST_CASE("Lights: sphere light irradiance as a function of the point", "[render
         const double ca = std::sqrt(1 - (s.radius / D) * (s.radius / D));
         const double ref = 3 * band_cosine_integral(ca, 1, sphbasis::dot(n, unit(p)));
         INFO("x offset " << xoff);
-        CHECK(render::irradiance(s, n, x)[0] == Approx(ref).epsilon(1e-6).margin(1e-9));
+        CHECK(render::light_irradiance(s, n, x)[0] == Approx(ref).epsilon(1e-6).margin(1e-9));
     }
     // Far away it is a directional light of irradiance L pi r^2 / D^2.
     Light far = s;
     far.position = {0, 1000, 1000};
     const double D2 = 2e6;
-    CHECK(render::irradiance(far, {0, 0, 1})[0] ==
+    CHECK(render::light_irradiance(far, {0, 0, 1})[0] ==
           Approx(3 * constants::pi / D2 * unit(far.position).z).epsilon(1e-6));
     // Inside the ball: the whole sphere, pi L.
-    CHECK(render::irradiance(s, {1, 0, 0}, {0, 0, 2.5})[0] == Approx(3 * constants::pi));
+    CHECK(render::light_irradiance(s, {1, 0, 0}, {0, 0, 2.5})[0] == Approx(3 * constants::pi));
 }
 
 TEST_CASE("Lights: SH projections against quadrature of radiance()", "[render][lighting]") {
@@ -446,7 +447,7 @@ TEST_CASE("Lights: SH projections against quadrature of radiance()", "[render][l
         std::vector<RGB> ref(static_cast<std::size_t>(n2), RGB{0, 0, 0});
         std::vector<double> y(static_cast<std::size_t>(n2));
         split_quadrature(axis, splits, 12, 24, [&](const vec3<double>& w, double wt) {
-            const RGB L = render::radiance(l, w, x);
+            const RGB L = render::light_radiance(l, w, x);
             sphbasis::sh::eval(bands, w.x, w.y, w.z, y.data());
             for (int k = 0; k < n2; ++k)
                 for (int c = 0; c < 3; ++c)
@@ -523,7 +524,7 @@ TEST_CASE("Lights: sampling pdf integrates to one and the estimator converges",
         if (l.type == Light::Type::hemisphere) split = 0;
         double total = 0;
         split_quadrature(axis, {split}, 8, 16, [&](const vec3<double>& w, double wt) {
-            total += wt * render::sample_pdf(l, x, w);
+            total += wt * render::sample_light_pdf(l, x, w);
         });
         CHECK(total == Approx(1).epsilon(1e-12));
         // The estimator over 4096 Hammersley points converges to the closed form.
@@ -532,11 +533,11 @@ TEST_CASE("Lights: sampling pdf integrates to one and the estimator converges",
         for (std::uint32_t i = 0; i < N; ++i) {
             double u1, u2;
             sphbasis::hammersley(i, N, u1, u2);
-            const render::LightSample s = render::sample(l, x, u1, u2);
+            const render::LightSample s = render::sample_light(l, x, u1, u2);
             REQUIRE(s.pdf > 0);
-            CHECK(s.pdf == Approx(render::sample_pdf(l, x, s.w)).epsilon(1e-12));
+            CHECK(s.pdf == Approx(render::sample_light_pdf(l, x, s.w)).epsilon(1e-12));
             CHECK(sphbasis::dot(s.w, s.w) == Approx(1).epsilon(1e-14));
-            const RGB L = render::radiance(l, s.w, x);
+            const RGB L = render::light_radiance(l, s.w, x);
             CHECK(s.radiance[0] == L[0]);
             if (l.type == Light::Type::sphere) {
                 // x + distance w lies on the ball's near surface.
@@ -554,7 +555,7 @@ TEST_CASE("Lights: sampling pdf integrates to one and the estimator converges",
         }
         const double mean = sum / N;
         const double stderr_ = std::sqrt(std::max(0.0, sum2 / N - mean * mean) / N);
-        const double ref = render::irradiance(l, n, x)[0];
+        const double ref = render::light_irradiance(l, n, x)[0];
         CHECK(std::fabs(mean - ref) <= 4 * stderr_ + 1e-12);
         CHECK(std::fabs(mean - ref) <= 0.01 * ref);
     }
@@ -562,12 +563,12 @@ TEST_CASE("Lights: sampling pdf integrates to one and the estimator converges",
     Light dir;
     dir.direction = {0, 0, 2};
     dir.color = {4, 4, 4};
-    const render::LightSample s = render::sample(dir, x, 0.3, 0.6);
+    const render::LightSample s = render::sample_light(dir, x, 0.3, 0.6);
     CHECK(s.delta);
     CHECK(s.pdf == 1);
     CHECK(s.w.z == 1);
     CHECK(s.radiance[0] * std::max(0.0, sphbasis::dot(n, s.w)) ==
-          Approx(render::irradiance(dir, n)[0]));
+          Approx(render::light_irradiance(dir, n)[0]));
 }
 
 TEST_CASE("Lights: validate rejects bad lights with clear messages", "[render][lighting]") {
@@ -615,6 +616,6 @@ TEST_CASE("Lights: validate rejects bad lights with clear messages", "[render][l
         b.direction = {std::nan(""), 0, 1};
         CHECK_THROWS_WITH(render::validate(b), Catch::StartsWith("sphbasis::render::validate()"));
         // The hot functions stay finite on it (the pole is read).
-        CHECK(std::isfinite(render::irradiance(b, {0, 0, 1})[0]));
+        CHECK(std::isfinite(render::light_irradiance(b, {0, 0, 1})[0]));
     }
 }

@@ -9,11 +9,14 @@
 //     between texel centres with wrap addressing in u and clamp-to-edge in v, rotated by
 //     `rotation` (world = rotation * map, so the map is read at rotation^T w) and times `scale`.
 //     validate(Environment) checks the struct once; radiance() itself never throws.
-//   * Analytic lights (struct Light): radiance(light, w[, x]), the closed-form unoccluded
-//     irradiance irradiance(light, n[, x]) of a surface with unit normal n (at point x for the
-//     sphere light), sample(light, x, u1, u2) for Monte Carlo with occlusion (direction, pdf,
-//     radiance, distance to the emitter), and project_sh(light, bands[, x]), the SH coefficients
-//     of the light's radiance (ops/sh_lights.hpp does the work).
+//   * Analytic lights (struct Light): light_radiance(light, w[, x]), the closed-form unoccluded
+//     irradiance light_irradiance(light, n[, x]) of a surface with unit normal n (at point x for
+//     the sphere light), sample_light(light, x, u1, u2) and sample_light_pdf(light, x, w) for
+//     Monte Carlo with occlusion (direction, pdf, radiance, distance to the emitter), and
+//     project_sh(light, bands[, x]), the SH coefficients of the light's radiance
+//     (ops/sh_lights.hpp does the work); project_sh(environment, bands) likewise.
+//     (The free functions carry a light_ prefix: render::radiance and render::irradiance are
+//     enumerators of render::Quantity in bake.hpp.)
 //
 // Irradiance of a uniform spherical cap. A cap of angular radius a about the unit direction d,
 // of radiance L, seen from a surface with unit normal n, cos(beta) = n . d, delivers
@@ -43,6 +46,7 @@
 #include "../core/constants.hpp"
 #include "../core/error.hpp"
 #include "../core/frame.hpp"
+#include "../core/sampling.hpp"
 #include "../core/vec.hpp"
 #include "../ops/sh_latlong.hpp"
 #include "../ops/sh_lights.hpp"
@@ -335,13 +339,14 @@ inline RGB scaled(const RGB& c, double s) noexcept { return {c[0] * s, c[1] * s,
 
 /// Radiance of the light arriving at point x (used by the sphere light only; the distant lights
 /// ignore it) from direction w (normalised here; a zero or non-finite w reads +z):
-///   directional: 0 (a delta light: its light arrives only through irradiance() and sample());
+///   directional: 0 (a delta light: its light arrives only through light_irradiance()
+///                and sample_light());
 ///   cone:        color where w . d >= cos(angle), else 0;
 ///   hemisphere:  color where w . d >= 0, ground where w . d < 0;
 ///   sphere:      color where the ray x + t w (t > 0) meets the ball, i.e. w . d >= cos(a) with
 ///                sin(a) = radius / |position - x|; color everywhere when x is inside the ball.
 /// Never throws. Cost: a few flops (one sqrt).
-inline RGB radiance(const Light& light, const vec3<double>& w,
+inline RGB light_radiance(const Light& light, const vec3<double>& w,
                     const vec3<double>& x = {0, 0, 0}) noexcept {
     const vec3<double> u = detail::unit_or_pole(w);
     switch (light.type) {
@@ -372,7 +377,7 @@ inline RGB radiance(const Light& light, const vec3<double>& w,
 ///                the cone is wholly above the horizon, 0 wholly below, Snyder's form across it);
 ///   sphere:      the same with the cap the ball subtends at x (pi color when x is inside it).
 /// A white Lambertian surface reflects E/pi. Never throws. Cost: a few transcendental calls.
-inline RGB irradiance(const Light& light, const vec3<double>& n,
+inline RGB light_irradiance(const Light& light, const vec3<double>& n,
                       const vec3<double>& x = {0, 0, 0}) noexcept {
     const vec3<double> nn = detail::unit_or_pole(n);
     switch (light.type) {
@@ -424,7 +429,7 @@ struct LightSample {
 ///                distance 0: nothing can occlude it);
 ///   hemisphere:  uniform over the sphere, pdf 1/(4 pi), radiance color or ground.
 /// Never throws; a cone of angle 0 gives pdf infinity and radiance 0 (it carries no light).
-inline LightSample sample(const Light& light, const vec3<double>& x, double u1,
+inline LightSample sample_light(const Light& light, const vec3<double>& x, double u1,
                           double u2) noexcept {
     LightSample s;
     switch (light.type) {
@@ -478,9 +483,9 @@ inline LightSample sample(const Light& light, const vec3<double>& x, double u1,
     return s;
 }
 
-/// Probability density (solid angle) of sample() choosing w at x; 0 outside the cone, 0 for the
+/// Probability density (solid angle) of sample_light() choosing w at x; 0 outside the cone, 0 for the
 /// directional light (a delta: no density over directions).
-inline double sample_pdf(const Light& light, const vec3<double>& x,
+inline double sample_light_pdf(const Light& light, const vec3<double>& x,
                          const vec3<double>& w) noexcept {
     switch (light.type) {
         case Light::Type::directional: return 0;
