@@ -47,19 +47,19 @@ Measures check_mesh(const Mesh& m, bool closed) {
     // Used vertices: unit normals, unit tangents orthogonal to them, w = +-1, uv in [0, 1].
     std::vector<char> used(nv, 0);
     for (std::uint32_t idx : m.indices) used[idx] = 1;
+    int bad_vertices = 0;
     for (std::uint32_t i = 0; i < nv; ++i) {
         if (!used[i]) continue;
         const vec3<double> n = nrm(m, i);
         const vec3<double> t{m.tangents[4 * i], m.tangents[4 * i + 1], m.tangents[4 * i + 2]};
-        CHECK(len(n) == Approx(1).epsilon(1e-6));
-        CHECK(len(t) == Approx(1).epsilon(1e-6));
-        CHECK(std::fabs(sphbasis::dot(n, t)) < 1e-6);
-        CHECK(std::fabs(m.tangents[4 * i + 3]) == 1.0f);
-        CHECK(m.uvs[2 * i] >= 0.0f);
-        CHECK(m.uvs[2 * i] <= 1.0f);
-        CHECK(m.uvs[2 * i + 1] >= 0.0f);
-        CHECK(m.uvs[2 * i + 1] <= 1.0f);
+        const float u = m.uvs[2 * i], v = m.uvs[2 * i + 1];
+        const bool ok = std::fabs(len(n) - 1) < 1e-6 && std::fabs(len(t) - 1) < 1e-6 &&
+                        std::fabs(sphbasis::dot(n, t)) < 1e-6 &&
+                        std::fabs(m.tangents[4 * i + 3]) == 1.0f && u >= 0.0f && u <= 1.0f &&
+                        v >= 0.0f && v <= 1.0f;
+        bad_vertices += !ok;
     }
+    CHECK(bad_vertices == 0);
     Measures r;
     using Key = std::array<float, 3>;
     std::map<Key, int> weld;
@@ -195,12 +195,13 @@ TEST_CASE("shapes::sphere: closed, on the sphere, area and volume converge", "[r
     CHECK(m.vertex_count() == 13 * 25);
     CHECK(m.triangle_count() == 2 * 12 * 24 - 2 * 24);
     const Measures s = check_mesh(m, true);
+    int off_sphere = 0;
     for (std::uint32_t i = 0; i < m.vertex_count(); ++i) {
         const vec3<double> d = sub(pos(m, i), c);
-        CHECK(len(d) == Approx(r).epsilon(1e-6));
-        const vec3<double> n = nrm(m, i);
-        CHECK(sphbasis::dot(d, n) / r == Approx(1).epsilon(1e-6));
+        off_sphere += std::fabs(len(d) - r) > 1e-6 * r ||
+                      std::fabs(sphbasis::dot(d, nrm(m, i)) / r - 1) > 1e-6;
     }
+    CHECK(off_sphere == 0);
     // An inscribed polyhedron: a little below the sphere's area and volume, O(1/n^2).
     const double A = 4 * constants::pi * r * r, V = 4 * constants::pi * r * r * r / 3;
     CHECK(s.area < A);
@@ -208,9 +209,9 @@ TEST_CASE("shapes::sphere: closed, on the sphere, area and volume converge", "[r
     CHECK(s.volume < V);
     CHECK(s.volume > 0.95 * V);
     // Finer tessellation gets closer.
-    const Mesh f = shapes::sphere(c, r, 24, 48);
+    const Mesh f = shapes::sphere(c, r, 18, 36);
     const Measures sf = check_mesh(f, true);
-    CHECK(std::fabs(sf.volume - V) < 0.35 * std::fabs(s.volume - V));
+    CHECK(std::fabs(sf.volume - V) < 0.55 * std::fabs(s.volume - V));
     check_uv_overlap(m, 96);
     // Minimal tessellation still closed and valid.
     check_mesh(shapes::sphere({0, 0, 0}, 1, 2, 3), true);
