@@ -52,7 +52,8 @@ double band_cosine_integral(double t0, double t1, double cb) {
     for (std::size_t e = 0; e + 1 < ends.size(); ++e)
         for (int p = 0; p < panels; ++p) {
             const double lo = ends[e], hi = ends[e + 1];
-            const double a = static_cast<double>(p) / panels, b = static_cast<double>(p + 1) / panels;
+            const double a = static_cast<double>(p) / panels,
+                         b = static_cast<double>(p + 1) / panels;
             for (std::size_t k = 0; k < x.size(); ++k) {
                 // s in [0, 1] -> t = lo + (hi - lo)(1 - cos(pi s))/2 clusters nodes at the kinks.
                 const double sp = 0.5 * (a + b) + 0.5 * (b - a) * x[k];
@@ -141,10 +142,10 @@ TEST_CASE("Environment: lat-long texel centres, bilinear, wrap in u, clamp in v"
     };
     for (int j = 0; j < H; ++j)
         for (int i = 0; i < W; ++i) {
-            const vec3<double> d =
-                sphbasis::param::square_to_latlong((i + 0.5) / W, (j + 0.5) / H);
+            const vec3<double> d = sphbasis::param::square_to_latlong((i + 0.5) / W, (j + 0.5) / H);
             const RGB r = e.radiance(d);
-            for (int c = 0; c < 3; ++c) CHECK(r[static_cast<std::size_t>(c)] == Approx(texel(i, j, c)).epsilon(1e-12));
+            for (int c = 0; c < 3; ++c)
+                CHECK(r[static_cast<std::size_t>(c)] == Approx(texel(i, j, c)).epsilon(1e-12));
         }
     // Halfway between two centres of a row: their mean.
     {
@@ -156,9 +157,9 @@ TEST_CASE("Environment: lat-long texel centres, bilinear, wrap in u, clamp in v"
     {
         const vec3<double> d = sphbasis::param::square_to_latlong(5.0 / W, 2.0 / H);
         const RGB r = e.radiance(d);
-        CHECK(r[0] == Approx(0.25 * (texel(4, 1, 0) + texel(5, 1, 0) + texel(4, 2, 0) +
-                                     texel(5, 2, 0)))
-                           .epsilon(1e-12));
+        CHECK(r[0] ==
+              Approx(0.25 * (texel(4, 1, 0) + texel(5, 1, 0) + texel(4, 2, 0) + texel(5, 2, 0)))
+                  .epsilon(1e-12));
     }
     // The seam phi = 0 (u = 0): the mean of the last and first columns, from both sides.
     {
@@ -281,7 +282,8 @@ TEST_CASE("Environment: SH projection, constant and rotated lat-long", "[render]
         for (int i = 0; i < W; ++i) {
             const vec3<double> m = sphbasis::param::square_to_latlong((i + 0.5) / W, (j + 0.5) / H);
             for (int k = 0; k < 3; ++k)
-                tex[static_cast<std::size_t>(3 * (j * W + i) + k)] = static_cast<float>((k + 1) * (1 + m.x));
+                tex[static_cast<std::size_t>(3 * (j * W + i) + k)] =
+                    static_cast<float>((k + 1) * (1 + m.x));
         }
     Environment e;
     e.kind = Environment::Kind::latlong;
@@ -372,12 +374,12 @@ TEST_CASE("Lights: directional and hemisphere irradiance", "[render][lighting]")
         const double up = band_cosine_integral(0, 1, std::cos(beta));
         const double down = band_cosine_integral(-1, 0, std::cos(beta));
         const RGB rs = render::light_radiance(hemi, hemi.direction);
-        const RGB rg = render::light_radiance(hemi, {-hemi.direction.x, -hemi.direction.y,
-                                               -hemi.direction.z});
+        const RGB rg =
+            render::light_radiance(hemi, {-hemi.direction.x, -hemi.direction.y, -hemi.direction.z});
         for (std::size_t k = 0; k < 3; ++k)
             CHECK(e[k] == Approx(rs[k] * up + rg[k] * down).epsilon(1e-7).margin(1e-9));
-        CHECK(e[0] == Approx(constants::pi * (1.5 * (1 + std::cos(beta)) / 2 +
-                                              0.25 * (1 - std::cos(beta)) / 2))
+        CHECK(e[0] == Approx(constants::pi *
+                             (1.5 * (1 + std::cos(beta)) / 2 + 0.25 * (1 - std::cos(beta)) / 2))
                           .epsilon(1e-12));
     }
 }
@@ -388,8 +390,8 @@ TEST_CASE("Lights: cone irradiance against quadrature, horizon crossings include
     for (double deg : {0.5, 5.0, 30.0, 60.0, 89.0, 90.0, 91.0, 135.0, 179.0, 180.0}) {
         const double a = deg * constants::pi / 180;
         const Light l = cone_light(d, deg, {1, 2, 0.5});
-        for (double beta : {0.0, 0.3, 1.0, 1.4, 1.5, 1.55, 1.5707963267948966, 1.6, 1.8, 2.2,
-                            2.9, 3.14159}) {
+        for (double beta :
+             {0.0, 0.3, 1.0, 1.4, 1.5, 1.55, 1.5707963267948966, 1.6, 1.8, 2.2, 2.9, 3.14159}) {
             const double cb = std::cos(beta);
             const double ref = band_cosine_integral(std::cos(a), 1, cb);
             const RGB e = render::light_irradiance(l, tilted(d, beta));
@@ -398,7 +400,8 @@ TEST_CASE("Lights: cone irradiance against quadrature, horizon crossings include
             CHECK(e[1] == Approx(2 * ref).epsilon(1e-6).margin(1e-9));
             // Wholly above the horizon: pi sin^2(a) cos(beta).
             if (beta + a < constants::pi / 2 - 1e-9)
-                CHECK(e[0] == Approx(constants::pi * std::sin(a) * std::sin(a) * cb).epsilon(1e-12));
+                CHECK(e[0] ==
+                      Approx(constants::pi * std::sin(a) * std::sin(a) * cb).epsilon(1e-12));
             if (beta - a > constants::pi / 2 + 1e-9) CHECK(e[0] == 0);
         }
     }
@@ -509,8 +512,7 @@ TEST_CASE("Lights: sampling pdf integrates to one and the estimator converges",
     hemi.ground = {0.3, 0.3, 0.3};
     const vec3<double> x{0, 0, 0};
     const vec3<double> n = unit({0.8, 0.2, 0.1});  // the cone and the ball cross its horizon
-    const Light lights[] = {cone_light(d, 40, {1, 1, 1}), cone_light(d, 150, {1, 1, 1}), sph,
-                            hemi};
+    const Light lights[] = {cone_light(d, 40, {1, 1, 1}), cone_light(d, 150, {1, 1, 1}), sph, hemi};
     for (const Light& l : lights) {
         INFO(render::light_type_name(l.type) << " angle " << l.angle_deg);
         // The pdf integrates to one over the sphere (split where it jumps).

@@ -70,7 +70,8 @@ Measures check_mesh(const Mesh& m, bool closed) {
     std::map<std::pair<int, int>, int> half_edges;
     int bad_frames = 0, bad_normals = 0;
     for (std::size_t t = 0; t < nt; ++t) {
-        const std::uint32_t a = m.indices[3 * t], b = m.indices[3 * t + 1], c = m.indices[3 * t + 2];
+        const std::uint32_t a = m.indices[3 * t], b = m.indices[3 * t + 1],
+                            c = m.indices[3 * t + 2];
         const vec3<double> p0 = pos(m, a), p1 = pos(m, b), p2 = pos(m, c);
         const vec3<double> e1 = sub(p1, p0), e2 = sub(p2, p0);
         const vec3<double> g = sphbasis::cross(e1, e2);
@@ -133,10 +134,14 @@ void check_uv_overlap(const Mesh& m, int grid) {
         const double area2 = (u[1] - u[0]) * (v[2] - v[0]) - (u[2] - u[0]) * (v[1] - v[0]);
         CHECK(area2 > 0);  // every UV triangle counter-clockwise: no flips
         uv_area += 0.5 * std::fabs(area2);
-        const int i0 = std::max(0, static_cast<int>(std::floor(*std::min_element(u, u + 3) * grid)));
-        const int i1 = std::min(grid - 1, static_cast<int>(std::floor(*std::max_element(u, u + 3) * grid)));
-        const int j0 = std::max(0, static_cast<int>(std::floor(*std::min_element(v, v + 3) * grid)));
-        const int j1 = std::min(grid - 1, static_cast<int>(std::floor(*std::max_element(v, v + 3) * grid)));
+        const int i0 =
+            std::max(0, static_cast<int>(std::floor(*std::min_element(u, u + 3) * grid)));
+        const int i1 =
+            std::min(grid - 1, static_cast<int>(std::floor(*std::max_element(u, u + 3) * grid)));
+        const int j0 =
+            std::max(0, static_cast<int>(std::floor(*std::min_element(v, v + 3) * grid)));
+        const int j1 =
+            std::min(grid - 1, static_cast<int>(std::floor(*std::max_element(v, v + 3) * grid)));
         for (int j = j0; j <= j1; ++j)
             for (int i = i0; i <= i1; ++i) {
                 const double pu = (i + 0.5123) / grid, pv = (j + 0.4871) / grid;
@@ -179,10 +184,13 @@ TEST_CASE("shapes::box: closed, area, volume, outward normals, atlas", "[render]
     // One texel density: UV area / world area is the same for every face.
     double ratio0 = 0;
     for (std::size_t f = 0; f < 6; ++f) {
-        const std::uint32_t a = m.indices[6 * f], b = m.indices[6 * f + 1], cc = m.indices[6 * f + 2];
-        const double wa = len(sphbasis::cross(sub(pos(m, b), pos(m, a)), sub(pos(m, cc), pos(m, a))));
-        const double ua = std::fabs((m.uvs[2 * b] - m.uvs[2 * a]) * (m.uvs[2 * cc + 1] - m.uvs[2 * a + 1]) -
-                                    (m.uvs[2 * cc] - m.uvs[2 * a]) * (m.uvs[2 * b + 1] - m.uvs[2 * a + 1]));
+        const std::uint32_t a = m.indices[6 * f], b = m.indices[6 * f + 1],
+                            cc = m.indices[6 * f + 2];
+        const double wa =
+            len(sphbasis::cross(sub(pos(m, b), pos(m, a)), sub(pos(m, cc), pos(m, a))));
+        const double ua =
+            std::fabs((m.uvs[2 * b] - m.uvs[2 * a]) * (m.uvs[2 * cc + 1] - m.uvs[2 * a + 1]) -
+                      (m.uvs[2 * cc] - m.uvs[2 * a]) * (m.uvs[2 * b + 1] - m.uvs[2 * a + 1]));
         if (f == 0) ratio0 = ua / wa;
         CHECK(ua / wa == Approx(ratio0).epsilon(1e-5));
     }

@@ -90,34 +90,38 @@ struct Environment {
 inline void validate(const Environment& env) {
     const char* fn = "render::validate";
     if (!std::isfinite(env.scale))
-        sphbasis::detail::throw_invalid(fn, "a finite environment scale, got " + std::to_string(env.scale));
+        sphbasis::detail::throw_invalid(
+            fn, "a finite environment scale, got " + std::to_string(env.scale));
     sphbasis::detail::check_orthonormal(env.rotation, 1e-6, fn);
     if (env.kind == Environment::Kind::constant) {
         for (double c : env.constant)
             if (!std::isfinite(c))
-                sphbasis::detail::throw_invalid(fn, "a finite constant environment radiance, got " +
-                                              std::to_string(c));
+                sphbasis::detail::throw_invalid(
+                    fn, "a finite constant environment radiance, got " + std::to_string(c));
     } else if (env.kind == Environment::Kind::latlong) {
         if (env.width < 1 || env.height < 1 ||
             static_cast<long long>(env.width) * env.height >= (1LL << 31))
-            sphbasis::detail::throw_invalid(fn, "a lat-long environment of width >= 1 and height >= 1 "
-                                      "texels (fewer than 2^31), got " +
-                                          std::to_string(env.width) + " x " +
-                                          std::to_string(env.height));
+            sphbasis::detail::throw_invalid(fn,
+                                            "a lat-long environment of width >= 1 and height >= 1 "
+                                            "texels (fewer than 2^31), got " +
+                                                std::to_string(env.width) + " x " +
+                                                std::to_string(env.height));
         if (env.texels == nullptr)
-            sphbasis::detail::throw_invalid(fn, "non-null texels for a lat-long environment, got null");
-        const std::size_t n = static_cast<std::size_t>(env.width) *
-                              static_cast<std::size_t>(env.height) * 3;
+            sphbasis::detail::throw_invalid(fn,
+                                            "non-null texels for a lat-long environment, got null");
+        const std::size_t n =
+            static_cast<std::size_t>(env.width) * static_cast<std::size_t>(env.height) * 3;
         for (std::size_t i = 0; i < n; ++i)
             if (!std::isfinite(env.texels[i]))
                 sphbasis::detail::throw_invalid(fn, "finite environment texels, got " +
-                                              std::to_string(env.texels[i]) + " at float " +
-                                              std::to_string(i));
+                                                        std::to_string(env.texels[i]) +
+                                                        " at float " + std::to_string(i));
     }
 }
 
 inline RGB Environment::radiance(const vec3<double>& w) const noexcept {
-    if (kind == Kind::constant) return {constant[0] * scale, constant[1] * scale, constant[2] * scale};
+    if (kind == Kind::constant)
+        return {constant[0] * scale, constant[1] * scale, constant[2] * scale};
     if (kind != Kind::latlong || texels == nullptr || width < 1 || height < 1) return {0, 0, 0};
     // Map direction m = R^T w.
     const Mat3<double>& r = rotation;
@@ -139,12 +143,15 @@ inline RGB Environment::radiance(const vec3<double>& w) const noexcept {
     j0 = clamp(j0);
     j1 = clamp(j1);
     const std::size_t W = static_cast<std::size_t>(width);
-    const float* t00 = texels + 3 * (static_cast<std::size_t>(j0) * W + static_cast<std::size_t>(i0));
-    const float* t10 = texels + 3 * (static_cast<std::size_t>(j0) * W + static_cast<std::size_t>(i1));
-    const float* t01 = texels + 3 * (static_cast<std::size_t>(j1) * W + static_cast<std::size_t>(i0));
-    const float* t11 = texels + 3 * (static_cast<std::size_t>(j1) * W + static_cast<std::size_t>(i1));
-    const double w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy,
-                 w11 = fx * fy;
+    const float* t00 =
+        texels + 3 * (static_cast<std::size_t>(j0) * W + static_cast<std::size_t>(i0));
+    const float* t10 =
+        texels + 3 * (static_cast<std::size_t>(j0) * W + static_cast<std::size_t>(i1));
+    const float* t01 =
+        texels + 3 * (static_cast<std::size_t>(j1) * W + static_cast<std::size_t>(i0));
+    const float* t11 =
+        texels + 3 * (static_cast<std::size_t>(j1) * W + static_cast<std::size_t>(i1));
+    const double w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
     RGB out;
     for (std::size_t c = 0; c < 3; ++c)
         out[c] = scale * (w00 * static_cast<double>(t00[c]) + w10 * static_cast<double>(t10[c]) +
@@ -178,9 +185,9 @@ inline std::vector<RGB> project_sh(const Environment& env, int bands) {
         sh::project_latlong_fn(
             bands, env.width, env.height,
             [&](int col, int row) {
-                return static_cast<double>(
-                    env.texels[3 * (static_cast<std::size_t>(row) * W +
-                                    static_cast<std::size_t>(col)) + c]);
+                return static_cast<double>(env.texels[3 * (static_cast<std::size_t>(row) * W +
+                                                           static_cast<std::size_t>(col)) +
+                                                      c]);
             },
             a.data());
         sh::rotate(bands, env.rotation, a.data(), b.data(), 1e-6);
@@ -208,10 +215,14 @@ struct Light {
 /// The name of a light type: "directional", "sphere", "cone", "hemisphere".
 inline const char* light_type_name(Light::Type t) noexcept {
     switch (t) {
-        case Light::Type::directional: return "directional";
-        case Light::Type::sphere: return "sphere";
-        case Light::Type::cone: return "cone";
-        case Light::Type::hemisphere: return "hemisphere";
+        case Light::Type::directional:
+            return "directional";
+        case Light::Type::sphere:
+            return "sphere";
+        case Light::Type::cone:
+            return "cone";
+        case Light::Type::hemisphere:
+            return "hemisphere";
     }
     return "unknown";
 }
@@ -224,36 +235,36 @@ inline void validate(const Light& light) {
     const char* fn = "render::validate";
     const int t = static_cast<int>(light.type);
     if (t < 0 || t > 3)
-        sphbasis::detail::throw_invalid(fn, "a light type directional, sphere, cone or hemisphere, got " +
-                                      std::to_string(t));
+        sphbasis::detail::throw_invalid(
+            fn, "a light type directional, sphere, cone or hemisphere, got " + std::to_string(t));
     const std::string name = std::string(light_type_name(light.type)) + " light";
     for (double c : light.color)
         if (!std::isfinite(c))
-            sphbasis::detail::throw_invalid(fn, "a finite color for a " + name + ", got " +
-                                          std::to_string(c));
+            sphbasis::detail::throw_invalid(
+                fn, "a finite color for a " + name + ", got " + std::to_string(c));
     if (light.type == Light::Type::hemisphere)
         for (double c : light.ground)
             if (!std::isfinite(c))
-                sphbasis::detail::throw_invalid(fn, "a finite ground color for a hemisphere light, got " +
-                                              std::to_string(c));
+                sphbasis::detail::throw_invalid(
+                    fn, "a finite ground color for a hemisphere light, got " + std::to_string(c));
     if (light.type == Light::Type::sphere) {
         const vec3<double>& p = light.position;
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
             sphbasis::detail::throw_invalid(fn, "a finite position for a sphere light");
         if (!(light.radius > 0) || !std::isfinite(light.radius))
-            sphbasis::detail::throw_invalid(fn, "a finite radius > 0 for a sphere light, got " +
-                                          std::to_string(light.radius));
+            sphbasis::detail::throw_invalid(
+                fn, "a finite radius > 0 for a sphere light, got " + std::to_string(light.radius));
         return;
     }
     const vec3<double>& d = light.direction;
     if (!std::isfinite(d.x) || !std::isfinite(d.y) || !std::isfinite(d.z) ||
         (d.x == 0 && d.y == 0 && d.z == 0))
-        sphbasis::detail::throw_invalid(fn, "a finite non-zero direction for a " + name + ", got (" +
-                                      std::to_string(d.x) + ", " + std::to_string(d.y) + ", " +
-                                      std::to_string(d.z) + ")");
+        sphbasis::detail::throw_invalid(
+            fn, "a finite non-zero direction for a " + name + ", got (" + std::to_string(d.x) +
+                    ", " + std::to_string(d.y) + ", " + std::to_string(d.z) + ")");
     if (light.type == Light::Type::cone && !(light.angle_deg > 0 && light.angle_deg <= 180))
-        sphbasis::detail::throw_invalid(fn, "0 < angle_deg <= 180 for a cone light, got " +
-                                      std::to_string(light.angle_deg));
+        sphbasis::detail::throw_invalid(
+            fn, "0 < angle_deg <= 180 for a cone light, got " + std::to_string(light.angle_deg));
 }
 
 namespace detail {
@@ -347,10 +358,11 @@ inline RGB scaled(const RGB& c, double s) noexcept { return {c[0] * s, c[1] * s,
 ///                sin(a) = radius / |position - x|; color everywhere when x is inside the ball.
 /// Never throws. Cost: a few flops (one sqrt).
 inline RGB light_radiance(const Light& light, const vec3<double>& w,
-                    const vec3<double>& x = {0, 0, 0}) noexcept {
+                          const vec3<double>& x = {0, 0, 0}) noexcept {
     const vec3<double> u = detail::unit_or_pole(w);
     switch (light.type) {
-        case Light::Type::directional: return {0, 0, 0};
+        case Light::Type::directional:
+            return {0, 0, 0};
         case Light::Type::hemisphere:
             return dot(u, detail::unit_or_pole(light.direction)) >= 0 ? light.color : light.ground;
         case Light::Type::cone: {
@@ -378,7 +390,7 @@ inline RGB light_radiance(const Light& light, const vec3<double>& w,
 ///   sphere:      the same with the cap the ball subtends at x (pi color when x is inside it).
 /// A white Lambertian surface reflects E/pi. Never throws. Cost: a few transcendental calls.
 inline RGB light_irradiance(const Light& light, const vec3<double>& n,
-                      const vec3<double>& x = {0, 0, 0}) noexcept {
+                            const vec3<double>& x = {0, 0, 0}) noexcept {
     const vec3<double> nn = detail::unit_or_pole(n);
     switch (light.type) {
         case Light::Type::directional: {
@@ -430,7 +442,7 @@ struct LightSample {
 ///   hemisphere:  uniform over the sphere, pdf 1/(4 pi), radiance color or ground.
 /// Never throws; a cone of angle 0 gives pdf infinity and radiance 0 (it carries no light).
 inline LightSample sample_light(const Light& light, const vec3<double>& x, double u1,
-                          double u2) noexcept {
+                                double u2) noexcept {
     LightSample s;
     switch (light.type) {
         case Light::Type::directional:
@@ -442,8 +454,8 @@ inline LightSample sample_light(const Light& light, const vec3<double>& x, doubl
         case Light::Type::hemisphere: {
             s.w = square_to_uniform_sphere(u1, u2);
             s.pdf = constants::inv_four_pi;
-            s.radiance = dot(s.w, detail::unit_or_pole(light.direction)) >= 0 ? light.color
-                                                                              : light.ground;
+            s.radiance =
+                dot(s.w, detail::unit_or_pole(light.direction)) >= 0 ? light.color : light.ground;
             return s;
         }
         case Light::Type::cone:
@@ -468,7 +480,8 @@ inline LightSample sample_light(const Light& light, const vec3<double>& x, doubl
             const double st = std::sqrt(std::max(0.0, omc * (2 - omc)));
             const double phi = constants::two_pi * u2;
             const Frame<double> f(c.d);
-            s.w = detail::unit_or_pole(f.to_world(vec3<double>{st * std::cos(phi), st * std::sin(phi), ct}));
+            s.w = detail::unit_or_pole(
+                f.to_world(vec3<double>{st * std::cos(phi), st * std::sin(phi), ct}));
             s.pdf = 1 / (constants::two_pi * c.one_minus_cos);
             s.radiance = light.color;
             if (light.type == Light::Type::sphere) {
@@ -483,13 +496,15 @@ inline LightSample sample_light(const Light& light, const vec3<double>& x, doubl
     return s;
 }
 
-/// Probability density (solid angle) of sample_light() choosing w at x; 0 outside the cone, 0 for the
-/// directional light (a delta: no density over directions).
+/// Probability density (solid angle) of sample_light() choosing w at x; 0 outside the cone, 0 for
+/// the directional light (a delta: no density over directions).
 inline double sample_light_pdf(const Light& light, const vec3<double>& x,
-                         const vec3<double>& w) noexcept {
+                               const vec3<double>& w) noexcept {
     switch (light.type) {
-        case Light::Type::directional: return 0;
-        case Light::Type::hemisphere: return constants::inv_four_pi;
+        case Light::Type::directional:
+            return 0;
+        case Light::Type::hemisphere:
+            return constants::inv_four_pi;
         case Light::Type::cone:
         case Light::Type::sphere: {
             const detail::Cap c = light.type == Light::Type::cone ? detail::cone_cap(light)
@@ -520,7 +535,9 @@ inline std::vector<RGB> project_sh(const Light& light, int bands,
     std::vector<double> a(n), b(n);
     const vec3<double> d = detail::unit_or_pole(light.direction);
     switch (light.type) {
-        case Light::Type::directional: sh::directional_light(bands, d.x, d.y, d.z, 1.0, a.data()); break;
+        case Light::Type::directional:
+            sh::directional_light(bands, d.x, d.y, d.z, 1.0, a.data());
+            break;
         case Light::Type::cone:
             sh::cone_light(bands, d.x, d.y, d.z, light.angle_deg * (constants::pi / 180), 1.0,
                            a.data());

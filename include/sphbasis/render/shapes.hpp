@@ -73,7 +73,8 @@ inline Mesh sphere(const vec3<double>& center, double radius, int rings, int seg
     sphbasis::detail::check_range(fn, "rings", rings, 2, 32768);
     sphbasis::detail::check_range(fn, "segments", segments, 3, 65536);
     Mesh m;
-    const std::size_t nv = static_cast<std::size_t>(rings + 1) * static_cast<std::size_t>(segments + 1);
+    const std::size_t nv =
+        static_cast<std::size_t>(rings + 1) * static_cast<std::size_t>(segments + 1);
     m.positions.reserve(3 * nv);
     m.normals.reserve(3 * nv);
     m.uvs.reserve(2 * nv);
@@ -101,7 +102,8 @@ inline Mesh sphere(const vec3<double>& center, double radius, int rings, int seg
     m.indices.reserve(6 * static_cast<std::size_t>(rings) * static_cast<std::size_t>(segments));
     for (int i = 0; i < rings; ++i)
         for (int j = 0; j < segments; ++j) {
-            const std::uint32_t v00 = static_cast<std::uint32_t>(i) * row + static_cast<std::uint32_t>(j);
+            const std::uint32_t v00 =
+                static_cast<std::uint32_t>(i) * row + static_cast<std::uint32_t>(j);
             const std::uint32_t v01 = v00 + 1, v10 = v00 + row, v11 = v10 + 1;
             // (theta, phi) increasing is counter-clockwise seen from outside.
             // The pole rows keep one triangle per sector, with the pole vertex of that sector.
@@ -150,7 +152,8 @@ inline Mesh box(const vec3<double>& center, const vec3<double>& half_extents) {
     const double colw[3] = {2 * h.y, 2 * h.x, 2 * h.x};
     const double rowh = 2 * std::fmax(h.z, h.y);
     const double pad = 1.0 / 64;
-    const double s = std::fmin((1 - 4 * pad) / (colw[0] + colw[1] + colw[2]), (1 - 3 * pad) / (2 * rowh));
+    const double s =
+        std::fmin((1 - 4 * pad) / (colw[0] + colw[1] + colw[2]), (1 - 3 * pad) / (2 * rowh));
     Mesh m;
     m.positions.reserve(72);
     m.normals.reserve(72);
@@ -207,8 +210,8 @@ inline Mesh quad(const vec3<double>& center, const vec3<double>& u_axis_half,
     const vec3<double> c = cross(U, V);
     const double lu = std::sqrt(dot(U, U)), lv = std::sqrt(dot(V, V)), lc = std::sqrt(dot(c, c));
     if (!(lc > 1e-12 * lu * lv) || !(lu > 0) || !(lv > 0))
-        sphbasis::detail::throw_invalid(fn, "non-zero, non-parallel axes, got u " +
-                                                detail::str3(U) + ", v " + detail::str3(V));
+        sphbasis::detail::throw_invalid(
+            fn, "non-zero, non-parallel axes, got u " + detail::str3(U) + ", v " + detail::str3(V));
     const vec3<double> n{c.x / lc, c.y / lc, c.z / lc};
     const vec3<double> t{U.x / lu, U.y / lu, U.z / lu};
     const int S = subdivisions;
@@ -230,7 +233,8 @@ inline Mesh quad(const vec3<double>& center, const vec3<double>& u_axis_half,
     m.indices.reserve(6 * static_cast<std::size_t>(S) * static_cast<std::size_t>(S));
     for (int j = 0; j < S; ++j)
         for (int i = 0; i < S; ++i) {
-            const std::uint32_t v00 = static_cast<std::uint32_t>(j) * row + static_cast<std::uint32_t>(i);
+            const std::uint32_t v00 =
+                static_cast<std::uint32_t>(j) * row + static_cast<std::uint32_t>(i);
             const std::uint32_t v10 = v00 + 1, v01 = v00 + row, v11 = v01 + 1;
             detail::push_triangle(m, v00, v10, v11);
             detail::push_triangle(m, v00, v11, v01);
