@@ -130,7 +130,7 @@ sphbasis_cli_script(eval_stdin_json "\"dir\":\\[0.5,0,-2\\],\"values\":\\[0.2820
 sphbasis_cli_script(eval_stdin_json_array "\"dir\":\\[1,2,3\\]"
                     "printf '[1, 2, 3]\\n' | \"$<TARGET_FILE:sphbasis_cli>\" eval --basis sh --coeffs 1 --dirs -")
 # Directions of any finite magnitude are scaled before they are normalised.
-sphbasis_cli_test(eval_huge_dir "\"dir\":\\[1e\\+200,0,0\\],\"values\":\\[0.28209479177387814,0,0,0.48860251190291992\\]"
+sphbasis_cli_test(eval_huge_dir "\"dir\":\\[9.9999999999999997e\\+199,0,0\\],\"values\":\\[0.28209479177387814,0,0,0.48860251190291992\\]"
                   eval --basis sh --coeffs 4 --dir 1e200,0,0)
 
 # rotate --coeffs -: 100 bands (10000 coefficients, more than a command line holds) through a
