@@ -230,7 +230,8 @@ Run setup_eval(CLI::App& app) {
         "Evaluate a basis at directions; prints one JSON line per direction,\n"
         "{\"basis\":NAME,\"dir\":[x,y,z],\"values\":[...]}, numbers with 17 significant digits.\n"
         "--dirs - reads one direction a line: 'x y z' (or x,y,z), [x,y,z] or a JSON object with\n"
-        "\"dir\" (eval's own output); '#' lines and blank lines are skipped; at most 1 MiB a line.\n"
+        "\"dir\" (eval's own output); '#' lines and blank lines are skipped; at most 1 MiB a "
+        "line.\n"
         "--lm L,M: L within the degrees of the basis's largest size (sh: 0..8191).");
     return [o] { return run_eval(*o); };
 }

@@ -89,7 +89,9 @@ constexpr double kRoundingFloor = 1e-13;
 /// An IMSE (never negative by definition) as reported: rounding-level values, including the
 /// tiny negative ones a closed form gives (-1.95e-15 for SH 16), are 0 in every output (the
 /// table and Markdown say "0 (<1e-13)", CSV and JSON write 0).
-double reported_imse(double v) { return std::isfinite(v) && std::fabs(v) <= kRoundingFloor ? 0 : v; }
+double reported_imse(double v) {
+    return std::isfinite(v) && std::fabs(v) <= kRoundingFloor ? 0 : v;
+}
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) {
@@ -305,8 +307,9 @@ ProtocolResult run_paper(const std::vector<Row>& rows, long long signals, std::u
         bar.update();
     }
     bar.done();
-    res.notes.push_back("IMSE and expected values at or below 1e-13 are rounding (the basis spans "
-                        "the signal) and are reported as 0");
+    res.notes.push_back(
+        "IMSE and expected values at or below 1e-13 are rounding (the basis spans "
+        "the signal) and are reported as 0");
     res.notes.push_back("radiance: 9 SH coefficients i.i.d. uniform on [-1,1] (mt19937_64, seed " +
                         std::to_string(seed) + "); irradiance factors 1, 2/3, 1/4");
     res.notes.push_back(
@@ -661,7 +664,8 @@ int run_imse(const ImseOptions& o) {
         throw UsageError("--signals: expected N <= " + std::to_string(kMaxSignalsHdri) +
                          " for --protocol " + o.protocol +
                          " (the hdri protocol keeps 644 bytes per signal, 0.64 GB at the "
-                         "limit), got " + std::to_string(signals));
+                         "limit), got " +
+                         std::to_string(signals));
     for (const std::string* f : {&o.json_path, &o.csv_path, &o.md_path}) {
         if (f->empty()) continue;
         // Fail before the long run, not after it (append mode: nothing is truncated yet).

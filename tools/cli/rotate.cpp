@@ -56,8 +56,7 @@ std::vector<double> read_coeffs(long long bands, std::size_t want) {
         const std::string where = "standard input line " + std::to_string(lineno);
         if (json) throw UsageError(where + ": expected nothing after the JSON line");
         if (text[first] == '[' || text[first] == '{') {
-            if (!c.empty())
-                throw UsageError(where + ": expected numbers, not JSON, after numbers");
+            if (!c.empty()) throw UsageError(where + ": expected numbers, not JSON, after numbers");
             json = true;
             Json j = Json::parse(text, nullptr, false);
             if (j.is_discarded()) throw UsageError(where + ": malformed JSON");
@@ -65,9 +64,8 @@ std::vector<double> read_coeffs(long long bands, std::size_t want) {
                 if (!j.contains("coeffs") || !j["coeffs"].is_array())
                     throw UsageError(where + ": expected a JSON object with a \"coeffs\" array");
                 if (j.contains("bands") && j["bands"] != Json(bands))
-                    throw UsageError(where + ": the JSON line has \"bands\":" +
-                                     j["bands"].dump() + ", expected " + std::to_string(bands) +
-                                     " (--bands)");
+                    throw UsageError(where + ": the JSON line has \"bands\":" + j["bands"].dump() +
+                                     ", expected " + std::to_string(bands) + " (--bands)");
                 j = j["coeffs"];
             }
             if (!j.is_array())

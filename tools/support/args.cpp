@@ -110,13 +110,15 @@ bool read_line(std::FILE* in, std::string& line, long& lineno, std::size_t max_b
 
 long long to_integer(const std::string& s, const std::string& what) {
     long long v = 0;
-    if (!parse_integer(s, v)) throw UsageError(what + ": expected an integer, got '" + quote_input(s) + "'");
+    if (!parse_integer(s, v))
+        throw UsageError(what + ": expected an integer, got '" + quote_input(s) + "'");
     return v;
 }
 
 double to_real(const std::string& s, const std::string& what) {
     double v = 0;
-    if (!parse_real(s, v)) throw UsageError(what + ": expected a finite number, got '" + quote_input(s) + "'");
+    if (!parse_real(s, v))
+        throw UsageError(what + ": expected a finite number, got '" + quote_input(s) + "'");
     return v;
 }
 
