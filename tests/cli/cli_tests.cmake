@@ -77,3 +77,85 @@ sphbasis_cli_fails(rotate_zero_quat rotate --bands 2 --quat 0,0,0,0 --coeffs 1,0
 # One number grammar: no octal (010 is ten), no hex.
 sphbasis_cli_test(params_decimal_only "\n10 points, 1 threads" params --points 010 --threads 1)
 sphbasis_cli_fails(params_hex params --points 0x10)
+
+# ---------------------------------------------------------------------------------------------
+# No success that lost data: standard output full (/dev/full) or closed (>&-) is exit status 1
+# with one line "sphbasis <command>: cannot write standard output..." for every command.
+# sphbasis_cli_lost_output(name redirect command args...): runs `sphbasis command args` with
+# standard output redirected by `redirect` and checks the status and the one-line message.
+function(sphbasis_cli_lost_output name redirect command)
+  list(JOIN ARGN " " _args)
+  sphbasis_cli_script(${name} "lost-output-ok"
+    "\"$<TARGET_FILE:sphbasis_cli>\" ${command} ${_args} ${redirect} 2>${name}.err; s=$?; test $s -eq 1 && test $(wc -l < ${name}.err) -eq 1 && grep -q '^sphbasis ${command}: cannot write standard output' ${name}.err && echo lost-output-ok")
+  set_tests_properties(cli_${name} PROPERTIES TIMEOUT 60)
+endfunction()
+foreach(_how full closed)
+  if(_how STREQUAL "full")
+    set(_redirect ">/dev/full")
+  else()
+    set(_redirect ">&-")
+  endif()
+  sphbasis_cli_lost_output(stdout_${_how}_eval "${_redirect}" eval --basis sh --coeffs 4 --dir 0,0,1)
+  sphbasis_cli_lost_output(stdout_${_how}_gaunt "${_redirect}" gaunt 1 1 1 -1 2 -2)
+  sphbasis_cli_lost_output(stdout_${_how}_rotate "${_redirect}" rotate --bands 2 --quat 1,0,0,0 --coeffs 1,0,0,1)
+  sphbasis_cli_lost_output(stdout_${_how}_params "${_redirect}" params --points 1000 --threads 1)
+  sphbasis_cli_lost_output(stdout_${_how}_imse "${_redirect}" imse --signals 20)
+endforeach()
+# The reason is named: ENOSPC for /dev/full, and "closed" before any work for >&-.
+sphbasis_cli_script(stdout_full_message "sphbasis gaunt: cannot write standard output: No space left on device"
+                    "\"$<TARGET_FILE:sphbasis_cli>\" gaunt 1 1 1 -1 2 -2 >/dev/full")
+sphbasis_cli_script(stdout_closed_message "sphbasis params: cannot write standard output: it is closed"
+                    "\"$<TARGET_FILE:sphbasis_cli>\" params --points 1000 >&-")
+# Help is output too.
+sphbasis_cli_lost_output(stdout_full_help ">/dev/full" eval --help)
+# Endless input into a full output stops within one buffer (the test's timeout would catch a
+# run that reads on).
+sphbasis_cli_script(stdout_full_streaming "streaming-ok"
+                    "yes '0 0 1' | \"$<TARGET_FILE:sphbasis_cli>\" eval --basis sh --coeffs 4 --dirs - >/dev/full 2>streaming.err; s=$?; test $s -eq 1 && grep -q 'cannot write standard output' streaming.err && echo streaming-ok")
+set_tests_properties(cli_stdout_full_streaming PROPERTIES TIMEOUT 30)
+
+# Standard input lines are bounded (1 MiB): /dev/zero is an error at once, status 2.
+sphbasis_cli_script(eval_stdin_zero "zero-ok"
+                    "\"$<TARGET_FILE:sphbasis_cli>\" eval --basis sh --coeffs 1 --dirs - </dev/zero >/dev/null 2>zero.err; s=$?; test $s -eq 2 && test $(wc -l < zero.err) -eq 1 && grep -q '^sphbasis eval: standard input line 1: longer than 1048576 bytes' zero.err && echo zero-ok")
+set_tests_properties(cli_eval_stdin_zero PROPERTIES TIMEOUT 30)
+# A line of NUL bytes is a one-line message with the bytes escaped and shortened.
+sphbasis_cli_script(eval_stdin_nul "nul-ok"
+                    "head -c 5000 /dev/zero | \"$<TARGET_FILE:sphbasis_cli>\" eval --basis sh --coeffs 1 --dirs - 2>nul.err; s=$?; test $s -eq 2 && test $(wc -c < nul.err) -lt 300 && grep -q 'x00.*5000 bytes' nul.err && echo nul-ok")
+# The last line needs no newline.
+sphbasis_cli_script(eval_stdin_no_newline "\"dir\":\\[0,0,1\\],\"values\":\\[0.28209479177387814\\]\\}\n.*\"dir\":\\[1,0,0\\]"
+                    "printf '0 0 1\\n1 0 0' | \"$<TARGET_FILE:sphbasis_cli>\" eval --basis sh --coeffs 1 --dirs -")
+# JSON lines: eval's own output fed back, and arrays.
+sphbasis_cli_script(eval_stdin_json "\"dir\":\\[0.5,0,-2\\],\"values\":\\[0.28209479177387814,0,-0.47401"
+                    "b=\"$<TARGET_FILE:sphbasis_cli>\"; $b eval --basis sh --coeffs 1 --dir 0.5,0,-2 | $b eval --basis sh --coeffs 4 --dirs -")
+sphbasis_cli_script(eval_stdin_json_array "\"dir\":\\[1,2,3\\]"
+                    "printf '[1, 2, 3]\\n' | \"$<TARGET_FILE:sphbasis_cli>\" eval --basis sh --coeffs 1 --dirs -")
+# Directions of any finite magnitude are scaled before they are normalised.
+sphbasis_cli_test(eval_huge_dir "\"dir\":\\[9.9999999999999997e\\+199,0,0\\],\"values\":\\[0.28209479177387814,0,0,0.48860251190291992\\]"
+                  eval --basis sh --coeffs 4 --dir 1e200,0,0)
+
+# rotate --coeffs -: 100 bands (10000 coefficients, more than a command line holds) through a
+# pipe: rotating by q and then by its conjugate gives the input back (to 1e-10; the rotation's
+# own error at 100 bands is ~1e-13), and the second rotate reads the first's JSON line.
+sphbasis_cli_script(rotate_stdin_round_trip "round-trip-ok"
+                    "b=\"$<TARGET_FILE:sphbasis_cli>\"; awk 'BEGIN { for (i = 0; i < 10000; i++) printf \"%.17g%s\", sin(0.37 * i + 0.1) / (1 + i / 1000), (i % 7 == 6 ? \"\\n\" : \" \") }' > rt_in.txt && $b rotate --bands 100 --quat 0.3,0.5,-0.2,0.7 --coeffs - < rt_in.txt > rt_mid.json && $b rotate --bands 100 --quat 0.3,-0.5,0.2,-0.7 --coeffs - < rt_mid.json | sed 's/.*\"coeffs\":\\[//; s/\\].*//' | tr , '\\n' > rt_out.txt && tr ' ' '\\n' < rt_in.txt | grep . > rt_in1.txt && test $(wc -l < rt_out.txt) -eq 10000 && paste rt_in1.txt rt_out.txt | awk '{ d = $1 - $2; if (d < 0) d = -d; if (d > m) m = d } END { if (NR == 10000 && m < 1e-10) print \"round-trip-ok\"; else print \"max diff \" m }'")
+sphbasis_cli_script(rotate_stdin_commas "\"coeffs\":\\[1,1,0,0\\]"
+                    "printf '# comment\\n1,0\\n0 1\\n' | \"$<TARGET_FILE:sphbasis_cli>\" rotate --bands 2 --quat 0.70710678118654752,0,0,0.70710678118654752 --coeffs -")
+sphbasis_cli_script(rotate_stdin_too_many "expected N\\^2 = 4 coefficients for --bands 2, got more"
+                    "printf '1 2 3 4 5\\n' | \"$<TARGET_FILE:sphbasis_cli>\" rotate --bands 2 --quat 1,0,0,0 --coeffs -")
+sphbasis_cli_script(rotate_stdin_too_few "expected N\\^2 = 4 coefficients for --bands 2, got 3"
+                    "printf '1 2 3' | \"$<TARGET_FILE:sphbasis_cli>\" rotate --bands 2 --quat 1,0,0,0 --coeffs -")
+sphbasis_cli_script(rotate_stdin_wrong_bands "\"bands\":3, expected 2 \\(--bands\\)"
+                    "b=\"$<TARGET_FILE:sphbasis_cli>\"; $b rotate --bands 3 --quat 1,0,0,0 --coeffs 1,0,0,0,0,0,0,0,0 | $b rotate --bands 2 --quat 1,0,0,0 --coeffs -")
+
+# Limits said before any allocation, with their reason (no bare std::bad_alloc).
+sphbasis_cli_test(params_points_limit "^sphbasis params: --points: expected 1 <= N <= 100000000 \\(56 bytes of memory per point"
+                  params --points 1000000000)
+sphbasis_cli_test(eval_lm_range "^sphbasis eval: --lm: expected 0 <= L <= 8191 for basis 'sh'.*got L = 100000\n$"
+                  eval --basis sh --lm 100000,0 --dir 0,0,1)
+sphbasis_cli_test(eval_lm_range_hsh "--lm: expected 0 <= L <= 2047 for basis 'hsh'" eval --basis hsh --lm 3000,0 --dir 0,0,1)
+sphbasis_cli_test(eval_lm_range_huge "--lm: expected 0 <= L <= 8191 for basis 'sh'.*got L = 9000000000000000000"
+                  eval --basis sh --lm 9000000000000000000,0 --dir 0,0,1)
+# One function of the largest degree without a table of 8192^2 values: under a 400 MB address
+# space limit (the table alone would take 537 MB).
+sphbasis_cli_script(eval_lm_max_small_memory "\"values\":\\[-?[1-9]"
+                    "ulimit -v 400000; \"$<TARGET_FILE:sphbasis_cli>\" eval --basis sh --lm 8191,8191 --dir 1,0.001,0")

@@ -27,3 +27,17 @@ sphbasis_cli_fails(imse_positional imse paper)
 sphbasis_cli_fails(imse_twice imse --seed 1 --seed 2)
 sphbasis_cli_fails(imse_unwritable imse --signals 10 --json /nonexistent-dir/x.json)
 sphbasis_cli_test(imse_bad_protocol_message "expected paper, hdri or all" imse --protocol nope)
+
+# Limits said before any work: the hdri protocol keeps 644 bytes per signal (at most 1000000).
+sphbasis_cli_test(imse_hdri_signals_limit "^sphbasis imse: --signals: expected N <= 1000000 for --protocol hdri \\(the hdri protocol keeps 644 bytes per signal"
+                  imse --protocol hdri --signals 10000000)
+sphbasis_cli_test(imse_signals_limit "--signals: expected 2 <= N <= 10000000 \\(80 bytes of memory per signal"
+                  imse --signals 10000001)
+# Two signals cannot judge the closed form: said so, no false alarm.
+sphbasis_cli_test(imse_two_signals "closed form vs sample mean: not judged with 2 signals"
+                  imse --protocol paper --signals 2)
+set_tests_properties(cli_imse_two_signals PROPERTIES FAIL_REGULAR_EXPRESSION "WARNING")
+# Rounding-level IMSE (SH 9, 16, 25 span the paper signal) is 0 in CSV and JSON as in the
+# table: no negative closed form.
+sphbasis_cli_script(imse_rounding_zero "rounding-ok"
+                    "\"$<TARGET_FILE:sphbasis_cli>\" imse --signals 20 --seed 5 --csv imse_round.csv --json imse_round.json >/dev/null && grep -q '^paper,sh,16,0,[^,]*,0,' imse_round.csv && grep -q '^paper,sh,25,0,[^,]*,0,' imse_round.csv && awk -F, 'NR > 1 && ($4 < 0 || $6 < 0) { bad = 1 } END { if (!bad) print \"rounding-ok\" }' imse_round.csv && ! grep -q '\"imse\":-\\|\"expected\":-' imse_round.json")

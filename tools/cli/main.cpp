@@ -2,7 +2,9 @@
 //
 // Exit status: 0 on success and for --help/-h; 2 for bad input (unknown command or option, a
 // malformed or out-of-range value), with one line "sphbasis[ <command>]: <message>" on stderr;
-// 1 when the work itself fails (a file that cannot be read or written).
+// 1 when the work itself fails (a file that cannot be read or written, standard output closed,
+// full or otherwise failing: support/stdout_check.hpp; no command reports success when its
+// output was lost).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
@@ -10,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/stdout_check.hpp"
 #include "cli.hpp"
 
 namespace {
@@ -56,12 +59,29 @@ int main(int argc, char** argv) {
         return 2;
     }
 
+    // A closed descriptor 1 would be taken by the next file opened (--json PATH) and the table
+    // written into it: stop before any work.
+    if (!sphbasis::cli::stdout_is_open()) {
+        std::fprintf(stderr, "%s: cannot write standard output: it is closed\n", prefix.c_str());
+        return 1;
+    }
+    // The final flush of standard output, checked: exit status 1 if anything written was lost.
+    auto finish = [&prefix](int rc) {
+        try {
+            sphbasis::cli::check_stdout(true);
+        } catch (const sphbasis::cli::OutputError& e) {
+            std::fprintf(stderr, "%s: %s\n", prefix.c_str(), e.what());
+            return 1;
+        }
+        return rc;
+    };
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);  // the help of the command given, on stdout; 0
+        return finish(app.exit(e));  // the help of the command given, on stdout; 0
     } catch (const CLI::CallForAllHelp& e) {
-        return app.exit(e);
+        return finish(app.exit(e));
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "%s: %s\n", prefix.c_str(), e.what());
         return 2;
@@ -72,7 +92,7 @@ int main(int argc, char** argv) {
     for (auto& [sub, run] : subs) {
         if (!sub->parsed()) continue;
         try {
-            return run();
+            return finish(run());
         } catch (const sphbasis::cli::UsageError& e) {
             std::fprintf(stderr, "%s: %s\n", prefix.c_str(), e.what());
             return 2;

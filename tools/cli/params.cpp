@@ -11,6 +11,8 @@
 // (param/reconstruction_error.hpp); this file runs it on TBB's threads and writes the table.
 // The numbers do not depend on --threads.
 //
+// --points is at most 100 million: the directions take 56 bytes each at their peak (5.6 GB).
+//
 // Output: a table on standard output, --json PATH (read by tools/plot/plot_params.py) and
 // --csv PATH with one row per (parameterization, resolution).
 #include <CLI/CLI.hpp>
@@ -135,7 +137,10 @@ Run setup_params(CLI::App& app) {
         "bilinearly reconstructed SH basis functions (3 and 6 bands) per spherical\n"
         "parameterization against the total texel count. The results do not depend on\n"
         "--threads.");
-    add_integer(app, "--points", o->points, 1, 1000000000, "random directions");
+    // param::reconstruction_directions holds 56 bytes per point at its peak (a 32-byte sort key
+    // and direction, then 24 bytes of output), so the limit is set where that is 5.6 GB.
+    add_integer(app, "--points", o->points, 1, 100000000, "random directions", "N",
+                "56 bytes of memory per point, 5.6 GB at the limit");
     add_path(app, "--json", o->json_path, "write the results as JSON (tools/plot/plot_params.py)");
     add_path(app, "--csv", o->csv_path, "write the results as CSV");
     add_integer(app, "--threads", o->threads, 1, 256,

@@ -6,7 +6,15 @@
 One panel per protocol (paper, hdri): the (relative) IMSE on a log axis against the evaluation
 cost in ns per normal (one call at a time, float; log axis), one labelled marker per row, one
 colour per basis. Rows that fit the signal exactly (IMSE at the rounding level, SH 9/16/25 in
-the paper protocol) are drawn at the bottom edge with a downward triangle and "(exact)".
+the paper protocol) have no place on a log axis: they are drawn on the bottom edge of the
+panel (a quarter of the smallest non-zero IMSE, which is not their value) with a downward
+triangle and "(exact)", and the legend says so.
+
+Labels are placed without collisions: after the layout is fixed, each label tries a list of
+positions around its marker (right, left, above, below, then farther out with a leader line)
+and takes the first whose box overlaps no other label, no marker and stays inside the panel;
+if none is free, the one with the least overlap. Rows at the same place (same IMSE, cost
+within 30 %) share one label ("hbasis 6 = hbasis-mod 6").
 Needs only Debian's python3-matplotlib (Agg backend, no display).
 """
 import json
@@ -17,6 +25,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.transforms import Bbox  # noqa: E402
 
 FLOOR = 1e-13  # the CLI's rounding floor: values at or below it are exact fits
 COLOURS = {
@@ -66,7 +76,9 @@ def panel(ax, p):
         values = [1.0]
     bottom = min(values) / 4
     seen = set()
-    exact_count = 0
+    labels = []  # (x, y, text, colour), placed by place_labels once the layout is fixed
+    markers = []
+    any_exact = False
     for g in groups(rows):
         for r in g:
             x, y = r["eval_ns"], r["imse"]
@@ -77,6 +89,8 @@ def panel(ax, p):
             seen.add(r["basis"])
             ax.scatter([x], [yy], marker="v" if exact else "o", s=36, color=colour, label=label,
                        zorder=3)
+            markers.append((x, yy))
+            any_exact = any_exact or exact
             if not exact and r.get("stderr"):
                 ax.errorbar([x], [y], yerr=[[min(r["stderr"], 0.999 * y)], [r["stderr"]]],
                             color=colour, capsize=2, lw=0.8, zorder=2)
@@ -85,13 +99,8 @@ def panel(ax, p):
         text = " = ".join("%s %d" % (q["basis"], q["coeffs"]) for q in g)
         if exact:
             text += " (exact)"
-            offset = (4, 3 + 9 * (exact_count % 3))  # stagger the labels along the bottom
-            exact_count += 1
-        else:
-            offset = (5, 3)
-        ax.annotate(text, (r["eval_ns"], bottom if exact else r["imse"]),
-                    textcoords="offset points", xytext=offset, fontsize=7,
-                    color=COLOURS.get(r["basis"], "black"))
+        labels.append((r["eval_ns"], bottom if exact else r["imse"], text,
+                       COLOURS.get(r["basis"], "black")))
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_ylim(bottom / 2, max(values) * 3)
@@ -111,8 +120,75 @@ def panel(ax, p):
         title = "paper: %d random SH-9 radiance signals" % p["signals"]
     ax.set_title(title, fontsize=10)
     ax.grid(True, which="both", lw=0.3, alpha=0.5)
-    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=7,
-              frameon=False)
+    handles, names = ax.get_legend_handles_labels()
+    if any_exact:
+        handles.append(Line2D([], [], marker="v", color="grey", linestyle="None", markersize=6))
+        names.append("exact fit (IMSE <= %g, rounding): drawn on the bottom edge at %.1e, "
+                     "not its value" % (FLOOR, bottom))
+        ax.axhline(bottom, color="grey", lw=0.6, ls=":", zorder=1)
+    ax.legend(handles, names, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12),
+              ncol=4, frameon=False)
+    return labels, markers
+
+
+def overlap(a, b):
+    """Area shared by two display-space boxes."""
+    w = min(a.x1, b.x1) - max(a.x0, b.x0)
+    h = min(a.y1, b.y1) - max(a.y0, b.y0)
+    return w * h if w > 0 and h > 0 else 0.0
+
+
+def place_labels(fig, ax, labels, markers):
+    """Annotates each (x, y, text, colour) at the first free position (see the module doc)."""
+    renderer = fig.canvas.get_renderer()
+    frame = ax.get_window_extent(renderer)
+    radius = 6 * fig.dpi / 72  # a marker of size 36 (6 pt across) and a margin
+    blocked = []
+    for x, y in markers:
+        px, py = ax.transData.transform((x, y))
+        blocked.append(Bbox([[px - radius, py - radius], [px + radius, py + radius]]))
+    # Offsets in points and alignments; the first four touch the marker, the rest need a leader.
+    near = [((6, 0), "left", "center"), ((-6, 0), "right", "center"),
+            ((0, 6), "center", "bottom"), ((0, -7), "center", "top"),
+            ((5, 5), "left", "bottom"), ((5, -5), "left", "top"),
+            ((-5, 5), "right", "bottom"), ((-5, -5), "right", "top")]
+    far = []
+    for d in (14, 24, 36, 50):
+        far += [((d, d * 0.6), "left", "bottom"), ((d, -d * 0.6), "left", "top"),
+                ((-d, d * 0.6), "right", "bottom"), ((-d, -d * 0.6), "right", "top"),
+                ((0, d), "center", "bottom"), ((0, -d), "center", "top")]
+    placed = []
+    # Labels in order of crowding (most markers nearby first), so the tight ones choose first.
+    def crowding(item):
+        px, py = ax.transData.transform((item[0], item[1]))
+        return -sum(1 for b in blocked
+                    if abs((b.x0 + b.x1) / 2 - px) < 80 and abs((b.y0 + b.y1) / 2 - py) < 30)
+    for x, y, text, colour in sorted(labels, key=crowding):
+        best = None
+        for k, (off, ha, va) in enumerate(near + far):
+            t = ax.annotate(text, (x, y), textcoords="offset points", xytext=off, fontsize=7,
+                            color=colour, ha=ha, va=va, zorder=4)
+            box = t.get_window_extent(renderer).expanded(1.04, 1.1)
+            cost = sum(overlap(box, b) for b in placed + blocked)
+            if not (frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0
+                    and box.y1 <= frame.y1):
+                cost += 1e6
+            if best is None or cost < best[0]:
+                if best is not None:
+                    best[1].remove()
+                best = (cost, t, box, k >= len(near))
+            else:
+                t.remove()
+            if cost == 0:
+                break
+        cost, t, box, leader = best
+        if leader:
+            t.remove()
+            t = ax.annotate(text, (x, y), textcoords="offset points", xytext=t.xyann,
+                            fontsize=7, color=colour, ha=t.get_ha(), va=t.get_va(), zorder=4,
+                            arrowprops=dict(arrowstyle="-", color=colour, lw=0.5,
+                                            shrinkA=0, shrinkB=4))
+        placed.append(box)
 
 
 def main(argv):
@@ -122,12 +198,13 @@ def main(argv):
     with open(argv[1]) as f:
         doc = json.load(f)
     ps = protocols(doc)
-    fig, axes = plt.subplots(1, len(ps), figsize=(7.5 * len(ps), 6.4), squeeze=False)
-    for ax, p in zip(axes[0], ps):
-        panel(ax, p)
+    fig, axes = plt.subplots(1, len(ps), figsize=(7.5 * len(ps), 6.4), squeeze=False, dpi=130)
+    drawn = [(ax, panel(ax, p)) for ax, p in zip(axes[0], ps)]
     fig.suptitle("sphbasis IMSE basis comparison (seed %s): accuracy against evaluation cost"
                  % doc.get("seed"), fontsize=11)
-    fig.tight_layout()
+    fig.tight_layout()  # fixes the axes, so label positions in display space are final
+    for ax, (labels, markers) in drawn:
+        place_labels(fig, ax, labels, markers)
     fig.savefig(argv[2], dpi=130)
     return 0
 
