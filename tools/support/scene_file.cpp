@@ -257,7 +257,7 @@ void apply(const Ctx& c, const std::string& where, const Affine& m, render::Mesh
                                    std::fabs(a[3]) + std::fabs(a[4]) + std::fabs(a[5]),
                                    std::fabs(a[6]) + std::fabs(a[7]) + std::fabs(a[8])});
     if (!std::isfinite(d) || std::fabs(d) <= 1e-12 * scale * scale * scale)
-        c.fail(where, "singular transform (determinant " + number_text(d) + ")");
+        c.fail(where, "singular or non-finite transform (determinant " + number_text(d) + ")");
     // Inverse transpose = cofactor matrix / det.
     const std::array<double, 9> it = {
         (a[4] * a[8] - a[5] * a[7]) / d, -(a[3] * a[8] - a[5] * a[6]) / d,
@@ -760,11 +760,14 @@ SceneFile load_scene(const std::string& path) {
     json j;
     try {
         j = json::parse(buf.str());
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {
+        // parse_error (syntax; NaN and Infinity are not JSON) or out_of_range (1e999).
         std::string msg = e.what();
         const std::size_t p = msg.find("] ");
         if (p != std::string::npos) msg = msg.substr(p + 2);
-        c.fail("", "malformed JSON: " + msg);
+        if (msg.find("invalid literal") != std::string::npos)
+            msg += " (NaN and Infinity are not JSON numbers)";
+        c.fail("", std::string(e.id == 406 ? "expected finite numbers: " : "malformed JSON: ") + msg);
     }
     check_keys(c, j, "", {"meshes", "environment", "lights", "camera", "probes"});
     SceneFile s;
