@@ -662,24 +662,25 @@ render::Light load_light(const Ctx& c, const json& j, const std::string& where) 
 }  // namespace
 
 std::string closest_key(const std::string& key, const std::vector<std::string>& candidates) {
+    // Edit distance with adjacent transpositions (optimal string alignment), case-insensitive.
+    auto lower = [](char ch) { return std::tolower(static_cast<unsigned char>(ch)); };
     std::string best;
     std::size_t best_d = std::string::npos;
     for (const std::string& cand : candidates) {
-        std::vector<std::size_t> prev(cand.size() + 1), cur(cand.size() + 1);
-        for (std::size_t j = 0; j <= cand.size(); ++j) prev[j] = j;
-        for (std::size_t i = 1; i <= key.size(); ++i) {
-            cur[0] = i;
-            for (std::size_t j = 1; j <= cand.size(); ++j)
-                cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1,
-                                   prev[j - 1] + (std::tolower(static_cast<unsigned char>(key[i - 1])) ==
-                                                          std::tolower(static_cast<unsigned char>(cand[j - 1]))
-                                                      ? 0u
-                                                      : 1u)});
-            std::swap(prev, cur);
-        }
-        const std::size_t d = prev[cand.size()];
-        if (d < best_d) {
-            best_d = d;
+        const std::size_t n = key.size(), m = cand.size();
+        std::vector<std::vector<std::size_t>> d(n + 1, std::vector<std::size_t>(m + 1));
+        for (std::size_t i = 0; i <= n; ++i) d[i][0] = i;
+        for (std::size_t j = 0; j <= m; ++j) d[0][j] = j;
+        for (std::size_t i = 1; i <= n; ++i)
+            for (std::size_t j = 1; j <= m; ++j) {
+                const std::size_t cost = lower(key[i - 1]) == lower(cand[j - 1]) ? 0 : 1;
+                d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+                if (i > 1 && j > 1 && lower(key[i - 1]) == lower(cand[j - 2]) &&
+                    lower(key[i - 2]) == lower(cand[j - 1]))
+                    d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+            }
+        if (d[n][m] < best_d) {
+            best_d = d[n][m];
             best = cand;
         }
     }
