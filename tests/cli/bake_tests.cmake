@@ -81,8 +81,11 @@ sphbasis_bake_test(points_closed_form "points-closed-form-ok 5"
   "printf '0 0 0 0 0 1\\n0.5 0 0 0 0 2\\n1 1 0 0 0 1\\n-2 0.5 0 0 0 1\\n4 0 0 0 0 1\\n' | \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --points - --quantities ao,bent --rays 4096 --seed 3 | python3 ${_check_points} 2 1")
 # The output line format: exactly these keys in this order, "n" echoed as given (only for a
 # surface point), 17 significant digits.
-sphbasis_bake_test(points_format "\\{\"p\":\\[0.5,0,0\\],\"n\":\\[0,0,2\\],\"ao\":.*\n\\{\"p\":\\[0,0,3\\],\"ao\":.*points-format-ok 2"
-  "printf '0.5 0 0 0 0 2\\n0 0 3\\n' | \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --points - --quantities ao,bent,visibility,transfer --bands 3 --rays 64 | tee bake_points_format.txt && python3 ${_check_points} format 3 < bake_points_format.txt")
+sphbasis_bake_test(points_format "\\{\"p\":\\[0.5,0,0\\],\"n\":\\[0,0,2\\],\"ao\":.*\n\\{\"p\":\\[1,0,0\\],\"n\":\\[0,0,1\\],\"ao\":.*points-format-ok 2"
+  "printf '0.5 0 0 0 0 2\\n1 0 0 0 0 1\\n' | \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --points - --quantities ao,bent,visibility,transfer --bands 3 --rays 64 | tee bake_points_format.txt && python3 ${_check_points} format 3 < bake_points_format.txt")
+# A free point (x y z): no "n"; radiance as three lists (R, G, B) and the inside flag.
+sphbasis_bake_test(points_free "\\{\"p\":\\[0,0,5\\],\"radiance\":\\[\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\]\\],\"inside\":false\\}"
+  "printf '0 0 5\\n' | \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --points - --quantities radiance --bands 2 --rays 64")
 # Vertex bake: one PLY per mesh with the documented properties, and the summary with a plan.
 sphbasis_bake_test(vertices_files "vertices-ok"
   "rm -rf bake_v && \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --quantities ao,bent,visibility --rays 32 --out bake_v && grep -a -q 'property float ao_stderr' bake_v/ground.ply && grep -a -q 'property float vis_8' bake_v/ball.ply && grep -a -q 'property float bent_z' bake_v/ball.ply && grep -q '\"plan\":\\[' bake_v/bake.json && grep -q '\"reason\":' bake_v/bake.json && ! ls -a bake_v | grep -q tmp && echo vertices-ok")

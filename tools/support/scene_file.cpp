@@ -292,6 +292,7 @@ void apply(const Ctx& c, const std::string& where, const Affine& m, render::Mesh
 //
 // FALLBACK (delete when render/shapes.hpp is merged): private generators with the contract's
 // signatures, used only while <sphbasis/render/shapes.hpp> does not exist.
+#if !defined(SPHBASIS_HAVE_RENDER_SHAPES)
 namespace fallback_shapes {
 
 void push3(std::vector<float>& v, double x, double y, double z) {
@@ -386,6 +387,7 @@ render::Mesh box(const V3& c, const V3& h) {
 }
 
 }  // namespace fallback_shapes
+#endif
 
 render::Mesh make_shape(const Ctx& c, const json& j, const std::string& where,
                         const std::string& kind) {
@@ -395,7 +397,7 @@ render::Mesh make_shape(const Ctx& c, const json& j, const std::string& where,
         const int rings = j.contains("rings") ? integer(c, j["rings"], sub(where, "rings"), 2, 4096) : 32;
         const int segments = j.contains("segments") ? integer(c, j["segments"], sub(where, "segments"), 3, 8192) : 64;
 #if defined(SPHBASIS_HAVE_RENDER_SHAPES)
-        return render::sphere(center, radius, rings, segments);
+        return render::shapes::sphere(center, radius, rings, segments);
 #else
         return fallback_shapes::sphere(center, radius, rings, segments);
 #endif
@@ -409,7 +411,7 @@ render::Mesh make_shape(const Ctx& c, const json& j, const std::string& where,
                 c.fail(sub(where, "half_extents"), "expected three positive numbers");
         }
 #if defined(SPHBASIS_HAVE_RENDER_SHAPES)
-        return render::box(center, half);
+        return render::shapes::box(center, half);
 #else
         return fallback_shapes::box(center, half);
 #endif
@@ -425,7 +427,7 @@ render::Mesh make_shape(const Ctx& c, const json& j, const std::string& where,
                           ? integer(c, j["subdivisions"], sub(where, "subdivisions"), 1, 8192)
                           : 1;
 #if defined(SPHBASIS_HAVE_RENDER_SHAPES)
-        return render::quad(center, u, v, s);
+        return render::shapes::quad(center, u, v, s);
 #else
         return fallback_shapes::quad(center, u, v, s);
 #endif
@@ -550,7 +552,11 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
         sm.mesh = load_mesh_file(c, sub(where, "file"), sm.source);
     } else {
         sm.source = "shape:" + kind;
-        sm.mesh = make_shape(c, j, where, kind);
+        try {
+            sm.mesh = make_shape(c, j, where, kind);
+        } catch (const std::invalid_argument& e) {
+            c.fail(where, e.what());
+        }
     }
     if (j.contains("transform")) apply(c, sub(where, "transform"), transform(c, j["transform"], sub(where, "transform")), sm.mesh);
     for (float v : sm.mesh.positions)
