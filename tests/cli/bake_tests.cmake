@@ -106,3 +106,9 @@ sphbasis_bake_test(merge_missing_shard "missing-shard-ok"
 # Rays per second at the end, on stderr.
 sphbasis_bake_test(rate_report "sphbasis bake: [0-9]+ points, [0-9]+ rays in [0-9.]+ s: [0-9.e+]+ rays/s"
   "rm -rf bake_r && \"${_bake}\" bake ${_scenes}/lone_sphere.json --rays 16 --out bake_r 2>&1 >/dev/null")
+# Textures (PNG through stb_image), an OBJ with a 4x4 matrix, a box and an EXR environment:
+# irradiance at a point on the tile next to the crate.
+sphbasis_bake_test(textured_scene "\\{\"p\":\\[1,0,0\\],\"n\":\\[0,0,1\\],\"ao\":[-0-9.e]+,\"ao_stderr\":[-0-9.e]+,\"irradiance\":\\[\\["
+  "printf '1 0 0 0 0 1\\n' | \"${_bake}\" bake ${_scenes}/textured.json --points - --quantities ao,irradiance --basis hbasis --coeffs 6 --rays 128")
+# An output directory that cannot be created fails before any work.
+sphbasis_bake_bad(out_unwritable "cannot create output directory '/dev/null/x'" bake ${_scenes}/lone_sphere.json --out /dev/null/x)

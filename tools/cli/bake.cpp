@@ -201,8 +201,21 @@ Work vertex_work(const SceneFile& scene) {
             render::BakePoint p;
             p.p = {m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]};
             p.n = {n[3 * v], n[3 * v + 1], n[3 * v + 2]};
-            if (!m.tangents.empty())
-                p.tangent = {m.tangents[4 * v], m.tangents[4 * v + 1], m.tangents[4 * v + 2]};
+            if (!m.tangents.empty()) {
+                // The contract wants a unit tangent orthogonal to n (or zero): Gram-Schmidt,
+                // since file tangents are not exactly orthogonal to smoothed normals.
+                const double nx = n[3 * v], ny = n[3 * v + 1], nz = n[3 * v + 2];
+                const double nn = nx * nx + ny * ny + nz * nz;
+                double tx = m.tangents[4 * v], ty = m.tangents[4 * v + 1], tz = m.tangents[4 * v + 2];
+                if (nn > 0) {
+                    const double d = (tx * nx + ty * ny + tz * nz) / nn;
+                    tx -= d * nx;
+                    ty -= d * ny;
+                    tz -= d * nz;
+                }
+                const double tl = std::sqrt(tx * tx + ty * ty + tz * tz);
+                if (tl > 1e-6 && std::isfinite(tl)) p.tangent = {tx / tl, ty / tl, tz / tl};
+            }
             p.id = id++;
             w.points.push_back(p);
         }
