@@ -120,10 +120,14 @@ struct Target {
     int res = 0;  // texels
     std::string text() const {
         switch (kind) {
-            case TargetKind::vertices: return "vertices";
-            case TargetKind::texels: return "texels:" + std::to_string(res);
-            case TargetKind::probes: return "probes";
-            case TargetKind::points: return "points";
+            case TargetKind::vertices:
+                return "vertices";
+            case TargetKind::texels:
+                return "texels:" + std::to_string(res);
+            case TargetKind::probes:
+                return "probes";
+            case TargetKind::points:
+                return "points";
         }
         return "";
     }
@@ -156,8 +160,8 @@ Shard parse_shard(const std::string& s) {
     const std::size_t slash = s.find('/');
     Shard sh;
     if (slash == std::string::npos || !parse_integer(s.substr(0, slash), sh.index) ||
-        !parse_integer(s.substr(slash + 1), sh.count) || sh.count < 1 ||
-        sh.count > 1000000 || sh.index < 0 || sh.index >= sh.count)
+        !parse_integer(s.substr(slash + 1), sh.count) || sh.count < 1 || sh.count > 1000000 ||
+        sh.index < 0 || sh.index >= sh.count)
         throw UsageError("--shard: expected I/N with 0 <= I < N <= 1000000, got '" + s + "'");
     return sh;
 }
@@ -166,10 +170,10 @@ Shard parse_shard(const std::string& s) {
 struct Work {
     Target target;
     std::vector<render::BakePoint> points;
-    std::vector<std::size_t> mesh_begin;            // vertices, texels: per mesh, size meshes+1
-    std::vector<render::LightmapLayout> layouts;    // texels
-    std::vector<bool> surface;                      // points: has a normal
-    std::vector<std::array<double, 3>> given_n;     // points: the normal as given
+    std::vector<std::size_t> mesh_begin;          // vertices, texels: per mesh, size meshes+1
+    std::vector<render::LightmapLayout> layouts;  // texels
+    std::vector<bool> surface;                    // points: has a normal
+    std::vector<std::array<double, 3>> given_n;   // points: the normal as given
 };
 
 std::vector<float> vertex_normals(const render::Mesh& m) {
@@ -185,7 +189,8 @@ std::vector<float> vertex_normals(const render::Mesh& m) {
         const float c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
                             a[0] * b[1] - a[1] * b[0]};
         for (int k = 0; k < 3; ++k)
-            for (int d = 0; d < 3; ++d) n[3 * std::size_t(m.indices[t + std::size_t(k)]) + std::size_t(d)] += c[d];
+            for (int d = 0; d < 3; ++d)
+                n[3 * std::size_t(m.indices[t + std::size_t(k)]) + std::size_t(d)] += c[d];
     }
     return n;
 }
@@ -206,7 +211,8 @@ Work vertex_work(const SceneFile& scene) {
                 // since file tangents are not exactly orthogonal to smoothed normals.
                 const double nx = n[3 * v], ny = n[3 * v + 1], nz = n[3 * v + 2];
                 const double nn = nx * nx + ny * ny + nz * nz;
-                double tx = m.tangents[4 * v], ty = m.tangents[4 * v + 1], tz = m.tangents[4 * v + 2];
+                double tx = m.tangents[4 * v], ty = m.tangents[4 * v + 1],
+                       tz = m.tangents[4 * v + 2];
                 if (nn > 0) {
                     const double d = (tx * nx + ty * ny + tz * nz) / nn;
                     tx -= d * nx;
@@ -236,7 +242,8 @@ Work texel_work(const SceneFile& scene, int res) {
         const std::uint64_t base = static_cast<std::uint64_t>(k) * static_cast<std::uint64_t>(res) *
                                    static_cast<std::uint64_t>(res);
         w.layouts.push_back(render::layout_lightmap(sm.mesh.view(), res, res, base));
-        for (const render::LightmapSample& s : w.layouts.back().samples) w.points.push_back(s.point);
+        for (const render::LightmapSample& s : w.layouts.back().samples)
+            w.points.push_back(s.point);
     }
     w.mesh_begin.push_back(w.points.size());
     return w;
@@ -244,8 +251,9 @@ Work texel_work(const SceneFile& scene, int res) {
 
 Work probe_work(const SceneFile& scene) {
     if (!scene.has_probes)
-        throw std::runtime_error(scene.path + ": --target probes needs a \"probes\" grid in the "
-                                              "scene (docs/scene-format.md)");
+        throw std::runtime_error(scene.path +
+                                 ": --target probes needs a \"probes\" grid in the "
+                                 "scene (docs/scene-format.md)");
     Work w;
     const render::ProbeGrid& g = scene.probes;
     for (int k = 0; k < g.counts[2]; ++k)
@@ -298,9 +306,15 @@ Work point_work(std::istream& in, const std::string& source) {
 Work make_work(const SceneFile& scene, const Target& t, const std::string& points_path) {
     Work w;
     switch (t.kind) {
-        case TargetKind::vertices: w = vertex_work(scene); break;
-        case TargetKind::texels: w = texel_work(scene, t.res); break;
-        case TargetKind::probes: w = probe_work(scene); break;
+        case TargetKind::vertices:
+            w = vertex_work(scene);
+            break;
+        case TargetKind::texels:
+            w = texel_work(scene, t.res);
+            break;
+        case TargetKind::probes:
+            w = probe_work(scene);
+            break;
         case TargetKind::points:
             if (points_path == "-") {
                 w = point_work(std::cin, "standard input");
@@ -422,10 +436,9 @@ Json settings_json(const render::BakeSettings& s) {
     Json q = Json::array();
     for (const auto& [n, bit] : quantity_names())
         if (s.quantities & bit) q.push_back(n);
-    Json j = {{"quantities", q},       {"bands", s.bands},     {"basis", s.basis},
-              {"coeffs", s.coeffs},    {"rays", s.rays},       {"bounces", s.bounces},
-              {"seed", s.seed},        {"max_distance", nullptr},
-              {"target_error", s.target_error}};
+    Json j = {{"quantities", q},    {"bands", s.bands},        {"basis", s.basis},
+              {"coeffs", s.coeffs}, {"rays", s.rays},          {"bounces", s.bounces},
+              {"seed", s.seed},     {"max_distance", nullptr}, {"target_error", s.target_error}};
     if (std::isfinite(s.max_distance)) j["max_distance"] = s.max_distance;
     return j;
 }
@@ -433,7 +446,8 @@ Json settings_json(const render::BakeSettings& s) {
 Json plan_json(const std::vector<render::Pass>& plan) {
     Json p = Json::array();
     for (const render::Pass& x : plan)
-        p.push_back({{"name", x.name}, {"reason", x.reason}, {"rays", x.rays}, {"seconds", x.seconds}});
+        p.push_back(
+            {{"name", x.name}, {"reason", x.reason}, {"rays", x.rays}, {"seconds", x.seconds}});
     return p;
 }
 
@@ -495,7 +509,8 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
             for (std::size_t v = 0; v < m.vertex_count(); ++v) {
                 vals.insert(vals.end(), m.positions.begin() + std::ptrdiff_t(3 * v),
                             m.positions.begin() + std::ptrdiff_t(3 * v + 3));
-                vals.insert(vals.end(), n.begin() + std::ptrdiff_t(3 * v), n.begin() + std::ptrdiff_t(3 * v + 3));
+                vals.insert(vals.end(), n.begin() + std::ptrdiff_t(3 * v),
+                            n.begin() + std::ptrdiff_t(3 * v + 3));
                 const double* r = rec.data() + (w.mesh_begin[k] + v) * L.stride;
                 for (const Column& c : cols) vals.push_back(static_cast<float>(r[c.offset]));
             }
@@ -503,8 +518,11 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
             write_file_atomic(join(out_dir, file),
                               ply_binary(names, vals, m.vertex_count(), m.indices,
                                          {"sphbasis bake: " + scene.meshes[k].name}));
-            outputs.push_back({{"file", file}, {"mesh", scene.meshes[k].name}, {"kind", "ply"},
-                               {"vertices", m.vertex_count()}, {"channels", column_names(cols)}});
+            outputs.push_back({{"file", file},
+                               {"mesh", scene.meshes[k].name},
+                               {"kind", "ply"},
+                               {"vertices", m.vertex_count()},
+                               {"channels", column_names(cols)}});
         }
     } else if (w.target.kind == TargetKind::texels) {
         for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
@@ -514,11 +532,14 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
             std::vector<float> img(npx * nch, 0.0f);
             for (std::size_t i = 0; i < lay.samples.size(); ++i) {
                 const render::LightmapSample& smp = lay.samples[i];
-                const std::size_t px = std::size_t(smp.y) * std::size_t(lay.width) + std::size_t(smp.x);
+                const std::size_t px =
+                    std::size_t(smp.y) * std::size_t(lay.width) + std::size_t(smp.x);
                 const double* r = rec.data() + (w.mesh_begin[k] + i) * L.stride;
-                for (std::size_t c = 0; c < nc; ++c) img[px * nch + c] = static_cast<float>(r[cols[c].offset]);
+                for (std::size_t c = 0; c < nc; ++c)
+                    img[px * nch + c] = static_cast<float>(r[cols[c].offset]);
             }
-            render::dilate(img.data(), lay.width, lay.height, static_cast<int>(nch), lay.covered, kGutter);
+            render::dilate(img.data(), lay.width, lay.height, static_cast<int>(nch), lay.covered,
+                           kGutter);
             for (std::size_t p = 0; p < npx; ++p) img[p * nch + nc] = lay.covered[p] ? 1.0f : 0.0f;
             std::vector<std::string> names;
             for (const Column& c : cols) names.push_back(c.name);
@@ -527,10 +548,14 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
             write_exr_channels(join(out_dir, file), lay.width, lay.height, names, img);
             Json cn = column_names(cols);
             cn.push_back("coverage");
-            outputs.push_back({{"file", file}, {"mesh", scene.meshes[k].name}, {"kind", "exr"},
-                               {"width", lay.width}, {"height", lay.height},
+            outputs.push_back({{"file", file},
+                               {"mesh", scene.meshes[k].name},
+                               {"kind", "exr"},
+                               {"width", lay.width},
+                               {"height", lay.height},
                                {"texels_baked", lay.samples.size()},
-                               {"skipped_triangles", lay.skipped_triangles}, {"gutter", kGutter},
+                               {"skipped_triangles", lay.skipped_triangles},
+                               {"gutter", kGutter},
                                {"channels", cn}});
         }
     } else if (w.target.kind == TargetKind::probes) {
@@ -545,19 +570,27 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
             const bool in = r[L.inside] != 0;
             inside += in ? 1 : 0;
             const vec3<double>& p = w.points[i].p;
-            probes.push_back({{"index", w.points[i].id}, {"p", {p.x, p.y, p.z}}, {"inside", in}, {"values", vals}});
+            probes.push_back({{"index", w.points[i].id},
+                              {"p", {p.x, p.y, p.z}},
+                              {"inside", in},
+                              {"values", vals}});
         }
         Json names = Json::array();
         for (const Column& c : cols)
             if (c.name != "inside") names.push_back(c.name);
-        Json doc = {{"grid", {{"min", {g.lo.x, g.lo.y, g.lo.z}}, {"max", {g.hi.x, g.hi.y, g.hi.z}},
-                              {"counts", {g.counts[0], g.counts[1], g.counts[2]}}}},
+        Json doc = {{"grid",
+                     {{"min", {g.lo.x, g.lo.y, g.lo.z}},
+                      {"max", {g.hi.x, g.hi.y, g.hi.z}},
+                      {"counts", {g.counts[0], g.counts[1], g.counts[2]}}}},
                     {"channels", names},
                     {"inside", inside},
                     {"probes", probes}};
         write_file_atomic(join(out_dir, "probes.json"), dump_json(doc, {{"probes", 0}}) + "\n");
-        outputs.push_back({{"file", "probes.json"}, {"kind", "json"}, {"probes", w.points.size()},
-                           {"inside", inside}, {"channels", names}});
+        outputs.push_back({{"file", "probes.json"},
+                           {"kind", "json"},
+                           {"probes", w.points.size()},
+                           {"inside", inside},
+                           {"channels", names}});
     }
     return outputs;
 }
@@ -607,7 +640,8 @@ void put_u64(std::string& out, std::uint64_t v) {
 std::uint64_t get_u64(const std::string& in, std::size_t& pos, const std::string& file) {
     if (pos + 8 > in.size()) throw std::runtime_error(file + ": truncated shard file");
     std::uint64_t v = 0;
-    for (int i = 0; i < 8; ++i) v |= std::uint64_t(static_cast<unsigned char>(in[pos + std::size_t(i)])) << (8 * i);
+    for (int i = 0; i < 8; ++i)
+        v |= std::uint64_t(static_cast<unsigned char>(in[pos + std::size_t(i)])) << (8 * i);
     pos += 8;
     return v;
 }
@@ -665,7 +699,7 @@ ShardData read_shard(const std::string& file) {
 
 struct BakeOptions {
     std::string scene, quantities = "ao", basis = "sh", target = "vertices", points, out = ".",
-                                   shard, max_distance;
+                       shard, max_distance;
     long long bands = 3, coeffs = 9, rays = 256, bounces = 0, seed = 0;
     CLI::Option *target_opt = nullptr, *points_opt = nullptr, *out_opt = nullptr,
                 *maxd_opt = nullptr;
@@ -725,9 +759,10 @@ int run_bake(const BakeOptions& o) {
     const SceneFile scene = load_scene(o.scene);
     for (std::size_t k = 0; k < scene.meshes.size(); ++k)
         if (scene.meshes[k].dropped_triangles > 0)
-            std::fprintf(stderr, "sphbasis bake: %s: meshes[%zu] ('%s'): %zu degenerate triangles dropped\n",
-                         scene.path.c_str(), k, scene.meshes[k].name.c_str(),
-                         scene.meshes[k].dropped_triangles);
+            std::fprintf(
+                stderr, "sphbasis bake: %s: meshes[%zu] ('%s'): %zu degenerate triangles dropped\n",
+                scene.path.c_str(), k, scene.meshes[k].name.c_str(),
+                scene.meshes[k].dropped_triangles);
     const double t_load = seconds_since(t_start);
 
     const auto t_layout0 = Clock::now();
@@ -740,7 +775,7 @@ int run_bake(const BakeOptions& o) {
     const std::size_t end = static_cast<std::size_t>(
         std::uint64_t(total) * std::uint64_t(shard.index + 1) / std::uint64_t(shard.count));
     const std::vector<render::BakePoint> mine(w.points.begin() + std::ptrdiff_t(begin),
-                                             w.points.begin() + std::ptrdiff_t(end));
+                                              w.points.begin() + std::ptrdiff_t(end));
 
     const render::SceneDesc desc = scene.scene_desc();
     const auto t_bake0 = Clock::now();
@@ -748,7 +783,8 @@ int run_bake(const BakeOptions& o) {
     std::vector<render::PointResult> results;
     {
         Progress bar("bake", static_cast<long long>(mine.size()));
-        results = baker.bake(mine, [&bar](std::size_t k) { bar.update(static_cast<long long>(k)); });
+        results =
+            baker.bake(mine, [&bar](std::size_t k) { bar.update(static_cast<long long>(k)); });
         bar.done();
     }
     const double t_bake = seconds_since(t_bake0);
@@ -769,7 +805,8 @@ int run_bake(const BakeOptions& o) {
                     {"rays", rays},
                     {"rays_per_second", t_bake > 0 ? static_cast<double>(rays) / t_bake : 0.0}};
     if (shard.count > 1)
-        summary["shard"] = {{"index", shard.index}, {"count", shard.count}, {"begin", begin}, {"end", end}};
+        summary["shard"] = {
+            {"index", shard.index}, {"count", shard.count}, {"begin", begin}, {"end", end}};
 
     if (points_mode) print_points(w, s, rec, begin);
     const auto t_write0 = Clock::now();
@@ -785,7 +822,9 @@ int run_bake(const BakeOptions& o) {
             write_file_atomic(join(o.out, name), shard_bytes(header, rec, L.stride));
         } else {
             if (!points_mode) summary["outputs"] = write_outputs(scene, w, s, rec, o.out);
-            summary["seconds"] = {{"load", t_load}, {"layout", t_layout}, {"bake", t_bake},
+            summary["seconds"] = {{"load", t_load},
+                                  {"layout", t_layout},
+                                  {"bake", t_bake},
                                   {"write", seconds_since(t_write0)},
                                   {"total", seconds_since(t_start)}};
             write_file_atomic(join(o.out, points_mode ? "bake-points.json" : "bake.json"),
@@ -823,7 +862,8 @@ int run_merge(const MergeOptions& o) {
                              ", expected of " + std::to_string(count));
         const auto i = h.at("shard").at("index").get<std::size_t>();
         if (i >= by_index.size()) throw UsageError(o.shards[k] + ": corrupt shard index");
-        if (by_index[i] != nullptr) throw UsageError(o.shards[k] + ": shard " + std::to_string(i) + " given twice");
+        if (by_index[i] != nullptr)
+            throw UsageError(o.shards[k] + ": shard " + std::to_string(i) + " given twice");
         by_index[i] = &parts[k];
     }
     const std::string scene_file = h0.at("scene_file").get<std::string>();
@@ -857,14 +897,17 @@ int run_merge(const MergeOptions& o) {
         const ShardData& d = *by_index[i];
         const Json& sh = d.header.at("shard");
         if (sh.at("begin").get<std::size_t>() * L.stride != rec.size() ||
-            (sh.at("end").get<std::size_t>() - sh.at("begin").get<std::size_t>()) * L.stride != d.rec.size())
-            throw std::runtime_error("shard " + std::to_string(i) + ": its point range does not fit");
+            (sh.at("end").get<std::size_t>() - sh.at("begin").get<std::size_t>()) * L.stride !=
+                d.rec.size())
+            throw std::runtime_error("shard " + std::to_string(i) +
+                                     ": its point range does not fit");
         rec.insert(rec.end(), d.rec.begin(), d.rec.end());
         rays += d.header.at("rays").get<std::uint64_t>();
         bake_seconds += d.header.at("seconds").at("bake").get<double>();
         const std::vector<render::Pass> p = plan_of(d.header.at("plan"));
         for (const render::Pass& x : p) {
-            auto it = std::find_if(plan.begin(), plan.end(), [&](const render::Pass& y) { return y.name == x.name; });
+            auto it = std::find_if(plan.begin(), plan.end(),
+                                   [&](const render::Pass& y) { return y.name == x.name; });
             if (it == plan.end()) {
                 plan.push_back(x);
             } else {
@@ -877,19 +920,21 @@ int run_merge(const MergeOptions& o) {
         throw std::runtime_error("the shards hold " + std::to_string(rec.size() / L.stride) +
                                  " points, the scene has " + std::to_string(w.points.size()));
     ensure_dir(o.out);
-    Json summary = {{"tool", "sphbasis bake"},
-                    {"scene", h0.at("scene")},
-                    {"target", w.target.text()},
-                    {"points", w.points.size()},
-                    {"seed", s.seed},
-                    {"settings", settings_json(s)},
-                    {"plan", plan_json(plan)},
-                    {"rays", rays},
-                    {"rays_per_second", bake_seconds > 0 ? static_cast<double>(rays) / bake_seconds : 0.0},
-                    {"shards", count}};
+    Json summary = {
+        {"tool", "sphbasis bake"},
+        {"scene", h0.at("scene")},
+        {"target", w.target.text()},
+        {"points", w.points.size()},
+        {"seed", s.seed},
+        {"settings", settings_json(s)},
+        {"plan", plan_json(plan)},
+        {"rays", rays},
+        {"rays_per_second", bake_seconds > 0 ? static_cast<double>(rays) / bake_seconds : 0.0},
+        {"shards", count}};
     summary["outputs"] = write_outputs(scene, w, s, rec, o.out);
     summary["seconds"] = {{"bake_sum_over_shards", bake_seconds}, {"merge", seconds_since(t0)}};
-    write_file_atomic(join(o.out, "bake.json"), dump_json(summary, {{"plan", 2}, {"outputs", 2}}) + "\n");
+    write_file_atomic(join(o.out, "bake.json"),
+                      dump_json(summary, {{"plan", 2}, {"outputs", 2}}) + "\n");
     std::fprintf(stderr, "sphbasis bake-merge: %lld shards, %zu points\n", count, w.points.size());
     return 0;
 }
@@ -910,22 +955,26 @@ Run setup_bake(CLI::App& app) {
         ->type_name("LIST")
         ->capture_default_str();
     add_integer(app, "--bands", o->bands, 1, 32, "SH bands of visibility, transfer and radiance");
-    app.add_option("--basis", o->basis, "basis of irradiance: sh, hbasis, hbasis-mod, hl2, hsh, makhotkin, zernike")
+    app.add_option("--basis", o->basis,
+                   "basis of irradiance: sh, hbasis, hbasis-mod, hl2, hsh, makhotkin, zernike")
         ->type_name("NAME")
         ->capture_default_str();
     add_integer(app, "--coeffs", o->coeffs, 1, 1024, "irradiance coefficients");
     add_integer(app, "--rays", o->rays, 1, 1 << 24, "rays per point and pass");
     add_integer(app, "--bounces", o->bounces, 0, 64, "interreflection bounces at most", "B");
-    add_integer(app, "--seed", o->seed, 0, std::numeric_limits<long long>::max(), "random seed", "S");
+    add_integer(app, "--seed", o->seed, 0, std::numeric_limits<long long>::max(), "random seed",
+                "S");
     o->maxd_opt = app.add_option("--max-distance", o->max_distance,
                                  "ao: hits farther than D do not occlude (default: none)")
                       ->type_name("D");
     o->target_opt = app.add_option("--target", o->target, "vertices, texels:RES or probes")
                         ->type_name("vertices|texels:RES|probes")
                         ->capture_default_str();
-    o->points_opt = app.add_option("--points", o->points,
-                                   "bake at points from FILE or '-' (stdin): 'x y z nx ny nz' or 'x y z' per line")
-                        ->type_name("FILE|-");
+    o->points_opt =
+        app.add_option(
+               "--points", o->points,
+               "bake at points from FILE or '-' (stdin): 'x y z nx ny nz' or 'x y z' per line")
+            ->type_name("FILE|-");
     o->out_opt = add_path(app, "--out", o->out, "output directory (created if missing)");
     o->out_opt->type_name("DIR")->capture_default_str();
     app.add_option("--shard", o->shard, "bake shard I of N (0 <= I < N)")->type_name("I/N");

@@ -103,8 +103,9 @@ void write_exr_channels(const std::string& path, int width, int height,
     const std::size_t nc = names.size();
     if (width < 1 || height < 1 || nc == 0 ||
         values.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * nc)
-        throw std::invalid_argument("sphbasis::cli::write_exr_channels(): expected width * "
-                                    "height * channels values");
+        throw std::invalid_argument(
+            "sphbasis::cli::write_exr_channels(): expected width * "
+            "height * channels values");
 #if defined(SPHBASIS_HAVE_OPENEXR)
     const std::string temp = temporary_name_for(path);
     try {

@@ -1,10 +1,11 @@
 // sphbasis CLI support: load_scene (see scene_file.hpp and docs/scene-format.md).
 #include "scene_file.hpp"
 
-#include <algorithm>
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+
+#include <algorithm>
+#include <assimp/Importer.hpp>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -104,16 +105,15 @@ double positive(const Ctx& c, const json& j, const std::string& where) {
 int integer(const Ctx& c, const json& j, const std::string& where, int lo, int hi) {
     const double v = number(c, j, where);
     if (v != std::floor(v) || v < lo || v > hi)
-        c.fail(where, "expected an integer in [" + std::to_string(lo) + ", " +
-                          std::to_string(hi) + "], got " + number_text(v));
+        c.fail(where, "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                          "], got " + number_text(v));
     return static_cast<int>(v);
 }
 
-std::vector<double> numbers(const Ctx& c, const json& j, const std::string& where,
-                            std::size_t n) {
+std::vector<double> numbers(const Ctx& c, const json& j, const std::string& where, std::size_t n) {
     if (!j.is_array() || j.size() != n)
-        c.fail(where, "expected an array of " + std::to_string(n) + " numbers, got " +
-                          type_name(j));
+        c.fail(where,
+               "expected an array of " + std::to_string(n) + " numbers, got " + type_name(j));
     std::vector<double> v;
     for (std::size_t i = 0; i < n; ++i) v.push_back(number(c, j[i], at(where, i)));
     return v;
@@ -135,8 +135,8 @@ render::RGB color(const Ctx& c, const json& j, const std::string& where, double 
     const auto v = numbers(c, j, where, 3);
     for (std::size_t i = 0; i < 3; ++i)
         if (v[i] < 0 || v[i] > hi)
-            c.fail(at(where, i), "expected a value in [0, " + number_text(hi) + "], got " +
-                                     number_text(v[i]));
+            c.fail(at(where, i),
+                   "expected a value in [0, " + number_text(hi) + "], got " + number_text(v[i]));
     return {v[0], v[1], v[2]};
 }
 
@@ -271,8 +271,7 @@ void apply(const Ctx& c, const std::string& where, const Affine& m, render::Mesh
         v[1] = static_cast<float>(r[3] * x + r[4] * y + r[5] * z + t.y);
         v[2] = static_cast<float>(r[6] * x + r[7] * y + r[8] * z + t.z);
     };
-    for (std::size_t i = 0; i + 2 < mesh.positions.size(); i += 3)
-        mul(a, &mesh.positions[i], m.t);
+    for (std::size_t i = 0; i + 2 < mesh.positions.size(); i += 3) mul(a, &mesh.positions[i], m.t);
     for (std::size_t i = 0; i + 2 < mesh.normals.size(); i += 3) {
         mul(it, &mesh.normals[i], {0, 0, 0});
         normalize3(&mesh.normals[i]);
@@ -317,7 +316,9 @@ render::Mesh sphere(const V3& c, double r, int rings, int segments) {
             m.tangents.push_back(1.0f);
         }
     }
-    const auto id = [&](int i, int j) { return static_cast<std::uint32_t>(i * (segments + 1) + j); };
+    const auto id = [&](int i, int j) {
+        return static_cast<std::uint32_t>(i * (segments + 1) + j);
+    };
     for (int i = 0; i < rings; ++i)
         for (int j = 0; j < segments; ++j) {
             if (i != 0) m.indices.insert(m.indices.end(), {id(i, j), id(i + 1, j), id(i, j + 1)});
@@ -380,8 +381,7 @@ render::Mesh box(const V3& c, const V3& h) {
                 push3(m.tangents, ua.x * sgn, ua.y * sgn, ua.z * sgn);
                 m.tangents.push_back(1.0f);
             }
-            m.indices.insert(m.indices.end(),
-                             {base, base + 1, base + 2, base, base + 2, base + 3});
+            m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
         }
     return m;
 }
@@ -393,9 +393,13 @@ render::Mesh make_shape(const Ctx& c, const json& j, const std::string& where,
                         const std::string& kind) {
     if (kind == "sphere") {
         const V3 center = j.contains("center") ? vec(c, j["center"], sub(where, "center")) : V3{};
-        const double radius = j.contains("radius") ? positive(c, j["radius"], sub(where, "radius")) : 1.0;
-        const int rings = j.contains("rings") ? integer(c, j["rings"], sub(where, "rings"), 2, 4096) : 32;
-        const int segments = j.contains("segments") ? integer(c, j["segments"], sub(where, "segments"), 3, 8192) : 64;
+        const double radius =
+            j.contains("radius") ? positive(c, j["radius"], sub(where, "radius")) : 1.0;
+        const int rings =
+            j.contains("rings") ? integer(c, j["rings"], sub(where, "rings"), 2, 4096) : 32;
+        const int segments = j.contains("segments")
+                                 ? integer(c, j["segments"], sub(where, "segments"), 3, 8192)
+                                 : 64;
 #if defined(SPHBASIS_HAVE_RENDER_SHAPES)
         return render::shapes::sphere(center, radius, rings, segments);
 #else
@@ -446,10 +450,10 @@ render::Mesh load_mesh_file(const Ctx& c, const std::string& where, const std::s
     Assimp::Importer importer;
     // Normals only where the file has none (GenSmoothNormals leaves existing ones); tangents
     // need UVs. PreTransformVertices bakes the file's node hierarchy into world positions.
-    const aiScene* s = importer.ReadFile(
-        path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
-                  aiProcess_CalcTangentSpace | aiProcess_PreTransformVertices |
-                  aiProcess_SortByPType);
+    const aiScene* s =
+        importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                    aiProcess_GenSmoothNormals | aiProcess_CalcTangentSpace |
+                                    aiProcess_PreTransformVertices | aiProcess_SortByPType);
     if (s == nullptr || (s->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0)
         c.fail(where, "cannot load mesh '" + path + "': " + importer.GetErrorString());
     render::Mesh m;
@@ -543,10 +547,13 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
     }
     check_keys(c, j, where, keys);
     SceneMesh sm;
-    sm.name = j.contains("name") ? string(c, j["name"], sub(where, "name")) : "mesh" + std::to_string(index);
+    sm.name = j.contains("name") ? string(c, j["name"], sub(where, "name"))
+                                 : "mesh" + std::to_string(index);
     for (char ch : sm.name)
         if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.'))
-            c.fail(sub(where, "name"), "expected letters, digits, '_', '-' or '.' (it names output files), got '" + sm.name + "'");
+            c.fail(sub(where, "name"),
+                   "expected letters, digits, '_', '-' or '.' (it names output files), got '" +
+                       sm.name + "'");
     if (has_file) {
         sm.source = c.resolve(string(c, j["file"], sub(where, "file")));
         sm.mesh = load_mesh_file(c, sub(where, "file"), sm.source);
@@ -558,7 +565,9 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
             c.fail(where, e.what());
         }
     }
-    if (j.contains("transform")) apply(c, sub(where, "transform"), transform(c, j["transform"], sub(where, "transform")), sm.mesh);
+    if (j.contains("transform"))
+        apply(c, sub(where, "transform"), transform(c, j["transform"], sub(where, "transform")),
+              sm.mesh);
     for (float v : sm.mesh.positions)
         if (!std::isfinite(v)) c.fail(where, "non-finite vertex position after the transform");
     sm.dropped_triangles = drop_degenerate(sm.mesh);
@@ -616,7 +625,8 @@ void load_environment(const Ctx& c, const json& j, SceneFile& s) {
         s.environment.width = img.width;
         s.environment.height = img.height;
         if (j.contains("rotate_deg"))
-            s.environment.rotation = rotation_xyz_deg(vec(c, j["rotate_deg"], sub(where, "rotate_deg")));
+            s.environment.rotation =
+                rotation_xyz_deg(vec(c, j["rotate_deg"], sub(where, "rotate_deg")));
     } else {
         check_keys(c, j, where, {"file", "constant", "rotate_deg", "scale"});
         c.fail(where, "expected \"file\" or \"constant\"");
@@ -629,7 +639,8 @@ void load_environment(const Ctx& c, const json& j, SceneFile& s) {
 
 render::Light load_light(const Ctx& c, const json& j, const std::string& where) {
     if (!j.is_object()) c.fail(where, "expected an object, got " + type_name(j));
-    if (!j.contains("type")) c.fail(where, "missing \"type\" (directional, sphere, cone or hemisphere)");
+    if (!j.contains("type"))
+        c.fail(where, "missing \"type\" (directional, sphere, cone or hemisphere)");
     const std::string type = string(c, j["type"], sub(where, "type"));
     render::Light l;
     if (type == "directional") {
@@ -645,9 +656,11 @@ render::Light load_light(const Ctx& c, const json& j, const std::string& where) 
         check_keys(c, j, where, {"type", "direction", "color", "ground"});
         l.type = render::Light::Type::hemisphere;
     } else {
-        c.fail(sub(where, "type"), "unknown light type '" + type + "' (expected directional, sphere, cone or hemisphere)");
+        c.fail(sub(where, "type"), "unknown light type '" + type +
+                                       "' (expected directional, sphere, cone or hemisphere)");
     }
-    if (j.contains("direction")) l.direction = direction(c, j["direction"], sub(where, "direction"));
+    if (j.contains("direction"))
+        l.direction = direction(c, j["direction"], sub(where, "direction"));
     if (j.contains("color")) l.color = color(c, j["color"], sub(where, "color"), 1e30);
     if (j.contains("ground")) l.ground = color(c, j["ground"], sub(where, "ground"), 1e30);
     if (l.type == render::Light::Type::sphere) {
@@ -701,7 +714,8 @@ SceneTexture load_texture(const std::string& path, bool srgb) {
     std::string ext;
     const std::size_t dot = path.find_last_of('.');
     if (dot != std::string::npos)
-        for (char ch : path.substr(dot + 1)) ext += char(std::tolower(static_cast<unsigned char>(ch)));
+        for (char ch : path.substr(dot + 1))
+            ext += char(std::tolower(static_cast<unsigned char>(ch)));
     auto texels = std::make_shared<std::vector<float>>();
     if (ext == "exr") {
         RgbImage img = load_exr_rgb(path);
@@ -711,7 +725,8 @@ SceneTexture load_texture(const std::string& path, bool srgb) {
     } else if (ext == "hdr") {
         int w = 0, h = 0, n = 0;
         float* px = stbi_loadf(path.c_str(), &w, &h, &n, 3);
-        if (px == nullptr) throw std::runtime_error("cannot read image '" + path + "': " + stbi_failure_reason());
+        if (px == nullptr)
+            throw std::runtime_error("cannot read image '" + path + "': " + stbi_failure_reason());
         texels->assign(px, px + std::size_t(w) * std::size_t(h) * 3);
         stbi_image_free(px);
         t.width = w;
@@ -724,21 +739,25 @@ SceneTexture load_texture(const std::string& path, bool srgb) {
                 stbi_us* px = stbi_load_16(path.c_str(), &w, &h, &n, 3);
                 if (px == nullptr) return std::size_t(0);
                 texels->resize(std::size_t(w) * std::size_t(h) * 3);
-                for (std::size_t i = 0; i < texels->size(); ++i) (*texels)[i] = float(px[i]) / 65535.0f;
+                for (std::size_t i = 0; i < texels->size(); ++i)
+                    (*texels)[i] = float(px[i]) / 65535.0f;
                 stbi_image_free(px);
             } else {
                 stbi_uc* px = stbi_load(path.c_str(), &w, &h, &n, 3);
                 if (px == nullptr) return std::size_t(0);
                 texels->resize(std::size_t(w) * std::size_t(h) * 3);
-                for (std::size_t i = 0; i < texels->size(); ++i) (*texels)[i] = float(px[i]) / 255.0f;
+                for (std::size_t i = 0; i < texels->size(); ++i)
+                    (*texels)[i] = float(px[i]) / 255.0f;
                 stbi_image_free(px);
             }
             return texels->size();
         }();
-        if (count == 0) throw std::runtime_error("cannot read image '" + path + "': " + stbi_failure_reason());
+        if (count == 0)
+            throw std::runtime_error("cannot read image '" + path + "': " + stbi_failure_reason());
         if (srgb)
             for (float& v : *texels)
-                v = v <= 0.04045f ? v / 12.92f : static_cast<float>(std::pow((v + 0.055) / 1.055, 2.4));
+                v = v <= 0.04045f ? v / 12.92f
+                                  : static_cast<float>(std::pow((v + 0.055) / 1.055, 2.4));
         t.width = w;
         t.height = h;
     }
@@ -774,7 +793,8 @@ SceneFile load_scene(const std::string& path) {
         if (p != std::string::npos) msg = msg.substr(p + 2);
         if (msg.find("invalid literal") != std::string::npos)
             msg += " (NaN and Infinity are not JSON numbers)";
-        c.fail("", std::string(e.id == 406 ? "expected finite numbers: " : "malformed JSON: ") + msg);
+        c.fail("",
+               std::string(e.id == 406 ? "expected finite numbers: " : "malformed JSON: ") + msg);
     }
     check_keys(c, j, "", {"meshes", "environment", "lights", "camera", "probes"});
     SceneFile s;
@@ -793,13 +813,15 @@ SceneFile load_scene(const std::string& path) {
     if (j.contains("lights")) {
         const json& ls = j["lights"];
         if (!ls.is_array()) c.fail("lights", "expected an array, got " + type_name(ls));
-        for (std::size_t i = 0; i < ls.size(); ++i) s.lights.push_back(load_light(c, ls[i], at("lights", i)));
+        for (std::size_t i = 0; i < ls.size(); ++i)
+            s.lights.push_back(load_light(c, ls[i], at("lights", i)));
     }
     if (j.contains("camera")) {
         const json& cam = j["camera"];
         check_keys(c, cam, "camera", {"position", "look_at", "up", "fov_deg"});
         s.camera.present = true;
-        if (cam.contains("position")) s.camera.position = vec(c, cam["position"], "camera.position");
+        if (cam.contains("position"))
+            s.camera.position = vec(c, cam["position"], "camera.position");
         if (cam.contains("look_at")) s.camera.look_at = vec(c, cam["look_at"], "camera.look_at");
         if (cam.contains("up")) s.camera.up = direction(c, cam["up"], "camera.up");
         if (cam.contains("fov_deg")) {
@@ -816,13 +838,16 @@ SceneFile load_scene(const std::string& path) {
         s.has_probes = true;
         s.probes.lo = vec(c, p["min"], "probes.min");
         s.probes.hi = vec(c, p["max"], "probes.max");
-        if (!(s.probes.lo.x <= s.probes.hi.x && s.probes.lo.y <= s.probes.hi.y && s.probes.lo.z <= s.probes.hi.z))
+        if (!(s.probes.lo.x <= s.probes.hi.x && s.probes.lo.y <= s.probes.hi.y &&
+              s.probes.lo.z <= s.probes.hi.z))
             c.fail("probes", "expected min <= max in every axis");
         const json& n = p["counts"];
-        if (!n.is_array() || n.size() != 3) c.fail("probes.counts", "expected an array of 3 integers, got " + type_name(n));
+        if (!n.is_array() || n.size() != 3)
+            c.fail("probes.counts", "expected an array of 3 integers, got " + type_name(n));
         for (std::size_t k = 0; k < 3; ++k)
             s.probes.counts[k] = integer(c, n[k], at("probes.counts", k), 1, 4096);
-        if (s.probes.size() > (std::size_t(1) << 26)) c.fail("probes.counts", "too many probes (at most 2^26)");
+        if (s.probes.size() > (std::size_t(1) << 26))
+            c.fail("probes.counts", "too many probes (at most 2^26)");
     }
     return s;
 }

@@ -36,8 +36,8 @@ struct SceneMesh {
     std::string name;    // "name" or "mesh<k>"
     std::string source;  // the resolved file, or "shape:<kind>"
     render::Mesh mesh;
-    SceneTexture normal_map;             // tangent-space normal map, [0, 1] per channel
-    std::size_t dropped_triangles = 0;   // zero-area or non-finite triangles removed on load
+    SceneTexture normal_map;            // tangent-space normal map, [0, 1] per channel
+    std::size_t dropped_triangles = 0;  // zero-area or non-finite triangles removed on load
 };
 
 /// "camera": kept for the renderer (the bake does not use it).
