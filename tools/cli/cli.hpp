@@ -22,5 +22,7 @@ Run setup_imse(CLI::App& app);
 Run setup_params(CLI::App& app);
 Run setup_gaunt(CLI::App& app);
 Run setup_rotate(CLI::App& app);
+Run setup_bake(CLI::App& app);
+Run setup_bake_merge(CLI::App& app);
 
 }  // namespace sphbasis::cli

@@ -1,16 +1,32 @@
-// sphbasis CLI support: load_exr_luminance (see exr.hpp).
+// sphbasis CLI support: OpenEXR input and output (see exr.hpp).
 #include "exr.hpp"
 
 #include <cmath>
 #include <cstddef>
+#include <exception>
 #include <stdexcept>
+
+#include "output_file.hpp"
 
 #if defined(SPHBASIS_HAVE_OPENEXR)
 #include <ImfArray.h>
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
 #include <ImfRgbaFile.h>
 #endif
 
 namespace sphbasis::cli {
+
+bool have_openexr() noexcept {
+#if defined(SPHBASIS_HAVE_OPENEXR)
+    return true;
+#else
+    return false;
+#endif
+}
 
 LuminanceImage load_exr_luminance(const std::string& path) {
 #if defined(SPHBASIS_HAVE_OPENEXR)
@@ -38,6 +54,82 @@ LuminanceImage load_exr_luminance(const std::string& path) {
     return m;
 #else
     throw std::runtime_error("reading " + path + " needs OpenEXR, and this build has none");
+#endif
+}
+
+RgbImage load_exr_rgb(const std::string& path) {
+#if defined(SPHBASIS_HAVE_OPENEXR)
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i dw = file.header().dataWindow();
+        const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+        if (w < 1 || h < 1) throw std::runtime_error("empty image");
+        const Imf::ChannelList& ch = file.header().channels();
+        const bool grey = ch.findChannel("R") == nullptr && ch.findChannel("Y") != nullptr;
+        RgbImage img;
+        img.width = w;
+        img.height = h;
+        img.rgb.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3, 0.0f);
+        const std::size_t xs = 3 * sizeof(float), ys = xs * static_cast<std::size_t>(w);
+        char* base = reinterpret_cast<char*>(img.rgb.data()) -
+                     static_cast<std::ptrdiff_t>(dw.min.x) * static_cast<std::ptrdiff_t>(xs) -
+                     static_cast<std::ptrdiff_t>(dw.min.y) * static_cast<std::ptrdiff_t>(ys);
+        Imf::FrameBuffer fb;
+        const char* names[3] = {"R", "G", "B"};
+        for (int c = 0; c < (grey ? 1 : 3); ++c)
+            fb.insert(grey ? "Y" : names[c],
+                      Imf::Slice(Imf::FLOAT, base + c * static_cast<std::ptrdiff_t>(sizeof(float)),
+                                 xs, ys, 1, 1, 0.0));
+        file.setFrameBuffer(fb);
+        file.readPixels(dw.min.y, dw.max.y);
+        for (std::size_t i = 0; i < img.rgb.size(); i += 3) {
+            if (grey) img.rgb[i + 1] = img.rgb[i + 2] = img.rgb[i];
+            for (std::size_t c = 0; c < 3; ++c) {
+                float& v = img.rgb[i + c];
+                if (!(std::isfinite(v) && v > 0)) v = 0.0f;
+            }
+        }
+        return img;
+    } catch (const std::exception& e) {
+        throw std::runtime_error("cannot read EXR '" + path + "': " + e.what());
+    }
+#else
+    throw std::runtime_error("reading " + path + " needs OpenEXR, and this build has none");
+#endif
+}
+
+void write_exr_channels(const std::string& path, int width, int height,
+                        const std::vector<std::string>& names, const std::vector<float>& values) {
+    const std::size_t nc = names.size();
+    if (width < 1 || height < 1 || nc == 0 ||
+        values.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * nc)
+        throw std::invalid_argument(
+            "sphbasis::cli::write_exr_channels(): expected width * "
+            "height * channels values");
+#if defined(SPHBASIS_HAVE_OPENEXR)
+    const std::string temp = temporary_name_for(path);
+    try {
+        Imf::Header header(width, height);
+        header.compression() = Imf::ZIP_COMPRESSION;
+        Imf::FrameBuffer fb;
+        const std::size_t xs = nc * sizeof(float), ys = xs * static_cast<std::size_t>(width);
+        char* base = reinterpret_cast<char*>(const_cast<float*>(values.data()));
+        for (std::size_t k = 0; k < nc; ++k) {
+            header.channels().insert(names[k], Imf::Channel(Imf::FLOAT));
+            fb.insert(names[k], Imf::Slice(Imf::FLOAT, base + k * sizeof(float), xs, ys));
+        }
+        {
+            Imf::OutputFile file(temp.c_str(), header);
+            file.setFrameBuffer(fb);
+            file.writePixels(height);
+        }
+    } catch (const std::exception& e) {
+        discard_temporary(temp);
+        throw std::runtime_error("cannot write '" + path + "': " + e.what());
+    }
+    commit_temporary(temp, path);
+#else
+    throw std::runtime_error("writing " + path + " needs OpenEXR, and this build has none");
 #endif
 }
 

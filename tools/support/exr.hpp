@@ -1,5 +1,6 @@
-// sphbasis CLI support: reading environment maps. File formats live in the tool, not in the
-// library: the library takes the pixels (e.g. imse::LatLongMap).
+// sphbasis CLI support: reading environment maps and textures, writing bake outputs. File
+// formats live in the tool, not in the library: the library takes the pixels (e.g.
+// imse::LatLongMap, render::Environment).
 #pragma once
 
 #include <string>
@@ -18,5 +19,29 @@ struct LuminanceImage {
 /// non-finite values taken as 0. Throws std::runtime_error if the file cannot be read, is
 /// narrower than 2 pixels, or this build has no OpenEXR.
 LuminanceImage load_exr_luminance(const std::string& path);
+
+/// A linear RGB float image, row-major from the top row, 3 floats per pixel.
+struct RgbImage {
+    int width = 0, height = 0;
+    std::vector<float> rgb;  // width * height * 3
+};
+
+/// The R, G, B channels of an OpenEXR image as float (a file with only a Y channel is read as
+/// grey; missing channels are 0). Negative values are clamped to 0 and non-finite values
+/// become 0 (radiance is non-negative; lossy compressions undershoot). Throws
+/// std::runtime_error "cannot read EXR 'path': ..." if the file cannot be read, or this build
+/// has no OpenEXR.
+RgbImage load_exr_rgb(const std::string& path);
+
+/// Writes a multi-channel float (32-bit) OpenEXR image with ZIP compression, channel k of
+/// pixel (x, y) (y down from the top row) at values[(y * width + x) * names.size() + k].
+/// Written to a temporary file and renamed (support/output_file.hpp). The bytes depend only
+/// on the arguments (no time stamp in the header), so equal images give equal files.
+/// Note that OpenEXR stores channels sorted by name. Throws std::runtime_error on failure.
+void write_exr_channels(const std::string& path, int width, int height,
+                        const std::vector<std::string>& names, const std::vector<float>& values);
+
+/// True when this build reads and writes OpenEXR.
+bool have_openexr() noexcept;
 
 }  // namespace sphbasis::cli

@@ -1,0 +1,114 @@
+# Tests of `sphbasis bake` and `sphbasis bake-merge`. Included by tests/CMakeLists.txt after
+# cli_tests.cmake. Label "cli": options, help and bad scene files (rejected before any ray is
+# traced). Label "bake": runs that trace rays with render::Baker (ctest -L bake).
+set(_bake $<TARGET_FILE:sphbasis_cli>)
+set(_scenes ${CMAKE_CURRENT_SOURCE_DIR}/data/scenes)
+set(_check_points ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_bake_points.py)
+
+# Passes when the command exits non-zero with exactly one line on stderr matching regex (and
+# nothing on stdout).
+function(sphbasis_bake_bad name regex)
+  string(JOIN " " _args ${ARGN})
+  add_test(NAME cli_bake_bad_${name}
+           COMMAND sh -c "err=$(\"${_bake}\" ${_args} 2>&1 >/dev/null); rc=$?; n=$(printf '%s\\n' \"$err\" | wc -l); if [ $rc -ne 0 ] && [ $n -eq 1 ]; then echo \"bad-input-ok: $err\"; else echo \"rc=$rc lines=$n: $err\"; fi")
+  set_tests_properties(cli_bake_bad_${name} PROPERTIES
+                       PASS_REGULAR_EXPRESSION "bad-input-ok: sphbasis bake[-a-z]*: ${regex}"
+                       LABELS cli)
+endfunction()
+function(sphbasis_bake_test name regex script)
+  add_test(NAME bake_${name} COMMAND sh -c "${script}")
+  set_tests_properties(bake_${name} PROPERTIES PASS_REGULAR_EXPRESSION "${regex}" LABELS bake)
+endfunction()
+
+# Help.
+sphbasis_cli_test(bake_help "Usage: sphbasis bake.*SCENE.json.*--quantities.*--bands N.*--basis NAME.*--coeffs N.*--rays N.*--bounces B.*--seed S.*--max-distance D.*--target.*--points FILE\\|-.*--out DIR.*--shard I/N"
+                  bake --help)
+sphbasis_cli_test(bake_merge_help "Usage: sphbasis bake-merge.*SHARD.bin.*--out DIR" bake-merge --help)
+sphbasis_cli_test(help_lists_bake "Subcommands:.*bake.*bake-merge" --help)
+
+# Bad scene files: one line naming the file and the place, non-zero exit.
+sphbasis_bake_bad(missing_scene "[^ ]*no_such_scene.json: cannot open the scene file"
+                  bake ${_scenes}/no_such_scene.json)
+sphbasis_bake_bad(malformed "[^ ]*malformed.json: malformed JSON: parse error at line 1"
+                  bake ${_scenes}/bad/malformed.json)
+sphbasis_bake_bad(unknown_key "[^ ]*unknown_key.json: meshes\\[0\\]: unknown key 'albdo' \\(did you mean 'albedo'\\?\\)"
+                  bake ${_scenes}/bad/unknown_key.json)
+sphbasis_bake_bad(unknown_top_key "[^ ]*unknown_top.json: unknown key 'light' \\(did you mean 'lights'\\?\\)"
+                  bake ${_scenes}/bad/unknown_top.json)
+sphbasis_bake_bad(nan_transform "[^ ]*nan_transform.json: malformed JSON: .*NaN and Infinity are not JSON numbers"
+                  bake ${_scenes}/bad/nan_transform.json)
+sphbasis_bake_bad(inf_transform "[^ ]*inf_transform.json: expected finite numbers"
+                  bake ${_scenes}/bad/inf_transform.json)
+sphbasis_bake_bad(overflow_transform "[^ ]*overflow_transform.json: meshes\\[0\\].transform: singular or non-finite transform"
+                  bake ${_scenes}/bad/overflow_transform.json)
+sphbasis_bake_bad(singular_transform "[^ ]*singular_transform.json: meshes\\[0\\].transform: singular or non-finite transform"
+                  bake ${_scenes}/bad/singular_transform.json)
+sphbasis_bake_bad(bad_length "[^ ]*bad_length.json: meshes\\[0\\].albedo: expected an array of 3 numbers, got an array of 2"
+                  bake ${_scenes}/bad/bad_length.json)
+sphbasis_bake_bad(bad_color "[^ ]*bad_color.json: environment.constant\\[1\\]: expected a value in"
+                  bake ${_scenes}/bad/bad_color.json)
+sphbasis_bake_bad(bad_light "[^ ]*bad_light.json: lights\\[0\\].type: unknown light type 'spot'"
+                  bake ${_scenes}/bad/bad_light.json)
+sphbasis_bake_bad(missing_mesh "[^ ]*missing_mesh.json: meshes\\[0\\].file: cannot open mesh file"
+                  bake ${_scenes}/bad/missing_mesh.json)
+sphbasis_bake_bad(empty_mesh "[^ ]*empty_mesh.json: meshes\\[0\\]: empty mesh"
+                  bake ${_scenes}/bad/empty_mesh.json)
+sphbasis_bake_bad(texels_without_uvs "[^ ]*no_uvs.json: meshes\\[0\\] \\('mesh0'\\): a texel bake needs a UV set"
+                  bake ${_scenes}/no_uvs.json --target texels:16)
+sphbasis_bake_bad(probes_without_grid "[^ ]*sphere_over_quad.json: --target probes needs a \"probes\" grid"
+                  bake ${_scenes}/sphere_over_quad.json --target probes)
+# Bad options.
+sphbasis_bake_bad(shard_out_of_range "--shard: expected I/N with 0 <= I < N" bake ${_scenes}/lone_sphere.json --shard 2/2)
+sphbasis_bake_bad(shard_malformed "--shard: expected I/N" bake ${_scenes}/lone_sphere.json --shard a/b)
+sphbasis_bake_bad(shard_zero "--shard: expected I/N" bake ${_scenes}/lone_sphere.json --shard 0/0)
+sphbasis_bake_bad(target_unknown "--target: expected vertices, texels:RES or probes, got 'faces'" bake ${_scenes}/lone_sphere.json --target faces)
+sphbasis_bake_bad(target_texels_zero "--target: expected texels:RES with 1 <= RES <= 16384" bake ${_scenes}/lone_sphere.json --target texels:0)
+sphbasis_bake_bad(quantity_unknown "--quantities: unknown quantity 'bnet' \\(did you mean 'bent'\\?\\)" bake ${_scenes}/lone_sphere.json --quantities ao,bnet)
+sphbasis_bake_bad(basis_unknown "--basis: " bake ${_scenes}/lone_sphere.json --basis nope)
+sphbasis_bake_bad(coeffs_invalid "--coeffs: basis 'hbasis' expects" bake ${_scenes}/lone_sphere.json --basis hbasis --coeffs 5)
+sphbasis_bake_bad(target_and_points "give either --target or --points" bake ${_scenes}/lone_sphere.json --target vertices --points -)
+sphbasis_bake_bad(max_distance "--max-distance: expected a positive distance" bake ${_scenes}/lone_sphere.json --max-distance 0)
+add_test(NAME cli_bake_bad_points_line
+         COMMAND sh -c "printf '0 0\\n' | \"${_bake}\" bake ${_scenes}/lone_sphere.json --points -")
+set_tests_properties(cli_bake_bad_points_line PROPERTIES WILL_FAIL TRUE LABELS cli)
+sphbasis_bake_bad(merge_not_a_shard "[^ ]*lone_sphere.json: not a shard file" bake-merge ${_scenes}/lone_sphere.json)
+
+# --- Tests that trace rays (label "bake") ----------------------------------------------------
+
+# A sphere (r = 1, centre height 2) over a plane: ao and the bent normal at points on the plane
+# against their closed forms (check_bake_points.py documents them).
+sphbasis_bake_test(points_closed_form "points-closed-form-ok 5"
+  "printf '0 0 0 0 0 1\\n0.5 0 0 0 0 2\\n1 1 0 0 0 1\\n-2 0.5 0 0 0 1\\n4 0 0 0 0 1\\n' | \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --points - --quantities ao,bent --rays 4096 --seed 3 | python3 ${_check_points} 2 1")
+# The output line format: exactly these keys in this order, "n" echoed as given (only for a
+# surface point), 17 significant digits.
+sphbasis_bake_test(points_format "\\{\"p\":\\[0.5,0,0\\],\"n\":\\[0,0,2\\],\"ao\":.*\n\\{\"p\":\\[1,0,0\\],\"n\":\\[0,0,1\\],\"ao\":.*points-format-ok 2"
+  "printf '0.5 0 0 0 0 2\\n1 0 0 0 0 1\\n' | \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --points - --quantities ao,bent,visibility,transfer --bands 3 --rays 64 | tee bake_points_format.txt && python3 ${_check_points} format 3 < bake_points_format.txt")
+# A free point (x y z): no "n"; radiance as three lists (R, G, B) and the inside flag.
+sphbasis_bake_test(points_free "\\{\"p\":\\[0,0,5\\],\"radiance\":\\[\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\]\\],\"inside\":false\\}"
+  "printf '0 0 5\\n' | \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --points - --quantities radiance --bands 2 --rays 64")
+# Vertex bake: one PLY per mesh with the documented properties, and the summary with a plan.
+sphbasis_bake_test(vertices_files "vertices-ok"
+  "rm -rf bake_v && \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --quantities ao,bent,visibility --rays 32 --out bake_v && grep -a -q 'property float ao_stderr' bake_v/ground.ply && grep -a -q 'property float vis_8' bake_v/ball.ply && grep -a -q 'property float bent_z' bake_v/ball.ply && grep -q '\"plan\":\\[' bake_v/bake.json && grep -q '\"reason\":' bake_v/bake.json && ! ls -a bake_v | grep -q tmp && echo vertices-ok")
+# Texel bake: a multi-channel EXR per mesh (the OBJ mesh and the procedural floor).
+sphbasis_bake_test(texels_files "texels-ok"
+  "rm -rf bake_t && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:32 --quantities ao,transfer --bands 2 --rays 32 --out bake_t && test -s bake_t/mesh0.exr && test -s bake_t/floor.exr && grep -q '\"coverage\"' bake_t/bake.json && grep -q '\"transfer_stderr_3\"' bake_t/bake.json && echo texels-ok")
+# Probes: the grid around a lone sphere; the centre probe is inside it.
+sphbasis_bake_test(probes_file "probes-ok"
+  "rm -rf bake_p && \"${_bake}\" bake ${_scenes}/lone_sphere.json --target probes --quantities radiance --bands 2 --rays 64 --out bake_p && grep -q '\"index\":13,\"p\":\\[0,0,0\\],\"inside\":true' bake_p/probes.json && echo probes-ok")
+# Sharding: two processes (xargs -P 2) bake halves; bake-merge is byte-identical to one run.
+sphbasis_bake_test(shard_merge_vertices "shard-vertices-ok"
+  "rm -rf bake_s1 bake_sh bake_sm && \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --quantities ao,bent,transfer --bands 3 --rays 64 --seed 5 --out bake_s1 && printf '0/2\\n1/2\\n' | xargs -P 2 -I{} \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --quantities ao,bent,transfer --bands 3 --rays 64 --seed 5 --out bake_sh --shard {} && \"${_bake}\" bake-merge bake_sh/bake.shard-0-of-2.bin bake_sh/bake.shard-1-of-2.bin --out bake_sm && cmp bake_s1/ground.ply bake_sm/ground.ply && cmp bake_s1/ball.ply bake_sm/ball.ply && echo shard-vertices-ok")
+sphbasis_bake_test(shard_merge_texels "shard-texels-ok"
+  "rm -rf bake_t1 bake_th bake_tm && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:16 --quantities ao,irradiance --basis hbasis --coeffs 6 --rays 64 --out bake_t1 && printf '0/2\\n1/2\\n' | xargs -P 2 -I{} \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:16 --quantities ao,irradiance --basis hbasis --coeffs 6 --rays 64 --out bake_th --shard {} && \"${_bake}\" bake-merge bake_th/bake.shard-1-of-2.bin bake_th/bake.shard-0-of-2.bin --out bake_tm && cmp bake_t1/mesh0.exr bake_tm/mesh0.exr && cmp bake_t1/floor.exr bake_tm/floor.exr && echo shard-texels-ok")
+# A missing shard is an error, not a partial file.
+sphbasis_bake_test(merge_missing_shard "missing-shard-ok"
+  "rm -rf bake_ms && \"${_bake}\" bake ${_scenes}/lone_sphere.json --rays 16 --out bake_ms --shard 0/3 && ! \"${_bake}\" bake-merge bake_ms/bake.shard-0-of-3.bin --out bake_ms/merged 2>/dev/null && ! test -e bake_ms/merged/mesh0.ply && echo missing-shard-ok")
+# Rays per second at the end, on stderr.
+sphbasis_bake_test(rate_report "sphbasis bake: [0-9]+ points, [0-9]+ rays in [0-9.]+ s: [0-9.e+]+ rays/s"
+  "rm -rf bake_r && \"${_bake}\" bake ${_scenes}/lone_sphere.json --rays 16 --out bake_r 2>&1 >/dev/null")
+# Textures (PNG through stb_image), an OBJ with a 4x4 matrix, a box and an EXR environment:
+# irradiance at a point on the tile next to the crate.
+sphbasis_bake_test(textured_scene "\\{\"p\":\\[1,0,0\\],\"n\":\\[0,0,1\\],\"ao\":[-0-9.e]+,\"ao_stderr\":[-0-9.e]+,\"irradiance\":\\[\\["
+  "printf '1 0 0 0 0 1\\n' | \"${_bake}\" bake ${_scenes}/textured.json --points - --quantities ao,irradiance --basis hbasis --coeffs 6 --rays 128")
+# An output directory that cannot be created fails before any work.
+sphbasis_bake_bad(out_unwritable "cannot create output directory '/dev/null/x'" bake ${_scenes}/lone_sphere.json --out /dev/null/x)

@@ -1,0 +1,997 @@
+// sphbasis CLI: `sphbasis bake SCENE.json [options]` and `sphbasis bake-merge SHARD... [--out DIR]`
+//
+// Bakes lighting representations of a scene (docs/scene-format.md) with render::Baker
+// (render/bake.hpp): ambient occlusion and its standard error, bent normals, SH visibility,
+// diffuse PRT transfer vectors with interreflections, irradiance in any basis of the library,
+// and SH radiance at free points. Sources: Hill, "Hardware Accelerating Art Production"
+// (Gamasutra 2004), eq. 1-5; Sloan, Lehtinen and Kautz, "Precomputed Radiance Transfer: Theory
+// and Practice" (SIGGRAPH 2005 course); Iwanicki and Sloan, "Normal Mapping with Low-Frequency
+// Precomputed Visibility" (JGT 2009), section 3.1; Ishmukhametov, "Irradiance Normal Mapping"
+// (thesis), section 1.9.
+//
+// Where (--target):
+//   vertices     every vertex of every mesh; point id = global vertex index in scene order.
+//                Writes OUT/<mesh>.ply per mesh (support/ply.hpp lists the property names).
+//   texels:RES   a RES x RES lightmap per mesh in its UV set (render::layout_lightmap; point
+//                id = mesh index * RES^2 + y * RES + x), gutters dilated by kGutter texels.
+//                Writes OUT/<mesh>.exr (float channels named as the PLY properties, plus
+//                "coverage": 1 where a texel was baked, 0 in gutters and empty space).
+//   probes       the scene's "probes" grid (point id = probe index). Writes OUT/probes.json.
+//   --points F   points read from F or standard input ('-'): `x y z nx ny nz` (surface) or
+//                `x y z` (free point) per line, '#' comments and blank lines skipped; point
+//                id = the point's index. Prints one JSON line per point on stdout:
+//                {"p":[x,y,z],"n":[nx,ny,nz],"ao":a,"ao_stderr":s,"bent":[...],
+//                 "visibility":[...],"transfer":[...]} with the requested keys only ("n" only
+//                for surface points; "transfer" is three lists R, G, B when the channels
+//                differ; "irradiance" and "radiance" are three lists; "inside" comes with
+//                "radiance"). Numbers with 17 significant digits.
+// Every file bake also writes OUT/bake.json: scene, target, settings, seed, the pass plan (each
+// pass's name, reason, rays and seconds), timings and the output files with their channels.
+// Files are written to a temporary name and renamed (support/output_file.hpp).
+//
+// Sharding: --shard I/N bakes the points with index in [floor(P I / N), floor(P (I + 1) / N))
+// of the P points in id order and writes OUT/bake.shard-I-of-N.bin (the raw results and a JSON
+// header); `sphbasis bake-merge` reads all N shards, reloads the scene and writes the same
+// files as one run would. Results depend only on (seed, point id, settings) (render/bake.hpp),
+// so the merged data files are bit-identical to an unsharded bake's; bake.json differs only in
+// its timings and its "shards" entry. With --points, a shard prints its own lines (merging is
+// concatenation in shard order).
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <sphbasis/basis/registry.hpp>
+#include <sphbasis/render/bake.hpp>
+#include <sphbasis/render/lightmap.hpp>
+#include <sphbasis/render/probe_grid.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../support/exr.hpp"
+#include "../support/json.hpp"
+#include "../support/output_file.hpp"
+#include "../support/ply.hpp"
+#include "../support/progress.hpp"
+#include "../support/scene_file.hpp"
+#include "cli.hpp"
+
+namespace sphbasis::cli {
+
+namespace {
+
+constexpr int kGutter = 4;  // texels dilated around each chart
+constexpr char kShardMagic[8] = {'S', 'P', 'H', 'B', 'S', 'H', 'R', 'D'};
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+const std::vector<std::pair<std::string, unsigned>>& quantity_names() {
+    static const std::vector<std::pair<std::string, unsigned>> q = {
+        {"ao", render::Quantity::ao},
+        {"bent", render::Quantity::bent},
+        {"visibility", render::Quantity::visibility},
+        {"transfer", render::Quantity::transfer},
+        {"irradiance", render::Quantity::irradiance},
+        {"radiance", render::Quantity::radiance}};
+    return q;
+}
+
+unsigned parse_quantities(const std::string& s) {
+    unsigned q = 0;
+    std::vector<std::string> names;
+    for (const auto& [n, bit] : quantity_names()) names.push_back(n);
+    std::stringstream in(s);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        unsigned bit = 0;
+        for (const auto& [n, b] : quantity_names())
+            if (n == item) bit = b;
+        if (bit == 0) {
+            const std::string near = closest_key(item, names);
+            throw UsageError("--quantities: unknown quantity '" + item + "'" +
+                             (near.empty() ? std::string(" (expected ao, bent, visibility, "
+                                                         "transfer, irradiance or radiance)")
+                                           : " (did you mean '" + near + "'?)"));
+        }
+        q |= bit;
+    }
+    if (q == 0) throw UsageError("--quantities: expected a list such as ao,bent");
+    return q;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Targets and points
+
+enum class TargetKind { vertices, texels, probes, points };
+
+struct Target {
+    TargetKind kind = TargetKind::vertices;
+    int res = 0;  // texels
+    std::string text() const {
+        switch (kind) {
+            case TargetKind::vertices:
+                return "vertices";
+            case TargetKind::texels:
+                return "texels:" + std::to_string(res);
+            case TargetKind::probes:
+                return "probes";
+            case TargetKind::points:
+                return "points";
+        }
+        return "";
+    }
+};
+
+Target parse_target(const std::string& s) {
+    Target t;
+    if (s == "vertices") return t;
+    if (s == "probes") {
+        t.kind = TargetKind::probes;
+        return t;
+    }
+    if (s.rfind("texels:", 0) == 0) {
+        long long r = 0;
+        if (!parse_integer(s.substr(7), r) || r < 1 || r > 16384)
+            throw UsageError("--target: expected texels:RES with 1 <= RES <= 16384, got '" + s +
+                             "'");
+        t.kind = TargetKind::texels;
+        t.res = static_cast<int>(r);
+        return t;
+    }
+    throw UsageError("--target: expected vertices, texels:RES or probes, got '" + s + "'");
+}
+
+struct Shard {
+    long long index = 0, count = 1;
+};
+
+Shard parse_shard(const std::string& s) {
+    const std::size_t slash = s.find('/');
+    Shard sh;
+    if (slash == std::string::npos || !parse_integer(s.substr(0, slash), sh.index) ||
+        !parse_integer(s.substr(slash + 1), sh.count) || sh.count < 1 || sh.count > 1000000 ||
+        sh.index < 0 || sh.index >= sh.count)
+        throw UsageError("--shard: expected I/N with 0 <= I < N <= 1000000, got '" + s + "'");
+    return sh;
+}
+
+/// Everything baked, in id order, and how it maps back to meshes and images.
+struct Work {
+    Target target;
+    std::vector<render::BakePoint> points;
+    std::vector<std::size_t> mesh_begin;          // vertices, texels: per mesh, size meshes+1
+    std::vector<render::LightmapLayout> layouts;  // texels
+    std::vector<bool> surface;                    // points: has a normal
+    std::vector<std::array<double, 3>> given_n;   // points: the normal as given
+};
+
+std::vector<float> vertex_normals(const render::Mesh& m) {
+    if (!m.normals.empty()) return m.normals;
+    // Area-weighted face normals (a mesh from a format without normals and no Assimp pass).
+    std::vector<float> n(m.positions.size(), 0.0f);
+    for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+        const float* p0 = &m.positions[3 * std::size_t(m.indices[t])];
+        const float* p1 = &m.positions[3 * std::size_t(m.indices[t + 1])];
+        const float* p2 = &m.positions[3 * std::size_t(m.indices[t + 2])];
+        const float a[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+        const float b[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+        const float c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                            a[0] * b[1] - a[1] * b[0]};
+        for (int k = 0; k < 3; ++k)
+            for (int d = 0; d < 3; ++d)
+                n[3 * std::size_t(m.indices[t + std::size_t(k)]) + std::size_t(d)] += c[d];
+    }
+    return n;
+}
+
+Work vertex_work(const SceneFile& scene) {
+    Work w;
+    std::uint64_t id = 0;
+    for (const SceneMesh& sm : scene.meshes) {
+        w.mesh_begin.push_back(w.points.size());
+        const render::Mesh& m = sm.mesh;
+        const std::vector<float> n = vertex_normals(m);
+        for (std::size_t v = 0; v < m.vertex_count(); ++v) {
+            render::BakePoint p;
+            p.p = {m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]};
+            p.n = {n[3 * v], n[3 * v + 1], n[3 * v + 2]};
+            if (!m.tangents.empty()) {
+                // The contract wants a unit tangent orthogonal to n (or zero): Gram-Schmidt,
+                // since file tangents are not exactly orthogonal to smoothed normals.
+                const double nx = n[3 * v], ny = n[3 * v + 1], nz = n[3 * v + 2];
+                const double nn = nx * nx + ny * ny + nz * nz;
+                double tx = m.tangents[4 * v], ty = m.tangents[4 * v + 1],
+                       tz = m.tangents[4 * v + 2];
+                if (nn > 0) {
+                    const double d = (tx * nx + ty * ny + tz * nz) / nn;
+                    tx -= d * nx;
+                    ty -= d * ny;
+                    tz -= d * nz;
+                }
+                const double tl = std::sqrt(tx * tx + ty * ty + tz * tz);
+                if (tl > 1e-6 && std::isfinite(tl)) p.tangent = {tx / tl, ty / tl, tz / tl};
+            }
+            p.id = id++;
+            w.points.push_back(p);
+        }
+    }
+    w.mesh_begin.push_back(w.points.size());
+    return w;
+}
+
+Work texel_work(const SceneFile& scene, int res) {
+    Work w;
+    for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
+        const SceneMesh& sm = scene.meshes[k];
+        if (sm.mesh.uvs.empty())
+            throw std::runtime_error(scene.path + ": meshes[" + std::to_string(k) + "] ('" +
+                                     sm.name +
+                                     "'): a texel bake needs a UV set, and this mesh has none");
+        w.mesh_begin.push_back(w.points.size());
+        const std::uint64_t base = static_cast<std::uint64_t>(k) * static_cast<std::uint64_t>(res) *
+                                   static_cast<std::uint64_t>(res);
+        w.layouts.push_back(render::layout_lightmap(sm.mesh.view(), res, res, base));
+        for (const render::LightmapSample& s : w.layouts.back().samples)
+            w.points.push_back(s.point);
+    }
+    w.mesh_begin.push_back(w.points.size());
+    return w;
+}
+
+Work probe_work(const SceneFile& scene) {
+    if (!scene.has_probes)
+        throw std::runtime_error(scene.path +
+                                 ": --target probes needs a \"probes\" grid in the "
+                                 "scene (docs/scene-format.md)");
+    Work w;
+    const render::ProbeGrid& g = scene.probes;
+    for (int k = 0; k < g.counts[2]; ++k)
+        for (int j = 0; j < g.counts[1]; ++j)
+            for (int i = 0; i < g.counts[0]; ++i) {
+                render::BakePoint p;
+                p.p = g.position(i, j, k);
+                p.id = g.index(i, j, k);
+                w.points.push_back(p);
+            }
+    return w;
+}
+
+Work point_work(std::istream& in, const std::string& source) {
+    Work w;
+    std::string text;
+    long lineno = 0;
+    while (std::getline(in, text)) {
+        ++lineno;
+        const auto first = text.find_first_not_of(" \t\r");
+        if (first == std::string::npos || text[first] == '#') continue;
+        std::istringstream is(text);
+        std::vector<std::string> tok;
+        std::string t;
+        while (is >> t) tok.push_back(t);
+        const std::string where = source + " line " + std::to_string(lineno);
+        if (tok.size() != 3 && tok.size() != 6)
+            throw UsageError(where + ": expected 'x y z nx ny nz' or 'x y z'");
+        std::vector<double> v;
+        for (const auto& s : tok) v.push_back(to_real(s, where));
+        render::BakePoint p;
+        p.p = {v[0], v[1], v[2]};
+        std::array<double, 3> n{0, 0, 0};
+        if (tok.size() == 6) {
+            n = {v[3], v[4], v[5]};
+            const double r2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+            if (!(r2 > 0) || !std::isfinite(r2))
+                throw UsageError(where + ": expected a non-zero finite normal");
+            p.n = {n[0], n[1], n[2]};
+        }
+        p.id = w.points.size();
+        w.points.push_back(p);
+        w.surface.push_back(tok.size() == 6);
+        w.given_n.push_back(n);
+    }
+    if (w.points.empty()) throw UsageError(source + ": no points");
+    return w;
+}
+
+Work make_work(const SceneFile& scene, const Target& t, const std::string& points_path) {
+    Work w;
+    switch (t.kind) {
+        case TargetKind::vertices:
+            w = vertex_work(scene);
+            break;
+        case TargetKind::texels:
+            w = texel_work(scene, t.res);
+            break;
+        case TargetKind::probes:
+            w = probe_work(scene);
+            break;
+        case TargetKind::points:
+            if (points_path == "-") {
+                w = point_work(std::cin, "standard input");
+            } else {
+                std::ifstream f(points_path);
+                if (!f) throw std::runtime_error("cannot open points file '" + points_path + "'");
+                w = point_work(f, points_path);
+            }
+            break;
+    }
+    w.target = t;
+    return w;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Results as fixed-size records of doubles: the one form that is printed, written, sharded and
+// merged, so that every path gives the same bits.
+
+struct Layout {
+    std::size_t b2 = 0, nc = 0;  // bands^2, irradiance coefficients
+    std::size_t ao = 0, bent = 2, vis = 5, vis_se = 0, tr = 0, tr_se = 0, tr_rgb = 0, irr = 0,
+                rad = 0, inside = 0, stride = 0;
+    explicit Layout(const render::BakeSettings& s)
+        : b2(std::size_t(s.bands) * std::size_t(s.bands)), nc(std::size_t(s.coeffs)) {
+        vis_se = vis + b2;
+        tr = vis_se + b2;
+        tr_se = tr + 3 * b2;
+        tr_rgb = tr_se + b2;
+        irr = tr_rgb + 1;
+        rad = irr + 3 * nc;
+        inside = rad + 3 * b2;
+        stride = inside + 1;
+    }
+};
+
+void copy_n(const std::vector<double>& v, std::size_t n, double* out) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = i < v.size() ? v[i] : 0.0;
+}
+
+std::vector<double> pack(const Layout& L, const std::vector<render::PointResult>& rs) {
+    std::vector<double> out(L.stride * rs.size(), 0.0);
+    for (std::size_t k = 0; k < rs.size(); ++k) {
+        const render::PointResult& r = rs[k];
+        double* o = out.data() + k * L.stride;
+        o[L.ao] = r.ao;
+        o[L.ao + 1] = r.ao_stderr;
+        o[L.bent] = r.bent.x;
+        o[L.bent + 1] = r.bent.y;
+        o[L.bent + 2] = r.bent.z;
+        copy_n(r.visibility, L.b2, o + L.vis);
+        copy_n(r.visibility_stderr, L.b2, o + L.vis_se);
+        for (std::size_t c = 0; c < 3; ++c) {
+            // Equal channels may come as one list: R stands for all three.
+            const std::vector<double>& t = r.transfer[c].empty() ? r.transfer[0] : r.transfer[c];
+            copy_n(t, L.b2, o + L.tr + c * L.b2);
+            copy_n(r.irradiance[c], L.nc, o + L.irr + c * L.nc);
+            copy_n(r.radiance[c], L.b2, o + L.rad + c * L.b2);
+        }
+        copy_n(r.transfer_stderr, L.b2, o + L.tr_se);
+        o[L.tr_rgb] = r.transfer_rgb ? 1.0 : 0.0;
+        o[L.inside] = r.inside ? 1.0 : 0.0;
+    }
+    return out;
+}
+
+/// The channels written for the requested quantities: name and offset in the record.
+struct Column {
+    std::string name;
+    std::size_t offset;
+};
+
+bool any_rgb_transfer(const Layout& L, const std::vector<double>& rec) {
+    for (std::size_t k = L.tr_rgb; k < rec.size(); k += L.stride)
+        if (rec[k] != 0) return true;
+    return false;
+}
+
+std::vector<Column> columns(const render::BakeSettings& s, const Layout& L, bool rgb_transfer) {
+    std::vector<Column> c;
+    const unsigned q = s.quantities;
+    auto list = [&](const std::string& prefix, std::size_t off, std::size_t n) {
+        for (std::size_t i = 0; i < n; ++i) c.push_back({prefix + std::to_string(i), off + i});
+    };
+    if (q & render::Quantity::ao) c.insert(c.end(), {{"ao", L.ao}, {"ao_stderr", L.ao + 1}});
+    if (q & render::Quantity::bent)
+        c.insert(c.end(), {{"bent_x", L.bent}, {"bent_y", L.bent + 1}, {"bent_z", L.bent + 2}});
+    if (q & render::Quantity::visibility) {
+        list("vis_", L.vis, L.b2);
+        list("vis_stderr_", L.vis_se, L.b2);
+    }
+    if (q & render::Quantity::transfer) {
+        if (rgb_transfer) {
+            list("transfer_r_", L.tr, L.b2);
+            list("transfer_g_", L.tr + L.b2, L.b2);
+            list("transfer_b_", L.tr + 2 * L.b2, L.b2);
+        } else {
+            list("transfer_", L.tr, L.b2);
+        }
+        list("transfer_stderr_", L.tr_se, L.b2);
+    }
+    if (q & render::Quantity::irradiance) {
+        list("irr_r_", L.irr, L.nc);
+        list("irr_g_", L.irr + L.nc, L.nc);
+        list("irr_b_", L.irr + 2 * L.nc, L.nc);
+    }
+    if (q & render::Quantity::radiance) {
+        list("rad_r_", L.rad, L.b2);
+        list("rad_g_", L.rad + L.b2, L.b2);
+        list("rad_b_", L.rad + 2 * L.b2, L.b2);
+        c.push_back({"inside", L.inside});
+    }
+    return c;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Settings, plan and summary as JSON
+
+Json settings_json(const render::BakeSettings& s) {
+    Json q = Json::array();
+    for (const auto& [n, bit] : quantity_names())
+        if (s.quantities & bit) q.push_back(n);
+    Json j = {{"quantities", q},    {"bands", s.bands},        {"basis", s.basis},
+              {"coeffs", s.coeffs}, {"rays", s.rays},          {"bounces", s.bounces},
+              {"seed", s.seed},     {"max_distance", nullptr}, {"target_error", s.target_error}};
+    if (std::isfinite(s.max_distance)) j["max_distance"] = s.max_distance;
+    return j;
+}
+
+Json plan_json(const std::vector<render::Pass>& plan) {
+    Json p = Json::array();
+    for (const render::Pass& x : plan)
+        p.push_back(
+            {{"name", x.name}, {"reason", x.reason}, {"rays", x.rays}, {"seconds", x.seconds}});
+    return p;
+}
+
+std::vector<render::Pass> plan_of(const Json& j) {
+    std::vector<render::Pass> plan;
+    for (const Json& x : j) {
+        render::Pass p;
+        p.name = x.at("name").get<std::string>();
+        p.reason = x.at("reason").get<std::string>();
+        p.rays = x.at("rays").get<std::uint64_t>();
+        p.seconds = x.at("seconds").get<double>();
+        plan.push_back(p);
+    }
+    return plan;
+}
+
+std::uint64_t fnv1a_of_file(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    std::uint64_t h = 1469598103934665603ull;
+    char buf[65536];
+    while (f) {
+        f.read(buf, sizeof buf);
+        for (std::streamsize i = 0; i < f.gcount(); ++i) {
+            h ^= static_cast<unsigned char>(buf[i]);
+            h *= 1099511628211ull;
+        }
+    }
+    return h;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Output files
+
+std::string join(const std::string& dir, const std::string& name) {
+    return dir.empty() || dir == "." ? name : (dir.back() == '/' ? dir + name : dir + "/" + name);
+}
+
+Json column_names(const std::vector<Column>& cols) {
+    Json a = Json::array();
+    for (const Column& c : cols) a.push_back(c.name);
+    return a;
+}
+
+/// Writes the data files of a complete bake (all points); returns the "outputs" entry.
+Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSettings& s,
+                   const std::vector<double>& rec, const std::string& out_dir) {
+    const Layout L(s);
+    const std::vector<Column> cols = columns(s, L, any_rgb_transfer(L, rec));
+    Json outputs = Json::array();
+    const std::size_t nc = cols.size();
+    if (w.target.kind == TargetKind::vertices) {
+        for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
+            const render::Mesh& m = scene.meshes[k].mesh;
+            const std::vector<float> n = vertex_normals(m);
+            std::vector<std::string> names = {"x", "y", "z", "nx", "ny", "nz"};
+            for (const Column& c : cols) names.push_back(c.name);
+            std::vector<float> vals;
+            vals.reserve(m.vertex_count() * names.size());
+            for (std::size_t v = 0; v < m.vertex_count(); ++v) {
+                vals.insert(vals.end(), m.positions.begin() + std::ptrdiff_t(3 * v),
+                            m.positions.begin() + std::ptrdiff_t(3 * v + 3));
+                vals.insert(vals.end(), n.begin() + std::ptrdiff_t(3 * v),
+                            n.begin() + std::ptrdiff_t(3 * v + 3));
+                const double* r = rec.data() + (w.mesh_begin[k] + v) * L.stride;
+                for (const Column& c : cols) vals.push_back(static_cast<float>(r[c.offset]));
+            }
+            const std::string file = scene.meshes[k].name + ".ply";
+            write_file_atomic(join(out_dir, file),
+                              ply_binary(names, vals, m.vertex_count(), m.indices,
+                                         {"sphbasis bake: " + scene.meshes[k].name}));
+            outputs.push_back({{"file", file},
+                               {"mesh", scene.meshes[k].name},
+                               {"kind", "ply"},
+                               {"vertices", m.vertex_count()},
+                               {"channels", column_names(cols)}});
+        }
+    } else if (w.target.kind == TargetKind::texels) {
+        for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
+            const render::LightmapLayout& lay = w.layouts[k];
+            const std::size_t nch = nc + 1;  // + coverage
+            const std::size_t npx = std::size_t(lay.width) * std::size_t(lay.height);
+            std::vector<float> img(npx * nch, 0.0f);
+            for (std::size_t i = 0; i < lay.samples.size(); ++i) {
+                const render::LightmapSample& smp = lay.samples[i];
+                const std::size_t px =
+                    std::size_t(smp.y) * std::size_t(lay.width) + std::size_t(smp.x);
+                const double* r = rec.data() + (w.mesh_begin[k] + i) * L.stride;
+                for (std::size_t c = 0; c < nc; ++c)
+                    img[px * nch + c] = static_cast<float>(r[cols[c].offset]);
+            }
+            render::dilate(img.data(), lay.width, lay.height, static_cast<int>(nch), lay.covered,
+                           kGutter);
+            for (std::size_t p = 0; p < npx; ++p) img[p * nch + nc] = lay.covered[p] ? 1.0f : 0.0f;
+            std::vector<std::string> names;
+            for (const Column& c : cols) names.push_back(c.name);
+            names.push_back("coverage");
+            const std::string file = scene.meshes[k].name + ".exr";
+            write_exr_channels(join(out_dir, file), lay.width, lay.height, names, img);
+            Json cn = column_names(cols);
+            cn.push_back("coverage");
+            outputs.push_back({{"file", file},
+                               {"mesh", scene.meshes[k].name},
+                               {"kind", "exr"},
+                               {"width", lay.width},
+                               {"height", lay.height},
+                               {"texels_baked", lay.samples.size()},
+                               {"skipped_triangles", lay.skipped_triangles},
+                               {"gutter", kGutter},
+                               {"channels", cn}});
+        }
+    } else if (w.target.kind == TargetKind::probes) {
+        const render::ProbeGrid& g = scene.probes;
+        Json probes = Json::array();
+        std::size_t inside = 0;
+        for (std::size_t i = 0; i < w.points.size(); ++i) {
+            const double* r = rec.data() + i * L.stride;
+            Json vals = Json::array();
+            for (const Column& c : cols)
+                if (c.name != "inside") vals.push_back(r[c.offset]);
+            const bool in = r[L.inside] != 0;
+            inside += in ? 1 : 0;
+            const vec3<double>& p = w.points[i].p;
+            probes.push_back({{"index", w.points[i].id},
+                              {"p", {p.x, p.y, p.z}},
+                              {"inside", in},
+                              {"values", vals}});
+        }
+        Json names = Json::array();
+        for (const Column& c : cols)
+            if (c.name != "inside") names.push_back(c.name);
+        Json doc = {{"grid",
+                     {{"min", {g.lo.x, g.lo.y, g.lo.z}},
+                      {"max", {g.hi.x, g.hi.y, g.hi.z}},
+                      {"counts", {g.counts[0], g.counts[1], g.counts[2]}}}},
+                    {"channels", names},
+                    {"inside", inside},
+                    {"probes", probes}};
+        write_file_atomic(join(out_dir, "probes.json"), dump_json(doc, {{"probes", 0}}) + "\n");
+        outputs.push_back({{"file", "probes.json"},
+                           {"kind", "json"},
+                           {"probes", w.points.size()},
+                           {"inside", inside},
+                           {"channels", names}});
+    }
+    return outputs;
+}
+
+void print_points(const Work& w, const render::BakeSettings& s, const std::vector<double>& rec,
+                  std::size_t begin) {
+    const Layout L(s);
+    const unsigned q = s.quantities;
+    auto list = [&](const double* p, std::size_t n) {
+        Json a = Json::array();
+        for (std::size_t i = 0; i < n; ++i) a.push_back(p[i]);
+        return a;
+    };
+    auto rgb = [&](const double* p, std::size_t n) {
+        return Json::array({list(p, n), list(p + n, n), list(p + 2 * n, n)});
+    };
+    for (std::size_t k = 0; k * L.stride < rec.size(); ++k) {
+        const std::size_t i = begin + k;
+        const double* r = rec.data() + k * L.stride;
+        const vec3<double>& p = w.points[i].p;
+        Json line = {{"p", {p.x, p.y, p.z}}};
+        if (w.surface[i]) line["n"] = {w.given_n[i][0], w.given_n[i][1], w.given_n[i][2]};
+        if (q & render::Quantity::ao) {
+            line["ao"] = r[L.ao];
+            line["ao_stderr"] = r[L.ao + 1];
+        }
+        if (q & render::Quantity::bent) line["bent"] = list(r + L.bent, 3);
+        if (q & render::Quantity::visibility) line["visibility"] = list(r + L.vis, L.b2);
+        if (q & render::Quantity::transfer)
+            line["transfer"] = r[L.tr_rgb] != 0 ? rgb(r + L.tr, L.b2) : list(r + L.tr, L.b2);
+        if (q & render::Quantity::irradiance) line["irradiance"] = rgb(r + L.irr, L.nc);
+        if (q & render::Quantity::radiance) {
+            line["radiance"] = rgb(r + L.rad, L.b2);
+            line["inside"] = r[L.inside] != 0;
+        }
+        std::cout << dump_json(line) << '\n';
+    }
+    std::cout.flush();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shard files: magic, u64 header length, JSON header, u64 record count, u64 stride, doubles.
+
+void put_u64(std::string& out, std::uint64_t v) {
+    for (int i = 0; i < 8; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+}
+std::uint64_t get_u64(const std::string& in, std::size_t& pos, const std::string& file) {
+    if (pos + 8 > in.size()) throw std::runtime_error(file + ": truncated shard file");
+    std::uint64_t v = 0;
+    for (int i = 0; i < 8; ++i)
+        v |= std::uint64_t(static_cast<unsigned char>(in[pos + std::size_t(i)])) << (8 * i);
+    pos += 8;
+    return v;
+}
+
+std::string shard_bytes(const Json& header, const std::vector<double>& rec, std::size_t stride) {
+    std::string out(kShardMagic, sizeof kShardMagic);
+    const std::string h = header.dump();
+    put_u64(out, h.size());
+    out += h;
+    put_u64(out, stride == 0 ? 0 : rec.size() / stride);
+    put_u64(out, stride);
+    for (double d : rec) {
+        std::uint64_t u;
+        std::memcpy(&u, &d, 8);
+        put_u64(out, u);
+    }
+    return out;
+}
+
+struct ShardData {
+    Json header;
+    std::vector<double> rec;
+};
+
+ShardData read_shard(const std::string& file) {
+    std::ifstream f(file, std::ios::binary);
+    if (!f) throw std::runtime_error("cannot open shard file '" + file + "'");
+    std::stringstream buf;
+    buf << f.rdbuf();
+    const std::string in = buf.str();
+    if (in.size() < 8 || std::memcmp(in.data(), kShardMagic, 8) != 0)
+        throw std::runtime_error(file + ": not a shard file of sphbasis bake");
+    std::size_t pos = 8;
+    const std::uint64_t hl = get_u64(in, pos, file);
+    if (pos + hl > in.size()) throw std::runtime_error(file + ": truncated shard file");
+    ShardData d;
+    try {
+        d.header = Json::parse(in.substr(pos, hl));
+    } catch (const std::exception&) {
+        throw std::runtime_error(file + ": corrupt shard header");
+    }
+    pos += hl;
+    const std::uint64_t n = get_u64(in, pos, file), stride = get_u64(in, pos, file);
+    if (stride == 0 || n > (in.size() - pos) / 8 / stride || pos + n * stride * 8 != in.size())
+        throw std::runtime_error(file + ": truncated shard file");
+    d.rec.resize(n * stride);
+    for (double& x : d.rec) {
+        const std::uint64_t u = get_u64(in, pos, file);
+        std::memcpy(&x, &u, 8);
+    }
+    return d;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+struct BakeOptions {
+    std::string scene, quantities = "ao", basis = "sh", target = "vertices", points, out = ".",
+                       shard, max_distance;
+    long long bands = 3, coeffs = 9, rays = 256, bounces = 0, seed = 0;
+    CLI::Option *target_opt = nullptr, *points_opt = nullptr, *out_opt = nullptr,
+                *maxd_opt = nullptr;
+};
+
+render::BakeSettings settings_of(const BakeOptions& o) {
+    render::BakeSettings s;
+    s.quantities = parse_quantities(o.quantities);
+    s.bands = static_cast<int>(o.bands);
+    const BasisInfo* b = nullptr;
+    try {
+        b = &find_basis(o.basis);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--basis: ") + e.what());
+    }
+    if (!b->valid_count(static_cast<int>(o.coeffs)))
+        throw UsageError(std::string("--coeffs: basis '") + b->name + "' expects " +
+                         b->count_rule() + " functions, got " + std::to_string(o.coeffs));
+    s.basis = b->name;
+    s.coeffs = static_cast<int>(o.coeffs);
+    s.rays = static_cast<int>(o.rays);
+    s.bounces = static_cast<int>(o.bounces);
+    s.seed = static_cast<std::uint64_t>(o.seed);
+    if (o.maxd_opt->count() > 0) {
+        s.max_distance = to_real(o.max_distance, "--max-distance");
+        if (!(s.max_distance > 0)) throw UsageError("--max-distance: expected a positive distance");
+    }
+    return s;
+}
+
+void ensure_dir(const std::string& dir) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !std::filesystem::is_directory(dir))
+        throw std::runtime_error("cannot create output directory '" + dir + "'" +
+                                 (ec ? ": " + ec.message() : std::string()));
+}
+
+void report_rate(std::size_t points, std::uint64_t rays, double secs) {
+    std::fprintf(stderr, "sphbasis bake: %zu points, %llu rays in %.3f s: %.3g rays/s\n", points,
+                 static_cast<unsigned long long>(rays), secs,
+                 secs > 0 ? static_cast<double>(rays) / secs : 0.0);
+}
+
+int run_bake(const BakeOptions& o) {
+    const auto t_start = Clock::now();
+    const render::BakeSettings s = settings_of(o);
+    Target target = parse_target(o.target);
+    const bool points_mode = o.points_opt->count() > 0;
+    if (points_mode && o.target_opt->count() > 0)
+        throw UsageError("give either --target or --points, not both");
+    if (points_mode) target.kind = TargetKind::points;
+    const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
+    const bool write_files = !points_mode || o.out_opt->count() > 0;
+    if (write_files) ensure_dir(o.out);
+
+    const SceneFile scene = load_scene(o.scene);
+    for (std::size_t k = 0; k < scene.meshes.size(); ++k)
+        if (scene.meshes[k].dropped_triangles > 0)
+            std::fprintf(
+                stderr, "sphbasis bake: %s: meshes[%zu] ('%s'): %zu degenerate triangles dropped\n",
+                scene.path.c_str(), k, scene.meshes[k].name.c_str(),
+                scene.meshes[k].dropped_triangles);
+    const double t_load = seconds_since(t_start);
+
+    const auto t_layout0 = Clock::now();
+    const Work w = make_work(scene, target, o.points);
+    const double t_layout = seconds_since(t_layout0);
+    const std::size_t total = w.points.size();
+    // total < 2^43 points and count <= 10^6 keep the products below 2^63.
+    const std::size_t begin = static_cast<std::size_t>(
+        std::uint64_t(total) * std::uint64_t(shard.index) / std::uint64_t(shard.count));
+    const std::size_t end = static_cast<std::size_t>(
+        std::uint64_t(total) * std::uint64_t(shard.index + 1) / std::uint64_t(shard.count));
+    const std::vector<render::BakePoint> mine(w.points.begin() + std::ptrdiff_t(begin),
+                                              w.points.begin() + std::ptrdiff_t(end));
+
+    const render::SceneDesc desc = scene.scene_desc();
+    const auto t_bake0 = Clock::now();
+    render::Baker baker(desc, s);
+    std::vector<render::PointResult> results;
+    {
+        Progress bar("bake", static_cast<long long>(mine.size()));
+        results =
+            baker.bake(mine, [&bar](std::size_t k) { bar.update(static_cast<long long>(k)); });
+        bar.done();
+    }
+    const double t_bake = seconds_since(t_bake0);
+    if (results.size() != mine.size())
+        throw std::runtime_error("the baker returned " + std::to_string(results.size()) +
+                                 " results for " + std::to_string(mine.size()) + " points");
+    const Layout L(s);
+    const std::vector<double> rec = pack(L, results);
+    const std::uint64_t rays = baker.rays_traced();
+
+    Json summary = {{"tool", "sphbasis bake"},
+                    {"scene", scene.path},
+                    {"target", w.target.text()},
+                    {"points", total},
+                    {"seed", s.seed},
+                    {"settings", settings_json(s)},
+                    {"plan", plan_json(baker.plan())},
+                    {"rays", rays},
+                    {"rays_per_second", t_bake > 0 ? static_cast<double>(rays) / t_bake : 0.0}};
+    if (shard.count > 1)
+        summary["shard"] = {
+            {"index", shard.index}, {"count", shard.count}, {"begin", begin}, {"end", end}};
+
+    if (points_mode) print_points(w, s, rec, begin);
+    const auto t_write0 = Clock::now();
+    if (write_files) {
+        if (shard.count > 1 && !points_mode) {
+            std::error_code ec;
+            Json header = summary;
+            header["scene_file"] = std::filesystem::absolute(scene.path, ec).string();
+            header["scene_fnv1a"] = fnv1a_of_file(scene.path);
+            header["seconds"] = {{"load", t_load}, {"layout", t_layout}, {"bake", t_bake}};
+            const std::string name = "bake.shard-" + std::to_string(shard.index) + "-of-" +
+                                     std::to_string(shard.count) + ".bin";
+            write_file_atomic(join(o.out, name), shard_bytes(header, rec, L.stride));
+        } else {
+            if (!points_mode) summary["outputs"] = write_outputs(scene, w, s, rec, o.out);
+            summary["seconds"] = {{"load", t_load},
+                                  {"layout", t_layout},
+                                  {"bake", t_bake},
+                                  {"write", seconds_since(t_write0)},
+                                  {"total", seconds_since(t_start)}};
+            write_file_atomic(join(o.out, points_mode ? "bake-points.json" : "bake.json"),
+                              dump_json(summary, {{"plan", 2}, {"outputs", 2}}) + "\n");
+        }
+    }
+    report_rate(mine.size(), rays, t_bake);
+    return 0;
+}
+
+struct MergeOptions {
+    std::vector<std::string> shards;
+    std::string out = ".";
+};
+
+int run_merge(const MergeOptions& o) {
+    const auto t0 = Clock::now();
+    std::vector<ShardData> parts;
+    for (const std::string& f : o.shards) parts.push_back(read_shard(f));
+    const Json& h0 = parts.front().header;
+    const long long count = h0.at("shard").at("count").get<long long>();
+    if (static_cast<long long>(parts.size()) != count)
+        throw UsageError("expected " + std::to_string(count) + " shard files (the shards of " +
+                         std::to_string(count) + "), got " + std::to_string(parts.size()));
+    std::vector<const ShardData*> by_index(static_cast<std::size_t>(count), nullptr);
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+        const Json& h = parts[k].header;
+        for (const char* key : {"scene_file", "scene_fnv1a", "target", "points", "settings"})
+            if (h.at(key) != h0.at(key))
+                throw UsageError(o.shards[k] + ": not from the same bake as " + o.shards[0] +
+                                 " (\"" + key + "\" differs)");
+        if (h.at("shard").at("count").get<long long>() != count)
+            throw UsageError(o.shards[k] + ": a shard of " +
+                             std::to_string(h.at("shard").at("count").get<long long>()) +
+                             ", expected of " + std::to_string(count));
+        const auto i = h.at("shard").at("index").get<std::size_t>();
+        if (i >= by_index.size()) throw UsageError(o.shards[k] + ": corrupt shard index");
+        if (by_index[i] != nullptr)
+            throw UsageError(o.shards[k] + ": shard " + std::to_string(i) + " given twice");
+        by_index[i] = &parts[k];
+    }
+    const std::string scene_file = h0.at("scene_file").get<std::string>();
+    if (fnv1a_of_file(scene_file) != h0.at("scene_fnv1a").get<std::uint64_t>())
+        throw std::runtime_error(scene_file + ": the scene changed since the shards were baked");
+    const SceneFile scene = load_scene(scene_file);
+
+    render::BakeSettings s;
+    const Json& js = h0.at("settings");
+    s.quantities = 0;
+    for (const Json& q : js.at("quantities"))
+        for (const auto& [n, bit] : quantity_names())
+            if (q.get<std::string>() == n) s.quantities |= bit;
+    s.bands = js.at("bands").get<int>();
+    s.basis = js.at("basis").get<std::string>();
+    s.coeffs = js.at("coeffs").get<int>();
+    s.rays = js.at("rays").get<int>();
+    s.bounces = js.at("bounces").get<int>();
+    s.seed = js.at("seed").get<std::uint64_t>();
+    if (!js.at("max_distance").is_null()) s.max_distance = js.at("max_distance").get<double>();
+    s.target_error = js.at("target_error").get<double>();
+
+    const Work w = make_work(scene, parse_target(h0.at("target").get<std::string>()), "");
+    const Layout L(s);
+    std::vector<double> rec;
+    rec.reserve(w.points.size() * L.stride);
+    std::vector<render::Pass> plan;
+    std::uint64_t rays = 0;
+    double bake_seconds = 0;
+    for (std::size_t i = 0; i < by_index.size(); ++i) {
+        const ShardData& d = *by_index[i];
+        const Json& sh = d.header.at("shard");
+        if (sh.at("begin").get<std::size_t>() * L.stride != rec.size() ||
+            (sh.at("end").get<std::size_t>() - sh.at("begin").get<std::size_t>()) * L.stride !=
+                d.rec.size())
+            throw std::runtime_error("shard " + std::to_string(i) +
+                                     ": its point range does not fit");
+        rec.insert(rec.end(), d.rec.begin(), d.rec.end());
+        rays += d.header.at("rays").get<std::uint64_t>();
+        bake_seconds += d.header.at("seconds").at("bake").get<double>();
+        const std::vector<render::Pass> p = plan_of(d.header.at("plan"));
+        for (const render::Pass& x : p) {
+            auto it = std::find_if(plan.begin(), plan.end(),
+                                   [&](const render::Pass& y) { return y.name == x.name; });
+            if (it == plan.end()) {
+                plan.push_back(x);
+            } else {
+                it->rays += x.rays;
+                it->seconds += x.seconds;
+            }
+        }
+    }
+    if (rec.size() != w.points.size() * L.stride)
+        throw std::runtime_error("the shards hold " + std::to_string(rec.size() / L.stride) +
+                                 " points, the scene has " + std::to_string(w.points.size()));
+    ensure_dir(o.out);
+    Json summary = {
+        {"tool", "sphbasis bake"},
+        {"scene", h0.at("scene")},
+        {"target", w.target.text()},
+        {"points", w.points.size()},
+        {"seed", s.seed},
+        {"settings", settings_json(s)},
+        {"plan", plan_json(plan)},
+        {"rays", rays},
+        {"rays_per_second", bake_seconds > 0 ? static_cast<double>(rays) / bake_seconds : 0.0},
+        {"shards", count}};
+    summary["outputs"] = write_outputs(scene, w, s, rec, o.out);
+    summary["seconds"] = {{"bake_sum_over_shards", bake_seconds}, {"merge", seconds_since(t0)}};
+    write_file_atomic(join(o.out, "bake.json"),
+                      dump_json(summary, {{"plan", 2}, {"outputs", 2}}) + "\n");
+    std::fprintf(stderr, "sphbasis bake-merge: %lld shards, %zu points\n", count, w.points.size());
+    return 0;
+}
+
+}  // namespace
+
+Run setup_bake(CLI::App& app) {
+    auto o = std::make_shared<BakeOptions>();
+    app.footer(
+        "Bake ambient occlusion, bent normals, SH visibility, PRT transfer, irradiance and\n"
+        "radiance of a scene (docs/scene-format.md) per vertex (PLY), per texel (EXR), on the\n"
+        "scene's probe grid (JSON) or at points (JSON lines on stdout). Writes OUT/bake.json\n"
+        "with the pass plan, timings and settings. --shard I/N bakes 1/N of the points for\n"
+        "`sphbasis bake-merge`.");
+    app.add_option("scene", o->scene, "the scene file (JSON)")->type_name("SCENE.json")->required();
+    app.add_option("--quantities", o->quantities,
+                   "comma-separated: ao, bent, visibility, transfer, irradiance, radiance")
+        ->type_name("LIST")
+        ->capture_default_str();
+    add_integer(app, "--bands", o->bands, 1, 32, "SH bands of visibility, transfer and radiance");
+    app.add_option("--basis", o->basis,
+                   "basis of irradiance: sh, hbasis, hbasis-mod, hl2, hsh, makhotkin, zernike")
+        ->type_name("NAME")
+        ->capture_default_str();
+    add_integer(app, "--coeffs", o->coeffs, 1, 1024, "irradiance coefficients");
+    add_integer(app, "--rays", o->rays, 1, 1 << 24, "rays per point and pass");
+    add_integer(app, "--bounces", o->bounces, 0, 64, "interreflection bounces at most", "B");
+    add_integer(app, "--seed", o->seed, 0, std::numeric_limits<long long>::max(), "random seed",
+                "S");
+    o->maxd_opt = app.add_option("--max-distance", o->max_distance,
+                                 "ao: hits farther than D do not occlude (default: none)")
+                      ->type_name("D");
+    o->target_opt = app.add_option("--target", o->target, "vertices, texels:RES or probes")
+                        ->type_name("vertices|texels:RES|probes")
+                        ->capture_default_str();
+    o->points_opt =
+        app.add_option(
+               "--points", o->points,
+               "bake at points from FILE or '-' (stdin): 'x y z nx ny nz' or 'x y z' per line")
+            ->type_name("FILE|-");
+    o->out_opt = add_path(app, "--out", o->out, "output directory (created if missing)");
+    o->out_opt->type_name("DIR")->capture_default_str();
+    app.add_option("--shard", o->shard, "bake shard I of N (0 <= I < N)")->type_name("I/N");
+    return [o] { return run_bake(*o); };
+}
+
+Run setup_bake_merge(CLI::App& app) {
+    auto o = std::make_shared<MergeOptions>();
+    app.footer(
+        "Join the shard files of `sphbasis bake --shard I/N` (bake.shard-I-of-N.bin, all N of\n"
+        "them) into the files one unsharded bake writes, bit for bit. The scene file must be\n"
+        "unchanged and at the path recorded in the shards.");
+    app.add_option("shards", o->shards, "the N shard files")->type_name("SHARD.bin")->required();
+    add_path(app, "--out", o->out, "output directory (created if missing)")
+        ->type_name("DIR")
+        ->capture_default_str();
+    return [o] { return run_merge(*o); };
+}
+
+}  // namespace sphbasis::cli

@@ -1,0 +1,70 @@
+// sphbasis CLI support: write_file_atomic (see output_file.hpp).
+#include "output_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+namespace sphbasis::cli {
+
+namespace {
+
+std::atomic<unsigned long> g_counter{0};
+
+std::runtime_error write_error(const std::string& path, int err) {
+    return std::runtime_error("cannot write '" + path + "': " + std::strerror(err));
+}
+
+}  // namespace
+
+std::string temporary_name_for(const std::string& path) {
+    const std::size_t slash = path.find_last_of('/');
+    const std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+    const std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
+    return dir + "." + base + ".tmp-" + std::to_string(static_cast<long>(::getpid())) + "-" +
+           std::to_string(g_counter.fetch_add(1));
+}
+
+void discard_temporary(const std::string& temp) noexcept { std::remove(temp.c_str()); }
+
+void commit_temporary(const std::string& temp, const std::string& path) {
+    if (std::rename(temp.c_str(), path.c_str()) != 0) {
+        const int err = errno;
+        discard_temporary(temp);
+        throw write_error(path, err);
+    }
+}
+
+void write_file_atomic(const std::string& path, const void* data, std::size_t size, bool sync) {
+    const std::string temp = temporary_name_for(path);
+    const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0) throw write_error(path, errno);
+    const char* p = static_cast<const char*>(data);
+    std::size_t left = size;
+    int err = 0;
+    while (left > 0) {
+        const ssize_t n = ::write(fd, p, left);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            err = errno;
+            break;
+        }
+        p += n;
+        left -= static_cast<std::size_t>(n);
+    }
+    if (err == 0 && sync && ::fsync(fd) != 0) err = errno;
+    // close() reports delayed write errors (NFS, ENOSPC on some file systems).
+    if (::close(fd) != 0 && err == 0) err = errno;
+    if (err != 0) {
+        discard_temporary(temp);
+        throw write_error(path, err);
+    }
+    commit_temporary(temp, path);
+}
+
+}  // namespace sphbasis::cli

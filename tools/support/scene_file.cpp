@@ -1,0 +1,855 @@
+// sphbasis CLI support: load_scene (see scene_file.hpp and docs/scene-format.md).
+#include "scene_file.hpp"
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <assimp/Importer.hpp>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_FAILURE_USERMSG
+#include <stb/stb_image.h>
+
+#include "exr.hpp"
+
+#if __has_include(<sphbasis/render/shapes.hpp>)
+#include <sphbasis/render/shapes.hpp>
+#define SPHBASIS_HAVE_RENDER_SHAPES 1
+#endif
+
+namespace sphbasis::cli {
+
+namespace {
+
+using nlohmann::json;
+using V3 = vec3<double>;
+
+// ---------------------------------------------------------------------------------------------
+// Errors with the file and the JSON path
+
+struct Ctx {
+    std::string file;  // as given on the command line
+    std::string dir;   // its directory, with a trailing '/', or ""
+    [[noreturn]] void fail(const std::string& where, const std::string& msg) const {
+        throw std::runtime_error(file + ": " + (where.empty() ? "" : where + ": ") + msg);
+    }
+    std::string resolve(const std::string& p) const {
+        return (!p.empty() && p[0] == '/') ? p : dir + p;
+    }
+};
+
+std::string type_name(const json& j) {
+    if (j.is_number()) return "a number";
+    if (j.is_string()) return "a string";
+    if (j.is_array()) return "an array of " + std::to_string(j.size());
+    if (j.is_object()) return "an object";
+    if (j.is_boolean()) return "a boolean";
+    return "null";
+}
+
+std::string number_text(double v) {
+    if (std::isnan(v)) return "nan";
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    std::ostringstream o;
+    o.precision(17);
+    o << v;
+    return o.str();
+}
+
+void check_keys(const Ctx& c, const json& j, const std::string& where,
+                const std::vector<std::string>& allowed) {
+    if (!j.is_object()) c.fail(where, "expected an object, got " + type_name(j));
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        if (std::find(allowed.begin(), allowed.end(), it.key()) != allowed.end()) continue;
+        const std::string near = closest_key(it.key(), allowed);
+        std::string msg = "unknown key '" + it.key() + "'";
+        if (!near.empty()) {
+            msg += " (did you mean '" + near + "'?)";
+        } else {
+            msg += " (expected one of:";
+            for (const auto& a : allowed) msg += " " + a;
+            msg += ")";
+        }
+        c.fail(where, msg);
+    }
+}
+
+std::string sub(const std::string& where, const std::string& key) {
+    return where.empty() ? key : where + "." + key;
+}
+std::string at(const std::string& where, std::size_t i) {
+    return where + "[" + std::to_string(i) + "]";
+}
+
+double number(const Ctx& c, const json& j, const std::string& where) {
+    if (!j.is_number()) c.fail(where, "expected a number, got " + type_name(j));
+    const double v = j.get<double>();
+    if (!std::isfinite(v)) c.fail(where, "expected a finite number, got " + number_text(v));
+    return v;
+}
+
+double positive(const Ctx& c, const json& j, const std::string& where) {
+    const double v = number(c, j, where);
+    if (!(v > 0)) c.fail(where, "expected a positive number, got " + number_text(v));
+    return v;
+}
+
+int integer(const Ctx& c, const json& j, const std::string& where, int lo, int hi) {
+    const double v = number(c, j, where);
+    if (v != std::floor(v) || v < lo || v > hi)
+        c.fail(where, "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                          "], got " + number_text(v));
+    return static_cast<int>(v);
+}
+
+std::vector<double> numbers(const Ctx& c, const json& j, const std::string& where, std::size_t n) {
+    if (!j.is_array() || j.size() != n)
+        c.fail(where,
+               "expected an array of " + std::to_string(n) + " numbers, got " + type_name(j));
+    std::vector<double> v;
+    for (std::size_t i = 0; i < n; ++i) v.push_back(number(c, j[i], at(where, i)));
+    return v;
+}
+
+V3 vec(const Ctx& c, const json& j, const std::string& where) {
+    const auto v = numbers(c, j, where, 3);
+    return {v[0], v[1], v[2]};
+}
+
+V3 direction(const Ctx& c, const json& j, const std::string& where) {
+    const V3 d = vec(c, j, where);
+    const double r = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+    if (!(r > 0) || !std::isfinite(r)) c.fail(where, "expected a non-zero direction");
+    return {d.x / r, d.y / r, d.z / r};
+}
+
+render::RGB color(const Ctx& c, const json& j, const std::string& where, double hi) {
+    const auto v = numbers(c, j, where, 3);
+    for (std::size_t i = 0; i < 3; ++i)
+        if (v[i] < 0 || v[i] > hi)
+            c.fail(at(where, i),
+                   "expected a value in [0, " + number_text(hi) + "], got " + number_text(v[i]));
+    return {v[0], v[1], v[2]};
+}
+
+std::string string(const Ctx& c, const json& j, const std::string& where) {
+    if (!j.is_string() || j.get<std::string>().empty())
+        c.fail(where, "expected a non-empty string, got " + type_name(j));
+    return j.get<std::string>();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Affine transforms: p' = A p + t
+
+struct Affine {
+    std::array<double, 9> a{1, 0, 0, 0, 1, 0, 0, 0, 1};  // row-major
+    V3 t{0, 0, 0};
+};
+
+Affine compose(const Affine& l, const Affine& r) {  // l * r: r applied first
+    Affine o;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            double s = 0;
+            for (int k = 0; k < 3; ++k) s += l.a[size_t(3 * i + k)] * r.a[size_t(3 * k + j)];
+            o.a[size_t(3 * i + j)] = s;
+        }
+    const V3 rt = r.t;
+    o.t = {l.a[0] * rt.x + l.a[1] * rt.y + l.a[2] * rt.z + l.t.x,
+           l.a[3] * rt.x + l.a[4] * rt.y + l.a[5] * rt.z + l.t.y,
+           l.a[6] * rt.x + l.a[7] * rt.y + l.a[8] * rt.z + l.t.z};
+    return o;
+}
+
+std::array<double, 9> rotation_xyz_deg(const V3& deg) {
+    // R = Rz(z) Ry(y) Rx(x): rotate about x first, then y, then z (world axes).
+    const double k = 3.14159265358979323846 / 180;
+    const double cx = std::cos(deg.x * k), sx = std::sin(deg.x * k);
+    const double cy = std::cos(deg.y * k), sy = std::sin(deg.y * k);
+    const double cz = std::cos(deg.z * k), sz = std::sin(deg.z * k);
+    Affine rx, ry, rz;
+    rx.a = {1, 0, 0, 0, cx, -sx, 0, sx, cx};
+    ry.a = {cy, 0, sy, 0, 1, 0, -sy, 0, cy};
+    rz.a = {cz, -sz, 0, sz, cz, 0, 0, 0, 1};
+    return compose(rz, compose(ry, rx)).a;
+}
+
+Affine matrix4(const Ctx& c, const json& j, const std::string& where) {
+    std::vector<double> m;
+    if (j.is_array() && j.size() == 4 && j[0].is_array()) {
+        for (std::size_t r = 0; r < 4; ++r) {
+            const auto row = numbers(c, j[r], at(where, r), 4);
+            m.insert(m.end(), row.begin(), row.end());
+        }
+    } else {
+        if (!j.is_array() || j.size() != 16)
+            c.fail(where, "expected a 4x4 matrix (16 numbers, row-major, or 4 rows of 4), got " +
+                              type_name(j));
+        m = numbers(c, j, where, 16);
+    }
+    if (m[12] != 0 || m[13] != 0 || m[14] != 0 || m[15] != 1)
+        c.fail(where, "expected an affine matrix (last row 0 0 0 1)");
+    Affine o;
+    o.a = {m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10]};
+    o.t = {m[3], m[7], m[11]};
+    return o;
+}
+
+Affine transform(const Ctx& c, const json& j, const std::string& where) {
+    if (j.is_array()) return matrix4(c, j, where);
+    check_keys(c, j, where, {"matrix", "scale", "rotate_deg", "translate"});
+    Affine m;
+    if (j.contains("matrix")) m = matrix4(c, j["matrix"], sub(where, "matrix"));
+    if (j.contains("scale")) {
+        const json& s = j["scale"];
+        Affine sc;
+        V3 f = s.is_array() ? vec(c, s, sub(where, "scale")) : V3{0, 0, 0};
+        if (!s.is_array()) {
+            const double v = number(c, s, sub(where, "scale"));
+            f = {v, v, v};
+        }
+        sc.a = {f.x, 0, 0, 0, f.y, 0, 0, 0, f.z};
+        m = compose(sc, m);
+    }
+    if (j.contains("rotate_deg")) {
+        Affine r;
+        r.a = rotation_xyz_deg(vec(c, j["rotate_deg"], sub(where, "rotate_deg")));
+        m = compose(r, m);
+    }
+    if (j.contains("translate")) {
+        Affine t;
+        t.t = vec(c, j["translate"], sub(where, "translate"));
+        m = compose(t, m);
+    }
+    return m;
+}
+
+double det3(const std::array<double, 9>& a) {
+    return a[0] * (a[4] * a[8] - a[5] * a[7]) - a[1] * (a[3] * a[8] - a[5] * a[6]) +
+           a[2] * (a[3] * a[7] - a[4] * a[6]);
+}
+
+void normalize3(float* v) {
+    const double x = v[0], y = v[1], z = v[2];
+    const double r = std::sqrt(x * x + y * y + z * z);
+    if (r > 0 && std::isfinite(r)) {
+        v[0] = static_cast<float>(x / r);
+        v[1] = static_cast<float>(y / r);
+        v[2] = static_cast<float>(z / r);
+    }
+}
+
+/// Positions by A p + t, normals by the inverse transpose of A, tangents by A (handedness
+/// flips with a mirroring A, and so does the winding, keeping geometric and shading normals
+/// on the same side).
+void apply(const Ctx& c, const std::string& where, const Affine& m, render::Mesh& mesh) {
+    const auto& a = m.a;
+    const double d = det3(a);
+    const double scale = std::max({std::fabs(a[0]) + std::fabs(a[1]) + std::fabs(a[2]),
+                                   std::fabs(a[3]) + std::fabs(a[4]) + std::fabs(a[5]),
+                                   std::fabs(a[6]) + std::fabs(a[7]) + std::fabs(a[8])});
+    if (!std::isfinite(d) || std::fabs(d) <= 1e-12 * scale * scale * scale)
+        c.fail(where, "singular or non-finite transform (determinant " + number_text(d) + ")");
+    // Inverse transpose = cofactor matrix / det.
+    const std::array<double, 9> it = {
+        (a[4] * a[8] - a[5] * a[7]) / d, -(a[3] * a[8] - a[5] * a[6]) / d,
+        (a[3] * a[7] - a[4] * a[6]) / d, -(a[1] * a[8] - a[2] * a[7]) / d,
+        (a[0] * a[8] - a[2] * a[6]) / d, -(a[0] * a[7] - a[1] * a[6]) / d,
+        (a[1] * a[5] - a[2] * a[4]) / d, -(a[0] * a[5] - a[2] * a[3]) / d,
+        (a[0] * a[4] - a[1] * a[3]) / d};
+    auto mul = [](const std::array<double, 9>& r, float* v, const V3& t) {
+        const double x = v[0], y = v[1], z = v[2];
+        v[0] = static_cast<float>(r[0] * x + r[1] * y + r[2] * z + t.x);
+        v[1] = static_cast<float>(r[3] * x + r[4] * y + r[5] * z + t.y);
+        v[2] = static_cast<float>(r[6] * x + r[7] * y + r[8] * z + t.z);
+    };
+    for (std::size_t i = 0; i + 2 < mesh.positions.size(); i += 3) mul(a, &mesh.positions[i], m.t);
+    for (std::size_t i = 0; i + 2 < mesh.normals.size(); i += 3) {
+        mul(it, &mesh.normals[i], {0, 0, 0});
+        normalize3(&mesh.normals[i]);
+    }
+    for (std::size_t i = 0; i + 3 < mesh.tangents.size(); i += 4) {
+        mul(a, &mesh.tangents[i], {0, 0, 0});
+        normalize3(&mesh.tangents[i]);
+        if (d < 0) mesh.tangents[i + 3] = -mesh.tangents[i + 3];
+    }
+    if (d < 0)
+        for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+            std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Procedural shapes.
+//
+// FALLBACK (delete when render/shapes.hpp is merged): private generators with the contract's
+// signatures, used only while <sphbasis/render/shapes.hpp> does not exist.
+#if !defined(SPHBASIS_HAVE_RENDER_SHAPES)
+namespace fallback_shapes {
+
+void push3(std::vector<float>& v, double x, double y, double z) {
+    v.push_back(static_cast<float>(x));
+    v.push_back(static_cast<float>(y));
+    v.push_back(static_cast<float>(z));
+}
+
+/// UV sphere: u = longitude / 2 pi, v = 1 at +z; one triangle per segment at the poles.
+render::Mesh sphere(const V3& c, double r, int rings, int segments) {
+    render::Mesh m;
+    const double pi = 3.14159265358979323846;
+    for (int i = 0; i <= rings; ++i) {
+        const double th = pi * i / rings, st = std::sin(th), ct = std::cos(th);
+        for (int j = 0; j <= segments; ++j) {
+            const double ph = 2 * pi * j / segments, sp = std::sin(ph), cp = std::cos(ph);
+            push3(m.positions, c.x + r * st * cp, c.y + r * st * sp, c.z + r * ct);
+            push3(m.normals, st * cp, st * sp, ct);
+            m.uvs.push_back(static_cast<float>(double(j) / segments));
+            m.uvs.push_back(static_cast<float>(1 - double(i) / rings));
+            push3(m.tangents, -sp, cp, 0);
+            m.tangents.push_back(1.0f);
+        }
+    }
+    const auto id = [&](int i, int j) {
+        return static_cast<std::uint32_t>(i * (segments + 1) + j);
+    };
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            if (i != 0) m.indices.insert(m.indices.end(), {id(i, j), id(i + 1, j), id(i, j + 1)});
+            if (i != rings - 1)
+                m.indices.insert(m.indices.end(), {id(i, j + 1), id(i + 1, j), id(i + 1, j + 1)});
+        }
+    return m;
+}
+
+/// Quad center +- u +- v, normal u x v, UVs [0,1]^2 (u along u_half, v along v_half).
+render::Mesh quad(const V3& c, const V3& u, const V3& v, int s) {
+    render::Mesh m;
+    V3 n{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
+    const double nr = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+    const double ur = std::sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
+    for (int i = 0; i <= s; ++i)
+        for (int j = 0; j <= s; ++j) {
+            const double a = 2.0 * j / s - 1, b = 2.0 * i / s - 1;
+            push3(m.positions, c.x + a * u.x + b * v.x, c.y + a * u.y + b * v.y,
+                  c.z + a * u.z + b * v.z);
+            push3(m.normals, n.x / nr, n.y / nr, n.z / nr);
+            m.uvs.push_back(static_cast<float>(double(j) / s));
+            m.uvs.push_back(static_cast<float>(double(i) / s));
+            push3(m.tangents, u.x / ur, u.y / ur, u.z / ur);
+            m.tangents.push_back(1.0f);
+        }
+    const auto id = [&](int i, int j) { return static_cast<std::uint32_t>(i * (s + 1) + j); };
+    for (int i = 0; i < s; ++i)
+        for (int j = 0; j < s; ++j)
+            m.indices.insert(m.indices.end(), {id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i, j),
+                                               id(i + 1, j + 1), id(i + 1, j)});
+    return m;
+}
+
+/// Axis-aligned box, 4 vertices per face (flat normals, outward), faces in a 3 x 2 UV atlas
+/// with a margin so that lightmap texels of different faces do not overlap.
+render::Mesh box(const V3& c, const V3& h) {
+    render::Mesh m;
+    const V3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    int face = 0;
+    for (int ax = 0; ax < 3; ++ax)
+        for (int sgn = -1; sgn <= 1; sgn += 2, ++face) {
+            const V3 n{axes[ax].x * sgn, axes[ax].y * sgn, axes[ax].z * sgn};
+            const V3 ua = axes[(ax + 1) % 3], va = axes[(ax + 2) % 3];
+            const double hn = ax == 0 ? h.x : ax == 1 ? h.y : h.z;
+            const int iu = (ax + 1) % 3, iv = (ax + 2) % 3;
+            const double hu = iu == 0 ? h.x : iu == 1 ? h.y : h.z;
+            const double hv = iv == 0 ? h.x : iv == 1 ? h.y : h.z;
+            const auto base = static_cast<std::uint32_t>(m.vertex_count());
+            const double cu = (face % 3) / 3.0, cv = (face / 3) / 2.0, mu = 0.02, mv = 0.03;
+            for (int k = 0; k < 4; ++k) {
+                const double a = (k == 1 || k == 2) ? 1 : -1, b = k >= 2 ? 1 : -1;
+                const double as = a * sgn;  // keep u x v along n
+                push3(m.positions, c.x + n.x * hn + as * hu * ua.x + b * hv * va.x,
+                      c.y + n.y * hn + as * hu * ua.y + b * hv * va.y,
+                      c.z + n.z * hn + as * hu * ua.z + b * hv * va.z);
+                push3(m.normals, n.x, n.y, n.z);
+                m.uvs.push_back(static_cast<float>(cu + mu + (a + 1) / 2 * (1.0 / 3 - 2 * mu)));
+                m.uvs.push_back(static_cast<float>(cv + mv + (b + 1) / 2 * (0.5 - 2 * mv)));
+                push3(m.tangents, ua.x * sgn, ua.y * sgn, ua.z * sgn);
+                m.tangents.push_back(1.0f);
+            }
+            m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+        }
+    return m;
+}
+
+}  // namespace fallback_shapes
+#endif
+
+render::Mesh make_shape(const Ctx& c, const json& j, const std::string& where,
+                        const std::string& kind) {
+    if (kind == "sphere") {
+        const V3 center = j.contains("center") ? vec(c, j["center"], sub(where, "center")) : V3{};
+        const double radius =
+            j.contains("radius") ? positive(c, j["radius"], sub(where, "radius")) : 1.0;
+        const int rings =
+            j.contains("rings") ? integer(c, j["rings"], sub(where, "rings"), 2, 4096) : 32;
+        const int segments = j.contains("segments")
+                                 ? integer(c, j["segments"], sub(where, "segments"), 3, 8192)
+                                 : 64;
+#if defined(SPHBASIS_HAVE_RENDER_SHAPES)
+        return render::shapes::sphere(center, radius, rings, segments);
+#else
+        return fallback_shapes::sphere(center, radius, rings, segments);
+#endif
+    }
+    if (kind == "box") {
+        const V3 center = j.contains("center") ? vec(c, j["center"], sub(where, "center")) : V3{};
+        V3 half{0.5, 0.5, 0.5};
+        if (j.contains("half_extents")) {
+            half = vec(c, j["half_extents"], sub(where, "half_extents"));
+            if (!(half.x > 0 && half.y > 0 && half.z > 0))
+                c.fail(sub(where, "half_extents"), "expected three positive numbers");
+        }
+#if defined(SPHBASIS_HAVE_RENDER_SHAPES)
+        return render::shapes::box(center, half);
+#else
+        return fallback_shapes::box(center, half);
+#endif
+    }
+    if (kind == "quad") {
+        const V3 center = j.contains("center") ? vec(c, j["center"], sub(where, "center")) : V3{};
+        const V3 u = j.contains("u_axis") ? vec(c, j["u_axis"], sub(where, "u_axis")) : V3{1, 0, 0};
+        const V3 v = j.contains("v_axis") ? vec(c, j["v_axis"], sub(where, "v_axis")) : V3{0, 1, 0};
+        const V3 n{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
+        if (!(n.x * n.x + n.y * n.y + n.z * n.z > 0))
+            c.fail(where, "u_axis and v_axis must be non-zero and not parallel");
+        const int s = j.contains("subdivisions")
+                          ? integer(c, j["subdivisions"], sub(where, "subdivisions"), 1, 8192)
+                          : 1;
+#if defined(SPHBASIS_HAVE_RENDER_SHAPES)
+        return render::shapes::quad(center, u, v, s);
+#else
+        return fallback_shapes::quad(center, u, v, s);
+#endif
+    }
+    c.fail(sub(where, "shape"), "unknown shape '" + kind + "' (expected sphere, box or quad)");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Assimp
+
+render::Mesh load_mesh_file(const Ctx& c, const std::string& where, const std::string& path) {
+    {
+        std::ifstream probe(path, std::ios::binary);
+        if (!probe) c.fail(where, "cannot open mesh file '" + path + "'");
+    }
+    Assimp::Importer importer;
+    // Normals only where the file has none (GenSmoothNormals leaves existing ones); tangents
+    // need UVs. PreTransformVertices bakes the file's node hierarchy into world positions.
+    const aiScene* s =
+        importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                    aiProcess_GenSmoothNormals | aiProcess_CalcTangentSpace |
+                                    aiProcess_PreTransformVertices | aiProcess_SortByPType);
+    if (s == nullptr || (s->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0)
+        c.fail(where, "cannot load mesh '" + path + "': " + importer.GetErrorString());
+    render::Mesh m;
+    bool all_uvs = true, all_tangents = true;
+    for (unsigned k = 0; k < s->mNumMeshes; ++k) {
+        const aiMesh* a = s->mMeshes[k];
+        if ((a->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) == 0) continue;
+        all_uvs = all_uvs && a->HasTextureCoords(0);
+        all_tangents = all_tangents && a->HasTangentsAndBitangents() && a->HasNormals();
+    }
+    for (unsigned k = 0; k < s->mNumMeshes; ++k) {
+        const aiMesh* a = s->mMeshes[k];
+        if ((a->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) == 0) continue;
+        const auto base = static_cast<std::uint32_t>(m.vertex_count());
+        for (unsigned i = 0; i < a->mNumVertices; ++i) {
+            const aiVector3D& p = a->mVertices[i];
+            m.positions.insert(m.positions.end(), {p.x, p.y, p.z});
+            const aiVector3D n = a->HasNormals() ? a->mNormals[i] : aiVector3D(0, 0, 0);
+            m.normals.insert(m.normals.end(), {n.x, n.y, n.z});
+            if (all_uvs) {
+                const aiVector3D& t = a->mTextureCoords[0][i];
+                m.uvs.insert(m.uvs.end(), {t.x, t.y});
+            }
+            if (all_tangents) {
+                const aiVector3D& t = a->mTangents[i];
+                const aiVector3D& b = a->mBitangents[i];
+                const aiVector3D nb = n ^ t;  // cross product
+                const float sign = (nb * b) < 0 ? -1.0f : 1.0f;
+                m.tangents.insert(m.tangents.end(), {t.x, t.y, t.z, sign});
+            }
+        }
+        for (unsigned f = 0; f < a->mNumFaces; ++f) {
+            const aiFace& face = a->mFaces[f];
+            if (face.mNumIndices != 3) continue;
+            m.indices.insert(m.indices.end(), {base + face.mIndices[0], base + face.mIndices[1],
+                                               base + face.mIndices[2]});
+        }
+    }
+    return m;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// Removes triangles with a zero-area or non-finite position; returns how many.
+std::size_t drop_degenerate(render::Mesh& m) {
+    std::vector<std::uint32_t> kept;
+    kept.reserve(m.indices.size());
+    std::size_t dropped = 0;
+    for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+        const float* p[3];
+        bool ok = true;
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t i = m.indices[t + std::size_t(k)];
+            if (i >= m.vertex_count()) {
+                ok = false;
+                break;
+            }
+            p[k] = &m.positions[3 * std::size_t(i)];
+            ok = ok && std::isfinite(p[k][0]) && std::isfinite(p[k][1]) && std::isfinite(p[k][2]);
+        }
+        if (ok) {
+            const double ax = p[1][0] - p[0][0], ay = p[1][1] - p[0][1], az = p[1][2] - p[0][2];
+            const double bx = p[2][0] - p[0][0], by = p[2][1] - p[0][1], bz = p[2][2] - p[0][2];
+            const double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+            ok = cx * cx + cy * cy + cz * cz > 0;
+        }
+        if (ok)
+            kept.insert(kept.end(), m.indices.begin() + std::ptrdiff_t(t),
+                        m.indices.begin() + std::ptrdiff_t(t + 3));
+        else
+            ++dropped;
+    }
+    m.indices = std::move(kept);
+    return dropped;
+}
+
+SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::size_t index) {
+    if (!j.is_object()) c.fail(where, "expected an object, got " + type_name(j));
+    const bool has_file = j.contains("file"), has_shape = j.contains("shape");
+    if (has_file == has_shape) c.fail(where, "expected exactly one of \"file\" or \"shape\"");
+    std::vector<std::string> keys = {"name", "transform", "albedo", "albedo_map", "normal_map"};
+    std::string kind;
+    if (has_file) {
+        keys.push_back("file");
+    } else {
+        kind = string(c, j["shape"], sub(where, "shape"));
+        keys.push_back("shape");
+        if (kind == "sphere") keys.insert(keys.end(), {"center", "radius", "rings", "segments"});
+        if (kind == "box") keys.insert(keys.end(), {"center", "half_extents"});
+        if (kind == "quad") keys.insert(keys.end(), {"center", "u_axis", "v_axis", "subdivisions"});
+    }
+    check_keys(c, j, where, keys);
+    SceneMesh sm;
+    sm.name = j.contains("name") ? string(c, j["name"], sub(where, "name"))
+                                 : "mesh" + std::to_string(index);
+    for (char ch : sm.name)
+        if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.'))
+            c.fail(sub(where, "name"),
+                   "expected letters, digits, '_', '-' or '.' (it names output files), got '" +
+                       sm.name + "'");
+    if (has_file) {
+        sm.source = c.resolve(string(c, j["file"], sub(where, "file")));
+        sm.mesh = load_mesh_file(c, sub(where, "file"), sm.source);
+    } else {
+        sm.source = "shape:" + kind;
+        try {
+            sm.mesh = make_shape(c, j, where, kind);
+        } catch (const std::invalid_argument& e) {
+            c.fail(where, e.what());
+        }
+    }
+    if (j.contains("transform"))
+        apply(c, sub(where, "transform"), transform(c, j["transform"], sub(where, "transform")),
+              sm.mesh);
+    for (float v : sm.mesh.positions)
+        if (!std::isfinite(v)) c.fail(where, "non-finite vertex position after the transform");
+    sm.dropped_triangles = drop_degenerate(sm.mesh);
+    if (sm.mesh.triangle_count() == 0)
+        c.fail(where, "empty mesh (no triangles with non-zero area)");
+    if (j.contains("albedo")) {
+        const render::RGB a = color(c, j["albedo"], sub(where, "albedo"), 1.0);
+        sm.mesh.albedo = {float(a[0]), float(a[1]), float(a[2])};
+    }
+    if (j.contains("albedo_map")) {
+        const std::string p = c.resolve(string(c, j["albedo_map"], sub(where, "albedo_map")));
+        if (sm.mesh.uvs.empty()) c.fail(sub(where, "albedo_map"), "the mesh has no UVs");
+        SceneTexture t;
+        try {
+            t = load_texture(p, true);
+        } catch (const std::exception& e) {
+            c.fail(sub(where, "albedo_map"), e.what());
+        }
+        sm.mesh.albedo_texels = t.texels;
+        sm.mesh.albedo_map = {t.texels->data(), t.width, t.height, 3};
+        if (!j.contains("albedo")) sm.mesh.albedo = {1.0f, 1.0f, 1.0f};
+    }
+    if (j.contains("normal_map")) {
+        const std::string p = c.resolve(string(c, j["normal_map"], sub(where, "normal_map")));
+        if (sm.mesh.uvs.empty()) c.fail(sub(where, "normal_map"), "the mesh has no UVs");
+        try {
+            sm.normal_map = load_texture(p, false);
+        } catch (const std::exception& e) {
+            c.fail(sub(where, "normal_map"), e.what());
+        }
+    }
+    return sm;
+}
+
+void load_environment(const Ctx& c, const json& j, SceneFile& s) {
+    const std::string where = "environment";
+    if (!j.is_object()) c.fail(where, "expected an object, got " + type_name(j));
+    if (j.contains("constant")) {
+        check_keys(c, j, where, {"constant", "scale"});
+        s.environment.kind = render::Environment::Kind::constant;
+        s.environment.constant = color(c, j["constant"], sub(where, "constant"), 1e30);
+    } else if (j.contains("file")) {
+        check_keys(c, j, where, {"file", "rotate_deg", "scale"});
+        const std::string p = c.resolve(string(c, j["file"], sub(where, "file")));
+        RgbImage img;
+        try {
+            img = load_exr_rgb(p);
+        } catch (const std::exception& e) {
+            c.fail(sub(where, "file"), e.what());
+        }
+        auto texels = std::make_shared<std::vector<float>>(std::move(img.rgb));
+        s.environment_texels = texels;
+        s.environment.kind = render::Environment::Kind::latlong;
+        s.environment.texels = texels->data();
+        s.environment.width = img.width;
+        s.environment.height = img.height;
+        if (j.contains("rotate_deg"))
+            s.environment.rotation =
+                rotation_xyz_deg(vec(c, j["rotate_deg"], sub(where, "rotate_deg")));
+    } else {
+        check_keys(c, j, where, {"file", "constant", "rotate_deg", "scale"});
+        c.fail(where, "expected \"file\" or \"constant\"");
+    }
+    if (j.contains("scale")) {
+        s.environment.scale = number(c, j["scale"], sub(where, "scale"));
+        if (s.environment.scale < 0) c.fail(sub(where, "scale"), "expected a non-negative number");
+    }
+}
+
+render::Light load_light(const Ctx& c, const json& j, const std::string& where) {
+    if (!j.is_object()) c.fail(where, "expected an object, got " + type_name(j));
+    if (!j.contains("type"))
+        c.fail(where, "missing \"type\" (directional, sphere, cone or hemisphere)");
+    const std::string type = string(c, j["type"], sub(where, "type"));
+    render::Light l;
+    if (type == "directional") {
+        check_keys(c, j, where, {"type", "direction", "color"});
+        l.type = render::Light::Type::directional;
+    } else if (type == "sphere") {
+        check_keys(c, j, where, {"type", "position", "radius", "color"});
+        l.type = render::Light::Type::sphere;
+    } else if (type == "cone") {
+        check_keys(c, j, where, {"type", "direction", "angle_deg", "color"});
+        l.type = render::Light::Type::cone;
+    } else if (type == "hemisphere") {
+        check_keys(c, j, where, {"type", "direction", "color", "ground"});
+        l.type = render::Light::Type::hemisphere;
+    } else {
+        c.fail(sub(where, "type"), "unknown light type '" + type +
+                                       "' (expected directional, sphere, cone or hemisphere)");
+    }
+    if (j.contains("direction"))
+        l.direction = direction(c, j["direction"], sub(where, "direction"));
+    if (j.contains("color")) l.color = color(c, j["color"], sub(where, "color"), 1e30);
+    if (j.contains("ground")) l.ground = color(c, j["ground"], sub(where, "ground"), 1e30);
+    if (l.type == render::Light::Type::sphere) {
+        if (!j.contains("position") || !j.contains("radius"))
+            c.fail(where, "a sphere light needs \"position\" and \"radius\"");
+        l.position = vec(c, j["position"], sub(where, "position"));
+        l.radius = positive(c, j["radius"], sub(where, "radius"));
+    }
+    if (l.type == render::Light::Type::cone) {
+        if (!j.contains("angle_deg")) c.fail(where, "a cone light needs \"angle_deg\"");
+        l.angle_deg = number(c, j["angle_deg"], sub(where, "angle_deg"));
+        if (!(l.angle_deg > 0 && l.angle_deg <= 90))
+            c.fail(sub(where, "angle_deg"), "expected a half-angle in (0, 90]");
+    }
+    return l;
+}
+
+}  // namespace
+
+std::string closest_key(const std::string& key, const std::vector<std::string>& candidates) {
+    // Edit distance with adjacent transpositions (optimal string alignment), case-insensitive.
+    auto lower = [](char ch) { return std::tolower(static_cast<unsigned char>(ch)); };
+    std::string best;
+    std::size_t best_d = std::string::npos;
+    for (const std::string& cand : candidates) {
+        const std::size_t n = key.size(), m = cand.size();
+        std::vector<std::vector<std::size_t>> d(n + 1, std::vector<std::size_t>(m + 1));
+        for (std::size_t i = 0; i <= n; ++i) d[i][0] = i;
+        for (std::size_t j = 0; j <= m; ++j) d[0][j] = j;
+        for (std::size_t i = 1; i <= n; ++i)
+            for (std::size_t j = 1; j <= m; ++j) {
+                const std::size_t cost = lower(key[i - 1]) == lower(cand[j - 1]) ? 0 : 1;
+                d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+                if (i > 1 && j > 1 && lower(key[i - 1]) == lower(cand[j - 2]) &&
+                    lower(key[i - 2]) == lower(cand[j - 1]))
+                    d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+            }
+        if (d[n][m] < best_d) {
+            best_d = d[n][m];
+            best = cand;
+        }
+    }
+    // Close: at most a third of the longer name edited (at least 1, and 2 for long names).
+    const std::size_t limit = std::max<std::size_t>(1, std::max(key.size(), best.size()) / 3);
+    return best_d <= limit ? best : std::string();
+}
+
+SceneTexture load_texture(const std::string& path, bool srgb) {
+    SceneTexture t;
+    t.path = path;
+    std::string ext;
+    const std::size_t dot = path.find_last_of('.');
+    if (dot != std::string::npos)
+        for (char ch : path.substr(dot + 1))
+            ext += char(std::tolower(static_cast<unsigned char>(ch)));
+    auto texels = std::make_shared<std::vector<float>>();
+    if (ext == "exr") {
+        RgbImage img = load_exr_rgb(path);
+        t.width = img.width;
+        t.height = img.height;
+        *texels = std::move(img.rgb);
+    } else if (ext == "hdr") {
+        int w = 0, h = 0, n = 0;
+        float* px = stbi_loadf(path.c_str(), &w, &h, &n, 3);
+        if (px == nullptr)
+            throw std::runtime_error("cannot read image '" + path + "': " + stbi_failure_reason());
+        texels->assign(px, px + std::size_t(w) * std::size_t(h) * 3);
+        stbi_image_free(px);
+        t.width = w;
+        t.height = h;
+    } else {
+        int w = 0, h = 0, n = 0;
+        const bool wide = stbi_is_16_bit(path.c_str()) != 0;
+        const std::size_t count = [&] {
+            if (wide) {
+                stbi_us* px = stbi_load_16(path.c_str(), &w, &h, &n, 3);
+                if (px == nullptr) return std::size_t(0);
+                texels->resize(std::size_t(w) * std::size_t(h) * 3);
+                for (std::size_t i = 0; i < texels->size(); ++i)
+                    (*texels)[i] = float(px[i]) / 65535.0f;
+                stbi_image_free(px);
+            } else {
+                stbi_uc* px = stbi_load(path.c_str(), &w, &h, &n, 3);
+                if (px == nullptr) return std::size_t(0);
+                texels->resize(std::size_t(w) * std::size_t(h) * 3);
+                for (std::size_t i = 0; i < texels->size(); ++i)
+                    (*texels)[i] = float(px[i]) / 255.0f;
+                stbi_image_free(px);
+            }
+            return texels->size();
+        }();
+        if (count == 0)
+            throw std::runtime_error("cannot read image '" + path + "': " + stbi_failure_reason());
+        if (srgb)
+            for (float& v : *texels)
+                v = v <= 0.04045f ? v / 12.92f
+                                  : static_cast<float>(std::pow((v + 0.055) / 1.055, 2.4));
+        t.width = w;
+        t.height = h;
+    }
+    t.channels = 3;
+    t.texels = texels;
+    return t;
+}
+
+render::SceneDesc SceneFile::scene_desc() const {
+    render::SceneDesc d;
+    for (const SceneMesh& m : meshes) d.meshes.push_back(m.mesh.view());
+    d.environment = environment;
+    d.lights = lights;
+    return d;
+}
+
+SceneFile load_scene(const std::string& path) {
+    Ctx c;
+    c.file = path;
+    const std::size_t slash = path.find_last_of('/');
+    c.dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) c.fail("", "cannot open the scene file");
+    std::stringstream buf;
+    buf << in.rdbuf();
+    json j;
+    try {
+        j = json::parse(buf.str());
+    } catch (const json::exception& e) {
+        // parse_error (syntax; NaN and Infinity are not JSON) or out_of_range (1e999).
+        std::string msg = e.what();
+        const std::size_t p = msg.find("] ");
+        if (p != std::string::npos) msg = msg.substr(p + 2);
+        if (msg.find("invalid literal") != std::string::npos)
+            msg += " (NaN and Infinity are not JSON numbers)";
+        c.fail("",
+               std::string(e.id == 406 ? "expected finite numbers: " : "malformed JSON: ") + msg);
+    }
+    check_keys(c, j, "", {"meshes", "environment", "lights", "camera", "probes"});
+    SceneFile s;
+    s.path = path;
+    if (!j.contains("meshes")) c.fail("", "missing \"meshes\"");
+    const json& meshes = j["meshes"];
+    if (!meshes.is_array() || meshes.empty())
+        c.fail("meshes", "expected a non-empty array, got " + type_name(meshes));
+    for (std::size_t i = 0; i < meshes.size(); ++i) {
+        s.meshes.push_back(load_mesh(c, meshes[i], at("meshes", i), i));
+        for (std::size_t k = 0; k + 1 < s.meshes.size(); ++k)
+            if (s.meshes[k].name == s.meshes.back().name)
+                c.fail(at("meshes", i), "duplicate mesh name '" + s.meshes.back().name + "'");
+    }
+    if (j.contains("environment")) load_environment(c, j["environment"], s);
+    if (j.contains("lights")) {
+        const json& ls = j["lights"];
+        if (!ls.is_array()) c.fail("lights", "expected an array, got " + type_name(ls));
+        for (std::size_t i = 0; i < ls.size(); ++i)
+            s.lights.push_back(load_light(c, ls[i], at("lights", i)));
+    }
+    if (j.contains("camera")) {
+        const json& cam = j["camera"];
+        check_keys(c, cam, "camera", {"position", "look_at", "up", "fov_deg"});
+        s.camera.present = true;
+        if (cam.contains("position"))
+            s.camera.position = vec(c, cam["position"], "camera.position");
+        if (cam.contains("look_at")) s.camera.look_at = vec(c, cam["look_at"], "camera.look_at");
+        if (cam.contains("up")) s.camera.up = direction(c, cam["up"], "camera.up");
+        if (cam.contains("fov_deg")) {
+            s.camera.fov_deg = number(c, cam["fov_deg"], "camera.fov_deg");
+            if (!(s.camera.fov_deg > 0 && s.camera.fov_deg < 180))
+                c.fail("camera.fov_deg", "expected a field of view in (0, 180) degrees");
+        }
+    }
+    if (j.contains("probes")) {
+        const json& p = j["probes"];
+        check_keys(c, p, "probes", {"min", "max", "counts"});
+        if (!p.contains("min") || !p.contains("max") || !p.contains("counts"))
+            c.fail("probes", "expected \"min\", \"max\" and \"counts\"");
+        s.has_probes = true;
+        s.probes.lo = vec(c, p["min"], "probes.min");
+        s.probes.hi = vec(c, p["max"], "probes.max");
+        if (!(s.probes.lo.x <= s.probes.hi.x && s.probes.lo.y <= s.probes.hi.y &&
+              s.probes.lo.z <= s.probes.hi.z))
+            c.fail("probes", "expected min <= max in every axis");
+        const json& n = p["counts"];
+        if (!n.is_array() || n.size() != 3)
+            c.fail("probes.counts", "expected an array of 3 integers, got " + type_name(n));
+        for (std::size_t k = 0; k < 3; ++k)
+            s.probes.counts[k] = integer(c, n[k], at("probes.counts", k), 1, 4096);
+        if (s.probes.size() > (std::size_t(1) << 26))
+            c.fail("probes.counts", "too many probes (at most 2^26)");
+    }
+    return s;
+}
+
+}  // namespace sphbasis::cli
