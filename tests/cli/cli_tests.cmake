@@ -159,3 +159,12 @@ sphbasis_cli_test(eval_lm_range_huge "--lm: expected 0 <= L <= 8191 for basis 's
 # space limit (the table alone would take 537 MB).
 sphbasis_cli_script(eval_lm_max_small_memory "\"values\":\\[-?[1-9]"
                     "ulimit -v 400000; \"$<TARGET_FILE:sphbasis_cli>\" eval --basis sh --lm 8191,8191 --dir 1,0.001,0")
+
+# ---------------------------------------------------------------------------------------------
+# Outputs all or none: a bad second output path fails before the run and leaves an existing
+# first output untouched (it used to be truncated to 0 bytes); a good run replaces both, with no
+# temporary left behind.
+sphbasis_cli_script(params_outputs_all_or_none "all-or-none-ok"
+  "d=params_outputs.d; rm -rf $d; mkdir -p $d && echo keep > $d/old.json && \"$<TARGET_FILE:sphbasis_cli>\" params --points 2000 --threads 1 --json $d/old.json --csv /proc/no/such.csv >/dev/null 2>$d/err; s=$?; test $s -ne 0 && test \"$(cat $d/old.json)\" = keep && test $(wc -l < $d/err) -eq 1 && test -z \"$(ls -A $d | grep tmp)\" && echo all-or-none-ok")
+sphbasis_cli_script(imse_outputs_all_or_none "all-or-none-ok"
+  "d=imse_outputs.d; rm -rf $d; mkdir -p $d && echo keep > $d/old.json && \"$<TARGET_FILE:sphbasis_cli>\" imse --signals 2 --json $d/old.json --md $d/new.md --csv /proc/no/such.csv >/dev/null 2>$d/err; s=$?; test $s -ne 0 && test \"$(cat $d/old.json)\" = keep && test ! -e $d/new.md && test -z \"$(ls -A $d | grep tmp)\" && echo all-or-none-ok")

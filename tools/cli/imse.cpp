@@ -40,7 +40,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -57,6 +56,7 @@
 
 #include "../support/exr.hpp"
 #include "../support/json.hpp"
+#include "../support/output_file.hpp"
 #include "../support/parallel.hpp"
 #include "../support/progress.hpp"
 #include "cli.hpp"
@@ -597,13 +597,6 @@ Json protocol_json(const ProtocolResult& p) {
     return o;
 }
 
-void write_file(const std::string& path, const std::string& text) {
-    std::ofstream f(path, std::ios::binary);
-    if (!f) throw std::runtime_error("cannot open '" + path + "' for writing");
-    f << text;
-    if (!f) throw std::runtime_error("cannot write '" + path + "'");
-}
-
 std::string csv_of(const std::vector<ProtocolResult>& ps) {
     std::ostringstream o;
     o << "protocol,basis,coeffs,imse,stderr,expected,quad_err,trunc_bound,eval_ns,eval_batch_ns,"
@@ -666,12 +659,10 @@ int run_imse(const ImseOptions& o) {
                          " (the hdri protocol keeps 644 bytes per signal, 0.64 GB at the "
                          "limit), got " +
                          std::to_string(signals));
-    for (const std::string* f : {&o.json_path, &o.csv_path, &o.md_path}) {
-        if (f->empty()) continue;
-        // Fail before the long run, not after it (append mode: nothing is truncated yet).
-        std::ofstream probe(*f, std::ios::app);
-        if (!probe) throw std::runtime_error("cannot open '" + *f + "' for writing");
-    }
+    // Fail before the long run, not after it, creating and truncating nothing; the outputs are
+    // written together at the end (all or none, through temporaries and renames).
+    for (const std::string* f : {&o.json_path, &o.csv_path, &o.md_path})
+        if (!f->empty()) check_writable(*f);
 
     const auto t0 = Clock::now();
     const std::vector<Row> rows = benchmark_rows();
@@ -690,6 +681,7 @@ int run_imse(const ImseOptions& o) {
     }
     std::cout << "total " << fmt("%.1f", seconds_since(t0)) << " s\n";
 
+    OutputFiles outputs;
     if (!o.json_path.empty()) {
         const JsonLayout layout = {{"rows", 2}, {"protocols", 0}};
         Json j;
@@ -700,10 +692,11 @@ int run_imse(const ImseOptions& o) {
             Json& ps = j["protocols"] = Json::array();
             for (const auto& p : results) ps.push_back(protocol_json(p));
         }
-        write_file(o.json_path, dump_json(j, layout) + "\n");
+        outputs.add(o.json_path, dump_json(j, layout) + "\n");
     }
-    if (!o.csv_path.empty()) write_file(o.csv_path, csv_of(results));
-    if (!o.md_path.empty()) write_file(o.md_path, md_of(results));
+    if (!o.csv_path.empty()) outputs.add(o.csv_path, csv_of(results));
+    if (!o.md_path.empty()) outputs.add(o.md_path, md_of(results));
+    outputs.commit();
     return 0;
 }
 

@@ -20,14 +20,15 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <memory>
+#include <sstream>
 #include <sphbasis/param/reconstruction_error.hpp>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "../support/json.hpp"
+#include "../support/output_file.hpp"
 #include "../support/parallel.hpp"
 #include "../support/progress.hpp"
 #include "cli.hpp"
@@ -42,16 +43,10 @@ struct ParamsOptions {
 };
 
 int run_params(const ParamsOptions& o) {
-    // Open the outputs first so a bad path fails before a minute of work.
-    std::ofstream json, csv;
-    if (!o.json_path.empty()) {
-        json.open(o.json_path);
-        if (!json) throw std::runtime_error("cannot write '" + o.json_path + "'");
-    }
-    if (!o.csv_path.empty()) {
-        csv.open(o.csv_path);
-        if (!csv) throw std::runtime_error("cannot write '" + o.csv_path + "'");
-    }
+    // Check the outputs first so a bad path fails before a minute of work, truncating nothing;
+    // they are written together at the end (all or none, through temporaries and renames).
+    for (const std::string* f : {&o.json_path, &o.csv_path})
+        if (!f->empty()) check_writable(*f);
     const ThreadLimit limit(static_cast<std::size_t>(o.threads));
     const int bits = static_cast<int>(o.bits);
 
@@ -102,7 +97,8 @@ int run_params(const ParamsOptions& o) {
     }
     std::printf("\n%lld points, %lld threads, %.1f s\n", o.points, o.threads, seconds);
 
-    if (json.is_open()) {
+    OutputFiles outputs;
+    if (!o.json_path.empty()) {
         Json j = {{"experiment", "params"},  {"points", o.points},    {"seed", o.seed},
                   {"subtexel_bits", o.bits}, {"table_type", "float"}, {"seconds", seconds}};
         Json& ps = j["parameterizations"] = Json::array();
@@ -114,16 +110,17 @@ int run_params(const ParamsOptions& o) {
                           {"texels", r.texels},
                           {"mse_3bands", r.mse3},
                           {"mse_6bands", r.mse6}});
-        json << dump_json(j, {{"results", 0}}) << "\n";
-        if (!json) throw std::runtime_error("error writing '" + o.json_path + "'");
+        outputs.add(o.json_path, dump_json(j, {{"results", 0}}) + "\n");
     }
-    if (csv.is_open()) {
+    if (!o.csv_path.empty()) {
+        std::ostringstream csv;
         csv << "param,resolution,texels,mse_3bands,mse_6bands\n";
         for (const auto& r : results)
             csv << r.param << "," << r.resolution << "," << r.texels << "," << format_real(r.mse3)
                 << "," << format_real(r.mse6) << "\n";
-        if (!csv) throw std::runtime_error("error writing '" + o.csv_path + "'");
+        outputs.add(o.csv_path, csv.str());
     }
+    outputs.commit();
     return 0;
 }
 

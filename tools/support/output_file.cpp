@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
+#include <vector>
 
 namespace sphbasis::cli {
 
@@ -40,7 +41,8 @@ void commit_temporary(const std::string& temp, const std::string& path) {
     }
 }
 
-void write_file_atomic(const std::string& path, const void* data, std::size_t size, bool sync) {
+std::string write_temporary(const std::string& path, const void* data, std::size_t size,
+                            bool sync) {
     const std::string temp = temporary_name_for(path);
     const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     if (fd < 0) throw write_error(path, errno);
@@ -64,7 +66,35 @@ void write_file_atomic(const std::string& path, const void* data, std::size_t si
         discard_temporary(temp);
         throw write_error(path, err);
     }
-    commit_temporary(temp, path);
+    return temp;
+}
+
+void write_file_atomic(const std::string& path, const void* data, std::size_t size, bool sync) {
+    commit_temporary(write_temporary(path, data, size, sync), path);
+}
+
+void check_writable(const std::string& path) {
+    discard_temporary(write_temporary(path, "", 0, false));
+}
+
+void OutputFiles::commit(bool sync) {
+    std::vector<std::string> temps;
+    try {
+        for (const auto& f : files_)
+            temps.push_back(write_temporary(f.first, f.second.data(), f.second.size(), sync));
+    } catch (...) {
+        for (const auto& t : temps) discard_temporary(t);
+        throw;
+    }
+    for (std::size_t i = 0; i < temps.size(); ++i) {
+        try {
+            commit_temporary(temps[i], files_[i].first);
+        } catch (...) {
+            for (std::size_t j = i + 1; j < temps.size(); ++j) discard_temporary(temps[j]);
+            throw;
+        }
+    }
+    files_.clear();
 }
 
 }  // namespace sphbasis::cli

@@ -9,6 +9,8 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace sphbasis::cli {
 
@@ -21,6 +23,31 @@ inline void write_file_atomic(const std::string& path, const std::string& bytes,
                               bool sync = false) {
     write_file_atomic(path, bytes.data(), bytes.size(), sync);
 }
+
+/// Throws std::runtime_error "cannot write 'path': <strerror>" unless a file can be created in
+/// path's directory (a temporary is created and removed): checks an output before a long run
+/// without creating or truncating `path` itself.
+void check_writable(const std::string& path);
+
+/// Several outputs written all or none: commit() writes every file to its temporary first and
+/// renames them only when all were written, so a failure (a bad path, a full disk) leaves every
+/// destination as it was. (The renames themselves can fail only on a file system that
+/// changed meanwhile; then the files renamed before stay.)
+class OutputFiles {
+  public:
+    void add(std::string path, std::string bytes) {
+        files_.emplace_back(std::move(path), std::move(bytes));
+    }
+    void commit(bool sync = false);
+
+  private:
+    std::vector<std::pair<std::string, std::string>> files_;
+};
+
+/// Writes `data` to a new temporary beside `path` and returns its name (commit_temporary() or
+/// discard_temporary() it); throws as write_file_atomic() after removing it.
+std::string write_temporary(const std::string& path, const void* data, std::size_t size,
+                            bool sync = false);
 
 /// A unique temporary name beside `path` (same directory, so rename() is atomic), for writers
 /// that must produce the file themselves (OpenEXR): write it, then commit_temporary().
