@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "../basis/registry.hpp"
+#include "../config.hpp"
 #include "../core/error.hpp"
 #include "../core/quadrature.hpp"
 #include "../ops/projection.hpp"
@@ -118,9 +119,11 @@ class IrradianceFit {
         double* eg = er + m;
         double* eb = eg + m;
         for (std::size_t i = 0; i < 3 * m; ++i) er[i] = 0;
-        const double* dx = rule_.x.data();
-        const double* dy = rule_.y.data();
-        const double* dz = rule_.z.data();
+        // Samples are gathered in blocks of 4 so each pass over the fit directions loads and
+        // stores e_i once for 4 samples (the loop is then compute bound and vectorises).
+        constexpr int block = 4;
+        double bw[block][3], bl[block][3];
+        int nb = 0;
         for (std::size_t k = 0; k < count; ++k) {
             const double wk = weights != nullptr ? double(weights[k]) : weight;
             const double lr = double(radiance[3 * k]) * wk;
@@ -131,19 +134,20 @@ class IrradianceFit {
                     fn, "finite radiance and weights, got a non-finite one at sample " +
                             std::to_string(k));
             if (lr == 0 && lg == 0 && lb == 0) continue;
-            double wx = double(dirs[3 * k]), wy = double(dirs[3 * k + 1]),
-                   wz = double(dirs[3 * k + 2]);
+            const double wx = double(dirs[3 * k]), wy = double(dirs[3 * k + 1]),
+                         wz = double(dirs[3 * k + 2]);
             const double len = std::sqrt(wx * wx + wy * wy + wz * wz);
             if (!(len > 0) || !std::isfinite(len)) continue;
-            wx /= len, wy /= len, wz /= len;
-            for (std::size_t i = 0; i < m; ++i) {
-                double c = dx[i] * wx + dy[i] * wy + dz[i] * wz;
-                c = c > 0 ? c : 0;
-                er[i] += lr * c;
-                eg[i] += lg * c;
-                eb[i] += lb * c;
+            bw[nb][0] = wx / len, bw[nb][1] = wy / len, bw[nb][2] = wz / len;
+            bl[nb][0] = lr, bl[nb][1] = lg, bl[nb][2] = lb;
+            if (++nb == block) {
+                accumulate_block(bw, bl, er, eg, eb);
+                nb = 0;
             }
         }
+        for (int j = nb; j < block; ++j)  // pad the last block with zero radiance
+            bw[j][0] = bw[j][1] = bw[j][2] = bl[j][0] = bl[j][1] = bl[j][2] = 0;
+        if (nb > 0) accumulate_block(bw, bl, er, eg, eb);
         project(er, r);
         project(eg, g);
         project(eb, b);
@@ -207,6 +211,32 @@ class IrradianceFit {
         sphbasis::detail::check_buffer(fn, "r", r, 1);
         sphbasis::detail::check_buffer(fn, "g", g, 1);
         sphbasis::detail::check_buffer(fn, "b", b, 1);
+    }
+    void accumulate_block(const double (&w)[4][3], const double (&l)[4][3],
+                          double* SPHBASIS_RESTRICT er, double* SPHBASIS_RESTRICT eg,
+                          double* SPHBASIS_RESTRICT eb) const noexcept {
+        const double* SPHBASIS_RESTRICT dx = rule_.x.data();
+        const double* SPHBASIS_RESTRICT dy = rule_.y.data();
+        const double* SPHBASIS_RESTRICT dz = rule_.z.data();
+        const std::size_t m = rule_.size();
+        const double w0x = w[0][0], w0y = w[0][1], w0z = w[0][2];
+        const double w1x = w[1][0], w1y = w[1][1], w1z = w[1][2];
+        const double w2x = w[2][0], w2y = w[2][1], w2z = w[2][2];
+        const double w3x = w[3][0], w3y = w[3][1], w3z = w[3][2];
+        for (std::size_t i = 0; i < m; ++i) {
+            const double x = dx[i], y = dy[i], z = dz[i];
+            double c0 = x * w0x + y * w0y + z * w0z;
+            double c1 = x * w1x + y * w1y + z * w1z;
+            double c2 = x * w2x + y * w2y + z * w2z;
+            double c3 = x * w3x + y * w3y + z * w3z;
+            c0 = c0 > 0 ? c0 : 0;
+            c1 = c1 > 0 ? c1 : 0;
+            c2 = c2 > 0 ? c2 : 0;
+            c3 = c3 > 0 ? c3 : 0;
+            er[i] += c0 * l[0][0] + c1 * l[1][0] + c2 * l[2][0] + c3 * l[3][0];
+            eg[i] += c0 * l[0][1] + c1 * l[1][1] + c2 * l[2][1] + c3 * l[3][1];
+            eb[i] += c0 * l[0][2] + c1 * l[1][2] + c2 * l[2][2] + c3 * l[3][2];
+        }
     }
     void project(const double* e, double* out) const {
         const std::size_t m = rule_.size();

@@ -293,9 +293,36 @@ inline LightmapLayout layout_lightmap(const MeshView& mesh, int width, int heigh
         };
         const int x0 = lo_i(xmin, width), x1 = hi_i(xmax, width);
         const int y0 = lo_i(ymin, height), y1 = hi_i(ymax, height);
+        // Edge functions (positive inside) classify most texels without clipping: a texel with
+        // all four corners inside every edge is covered fully, one with all four corners
+        // outside one edge is not covered (a separating axis); only the others are clipped.
+        const double orient = twice > 0 ? 1.0 : -1.0;
+        double ea[3], eb[3], ec[3];  // edge k: ea x + eb y + ec >= 0 inside
+        for (std::size_t k = 0; k < 3; ++k) {
+            const auto& a = px[k];
+            const auto& b = px[(k + 1) % 3];
+            ea[k] = -orient * (b[1] - a[1]);
+            eb[k] = orient * (b[0] - a[0]);
+            ec[k] = -(ea[k] * a[0] + eb[k] * a[1]);
+        }
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
-                const double a = lightmap_detail::clipped_area(px.data(), double(x), double(y));
+                bool inside = true, outside = false;
+                for (std::size_t k = 0; k < 3; ++k) {
+                    const double e00 = ea[k] * x + eb[k] * y + ec[k];
+                    const double e10 = e00 + ea[k], e01 = e00 + eb[k], e11 = e10 + eb[k];
+                    const double lo = std::min(std::min(e00, e10), std::min(e01, e11));
+                    const double hi = std::max(std::max(e00, e10), std::max(e01, e11));
+                    // Margins of rounding size leave borderline texels to the exact clip.
+                    const double tol = 1e-9 * (std::abs(ea[k]) + std::abs(eb[k]) + 1) *
+                                       (std::abs(x) + std::abs(y) + 1);
+                    if (hi < -tol) outside = true;
+                    if (lo <= tol) inside = false;
+                }
+                if (outside) continue;
+                const double a = inside ? 1.0
+                                        : lightmap_detail::clipped_area(px.data(), double(x),
+                                                                        double(y));
                 if (!(a > 0)) continue;
                 const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
                 if (a > best_area[i]) {
@@ -305,6 +332,10 @@ inline LightmapLayout layout_lightmap(const MeshView& mesh, int width, int heigh
             }
     }
 
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < texels; ++i)
+        count += best_tri[i] != std::numeric_limits<std::uint32_t>::max() ? 1 : 0;
+    out.samples.reserve(count);
     const double offset_texels = options.normal_offset;
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
