@@ -55,11 +55,10 @@ struct Row {
     int n;
 };
 const std::vector<Row>& rows() {
-    static const std::vector<Row> r = {{"sh", 4},          {"sh", 9},       {"sh", 16},
-                                       {"hsh", 4},         {"hsh", 9},      {"makhotkin", 4},
-                                       {"makhotkin", 9},   {"zernike", 3},  {"zernike", 6},
-                                       {"zernike", 10},    {"hbasis", 4},   {"hbasis", 6},
-                                       {"hbasis-mod", 4},  {"hbasis-mod", 6}, {"hl2", 3}};
+    static const std::vector<Row> r = {
+        {"sh", 4},        {"sh", 9},        {"sh", 16},        {"hsh", 4},        {"hsh", 9},
+        {"makhotkin", 4}, {"makhotkin", 9}, {"zernike", 3},    {"zernike", 6},    {"zernike", 10},
+        {"hbasis", 4},    {"hbasis", 6},    {"hbasis-mod", 4}, {"hbasis-mod", 6}, {"hl2", 3}};
     return r;
 }
 
@@ -75,8 +74,8 @@ TEST_CASE("irradiance fit: a constant sky gives pi in every basis", "[render][ir
         INFO(row.basis << " " << row.n);
         const IrradianceFit fit(row.basis, row.n);
         std::vector<double> r(static_cast<std::size_t>(row.n)), g(r), b(r);
-        fit.fit_function([](double, double, double) { return constants::pi; }, r.data(),
-                         g.data(), b.data());
+        fit.fit_function([](double, double, double) { return constants::pi; }, r.data(), g.data(),
+                         b.data());
         CHECK(r == g);
         CHECK(r == b);
         const Eigen::VectorXd ref = sphbasis::fit(
@@ -101,8 +100,9 @@ TEST_CASE("irradiance fit: a constant sky gives pi in every basis", "[render][ir
     CHECK(r[0] == Approx(constants::pi * std::sqrt(4 * constants::pi)).epsilon(1e-13));
     for (int k = 1; k < 9; ++k) CHECK(std::abs(r[k]) < 1e-12);
     // Sample path: a dense sphere quadrature of a constant sky (radiance 1, 2, 3 in R, G, B).
-    const Samples s = rule_samples(
-        60, [](double, double, double) { return std::array<double, 3>{1, 2, 3}; });
+    const Samples s = rule_samples(60, [](double, double, double) {
+        return std::array<double, 3>{1, 2, 3};
+    });
     std::vector<double> scratch;
     sh9.fit_samples(s.size(), s.dirs.data(), s.radiance.data(), s.weights.data(), 0, r, g, b,
                     scratch);
@@ -142,8 +142,8 @@ TEST_CASE("irradiance fit: SH radiance gives the Ramamoorthi-Hanrahan convolutio
             std::array<double, 3> e{0, 0, 0};
             for (std::size_t ch = 0; ch < 3; ++ch)
                 for (std::size_t k = 0; k < 9; ++k)
-                    e[ch] += constants::pi * clamped_cosine(sh::degree_of(int(k))) * c[ch][k] *
-                             yv[k];
+                    e[ch] +=
+                        constants::pi * clamped_cosine(sh::degree_of(int(k))) * c[ch][k] * yv[k];
             return e;
         },
         out[0], out[1], out[2]);
@@ -155,8 +155,8 @@ TEST_CASE("irradiance fit: SH radiance gives the Ramamoorthi-Hanrahan convolutio
     // Sample path: the radiance on a dense sphere quadrature.
     const Samples s = rule_samples(60, radiance);
     std::vector<double> scratch;
-    sh9.fit_samples(s.size(), s.dirs.data(), s.radiance.data(), s.weights.data(), 0, out[0],
-                    out[1], out[2], scratch);
+    sh9.fit_samples(s.size(), s.dirs.data(), s.radiance.data(), s.weights.data(), 0, out[0], out[1],
+                    out[2], scratch);
     for (std::size_t ch = 0; ch < 3; ++ch)
         for (std::size_t k = 0; k < 9; ++k)
             CHECK(out[ch][k] ==
@@ -197,8 +197,8 @@ TEST_CASE("irradiance fit: H-basis fit equals an independent dense least-squares
         double worst = 0;
         for (int ch = 0; ch < 3; ++ch)
             for (int j = 0; j < n; ++j)
-                worst = std::max(worst, std::abs((*got[ch])[std::size_t(j)] - ref(j, ch)) /
-                                            ref.col(ch).norm());
+                worst = std::max(
+                    worst, std::abs((*got[ch])[std::size_t(j)] - ref(j, ch)) / ref.col(ch).norm());
         // The default 288-direction rule against the dense one: the clamped cosines' kinks
         // limit the agreement to ~1e-4 of the coefficients' norm (measured 1.7e-4 for 4
         // functions, 2.2e-4 for 6), far below the Monte Carlo noise of 64 samples (~10%).
@@ -263,8 +263,8 @@ TEST_CASE("irradiance fit: weights, skipped samples, float input and errors",
     bad.nu = 0;
     CHECK_THROWS_AS(IrradianceFit("sh", 9, bad), std::invalid_argument);
     s.radiance[4] = std::numeric_limits<double>::quiet_NaN();
-    CHECK_THROWS_AS(fit.fit_samples(s.size(), s.dirs.data(), s.radiance.data(), s.weights.data(),
-                                    0, r, g, b, scratch),
+    CHECK_THROWS_AS(fit.fit_samples(s.size(), s.dirs.data(), s.radiance.data(), s.weights.data(), 0,
+                                    r, g, b, scratch),
                     std::invalid_argument);
     CHECK_THROWS_AS(fit.fit_samples(s.size(), static_cast<const double*>(nullptr),
                                     s.radiance.data(), 1.0, r, g, b),

@@ -60,8 +60,7 @@ bool overlaps_with_area(const std::array<std::array<double, 2>, 3>& tri, int x, 
 
 // Barycentrics of p in triangle (a, b, c) by Cramer's rule (may be negative outside).
 std::array<double, 3> barycentric(const std::array<double, 2>& p, const std::array<double, 2>& a,
-                                  const std::array<double, 2>& b,
-                                  const std::array<double, 2>& c) {
+                                  const std::array<double, 2>& b, const std::array<double, 2>& c) {
     const double d = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
     const double l1 = ((p[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (p[1] - a[1])) / d;
     const double l2 = ((b[0] - a[0]) * (p[1] - a[1]) - (p[0] - a[0]) * (b[1] - a[1])) / d;
@@ -130,8 +129,7 @@ TEST_CASE("lightmap: a sliver narrower than a texel covers every texel it crosse
     const int w = 16, h = 16;
     // Horizontal sliver 0.01 texel high inside row 4, away from the texel centres.
     {
-        const Mesh m =
-            mesh_from_pixels({{0.5, 4.2}, {15.5, 4.2}, {15.5, 4.21}}, w, h, {0, 1, 2});
+        const Mesh m = mesh_from_pixels({{0.5, 4.2}, {15.5, 4.2}, {15.5, 4.21}}, w, h, {0, 1, 2});
         const LightmapLayout l = layout_lightmap(m.view(), w, h);
         REQUIRE(l.samples.size() == 16);
         for (const auto& s : l.samples) CHECK(s.y == 4);
@@ -173,9 +171,9 @@ TEST_CASE("lightmap: overlapping triangles take the largest overlap, ties the lo
         if (s.x != s.y) CHECK(s.triangle == (s.x > s.y ? 0u : 1u));
     }
     // A small triangle inside a texel and a large one covering a quarter of it: the large one.
-    const Mesh t = mesh_from_pixels({{0.1, 0.1}, {0.2, 0.1}, {0.1, 0.2}, {0.5, 0.5}, {1.5, 0.5},
-                                     {0.5, 1.5}},
-                                    2, 2, {0, 1, 2, 3, 4, 5});
+    const Mesh t =
+        mesh_from_pixels({{0.1, 0.1}, {0.2, 0.1}, {0.1, 0.2}, {0.5, 0.5}, {1.5, 0.5}, {0.5, 1.5}},
+                         2, 2, {0, 1, 2, 3, 4, 5});
     const LightmapLayout lt = layout_lightmap(t.view(), 2, 2);
     REQUIRE(lt.samples.size() == 3);  // texels (0,0), (1,0), (0,1)
     CHECK(lt.samples[0].triangle == 1);
@@ -409,7 +407,8 @@ TEST_CASE("lightmap: dilate fills exactly the gutter ring and keeps covered texe
         // The isolated texel's ring: all 8 neighbours (inside the image) equal it.
         const std::size_t j = std::size_t(2 * w + 15);
         for (int c = 0; c < ch; ++c)
-            CHECK(img[j * ch + std::size_t(c)] == before[std::size_t(w + 14) * ch + std::size_t(c)]);
+            CHECK(img[j * ch + std::size_t(c)] ==
+                  before[std::size_t(w + 14) * ch + std::size_t(c)]);
     }
     // gutter 0 changes nothing; bad arguments throw.
     std::vector<float> img0 = before;

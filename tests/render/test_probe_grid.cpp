@@ -104,7 +104,8 @@ TEST_CASE("probe grid: trilinear interpolation is exact for affine functions and
     // At each probe: its own value, exactly up to rounding.
     for (std::size_t i = 0; i < g.size(); ++i) {
         g.interpolate(values.data(), n, g.position(i), out);
-        for (std::size_t c = 0; c < n; ++c) CHECK(out[c] == Approx(values[i * n + c]).margin(1e-12));
+        for (std::size_t c = 0; c < n; ++c)
+            CHECK(out[c] == Approx(values[i * n + c]).margin(1e-12));
     }
     // Outside the box: the value at the clamped point.
     g.interpolate(values.data(), n, {10, -3, 4}, out);
@@ -166,8 +167,8 @@ TEST_CASE("probe grid: probes inside geometry are left out", "[render][probes]")
     for (std::size_t i = 0; i < g.size(); ++i) {
         if (inside[i] != 0) continue;
         const auto q = g.position(i);
-        const double d = (q.x - p.x) * (q.x - p.x) + (q.y - p.y) * (q.y - p.y) +
-                         (q.z - p.z) * (q.z - p.z);
+        const double d =
+            (q.x - p.x) * (q.x - p.x) + (q.y - p.y) * (q.y - p.y) + (q.z - p.z) * (q.z - p.z);
         if (d < best) best = d, bi = i;
     }
     CHECK(nearest == bi);

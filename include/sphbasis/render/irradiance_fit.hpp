@@ -28,10 +28,13 @@
 // clamped cosines have kinks, to well below the Monte Carlo noise of any practical ray count
 // (tests/render/test_irradiance_fit.cpp measures both).
 //
-// Cost per point: count * M * ~10 flops (the loop over fit directions is contiguous and
-// vectorises; samples of zero radiance, e.g. occluded rays without bounces, cost nothing) plus
-// 3 * coeffs * M; about 256 * 288 * 10 = 0.75 Mflop for 256 rays. No allocation once the
-// caller's scratch vector has grown to 3 M doubles.
+// Cost per point: count * M * ~10 flops plus 3 * coeffs * M for c = P e. Samples are taken in
+// blocks of 4, so each pass over the fit directions loads and stores e_i once for 4 samples and
+// the loop vectorises; samples of zero radiance (occluded rays without bounces) cost nothing.
+// Measured (g++ 12 -O3 -march=native, one core, CPU time): 256 samples, 288 directions:
+// 18 us per point for sh 9 and hbasis 6, 31 us for sh 25. No allocation once the caller's
+// scratch vector has grown to 3 M doubles. Building the fit: M * coeffs basis evaluations and a
+// coeffs^2 Cholesky (well under a millisecond).
 #pragma once
 
 #include <Eigen/Dense>
@@ -156,8 +159,8 @@ class IrradianceFit {
     /// fit_samples() with one weight for every sample and a scratch vector of its own (one
     /// allocation per call).
     template <class T>
-    void fit_samples(std::size_t count, const T* dirs, const T* radiance, double weight,
-                     double* r, double* g, double* b) const {
+    void fit_samples(std::size_t count, const T* dirs, const T* radiance, double weight, double* r,
+                     double* g, double* b) const {
         std::vector<double> scratch;
         fit_samples(count, dirs, radiance, static_cast<const T*>(nullptr), weight, r, g, b,
                     scratch);

@@ -34,8 +34,11 @@
 //     carries a sample through geometry (the usual cause of light leaking through walls), and
 //     the bias it adds to ao is of the order of the offset over the occluder distance. The
 //     ray-origin epsilon against floating-point self-intersection is the Baker's, not this.
-//   * Cost. O(sum over triangles of the texels in their UV bounding boxes); memory: 12 bytes
-//     per texel while rasterising, then one LightmapSample (~120 bytes) per covered texel.
+//   * Cost. O(sum over triangles of the texels in their UV bounding boxes): edge functions
+//     classify the texels fully inside or outside a triangle, only texels on its edges are
+//     clipped. Memory: 12 bytes per texel while rasterising, then one LightmapSample (176
+//     bytes) per covered texel. Measured (g++ 12 -O3, one core, CPU time): 32768 triangles
+//     into a fully covered 1024 x 1024 map, 1.0 s, most of it writing the 1M samples.
 #pragma once
 
 #include <algorithm>
@@ -77,9 +80,9 @@ struct LightmapSample {
 
 struct LightmapLayout {
     int width = 0, height = 0;
-    std::vector<LightmapSample> samples;   // one per covered texel, in row-major order
-    std::vector<std::uint8_t> covered;     // width * height: 1 where a sample is
-    std::size_t skipped_triangles = 0;     // zero-area in UV space (not rasterised)
+    std::vector<LightmapSample> samples;  // one per covered texel, in row-major order
+    std::vector<std::uint8_t> covered;    // width * height: 1 where a sample is
+    std::size_t skipped_triangles = 0;    // zero-area in UV space (not rasterised)
     /// Triangles with UV area but zero area in space and no usable shading normal: no normal
     /// can be given to their samples, so they are not rasterised either (counted apart).
     std::size_t degenerate_triangles = 0;
@@ -217,29 +220,30 @@ inline LightmapLayout layout_lightmap(const MeshView& mesh, int width, int heigh
     constexpr const char* fn = "render::layout_lightmap";
     lightmap_detail::check_lightmap_size(fn, width, height);
     if (mesh.uvs == nullptr)
-        sphbasis::detail::throw_invalid(fn, "a mesh with UVs (MeshView::uvs), got a mesh without UVs");
+        sphbasis::detail::throw_invalid(fn,
+                                        "a mesh with UVs (MeshView::uvs), got a mesh without UVs");
     sphbasis::detail::check_buffer(fn, "positions", mesh.positions, mesh.vertex_count);
     sphbasis::detail::check_buffer(fn, "indices", mesh.indices, mesh.triangle_count);
     if (mesh.triangle_count > 0 && mesh.vertex_count == 0)
-        sphbasis::detail::throw_invalid(fn, "vertices for " + std::to_string(mesh.triangle_count) +
-                                      " triangles, got none");
+        sphbasis::detail::throw_invalid(
+            fn, "vertices for " + std::to_string(mesh.triangle_count) + " triangles, got none");
     if (!(options.normal_offset >= 0) || !std::isfinite(options.normal_offset))
-        sphbasis::detail::throw_invalid(fn, "a finite normal_offset >= 0, got " +
-                                      std::to_string(options.normal_offset));
+        sphbasis::detail::throw_invalid(
+            fn, "a finite normal_offset >= 0, got " + std::to_string(options.normal_offset));
     for (std::size_t i = 0; i < 2 * mesh.vertex_count; ++i)
         if (!std::isfinite(mesh.uvs[i]))
             sphbasis::detail::throw_invalid(fn, "finite UVs, got " + std::to_string(mesh.uvs[i]) +
-                                          " at vertex " + std::to_string(i / 2));
+                                                    " at vertex " + std::to_string(i / 2));
     for (std::size_t i = 0; i < 3 * mesh.vertex_count; ++i)
         if (!std::isfinite(mesh.positions[i]))
             sphbasis::detail::throw_invalid(fn, "finite positions, got " +
-                                          std::to_string(mesh.positions[i]) + " at vertex " +
-                                          std::to_string(i / 3));
+                                                    std::to_string(mesh.positions[i]) +
+                                                    " at vertex " + std::to_string(i / 3));
     for (std::size_t i = 0; i < 3 * mesh.triangle_count; ++i)
         if (mesh.indices[i] >= mesh.vertex_count)
-            sphbasis::detail::throw_invalid(fn, "vertex indices < " + std::to_string(mesh.vertex_count) +
-                                          ", got " + std::to_string(mesh.indices[i]) +
-                                          " in triangle " + std::to_string(i / 3));
+            sphbasis::detail::throw_invalid(
+                fn, "vertex indices < " + std::to_string(mesh.vertex_count) + ", got " +
+                        std::to_string(mesh.indices[i]) + " in triangle " + std::to_string(i / 3));
 
     LightmapLayout out;
     out.width = width;
@@ -260,9 +264,8 @@ inline LightmapLayout layout_lightmap(const MeshView& mesh, int width, int heigh
             px[static_cast<std::size_t>(k)] = {double(mesh.uvs[2 * v]) * W,
                                                (1 - double(mesh.uvs[2 * v + 1])) * H};
         }
-        const double twice =
-            (px[1][0] - px[0][0]) * (px[2][1] - px[0][1]) -
-            (px[2][0] - px[0][0]) * (px[1][1] - px[0][1]);
+        const double twice = (px[1][0] - px[0][0]) * (px[2][1] - px[0][1]) -
+                             (px[2][0] - px[0][0]) * (px[1][1] - px[0][1]);
         if (!(std::abs(twice) > 0)) {
             ++out.skipped_triangles;
             continue;
@@ -320,9 +323,8 @@ inline LightmapLayout layout_lightmap(const MeshView& mesh, int width, int heigh
                     if (lo <= tol) inside = false;
                 }
                 if (outside) continue;
-                const double a = inside ? 1.0
-                                        : lightmap_detail::clipped_area(px.data(), double(x),
-                                                                        double(y));
+                const double a =
+                    inside ? 1.0 : lightmap_detail::clipped_area(px.data(), double(x), double(y));
                 if (!(a > 0)) continue;
                 const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
                 if (a > best_area[i]) {
@@ -361,9 +363,10 @@ inline LightmapLayout layout_lightmap(const MeshView& mesh, int width, int heigh
             s.barycentric = b;
             s.u = b[0] * uv[0][0] + b[1] * uv[1][0] + b[2] * uv[2][0];
             s.v = b[0] * uv[0][1] + b[1] * uv[1][1] + b[2] * uv[2][1];
-            s.surface = lightmap_detail::add(lightmap_detail::add(lightmap_detail::scale(p[0], b[0]),
-                                                lightmap_detail::scale(p[1], b[1])),
-                                    lightmap_detail::scale(p[2], b[2]));
+            s.surface =
+                lightmap_detail::add(lightmap_detail::add(lightmap_detail::scale(p[0], b[0]),
+                                                          lightmap_detail::scale(p[1], b[1])),
+                                     lightmap_detail::scale(p[2], b[2]));
             const vec3<double> e1{p[1].x - p[0].x, p[1].y - p[0].y, p[1].z - p[0].z};
             const vec3<double> e2{p[2].x - p[0].x, p[2].y - p[0].y, p[2].z - p[0].z};
             const vec3<double> gcross = cross(e1, e2);
@@ -371,8 +374,9 @@ inline LightmapLayout layout_lightmap(const MeshView& mesh, int width, int heigh
             if (mesh.normals != nullptr) {
                 vec3<double> acc{0, 0, 0};
                 for (int k = 0; k < 3; ++k)
-                    acc = lightmap_detail::add(acc, lightmap_detail::scale(lightmap_detail::load3(mesh.normals, idx[k]),
-                                                         b[static_cast<std::size_t>(k)]));
+                    acc = lightmap_detail::add(
+                        acc, lightmap_detail::scale(lightmap_detail::load3(mesh.normals, idx[k]),
+                                                    b[static_cast<std::size_t>(k)]));
                 n = lightmap_detail::unit_or_zero(acc);
             }
             if (dot(n, n) == 0) n = lightmap_detail::unit_or_zero(gcross);
@@ -384,19 +388,20 @@ inline LightmapLayout layout_lightmap(const MeshView& mesh, int width, int heigh
                 for (int k = 0; k < 3; ++k) {
                     const float* tk = mesh.tangents + 4 * std::size_t(idx[k]);
                     const double bk = b[static_cast<std::size_t>(k)];
-                    acc = lightmap_detail::add(acc, vec3<double>{bk * tk[0], bk * tk[1], bk * tk[2]});
+                    acc =
+                        lightmap_detail::add(acc, vec3<double>{bk * tk[0], bk * tk[1], bk * tk[2]});
                     w += bk * tk[3];
                 }
-                tangent = lightmap_detail::unit_or_zero(
-                    lightmap_detail::add(acc, lightmap_detail::scale(n, -dot(acc, n))));  // Gram-Schmidt
+                tangent = lightmap_detail::unit_or_zero(lightmap_detail::add(
+                    acc, lightmap_detail::scale(n, -dot(acc, n))));  // Gram-Schmidt
                 s.bitangent_sign = w < 0 ? -1.0 : 1.0;
             }
             // World-space size of a texel on this triangle: sqrt(area / UV area in texels).
             const double area3 = 0.5 * lightmap_detail::norm(gcross);
-            const double area_uv =
-                0.5 * std::abs((uv[1][0] - uv[0][0]) * (uv[2][1] - uv[0][1]) -
-                               (uv[2][0] - uv[0][0]) * (uv[1][1] - uv[0][1])) *
-                W * H;
+            const double area_uv = 0.5 *
+                                   std::abs((uv[1][0] - uv[0][0]) * (uv[2][1] - uv[0][1]) -
+                                            (uv[2][0] - uv[0][0]) * (uv[1][1] - uv[0][1])) *
+                                   W * H;
             const double texel_size = area_uv > 0 ? std::sqrt(area3 / area_uv) : 0.0;
             s.offset = offset_texels * texel_size;
             s.point.p = lightmap_detail::add(s.surface, lightmap_detail::scale(n, s.offset));
@@ -431,12 +436,13 @@ inline void dilate(float* image, int width, int height, int channels,
     lightmap_detail::check_lightmap_size(fn, width, height);
     if (channels < 1)
         sphbasis::detail::throw_invalid(fn, "channels >= 1, got " + std::to_string(channels));
-    if (gutter < 0) sphbasis::detail::throw_invalid(fn, "gutter >= 0, got " + std::to_string(gutter));
+    if (gutter < 0)
+        sphbasis::detail::throw_invalid(fn, "gutter >= 0, got " + std::to_string(gutter));
     const std::size_t texels = std::size_t(width) * std::size_t(height);
     if (covered.size() != texels)
-        sphbasis::detail::throw_invalid(fn, "covered.size() == width * height = " +
-                                      std::to_string(texels) + ", got " +
-                                      std::to_string(covered.size()));
+        sphbasis::detail::throw_invalid(
+            fn, "covered.size() == width * height = " + std::to_string(texels) + ", got " +
+                    std::to_string(covered.size()));
     sphbasis::detail::check_buffer(fn, "image", image, texels);
     std::vector<std::uint8_t> known(texels);
     for (std::size_t i = 0; i < texels; ++i) known[i] = covered[i] != 0 ? 1 : 0;
@@ -454,8 +460,7 @@ inline void dilate(float* image, int width, int height, int channels,
                 for (int dy = -1; dy <= 1; ++dy)
                     for (int dx = -1; dx <= 1; ++dx) {
                         const int nx = x + dx, ny = y + dy;
-                        if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= width ||
-                            ny >= height)
+                        if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= width || ny >= height)
                             continue;
                         const std::size_t j =
                             std::size_t(ny) * std::size_t(width) + std::size_t(nx);

@@ -39,11 +39,15 @@ struct ProbeGrid {
         return std::size_t(counts[0]) * std::size_t(counts[1]) * std::size_t(counts[2]);
     }
     std::size_t index(int i, int j, int k) const noexcept {
-        return std::size_t(i) + std::size_t(counts[0]) * (std::size_t(j) + std::size_t(counts[1]) * std::size_t(k));
+        return std::size_t(i) +
+               std::size_t(counts[0]) * (std::size_t(j) + std::size_t(counts[1]) * std::size_t(k));
     }
     vec3<double> position(int i, int j, int k) const noexcept {
-        auto at = [](double lo, double hi, int i, int n) { return n > 1 ? lo + (hi - lo) * i / (n - 1) : 0.5 * (lo + hi); };
-        return {at(lo.x, hi.x, i, counts[0]), at(lo.y, hi.y, j, counts[1]), at(lo.z, hi.z, k, counts[2])};
+        auto at = [](double lo, double hi, int i, int n) {
+            return n > 1 ? lo + (hi - lo) * i / (n - 1) : 0.5 * (lo + hi);
+        };
+        return {at(lo.x, hi.x, i, counts[0]), at(lo.y, hi.y, j, counts[1]),
+                at(lo.z, hi.z, k, counts[2])};
     }
     /// The position of probe `index` (i + counts[0] * (j + counts[1] * k)).
     vec3<double> position(std::size_t index) const noexcept {
@@ -57,16 +61,16 @@ struct ProbeGrid {
         constexpr const char* fn = "render::ProbeGrid";
         for (int a = 0; a < 3; ++a)
             sphbasis::detail::check_range(fn, "counts[a]", counts[static_cast<std::size_t>(a)], 1,
-                                1 << 20);
+                                          1 << 20);
         if (size() > (std::size_t(1) << 32))
-            sphbasis::detail::throw_invalid(fn, "at most 2^32 probes, got " + std::to_string(size()));
+            sphbasis::detail::throw_invalid(fn,
+                                            "at most 2^32 probes, got " + std::to_string(size()));
         const double l[3] = {lo.x, lo.y, lo.z}, h[3] = {hi.x, hi.y, hi.z};
         for (int a = 0; a < 3; ++a)
             if (!std::isfinite(l[a]) || !std::isfinite(h[a]) || !(l[a] <= h[a]))
-                sphbasis::detail::throw_invalid(fn, "finite lo <= hi on every axis, got lo = " +
-                                              std::to_string(l[a]) + ", hi = " +
-                                              std::to_string(h[a]) + " on axis " +
-                                              std::to_string(a));
+                sphbasis::detail::throw_invalid(
+                    fn, "finite lo <= hi on every axis, got lo = " + std::to_string(l[a]) +
+                            ", hi = " + std::to_string(h[a]) + " on axis " + std::to_string(a));
     }
 
     /// The cell of p (clamped into the box): the lower corner (i, j, k) and the fractional
@@ -78,10 +82,10 @@ struct ProbeGrid {
     };
     Cell cell_of(const vec3<double>& p) const {
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            sphbasis::detail::throw_invalid("render::ProbeGrid::cell_of", "a finite point, got (" +
-                                                                    std::to_string(p.x) + ", " +
-                                                                    std::to_string(p.y) + ", " +
-                                                                    std::to_string(p.z) + ")");
+            sphbasis::detail::throw_invalid("render::ProbeGrid::cell_of",
+                                            "a finite point, got (" + std::to_string(p.x) + ", " +
+                                                std::to_string(p.y) + ", " + std::to_string(p.z) +
+                                                ")");
         Cell c;
         const double pp[3] = {p.x, p.y, p.z}, l[3] = {lo.x, lo.y, lo.z}, h[3] = {hi.x, hi.y, hi.z};
         for (std::size_t a = 0; a < 3; ++a) {
@@ -96,13 +100,14 @@ struct ProbeGrid {
     }
 
     /// The 8 probes of p's cell and their trilinear weights (non-negative, summing to one up
-    /// to rounding). Corner c = dx + 2 dy + 4 dz; on an axis with one probe both corners are
-    /// that probe (the second with weight 0).
+    /// to rounding). Validates the grid (validate()) and p (cell_of()). Corner c = dx + 2 dy + 4
+    /// dz; on an axis with one probe both corners are that probe (the second with weight 0).
     struct Weights {
         std::array<std::size_t, 8> index{};
         std::array<double, 8> w{};
     };
     Weights weights(const vec3<double>& p) const {
+        validate();  // a few compares; an invalid grid would index out of range
         const Cell c = cell_of(p);
         Weights r;
         for (int corner = 0; corner < 8; ++corner) {
@@ -188,8 +193,9 @@ struct ProbeGrid {
             }
         }
         if (best == size())
-            sphbasis::detail::throw_runtime(fn, "at least one probe outside geometry, got every probe "
-                                      "flagged as inside");
+            sphbasis::detail::throw_runtime(fn,
+                                            "at least one probe outside geometry, got every probe "
+                                            "flagged as inside");
         return best;
     }
 
