@@ -161,6 +161,8 @@ const BenchScene& scene_of(int which) { return which == 0 ? procedural() : engin
 std::vector<RTCRay> bake_rays(const BenchScene& s, const Scene& rt, std::uint64_t seed) {
     using namespace sphbasis::render::detail::rt;
     std::vector<RTCRay> rays(s.points.size() * rays_per_point);
+    const QmcTable qmc(rays_per_point);
+    std::vector<V3> dirs(rays_per_point);
     for (std::size_t i = 0; i < s.points.size(); ++i) {
         const auto& bp = s.points[i];
         const V3 n = normalized(bp.n);
@@ -168,12 +170,9 @@ std::vector<RTCRay> bake_rays(const BenchScene& s, const Scene& rt, std::uint64_
         const double cu = unit(hash(key, 1)), cv = unit(hash(key, 2));
         const Frame<double> f(n);
         const V3 o = bp.p + n * rt.epsilon();
-        for (std::size_t j = 0; j < std::size_t(rays_per_point); ++j) {
-            double u, v;
-            r2_sequence(j, u, v);
-            const V3 d = f.to_world(square_to_cosine_hemisphere(rotate01(u, cu), rotate01(v, cv)));
-            Scene::set_ray(rays[i * rays_per_point + j], o, d);
-        }
+        qmc.directions(Warp::cosine, f, cu, cv, dirs.data());
+        for (std::size_t j = 0; j < std::size_t(rays_per_point); ++j)
+            Scene::set_ray(rays[i * rays_per_point + j], o, dirs[j]);
     }
     return rays;
 }

@@ -41,7 +41,8 @@
 //                V(l) color y_i(l). `inside`: more than half the rays hit back faces
 //                (the side opposite a triangle's counter-clockwise normal).
 // Sampling: QMC (the R2 sequence of core/sampling.hpp), shifted per point by a Cranley-Patterson
-// rotation hashed from (seed, id); continuation directions of bounces hash (seed, id, path,
+// rotation hashed from (seed, id) (render/detail/qmc.hpp: the shift in azimuth is applied as a
+// rotation of the tangent frame, so no trigonometry per ray); continuation directions of bounces hash (seed, id, path,
 // bounce). A result depends only on (seed, id, settings, scene), never on threads or order.
 // Rays leave surfaces from x + epsilon n (render::Scene::epsilon(); hits: offset_origin()).
 //
@@ -89,6 +90,7 @@
 #include "../core/vec.hpp"
 #include "../ops/projection.hpp"
 #include "detail/bake_lighting.hpp"
+#include "detail/qmc.hpp"
 #include "detail/rt_math.hpp"
 #include "lighting.hpp"
 #include "mesh.hpp"
@@ -170,6 +172,7 @@ class Baker {
           env_(scene.environment),
           lights_(scene.lights) {
         validate_lighting();
+        qmc_ = detail::rt::QmcTable(static_cast<std::size_t>(settings_.rays));
         stats_ = std::make_unique<Stat[]>(stat_count());
         stats_[build].seconds = build_seconds_;
         derive_plan();
@@ -248,6 +251,8 @@ class Baker {
         std::vector<RTCRay> ray;
         std::vector<RTCRayHit> rayhit;
         std::vector<double> xs, ys, zs, ysh, w;
+        std::vector<detail::rt::V3> dirs, local;
+        std::vector<char> va, vt;
     };
     using Clock = std::chrono::steady_clock;
     struct Timer {
@@ -895,16 +900,16 @@ class Baker {
         const bool use_hits = tr && (bounces_ > 0 || (finite_max && wants(Quantity::ao | Quantity::bent)));
         const bool run = !dropped_.count("cosine");
         const V3 o = bp.p + n * scene_.epsilon();
-        std::vector<V3> dirs(N);
-        std::vector<char> vis_ao(N, 1), vis_tr(N, 1);
+        std::vector<V3>& dirs = L.dirs;
+        std::vector<char>& vis_ao = L.va;
+        std::vector<char>& vis_tr = L.vt;
+        dirs.resize(N);
+        vis_ao.assign(N, 1);
+        vis_tr.assign(N, 1);
         std::vector<PathState> paths;
         {
             Timer t{L, cosine};
-            for (std::size_t j = 0; j < N; ++j) {
-                double u, v;
-                r2_sequence(j, u, v);
-                dirs[j] = f.to_world(square_to_cosine_hemisphere(rotate01(u, cu), rotate01(v, cv)));
-            }
+            qmc_.directions(Warp::cosine, f, cu, cv, dirs.data());
             if (run && use_hits) {
                 L.rayhit.resize(N);
                 for (std::size_t j = 0; j < N; ++j) Scene::set_ray(L.rayhit[j], o, dirs[j]);
@@ -1056,12 +1061,8 @@ class Baker {
         const bool run = !dropped_.count("hemisphere");
         const V3 o = bp.p + n * scene_.epsilon();
         std::vector<V3> dirs(N), local(N);
-        for (std::size_t j = 0; j < N; ++j) {
-            double u, v;
-            r2_sequence(j, u, v);
-            local[j] = square_to_uniform_hemisphere(rotate01(u, cu), rotate01(v, cv));
-            dirs[j] = f.to_world(local[j]);
-        }
+        qmc_.directions(Warp::uniform_hemisphere, f, cu, cv, dirs.data());
+        for (std::size_t j = 0; j < N; ++j) local[j] = f.to_local(dirs[j]);
         std::vector<char> vis(N, 1);
         std::vector<RGB> Ls;
         if (wants(Quantity::irradiance)) {
@@ -1117,11 +1118,7 @@ class Baker {
         const bool run = !dropped_.count("sphere");
         const V3 o = bp.p + n * scene_.epsilon();
         std::vector<V3> dirs(N);
-        for (std::size_t j = 0; j < N; ++j) {
-            double u, v;
-            r2_sequence(j, u, v);
-            dirs[j] = square_to_uniform_sphere(rotate01(u, cu), rotate01(v, cv));
-        }
+        qmc_.directions(Warp::uniform_sphere, Frame<double>(), cu, cv, dirs.data());
         std::vector<RGB> Ls;
         std::size_t back = 0;
         radiance_samples(o, dirs, hash(key, 5), sphere, run, Ls, &back, nullptr, L);
@@ -1161,6 +1158,7 @@ class Baker {
     DirectionalRule irr_rule_, hemi_rule_, sphere_rule_;
     std::shared_ptr<const LeastSquares> irr_fit_;
     Eigen::MatrixXd irr_map_;
+    detail::rt::QmcTable qmc_;
 };
 
 }  // namespace sphbasis::render
