@@ -35,7 +35,10 @@
 //                weights about n would give an unbounded estimator for tilted n') and projected
 //                on 8 SH bands in the tangent frame; E = sum pi a_l L_lm y_lm(n') (the clamped
 //                cosine; the truncation error is below 0.3% of E). Directional lights (deltas)
-//                add V(l) color max(n'.l, 0) exactly, with one shadow ray.
+//                add V(l) color max(n'.l, 0) exactly, with one shadow ray. At points nothing
+//                occludes, L_in is integrated by quadrature (hemisphere_rule(48)) instead of
+//                rays: exact for the environment's smooth part, approximate at the edge of a
+//                small cone or sphere light.
 //   radiance   = r_i = int L_in(w) y_i(w) dw at any point, RGB, directions uniform on the
 //                sphere: r_i = 4pi/N sum L_in(w_j) y_i(w_j); directional lights add
 //                V(l) color y_i(l). `inside`: more than half the rays hit back faces
@@ -217,6 +220,17 @@ class Baker {
         return s;
     }
 
+    /// Bytes of one PointResult holding the requested quantities (the struct and its vectors'
+    /// payload; allocator overhead not counted): the memory per vertex, texel or probe.
+    static std::size_t result_bytes(const BakeSettings& s) noexcept {
+        const std::size_t n = std::size_t(s.bands) * std::size_t(s.bands), d = sizeof(double);
+        std::size_t b = sizeof(PointResult);
+        if (s.quantities & Quantity::visibility) b += 2 * n * d;
+        if (s.quantities & Quantity::transfer) b += 4 * n * d;
+        if (s.quantities & Quantity::irradiance) b += 3 * std::size_t(std::max(s.coeffs, 0)) * d;
+        if (s.quantities & Quantity::radiance) b += 3 * n * d;
+        return b;
+    }
     /// The ray-tracing scene.
     const Scene& scene() const noexcept { return scene_; }
     /// The pilot's fraction of rays that hit geometry (0 when no pilot ran).
@@ -424,15 +438,14 @@ class Baker {
         }
     }
 
-    /// The pilot: cosine rays from hashed random surface points (area-weighted, either side).
+    /// The pilot: the fraction of cosine-weighted rays from surface points that hit geometry.
+    /// Surface points are the hits of 1024 probe rays (hashed origins in the bounding box,
+    /// uniform directions); from up to 256 of them, 4 cosine rays each about the geometric
+    /// normal of a hashed side. Depends only on the scene and the seed, so shards agree.
     void run_pilot() {
         const auto t0 = Clock::now();
         using namespace detail::rt;
         const std::size_t npts = 256, per = 4;
-        // Area CDF over all triangles of all meshes, through single-ray hits' data: rebuild
-        // from a probe of the scene (positions are in the Scene; we sample via its bounds).
-        // Points on surfaces: shoot a ray from a random point in the bounding box along a random
-        // direction; the hit is an area-biased-free surface sample good enough for a fraction.
         std::vector<RTCRayHit> probe(npts * 4);
         const V3 lo = scene_.bounds_min(), hi = scene_.bounds_max();
         for (std::size_t i = 0; i < probe.size(); ++i) {
