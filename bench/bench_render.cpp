@@ -74,8 +74,8 @@ Mesh grid(double half, int n) {
     Mesh m;
     for (int i = 0; i <= n; ++i)
         for (int j = 0; j <= n; ++j) {
-            m.positions.insert(m.positions.end(),
-                               {float(-half + 2 * half * j / n), float(-half + 2 * half * i / n), 0.f});
+            m.positions.insert(m.positions.end(), {float(-half + 2 * half * j / n),
+                                                   float(-half + 2 * half * i / n), 0.f});
             m.normals.insert(m.normals.end(), {0.f, 0.f, 1.f});
         }
     auto at = [&](int i, int j) { return std::uint32_t(i * (n + 1) + j); };
@@ -125,9 +125,9 @@ const BenchScene& engine() {
         const char* path =
             "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
         Assimp::Importer imp;
-        const aiScene* sc = imp.ReadFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices |
-                                                   aiProcess_GenSmoothNormals |
-                                                   aiProcess_JoinIdenticalVertices);
+        const aiScene* sc =
+            imp.ReadFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                   aiProcess_GenSmoothNormals | aiProcess_JoinIdenticalVertices);
         if (!sc) return b;
         for (unsigned i = 0; i < sc->mNumMeshes; ++i) {
             const aiMesh* am = sc->mMeshes[i];
@@ -143,9 +143,9 @@ const BenchScene& engine() {
             }
             for (unsigned f = 0; f < am->mNumFaces; ++f)
                 if (am->mFaces[f].mNumIndices == 3)
-                    m.indices.insert(m.indices.end(), {am->mFaces[f].mIndices[0],
-                                                       am->mFaces[f].mIndices[1],
-                                                       am->mFaces[f].mIndices[2]});
+                    m.indices.insert(m.indices.end(),
+                                     {am->mFaces[f].mIndices[0], am->mFaces[f].mIndices[1],
+                                      am->mFaces[f].mIndices[2]});
             b.meshes.push_back(std::move(m));
         }
         pick_points(b);

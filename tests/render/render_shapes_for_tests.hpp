@@ -22,7 +22,8 @@ inline Mesh uv_sphere(double cx, double cy, double cz, double r, int rings, int 
             const double ph = 2 * pi * j / segments;
             const double x = std::sin(th) * std::cos(ph), y = std::sin(th) * std::sin(ph),
                          z = std::cos(th);
-            m.positions.insert(m.positions.end(), {float(cx + r * x), float(cy + r * y), float(cz + r * z)});
+            m.positions.insert(m.positions.end(),
+                               {float(cx + r * x), float(cy + r * y), float(cz + r * z)});
             m.normals.insert(m.normals.end(), {float(x), float(y), float(z)});
             m.uvs.insert(m.uvs.end(), {float(double(j) / segments), float(1 - double(i) / rings)});
         }
@@ -45,7 +46,8 @@ inline Mesh uv_sphere(double cx, double cy, double cz, double r, int rings, int 
     // Seam: j = segments equals j = 0 exactly.
     for (int i = 0; i <= rings; ++i)
         for (int k = 0; k < 3; ++k)
-            m.positions[3 * at(i, segments) + std::uint32_t(k)] = m.positions[3 * at(i, 0) + std::uint32_t(k)];
+            m.positions[3 * at(i, segments) + std::uint32_t(k)] =
+                m.positions[3 * at(i, 0) + std::uint32_t(k)];
     return m;
 }
 

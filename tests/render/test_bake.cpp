@@ -1,5 +1,3 @@
-#include "sphbasis/render/bake.hpp"
-
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -9,6 +7,7 @@
 #include <random>
 
 #include "render_shapes_for_tests.hpp"
+#include "sphbasis/render/bake.hpp"
 
 using namespace sphbasis;
 using namespace sphbasis::render;
@@ -118,8 +117,8 @@ TEST_CASE("render::Baker: sphere over a plane, ao, bent normal, SH visibility, t
         // errors ~0.4 of it): margins of one standard error (about 3% of 1 - ao here).
         CHECK(res[i].ao == Approx(ao).margin(res[i].ao_stderr));
         CHECK(res[i].ao_stderr > 0);
-        // Bent normal: (2pi/3) n - int_cap w (n.w) dw, with int_cap w w^T = A a a^T + B (I - a a^T),
-        // A = 2pi (1 - c^3) / 3, B = pi (1 - c) - A / 2.
+        // Bent normal: (2pi/3) n - int_cap w (n.w) dw, with int_cap w w^T = A a a^T + B (I - a
+        // a^T), A = 2pi (1 - c^3) / 3, B = pi (1 - c) - A / 2.
         const double A = 2 * pi * (1 - cos_al * cos_al * cos_al) / 3;
         const double Bc = pi * (1 - cos_al) - A / 2;
         const double an = dot(ax, n);
@@ -137,13 +136,15 @@ TEST_CASE("render::Baker: sphere over a plane, ao, bent normal, SH visibility, t
         std::vector<double> capt(16, 0.0);
         cap_integral(ax, std::asin(sin_a), 24, 48, [&](const V& d, double w) {
             const auto y = sh_at(4, d);
-            for (int k = 0; k < 16; ++k) capt[std::size_t(k)] += w * dot(n, d) * y[std::size_t(k)] / pi;
+            for (int k = 0; k < 16; ++k)
+                capt[std::size_t(k)] += w * dot(n, d) * y[std::size_t(k)] / pi;
         });
         for (int l = 0; l < 4; ++l)
             for (int k = l * l; k < (l + 1) * (l + 1); ++k) {
                 const std::size_t kk = std::size_t(k);
-                const double v = 2 * pi * (yn[kk] * legendre_integral(l, 0) -
-                                           ya[kk] * legendre_integral(l, cos_al));
+                const double v =
+                    2 * pi *
+                    (yn[kk] * legendre_integral(l, 0) - ya[kk] * legendre_integral(l, cos_al));
                 CHECK(res[i].visibility[kk] ==
                       Approx(v).margin(res[i].visibility_stderr[kk] + 1e-4));
                 const double t = a[std::size_t(l)] * yn[kk] - capt[kk];

@@ -1,10 +1,9 @@
-#include "sphbasis/render/scene.hpp"
-
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 
 #include "render_shapes_for_tests.hpp"
+#include "sphbasis/render/scene.hpp"
 
 using namespace sphbasis;
 using namespace sphbasis::render;
@@ -91,7 +90,7 @@ TEST_CASE("render::Scene: bad input and degenerate triangles", "[render]") {
     bad = quad;
     bad.albedo = {1.5f, 0, 0};
     CHECK_THROWS_WITH(Scene({bad.view()}), Catch::Contains("albedo in [0, 1]"));
-    auto deg = sphbasis_test::quad_grid(-1, 1, -1, 1, 0, 2);  // vertices 0, 1, 2: one row
+    auto deg = sphbasis_test::quad_grid(-1, 1, -1, 1, 0, 2);    // vertices 0, 1, 2: one row
     deg.indices.insert(deg.indices.end(), {0, 0, 1, 0, 1, 2});  // repeated, collinear
     Scene s({deg.view()});
     CHECK(s.degenerate_triangles() == 2);

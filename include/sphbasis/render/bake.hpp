@@ -45,9 +45,10 @@
 //                (the side opposite a triangle's counter-clockwise normal).
 // Sampling: QMC (the R2 sequence of core/sampling.hpp), shifted per point by a Cranley-Patterson
 // rotation hashed from (seed, id) (render/detail/qmc.hpp: the shift in azimuth is applied as a
-// rotation of the tangent frame, so no trigonometry per ray); continuation directions of bounces hash (seed, id, path,
-// bounce). A result depends only on (seed, id, settings, scene), never on threads or order.
-// Rays leave surfaces from x + epsilon n (render::Scene::epsilon(); hits: offset_origin()).
+// rotation of the tangent frame, so no trigonometry per ray); continuation directions of bounces
+// hash (seed, id, path, bounce). A result depends only on (seed, id, settings, scene), never on
+// threads or order. Rays leave surfaces from x + epsilon n (render::Scene::epsilon(); hits:
+// offset_origin()).
 //
 // The pass plan (plan()): "build" (the Embree scene); "pilot" (the fraction f of cosine rays
 // from random surface points, either side, that hit geometry: 1024 rays, hashed from the seed);
@@ -61,26 +62,25 @@
 // threads); Pass::rays is exact.
 #pragma once
 
-#include <array>
-#include <cstdint>
-#include <limits>
-#include <stdexcept>
-#include <string>
-#include <vector>
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <numeric>
-#include <cstdio>
 #include <set>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
+#include <vector>
 
 #include "../basis/registry.hpp"
 #include "../basis/sh.hpp"
@@ -113,13 +113,14 @@ enum Quantity : unsigned {
 
 struct BakeSettings {
     unsigned quantities = Quantity::ao;
-    int bands = 3;                  // SH bands of visibility, transfer and radiance
-    std::string basis = "sh";       // basis of `irradiance` (a name of find_basis())
-    int coeffs = 9;                 // its coefficient count
-    int rays = 256;                 // rays per point and pass
-    int bounces = 0;                // at most this many interreflection bounces
+    int bands = 3;             // SH bands of visibility, transfer and radiance
+    std::string basis = "sh";  // basis of `irradiance` (a name of find_basis())
+    int coeffs = 9;            // its coefficient count
+    int rays = 256;            // rays per point and pass
+    int bounces = 0;           // at most this many interreflection bounces
     std::uint64_t seed = 0;
-    double max_distance = std::numeric_limits<double>::infinity();  // ao: farther hits don't occlude
+    double max_distance =
+        std::numeric_limits<double>::infinity();  // ao: farther hits don't occlude
     double target_error = 1e-3;     // a bounce runs only while its bound is above this
     bool force_all_passes = false;  // run every pass the plan would skip (for tests)
 };
@@ -142,9 +143,9 @@ struct PointResult {
     std::array<std::vector<double>, 3> transfer;        // R, G, B (bands^2 each)
     std::vector<double> transfer_stderr;                // bands^2 (max over channels)
     bool transfer_rgb = false;  // false: the three channels are equal (print one list)
-    std::array<std::vector<double>, 3> irradiance;      // R, G, B (coeffs each)
-    std::array<std::vector<double>, 3> radiance;        // R, G, B (bands^2 each)
-    bool inside = false;        // the point is inside closed geometry (probes leak)
+    std::array<std::vector<double>, 3> irradiance;  // R, G, B (coeffs each)
+    std::array<std::vector<double>, 3> radiance;    // R, G, B (bands^2 each)
+    bool inside = false;  // the point is inside closed geometry (probes leak)
 };
 
 /// One pass of the plan: what runs, why, and what it cost.
@@ -296,8 +297,10 @@ class Baker {
                              Quantity::transfer | Quantity::irradiance | Quantity::radiance;
         if (s.quantities == 0 || (s.quantities & ~all))
             sphbasis::detail::throw_invalid(
-                fn, "quantities: a non-empty set of ao, bent, visibility, transfer, irradiance, "
-                    "radiance, got the bit set " + std::to_string(s.quantities));
+                fn,
+                "quantities: a non-empty set of ao, bent, visibility, transfer, irradiance, "
+                "radiance, got the bit set " +
+                    std::to_string(s.quantities));
         sphbasis::detail::check_range(fn, "bands", s.bands, 1, 16);
         sphbasis::detail::check_range(fn, "rays", s.rays, 1, 1 << 24);
         sphbasis::detail::check_range(fn, "bounces", s.bounces, 0, 64);
@@ -310,9 +313,9 @@ class Baker {
         if (s.quantities & Quantity::irradiance) {
             const BasisInfo& b = find_basis(s.basis);
             if (!b.valid_count(s.coeffs))
-                sphbasis::detail::throw_invalid(
-                    fn, std::string("coeffs: ") + b.count_rule() + " functions for basis '" +
-                            b.name + "', got " + std::to_string(s.coeffs));
+                sphbasis::detail::throw_invalid(fn, std::string("coeffs: ") + b.count_rule() +
+                                                        " functions for basis '" + b.name +
+                                                        "', got " + std::to_string(s.coeffs));
         }
         return s;
     }
@@ -327,8 +330,8 @@ class Baker {
         const char* fn = "render::Baker";
         using namespace detail::rt;
         if (!std::isfinite(env_.scale))
-            sphbasis::detail::throw_invalid(fn, "a finite environment scale, got " +
-                                                    std::to_string(env_.scale));
+            sphbasis::detail::throw_invalid(
+                fn, "a finite environment scale, got " + std::to_string(env_.scale));
         for (double r : env_.rotation)
             if (!std::isfinite(r))
                 sphbasis::detail::throw_invalid(fn, "a finite environment rotation, got a NaN");
@@ -355,8 +358,8 @@ class Baker {
                      std::isfinite(l.ground[k]) && l.ground[k] >= 0;
             if (!ok) sphbasis::detail::throw_invalid(fn, "finite light colours >= 0" + at);
             if (l.type == Light::Type::cone && !(l.angle_deg >= 0 && l.angle_deg <= 180))
-                sphbasis::detail::throw_invalid(fn, "0 <= angle_deg <= 180, got " +
-                                                        std::to_string(l.angle_deg) + at);
+                sphbasis::detail::throw_invalid(
+                    fn, "0 <= angle_deg <= 180, got " + std::to_string(l.angle_deg) + at);
             if (l.type == Light::Type::sphere &&
                 (!(l.radius > 0) || !std::isfinite(l.radius) || !finite(l.position)))
                 sphbasis::detail::throw_invalid(
@@ -386,8 +389,9 @@ class Baker {
                                       ": nothing occludes points on it, closed forms, no rays";
         }
         const std::string why_rays =
-            force ? "force_all_passes" : (occl ? "the scene can occlude: " + scene_.occlusion_reason()
-                                               : "points not cleared by the convex test");
+            force ? "force_all_passes"
+                  : (occl ? "the scene can occlude: " + scene_.occlusion_reason()
+                          : "points not cleared by the convex test");
         if (wants(Quantity::ao | Quantity::bent | Quantity::transfer) && (occl || force)) {
             stats_[cosine].planned = true;
             stats_[cosine].reason = "ao/bent/transfer, cosine-weighted: " + why_rays;
@@ -450,7 +454,8 @@ class Baker {
         const V3 lo = scene_.bounds_min(), hi = scene_.bounds_max();
         for (std::size_t i = 0; i < probe.size(); ++i) {
             const std::uint64_t h = hash(settings_.seed, 0x7069'6c6f'74ull, i);
-            const V3 o{lo.x + (hi.x - lo.x) * unit(hash(h, 1)), lo.y + (hi.y - lo.y) * unit(hash(h, 2)),
+            const V3 o{lo.x + (hi.x - lo.x) * unit(hash(h, 1)),
+                       lo.y + (hi.y - lo.y) * unit(hash(h, 2)),
                        lo.z + (hi.z - lo.z) * unit(hash(h, 3))};
             const V3 d = square_to_uniform_sphere(unit(hash(h, 4)), unit(hash(h, 5)));
             Scene::set_ray(probe[i], o, d);
@@ -482,7 +487,8 @@ class Baker {
         stats_[pilot].rays = traced;
         stats_[pilot].seconds = std::chrono::duration<double>(Clock::now() - t0).count();
         char buf[120];
-        std::snprintf(buf, sizeof buf, "bounces requested: fraction of rays hitting geometry f = %.3g",
+        std::snprintf(buf, sizeof buf,
+                      "bounces requested: fraction of rays hitting geometry f = %.3g",
                       hit_fraction_);
         stats_[pilot].reason = buf;
     }
@@ -518,13 +524,16 @@ class Baker {
         for (std::size_t i = 0; i < pts.size(); ++i) {
             const BakePoint& p = pts[i];
             if (!finite(p.p) || !finite(p.n) || !finite(p.tangent))
-                sphbasis::detail::throw_invalid(fn, "finite positions, normals and tangents, got "
-                                                    "a NaN or an infinity at point " +
-                                                        std::to_string(i));
+                sphbasis::detail::throw_invalid(fn,
+                                                "finite positions, normals and tangents, got "
+                                                "a NaN or an infinity at point " +
+                                                    std::to_string(i));
             if (surface_q && !(length(p.n) > 0))
                 sphbasis::detail::throw_invalid(
-                    fn, "a surface point (non-zero normal) for ao, bent, visibility, transfer and "
-                        "irradiance, got normal 0 at point " + std::to_string(i));
+                    fn,
+                    "a surface point (non-zero normal) for ao, bent, visibility, transfer and "
+                    "irradiance, got normal 0 at point " +
+                        std::to_string(i));
         }
     }
 
@@ -677,8 +686,8 @@ class Baker {
             for (const auto& [d, col] : dir)
                 for (Eigen::Index i = 0; i < R; ++i) {
                     const std::size_t ii = std::size_t(i);
-                    const double c = irr_rule_.x[ii] * d.x + irr_rule_.y[ii] * d.y +
-                                     irr_rule_.z[ii] * d.z;
+                    const double c =
+                        irr_rule_.x[ii] * d.x + irr_rule_.y[ii] * d.y + irr_rule_.z[ii] * d.z;
                     if (c > 0)
                         for (Eigen::Index k = 0; k < 3; ++k) s(i, k) += c * col[std::size_t(k)];
                 }
@@ -785,10 +794,12 @@ class Baker {
                     continue;
                 const std::uint64_t h = hash(key, ps.sample, std::uint64_t(k));
                 const Frame<double> f(ps.hit.shading_normal);
-                const V3 d = f.to_world(square_to_cosine_hemisphere(unit(hash(h, 1)), unit(hash(h, 2))));
+                const V3 d =
+                    f.to_world(square_to_cosine_hemisphere(unit(hash(h, 1)), unit(hash(h, 2))));
                 if (!(dot(d, ps.hit.geometric_normal) > 0)) continue;
                 RTCRayHit r;
-                Scene::set_ray(r, scene_.offset_origin(ps.hit.position, ps.hit.geometric_normal, d), d);
+                Scene::set_ray(r, scene_.offset_origin(ps.hit.position, ps.hit.geometric_normal, d),
+                               d);
                 L.rayhit.push_back(r);
                 dirs.push_back(d);
                 live.push_back(ps);
@@ -828,9 +839,9 @@ class Baker {
                 const double c = dot(ps.hit.shading_normal, l.direction);
                 if (!(c > 0) || !(dot(ps.hit.geometric_normal, l.direction) > 0)) continue;
                 RTCRay r;
-                Scene::set_ray(r, scene_.offset_origin(ps.hit.position, ps.hit.geometric_normal,
-                                                       l.direction),
-                               l.direction);
+                Scene::set_ray(
+                    r, scene_.offset_origin(ps.hit.position, ps.hit.geometric_normal, l.direction),
+                    l.direction);
                 rays.push_back(r);
                 RGB w;
                 for (std::size_t k = 0; k < 3; ++k)
@@ -848,8 +859,8 @@ class Baker {
     /// SH accumulation of weighted directions: out_c[k] = scale * sum_e w_c[e] y_k(d_e) and the
     /// standard error of the mean of per-sample values (samples without an entry are 0).
     void accumulate_sh(Local& L, std::size_t m, const std::vector<std::array<double, 3>>& w,
-                       const std::vector<std::uint32_t>& sample, std::size_t nsamples,
-                       double scale, bool rgb, std::array<std::vector<double>, 3>& out,
+                       const std::vector<std::uint32_t>& sample, std::size_t nsamples, double scale,
+                       bool rgb, std::array<std::vector<double>, 3>& out,
                        std::vector<double>* stderr_out) const {
         const std::size_t K = nsh();
         for (auto& v : out) v.assign(K, 0.0);
@@ -910,7 +921,8 @@ class Baker {
         const bool tr = wants(Quantity::transfer);
         const double maxd = settings_.max_distance;
         const bool finite_max = maxd < std::numeric_limits<double>::infinity();
-        const bool use_hits = tr && (bounces_ > 0 || (finite_max && wants(Quantity::ao | Quantity::bent)));
+        const bool use_hits =
+            tr && (bounces_ > 0 || (finite_max && wants(Quantity::ao | Quantity::bent)));
         const bool run = !dropped_.count("cosine");
         const V3 o = bp.p + n * scene_.epsilon();
         std::vector<V3>& dirs = L.dirs;
@@ -932,7 +944,8 @@ class Baker {
                     if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
                     vis_tr[j] = 0;
                     vis_ao[j] = r.ray.tfar > maxd;
-                    if (bounces_ > 0) paths.push_back({std::uint32_t(j), RGB{1, 1, 1}, scene_.hit(r)});
+                    if (bounces_ > 0)
+                        paths.push_back({std::uint32_t(j), RGB{1, 1, 1}, scene_.hit(r)});
                 }
             } else if (run) {
                 L.ray.resize(N);
@@ -1004,8 +1017,8 @@ class Baker {
 
     /// Shadow rays toward directional lights from o; returns (light, visible) pairs.
     std::vector<std::pair<const Light*, bool>> directional_visibility(const detail::rt::V3& o,
-                                                                       const detail::rt::V3* n,
-                                                                       Local& L) const {
+                                                                      const detail::rt::V3* n,
+                                                                      Local& L) const {
         using namespace detail::rt;
         std::vector<std::pair<const Light*, bool>> out;
         std::vector<RTCRay> rays;
@@ -1047,7 +1060,8 @@ class Baker {
                 const RTCRayHit& r = L.rayhit[j];
                 const bool esc = r.hit.geomID == RTC_INVALID_GEOMETRY_ID;
                 if (vis) (*vis)[j] = esc;
-                Ls[j] = sky(o, dirs[j], esc ? std::numeric_limits<double>::infinity() : double(r.ray.tfar));
+                Ls[j] = sky(o, dirs[j],
+                            esc ? std::numeric_limits<double>::infinity() : double(r.ray.tfar));
                 if (esc) continue;
                 const Hit h = scene_.hit(r);
                 if (back && h.back_face) ++*back;
@@ -1153,7 +1167,8 @@ class Baker {
             sh::eval_unit(settings_.bands, light->direction.x, light->direction.y,
                           light->direction.z, y.data());
             for (std::size_t c = 0; c < 3; ++c)
-                for (std::size_t k = 0; k < nsh(); ++k) res.radiance[c][k] += light->color[c] * y[k];
+                for (std::size_t k = 0; k < nsh(); ++k)
+                    res.radiance[c][k] += light->color[c] * y[k];
         }
     }
 

@@ -349,13 +349,14 @@ class Scene {
             for (std::size_t i = 0; i < n; ++i)
                 for (std::size_t k = 0; k < std::min<std::size_t>(ch, 3); ++k) {
                     const double x = t.texels[i * ch + k];
-                    if (!(x >= 0 && x <= 1)) bad(m, "albedo map texels in [0, 1], got " +
-                                                        std::to_string(x));
+                    if (!(x >= 0 && x <= 1))
+                        bad(m, "albedo map texels in [0, 1], got " + std::to_string(x));
                     map_max = std::max(map_max, x);
                 }
             d.map = t;
         }
-        for (std::size_t k = 0; k < 3; ++k) max_albedo_ = std::max(max_albedo_, d.albedo[k] * map_max);
+        for (std::size_t k = 0; k < 3; ++k)
+            max_albedo_ = std::max(max_albedo_, d.albedo[k] * map_max);
         if (d.albedo[0] != d.albedo[1] || d.albedo[1] != d.albedo[2] ||
             (d.map.texels && d.map.channels != 1))
             chromatic_ = true;
@@ -370,8 +371,8 @@ class Scene {
             using namespace detail::rt;
             const V3 p0 = d.pos(a), p1 = d.pos(b), p2 = d.pos(c);
             const V3 c2 = cross(p1 - p0, p2 - p0);
-            const double e = std::max({dot(p1 - p0, p1 - p0), dot(p2 - p1, p2 - p1),
-                                       dot(p0 - p2, p0 - p2)});
+            const double e =
+                std::max({dot(p1 - p0, p1 - p0), dot(p2 - p1, p2 - p1), dot(p0 - p2, p0 - p2)});
             if (a == b || b == c || a == c || !(std::sqrt(dot(c2, c2)) > 1e-12 * e)) {
                 ++degenerate_;
                 continue;

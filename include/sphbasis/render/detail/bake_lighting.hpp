@@ -25,8 +25,7 @@ inline RGB environment_radiance(const Environment& env, const V3& w) noexcept {
     if (env.kind == Environment::Kind::constant)
         return {env.constant[0] * env.scale, env.constant[1] * env.scale,
                 env.constant[2] * env.scale};
-    if (env.kind != Environment::Kind::latlong || !env.texels || env.width <= 0 ||
-        env.height <= 0)
+    if (env.kind != Environment::Kind::latlong || !env.texels || env.width <= 0 || env.height <= 0)
         return {0, 0, 0};
     const auto& r = env.rotation;  // map = R^T world
     const double mx = r[0] * w.x + r[3] * w.y + r[6] * w.z;
@@ -36,8 +35,12 @@ inline RGB environment_radiance(const Environment& env, const V3& w) noexcept {
     const double x = s.x * env.width - 0.5, y = s.y * env.height - 0.5;
     const double fx = std::floor(x), fy = std::floor(y), ax = x - fx, ay = y - fy;
     const long ix = static_cast<long>(fx), iy = static_cast<long>(fy);
-    auto cx = [&](long i) { return static_cast<std::size_t>(((i % env.width) + env.width) % env.width); };
-    auto cy = [&](long i) { return static_cast<std::size_t>(std::clamp<long>(i, 0, env.height - 1)); };
+    auto cx = [&](long i) {
+        return static_cast<std::size_t>(((i % env.width) + env.width) % env.width);
+    };
+    auto cy = [&](long i) {
+        return static_cast<std::size_t>(std::clamp<long>(i, 0, env.height - 1));
+    };
     const std::size_t x0 = cx(ix), x1 = cx(ix + 1), y0 = cy(iy), y1 = cy(iy + 1);
     const std::size_t W = static_cast<std::size_t>(env.width);
     RGB out{};
