@@ -68,7 +68,7 @@ void cap_integral(const V& a, double alpha, int nt, int nphi, G&& g) {
 struct SphereOverPlane {
     double h = 2, r = 1;
     Mesh plane = sphbasis_test::quad_grid(-100, 100, -100, 100, 0, 1);
-    Mesh ball = sphbasis_test::uv_sphere(0, 0, 2, 1, 96, 192);
+    Mesh ball = sphbasis_test::uv_sphere(0, 0, 2, 1, 64, 128);
     SceneDesc desc() const {
         SceneDesc d;
         d.meshes = {plane.view(), ball.view()};
@@ -192,7 +192,7 @@ TEST_CASE("render::Baker: a lone convex mesh needs no rays", "[render]") {
     s.bounces = 3;
     s.rays = 512;
     std::vector<BakePoint> pts;
-    for (std::size_t v = 0; v < ball.vertex_count(); v += 37) {
+    for (std::size_t v = 0; v < ball.vertex_count(); v += 53) {
         BakePoint p;
         p.p = {ball.positions[3 * v], ball.positions[3 * v + 1], ball.positions[3 * v + 2]};
         p.n = {ball.normals[3 * v], ball.normals[3 * v + 1], ball.normals[3 * v + 2]};
@@ -227,6 +227,7 @@ TEST_CASE("render::Baker: a lone convex mesh needs no rays", "[render]") {
     }
     // Forcing every pass changes nothing beyond the standard error.
     s.force_all_passes = true;
+    s.rays = 256;
     Baker f(d, s);
     const auto rf = f.bake(pts);
     CHECK(f.rays_traced() > 0);
@@ -237,7 +238,7 @@ TEST_CASE("render::Baker: a lone convex mesh needs no rays", "[render]") {
             CHECK(rf[i].transfer[0][k] ==
                   Approx(r[i].transfer[0][k]).margin(4 * rf[i].transfer_stderr[k] + 1e-3));
         for (std::size_t k = 0; k < 9; ++k)
-            CHECK(rf[i].irradiance[0][k] == Approx(r[i].irradiance[0][k]).margin(0.05));
+            CHECK(rf[i].irradiance[0][k] == Approx(r[i].irradiance[0][k]).margin(0.1));  // ~3% of E
     }
     // A point below the mesh's surface is not cleared: it traces rays.
     Baker b2(d, BakeSettings{});
@@ -353,13 +354,13 @@ TEST_CASE("render::Baker: deterministic for any thread count and point order", "
     BakeSettings s;
     s.quantities = Quantity::ao | Quantity::bent | Quantity::transfer | Quantity::visibility |
                    Quantity::irradiance | Quantity::radiance;
-    s.rays = 64;
+    s.rays = 32;
     s.bounces = 2;
     s.seed = 7;
     std::vector<BakePoint> pts;
-    for (std::uint64_t i = 0; i < 40; ++i) {
+    for (std::uint64_t i = 0; i < 16; ++i) {
         BakePoint p;
-        p.p = {-0.9 + 0.045 * double(i), 0.1, 0};
+        p.p = {-0.9 + 0.11 * double(i), 0.1, 0};
         p.n = {0, 0, 1};
         p.id = 1000 + i;
         pts.push_back(p);
@@ -485,6 +486,7 @@ TEST_CASE("render::Baker: irradiance on an open plane with a directional light",
     // Any basis of the registry.
     for (const char* name : {"hbasis", "hsh"}) {
         s.basis = name;
+        s.rays = 64;
         s.coeffs = find_basis(name).valid_count(9) ? 9 : 6;
         const auto rb = Baker(d, s).bake({p});
         CHECK(rb[0].irradiance[0].size() == std::size_t(s.coeffs));
