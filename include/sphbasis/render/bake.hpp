@@ -266,6 +266,9 @@ class Baker {
         std::vector<RTCRay> ray;
         std::vector<RTCRayHit> rayhit;
         std::vector<double> xs, ys, zs, ysh, w;
+        std::array<std::vector<double>, 3> wc;
+        std::vector<std::array<double, 3>> entry_w;
+        std::vector<std::uint32_t> entry_sample;
         std::vector<detail::rt::V3> dirs, local;
         std::vector<char> va, vt;
     };
@@ -873,19 +876,38 @@ class Baker {
         bool unique = true;
         for (std::size_t e = 1; e < m && unique; ++e) unique = sample[e] != sample[e - 1];
         std::vector<double> acc;
+        // Weights per channel, contiguous; sums in 4 independent lanes (a fixed order, so the
+        // result does not depend on threads; the lanes let the loop run at SIMD width instead of
+        // one dependent add chain).
+        std::array<std::vector<double>, 3>& wc = L.wc;
+        for (std::size_t c = 0; c < nc; ++c) {
+            wc[c].resize(m);
+            for (std::size_t e = 0; e < m; ++e) wc[c][e] = w[e][c];
+        }
         for (std::size_t k = 0; k < K; ++k) {
             const double* yk = &L.ysh[k * m];
             for (std::size_t c = 0; c < nc; ++c) {
                 double s = 0, s2 = 0;
                 if (unique || !stderr_out) {
-                    for (std::size_t e = 0; e < m; ++e) {
-                        const double v = w[e][c] * yk[e];
-                        s += v;
-                        s2 += v * v;
+                    const double* wp = wc[c].data();
+                    double a[4] = {0, 0, 0, 0}, b[4] = {0, 0, 0, 0};
+                    std::size_t e = 0;
+                    for (; e + 4 <= m; e += 4)
+                        for (std::size_t q = 0; q < 4; ++q) {
+                            const double v = wp[e + q] * yk[e + q];
+                            a[q] += v;
+                            b[q] += v * v;
+                        }
+                    for (; e < m; ++e) {
+                        const double v = wp[e] * yk[e];
+                        a[0] += v;
+                        b[0] += v * v;
                     }
+                    s = (a[0] + a[1]) + (a[2] + a[3]);
+                    s2 = (b[0] + b[1]) + (b[2] + b[3]);
                 } else {
                     acc.assign(nsamples, 0.0);
-                    for (std::size_t e = 0; e < m; ++e) acc[sample[e]] += w[e][c] * yk[e];
+                    for (std::size_t e = 0; e < m; ++e) acc[sample[e]] += wc[c][e] * yk[e];
                     for (double v : acc) {
                         s += v;
                         s2 += v * v;
@@ -956,6 +978,16 @@ class Baker {
                     if (Scene::is_occluded(L.ray[j])) vis_ao[j] = vis_tr[j] = 0;
             }
             if (run) L.rays[cosine] += N;
+            if (wants(Quantity::ao | Quantity::bent)) ao_bent(N, dirs, vis_ao, n, res);
+        }
+        if (!tr) return;
+        transfer_part(N, dirs, vis_tr, paths, key, res, L);
+    }
+
+    void ao_bent(std::size_t N, const std::vector<detail::rt::V3>& dirs,
+                 const std::vector<char>& vis_ao, const detail::rt::V3& n, PointResult& res) const {
+        using namespace detail::rt;
+        {
             double s = 0;
             V3 b{0, 0, 0};
             for (std::size_t j = 0; j < N; ++j)
@@ -969,11 +1001,18 @@ class Baker {
             }
             if (wants(Quantity::bent)) res.bent = normalized(b, n);
         }
-        if (!tr) return;
+    }
+
+    void transfer_part(std::size_t N, const std::vector<detail::rt::V3>& dirs,
+                       const std::vector<char>& vis_tr, std::vector<PathState>& paths,
+                       std::uint64_t key, PointResult& res, Local& L) const {
+        using namespace detail::rt;
         // Transfer: entries (sample, direction, weight) for direct escapes, then bounces.
         clear_dirs(L);
-        std::vector<std::array<double, 3>> w;
-        std::vector<std::uint32_t> smp;
+        std::vector<std::array<double, 3>>& w = L.entry_w;
+        std::vector<std::uint32_t>& smp = L.entry_sample;
+        w.clear();
+        smp.clear();
         for (std::size_t j = 0; j < N; ++j)
             if (vis_tr[j]) {
                 push_dir(L, dirs[j]);
