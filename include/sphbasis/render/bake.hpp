@@ -7,18 +7,97 @@
 // Lehtinen and Kautz, "Precomputed Radiance Transfer: Theory and Practice" (SIGGRAPH 2005
 // course); Iwanicki and Sloan, "Normal Mapping with Low-Frequency Precomputed Visibility"
 // (JGT 2009), section 3.1; Ishmukhametov, "Irradiance Normal Mapping" (thesis), section 1.9.
+//
+// Quantities at a surface point x with unit normal n (V(w) = 1 when the ray from x along w
+// leaves the scene; y_i real SH without the Condon-Shortley phase, ACN order, world frame):
+//   ao         = (1/pi) int V(w) max(n.w, 0) dw (Hill eq. 1-3). Cosine-weighted directions
+//                (pdf n.w/pi) make the estimator the mean of V; hits farther than max_distance
+//                do not occlude. ao_stderr = sqrt(ao (1 - ao) / (N - 1)), the Monte Carlo
+//                standard error (the QMC error is usually smaller).
+//   bent       = normalize(int V(w) w max(n.w, 0) dw): the mean unoccluded cosine-sampled
+//                direction (same V as ao); n when every sample is occluded.
+//   visibility = v_i = int_{n.w > 0} V(w) y_i(w) dw (V = 0 below the tangent plane;
+//                Iwanicki and Sloan section 3.1). Directions uniform on the hemisphere of n
+//                (the uniform sphere with the lower half known to be 0): v_i = 2pi/N sum V y_i.
+//   transfer   = diffuse PRT (Sloan et al.): B(x) = rho(x) sum_i t_i l_i for distant radiance
+//                L = sum_i l_i y_i. Without bounces t_i = (1/pi) int V max(n.w, 0) y_i dw,
+//                estimated as the mean of V(w_j) y_i(w_j) over cosine-sampled w_j. With bounces
+//                (path continuation): at a hit y the path continues along a cosine-sampled
+//                direction about y's shading normal, its throughput multiplied by albedo(y) per
+//                channel ("multiply by albedo when gathering"); a path escaping along w after k
+//                hits adds (prod of the k albedos) y_i(w). rho(x) is factored out. Channels
+//                differ only when albedos differ per channel (transfer_rgb).
+//   irradiance = E(n') = int_{n.w > 0} L_in(w) max(n'.w, 0) dw for normals n' over the tangent
+//                hemisphere (Ishmukhametov), L_in the incoming radiance (environment, lights,
+//                shadows, bounces; V = 0 below x's tangent plane), fitted in `basis` with `coeffs`
+//                functions by least squares over the rule hemisphere_rule_sqrt(32, 32) (the
+//                IMSE benchmark's rule). L_in is sampled uniformly over the hemisphere (cosine
+//                weights about n would give an unbounded estimator for tilted n') and projected
+//                on 8 SH bands in the tangent frame; E = sum pi a_l L_lm y_lm(n') (the clamped
+//                cosine; the truncation error is below 0.3% of E). Directional lights (deltas)
+//                add V(l) color max(n'.l, 0) exactly, with one shadow ray. At points nothing
+//                occludes, L_in is integrated by quadrature (hemisphere_rule(48)) instead of
+//                rays: exact for the environment's smooth part, approximate at the edge of a
+//                small cone or sphere light.
+//   radiance   = r_i = int L_in(w) y_i(w) dw at any point, RGB, directions uniform on the
+//                sphere: r_i = 4pi/N sum L_in(w_j) y_i(w_j); directional lights add
+//                V(l) color y_i(l). `inside`: more than half the rays hit back faces
+//                (the side opposite a triangle's counter-clockwise normal).
+// Sampling: QMC (the R2 sequence of core/sampling.hpp), shifted per point by a Cranley-Patterson
+// rotation hashed from (seed, id) (render/detail/qmc.hpp: the shift in azimuth is applied as a
+// rotation of the tangent frame, so no trigonometry per ray); continuation directions of bounces
+// hash (seed, id, path, bounce). A result depends only on (seed, id, settings, scene), never on
+// threads or order. Rays leave surfaces from x + epsilon n (render::Scene::epsilon(); hits:
+// offset_origin()).
+//
+// The pass plan (plan()): "build" (the Embree scene); "pilot" (the fraction f of cosine rays
+// from random surface points, either side, that hit geometry: 1024 rays, hashed from the seed);
+// "analytic" (points that nothing can occlude, render::Scene::can_occlude(): ao = 1, bent = n,
+// t_lm = a_l y_lm(n) with a_l the clamped-cosine factors, v_lm = 2pi y_lm(n) int_0^1 P_l,
+// irradiance and radiance by quadrature of the sky and closed-form lights: zero rays);
+// "cosine" (ao, bent, transfer rays); "hemisphere" (visibility, irradiance); "sphere"
+// (radiance); "shadow" (directional lights); "bounce k" for k = 1..K, K the largest k <= bounces
+// with rho_max^k f > target_error (rho_max the largest albedo channel). force_all_passes runs
+// the ray passes for every point and all `bounces`. Pass::seconds is thread time (summed over
+// threads); Pass::rays is exact.
 #pragma once
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
+#include <memory>
+#include <mutex>
+#include <numeric>
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
+#include "../basis/registry.hpp"
+#include "../basis/sh.hpp"
+#include "../core/clamped_cosine.hpp"
+#include "../core/constants.hpp"
+#include "../core/error.hpp"
+#include "../core/frame.hpp"
+#include "../core/quadrature.hpp"
+#include "../core/sampling.hpp"
 #include "../core/vec.hpp"
+#include "../ops/projection.hpp"
+#include "detail/bake_lighting.hpp"
+#include "detail/qmc.hpp"
+#include "detail/rt_math.hpp"
 #include "lighting.hpp"
 #include "mesh.hpp"
+#include "scene.hpp"
 
 namespace sphbasis::render {
 
@@ -34,13 +113,14 @@ enum Quantity : unsigned {
 
 struct BakeSettings {
     unsigned quantities = Quantity::ao;
-    int bands = 3;                  // SH bands of visibility, transfer and radiance
-    std::string basis = "sh";       // basis of `irradiance` (a name of find_basis())
-    int coeffs = 9;                 // its coefficient count
-    int rays = 256;                 // rays per point and pass
-    int bounces = 0;                // at most this many interreflection bounces
+    int bands = 3;             // SH bands of visibility, transfer and radiance
+    std::string basis = "sh";  // basis of `irradiance` (a name of find_basis())
+    int coeffs = 9;            // its coefficient count
+    int rays = 256;            // rays per point and pass
+    int bounces = 0;           // at most this many interreflection bounces
     std::uint64_t seed = 0;
-    double max_distance = std::numeric_limits<double>::infinity();  // ao: farther hits don't occlude
+    double max_distance =
+        std::numeric_limits<double>::infinity();  // ao: farther hits don't occlude
     double target_error = 1e-3;     // a bounce runs only while its bound is above this
     bool force_all_passes = false;  // run every pass the plan would skip (for tests)
 };
@@ -63,9 +143,9 @@ struct PointResult {
     std::array<std::vector<double>, 3> transfer;        // R, G, B (bands^2 each)
     std::vector<double> transfer_stderr;                // bands^2 (max over channels)
     bool transfer_rgb = false;  // false: the three channels are equal (print one list)
-    std::array<std::vector<double>, 3> irradiance;      // R, G, B (coeffs each)
-    std::array<std::vector<double>, 3> radiance;        // R, G, B (bands^2 each)
-    bool inside = false;        // the point is inside closed geometry (probes leak)
+    std::array<std::vector<double>, 3> irradiance;  // R, G, B (coeffs each)
+    std::array<std::vector<double>, 3> radiance;    // R, G, B (bands^2 each)
+    bool inside = false;  // the point is inside closed geometry (probes leak)
 };
 
 /// One pass of the plan: what runs, why, and what it cost.
@@ -90,27 +170,1062 @@ namespace sphbasis::render {
 /// pass plan; bake() runs exactly the planned passes, in parallel on oneTBB.
 class Baker {
   public:
-    Baker(const SceneDesc& scene, const BakeSettings& settings) : settings_(settings) {
-        (void)scene;
-        throw std::logic_error("sphbasis::render::Baker: not implemented yet");
+    Baker(const SceneDesc& scene, const BakeSettings& settings)
+        : settings_(validated(settings)),
+          scene_(timed_scene(scene.meshes, build_seconds_)),
+          env_(scene.environment),
+          lights_(scene.lights) {
+        validate_lighting();
+        qmc_ = detail::rt::QmcTable(static_cast<std::size_t>(settings_.rays));
+        stats_ = std::make_unique<Stat[]>(stat_count());
+        stats_[build].seconds = build_seconds_;
+        derive_plan();
+        if (settings_.quantities & Quantity::irradiance) prepare_irradiance();
+        if (settings_.quantities & (Quantity::irradiance | Quantity::radiance))
+            prepare_quadrature();
+        publish_plan();
     }
     /// The passes that will run (name, reason); after bake(), with rays and seconds.
     const std::vector<Pass>& plan() const noexcept { return plan_; }
     /// Results for each point (same order). `progress(k)` (optional) is called with the number
-    /// of points finished since its last call, from any thread.
+    /// of points finished since its last call, from any thread. Throws std::invalid_argument
+    /// for a non-finite point, normal or tangent, or a free point (normal 0) when ao, bent,
+    /// visibility, transfer or irradiance is requested.
     template <class Progress = void (*)(std::size_t)>
     std::vector<PointResult> bake(const std::vector<BakePoint>& points,
                                   Progress&& progress = nullptr) {
-        (void)points;
-        (void)progress;
-        return {};
+        check_points(points);
+        std::vector<PointResult> out(points.size());
+        const std::size_t grain = 4;
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), grain),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              Local local(stat_count());
+                              for (std::size_t i = r.begin(); i != r.end(); ++i)
+                                  bake_point(points[i], out[i], local);
+                              merge(local);
+                              using P = std::decay_t<Progress>;
+                              if constexpr (std::is_same_v<P, std::nullptr_t>) {
+                              } else if constexpr (std::is_pointer_v<P>) {
+                                  if (progress) progress(r.size());
+                              } else {
+                                  progress(r.size());
+                              }
+                          });
+        publish_plan();
+        return out;
     }
     /// Rays traced so far, all passes.
-    std::uint64_t rays_traced() const noexcept { return 0; }
+    std::uint64_t rays_traced() const noexcept {
+        std::uint64_t s = 0;
+        for (std::size_t k = 0; k < stat_count(); ++k) s += stats_[k].rays.load();
+        return s;
+    }
+
+    /// Bytes of one PointResult holding the requested quantities (the struct and its vectors'
+    /// payload; allocator overhead not counted): the memory per vertex, texel or probe.
+    static std::size_t result_bytes(const BakeSettings& s) noexcept {
+        const std::size_t n = std::size_t(s.bands) * std::size_t(s.bands), d = sizeof(double);
+        std::size_t b = sizeof(PointResult);
+        if (s.quantities & Quantity::visibility) b += 2 * n * d;
+        if (s.quantities & Quantity::transfer) b += 4 * n * d;
+        if (s.quantities & Quantity::irradiance) b += 3 * std::size_t(std::max(s.coeffs, 0)) * d;
+        if (s.quantities & Quantity::radiance) b += 3 * n * d;
+        return b;
+    }
+    /// The ray-tracing scene.
+    const Scene& scene() const noexcept { return scene_; }
+    /// The pilot's fraction of rays that hit geometry (0 when no pilot ran).
+    double hit_fraction() const noexcept { return hit_fraction_; }
+    /// The bounces that run (K of the header comment).
+    int planned_bounces() const noexcept { return bounces_; }
+    /// Drops a planned pass by name ("cosine", "hemisphere", "sphere", "shadow", "bounce k",
+    /// "analytic"): for tests that show each pass matters. A dropped ray pass leaves its
+    /// contribution out (V = 1 for a dropped "cosine" or "hemisphere", no bounce light for a
+    /// dropped bounce); a dropped "analytic" pass sends its points to the ray passes.
+    void drop_pass(const std::string& name) {
+        dropped_.insert(name);
+        publish_plan();
+    }
 
   private:
+    // Pass indices: fixed ones, then bounce k at bounce0 + k - 1.
+    enum : std::size_t { build, pilot, analytic, cosine, hemisphere, sphere, shadow, bounce0 };
+    static constexpr int irr_bands = 8;  // SH bands of L_in for irradiance
+    struct Stat {
+        std::atomic<std::uint64_t> rays{0};
+        std::atomic<std::uint64_t> points{0};
+        double seconds = 0;
+        bool planned = false;
+        std::string reason;
+    };
+    struct Local {
+        explicit Local(std::size_t n) : rays(n, 0), points(n, 0), seconds(n, 0) {}
+        std::vector<std::uint64_t> rays, points;
+        std::vector<double> seconds;
+        // scratch
+        std::vector<RTCRay> ray;
+        std::vector<RTCRayHit> rayhit;
+        std::vector<double> xs, ys, zs, ysh, w;
+        std::array<std::vector<double>, 3> wc;
+        std::vector<std::array<double, 3>> entry_w;
+        std::vector<std::uint32_t> entry_sample;
+        std::vector<detail::rt::V3> dirs, local;
+        std::vector<char> va, vt;
+    };
+    using Clock = std::chrono::steady_clock;
+    struct Timer {
+        Local& l;
+        std::size_t pass;
+        Clock::time_point t0 = Clock::now();
+        ~Timer() { l.seconds[pass] += std::chrono::duration<double>(Clock::now() - t0).count(); }
+    };
+
+    std::size_t stat_count() const noexcept {
+        return bounce0 + static_cast<std::size_t>(std::max(settings_.bounces, 0));
+    }
+    static std::string pass_name(std::size_t k) {
+        static const char* names[] = {"build",      "pilot",  "analytic", "cosine",
+                                      "hemisphere", "sphere", "shadow"};
+        if (k < bounce0) return names[k];
+        return "bounce " + std::to_string(k - bounce0 + 1);
+    }
+    bool enabled(std::size_t k) const {
+        return (stats_[k].planned || stats_[k].rays.load() || stats_[k].points.load()) &&
+               !dropped_.count(pass_name(k));
+    }
+
+    static BakeSettings validated(const BakeSettings& s) {
+        const char* fn = "render::Baker";
+        const unsigned all = Quantity::ao | Quantity::bent | Quantity::visibility |
+                             Quantity::transfer | Quantity::irradiance | Quantity::radiance;
+        if (s.quantities == 0 || (s.quantities & ~all))
+            sphbasis::detail::throw_invalid(
+                fn,
+                "quantities: a non-empty set of ao, bent, visibility, transfer, irradiance, "
+                "radiance, got the bit set " +
+                    std::to_string(s.quantities));
+        sphbasis::detail::check_range(fn, "bands", s.bands, 1, 16);
+        sphbasis::detail::check_range(fn, "rays", s.rays, 1, 1 << 24);
+        sphbasis::detail::check_range(fn, "bounces", s.bounces, 0, 64);
+        if (!(s.max_distance > 0))
+            sphbasis::detail::throw_invalid(
+                fn, "max_distance > 0, got " + std::to_string(s.max_distance));
+        if (!(s.target_error >= 0) || !std::isfinite(s.target_error))
+            sphbasis::detail::throw_invalid(
+                fn, "a finite target_error >= 0, got " + std::to_string(s.target_error));
+        if (s.quantities & Quantity::irradiance) {
+            const BasisInfo& b = find_basis(s.basis);
+            if (!b.valid_count(s.coeffs))
+                sphbasis::detail::throw_invalid(fn, std::string("coeffs: ") + b.count_rule() +
+                                                        " functions for basis '" + b.name +
+                                                        "', got " + std::to_string(s.coeffs));
+        }
+        return s;
+    }
+    static Scene timed_scene(const std::vector<MeshView>& m, double& seconds) {
+        const auto t0 = Clock::now();
+        Scene s(m);
+        seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+        return s;
+    }
+
+    void validate_lighting() {
+        const char* fn = "render::Baker";
+        using namespace detail::rt;
+        if (!std::isfinite(env_.scale))
+            sphbasis::detail::throw_invalid(
+                fn, "a finite environment scale, got " + std::to_string(env_.scale));
+        for (double r : env_.rotation)
+            if (!std::isfinite(r))
+                sphbasis::detail::throw_invalid(fn, "a finite environment rotation, got a NaN");
+        if (env_.kind == Environment::Kind::latlong &&
+            (!env_.texels || env_.width <= 0 || env_.height <= 0))
+            sphbasis::detail::throw_invalid(
+                fn, "a lat-long environment with texels and a size > 0, got " +
+                        std::to_string(env_.width) + "x" + std::to_string(env_.height));
+        for (double c : env_.constant)
+            if (!std::isfinite(c))
+                sphbasis::detail::throw_invalid(fn, "a finite constant environment, got a NaN");
+        for (std::size_t i = 0; i < lights_.size(); ++i) {
+            Light& l = lights_[i];
+            const std::string at = " (light " + std::to_string(i) + ")";
+            if (l.type != Light::Type::sphere) {
+                const double len = length(l.direction);
+                if (!(len > 0) || !std::isfinite(len))
+                    sphbasis::detail::throw_invalid(fn, "a finite non-zero light direction" + at);
+                l.direction = l.direction * (1 / len);
+            }
+            bool ok = true;
+            for (std::size_t k = 0; k < 3; ++k)
+                ok = ok && std::isfinite(l.color[k]) && l.color[k] >= 0 &&
+                     std::isfinite(l.ground[k]) && l.ground[k] >= 0;
+            if (!ok) sphbasis::detail::throw_invalid(fn, "finite light colours >= 0" + at);
+            if (l.type == Light::Type::cone && !(l.angle_deg >= 0 && l.angle_deg <= 180))
+                sphbasis::detail::throw_invalid(
+                    fn, "0 <= angle_deg <= 180, got " + std::to_string(l.angle_deg) + at);
+            if (l.type == Light::Type::sphere &&
+                (!(l.radius > 0) || !std::isfinite(l.radius) || !finite(l.position)))
+                sphbasis::detail::throw_invalid(
+                    fn, "a sphere light with a finite position and radius > 0" + at);
+        }
+    }
+
+    bool wants(unsigned q) const noexcept { return (settings_.quantities & q) != 0; }
+    bool has_directional() const noexcept {
+        for (const auto& l : lights_)
+            if (l.type == Light::Type::directional) return true;
+        return false;
+    }
+
+    void derive_plan() {
+        const bool force = settings_.force_all_passes;
+        const bool occl = scene_.can_occlude();
+        const bool surface_q = wants(Quantity::ao | Quantity::bent | Quantity::transfer |
+                                     Quantity::visibility | Quantity::irradiance);
+        stats_[build].planned = true;
+        stats_[build].reason = "Embree scene of " + std::to_string(scene_.triangle_count()) +
+                               " triangles (" + std::to_string(scene_.degenerate_triangles()) +
+                               " degenerate skipped)";
+        if (!occl && !force) {
+            stats_[analytic].planned = true;
+            stats_[analytic].reason = scene_.occlusion_reason() +
+                                      ": nothing occludes points on it, closed forms, no rays";
+        }
+        const std::string why_rays =
+            force ? "force_all_passes"
+                  : (occl ? "the scene can occlude: " + scene_.occlusion_reason()
+                          : "points not cleared by the convex test");
+        if (wants(Quantity::ao | Quantity::bent | Quantity::transfer) && (occl || force)) {
+            stats_[cosine].planned = true;
+            stats_[cosine].reason = "ao/bent/transfer, cosine-weighted: " + why_rays;
+        }
+        if (wants(Quantity::visibility | Quantity::irradiance) && (occl || force)) {
+            stats_[hemisphere].planned = true;
+            stats_[hemisphere].reason = "visibility/irradiance, uniform hemisphere: " + why_rays;
+        }
+        if (wants(Quantity::radiance) && (scene_.triangle_count() > 0 || force)) {
+            stats_[sphere].planned = true;
+            stats_[sphere].reason = "radiance at points, uniform sphere";
+        }
+        if (wants(Quantity::irradiance | Quantity::radiance) && has_directional() &&
+            (occl || force || wants(Quantity::radiance))) {
+            stats_[shadow].planned = true;
+            stats_[shadow].reason = "directional lights: one shadow ray per point and light";
+        }
+        (void)surface_q;
+        // Bounces.
+        const bool bounce_q = wants(Quantity::transfer | Quantity::irradiance | Quantity::radiance);
+        const double rho = scene_.max_albedo();
+        bounces_ = 0;
+        if (!bounce_q || settings_.bounces == 0) return;
+        if (force) {
+            bounces_ = settings_.bounces;
+        } else if (rho > 0 && scene_.triangle_count() > 0) {
+            if (occl) {
+                run_pilot();
+            } else {
+                hit_fraction_ = wants(Quantity::radiance) ? 1.0 : 0.0;
+            }
+            for (int k = 1; k <= settings_.bounces; ++k) {
+                if (std::pow(rho, k) * hit_fraction_ > settings_.target_error)
+                    bounces_ = k;
+                else
+                    break;
+            }
+        }
+        for (int k = 1; k <= bounces_; ++k) {
+            Stat& s = stats_[bounce0 + std::size_t(k - 1)];
+            s.planned = true;
+            char buf[160];
+            std::snprintf(buf, sizeof buf,
+                          "bound rho_max^%d * f = %.3g^%d * %.3g = %.3g > target_error %.3g%s", k,
+                          rho, k, hit_fraction_, std::pow(rho, k) * hit_fraction_,
+                          settings_.target_error, force ? " (forced)" : "");
+            s.reason = buf;
+        }
+    }
+
+    /// The pilot: the fraction of cosine-weighted rays from surface points that hit geometry.
+    /// Surface points are the hits of 1024 probe rays (hashed origins in the bounding box,
+    /// uniform directions); from up to 256 of them, 4 cosine rays each about the geometric
+    /// normal of a hashed side. Depends only on the scene and the seed, so shards agree.
+    void run_pilot() {
+        const auto t0 = Clock::now();
+        using namespace detail::rt;
+        const std::size_t npts = 256, per = 4;
+        std::vector<RTCRayHit> probe(npts * 4);
+        const V3 lo = scene_.bounds_min(), hi = scene_.bounds_max();
+        for (std::size_t i = 0; i < probe.size(); ++i) {
+            const std::uint64_t h = hash(settings_.seed, 0x7069'6c6f'74ull, i);
+            const V3 o{lo.x + (hi.x - lo.x) * unit(hash(h, 1)),
+                       lo.y + (hi.y - lo.y) * unit(hash(h, 2)),
+                       lo.z + (hi.z - lo.z) * unit(hash(h, 3))};
+            const V3 d = square_to_uniform_sphere(unit(hash(h, 4)), unit(hash(h, 5)));
+            Scene::set_ray(probe[i], o, d);
+        }
+        scene_.intersect(probe.data(), probe.size());
+        std::vector<RTCRay> rays;
+        std::uint64_t traced = probe.size();
+        for (std::size_t i = 0; i < probe.size() && rays.size() < npts * per; ++i) {
+            const Hit hit = scene_.hit(probe[i]);
+            if (!hit.valid) continue;
+            const std::uint64_t h = hash(settings_.seed, 0x7069'6c6f'75ull, i);
+            // Either side: the side the probe came from (geometric_normal faces it) or the other.
+            const V3 ng = (hash(h, 9) & 1) ? hit.geometric_normal : -hit.geometric_normal;
+            const Frame<double> f(ng);
+            for (std::size_t j = 0; j < per; ++j) {
+                const V3 d = f.to_world(
+                    square_to_cosine_hemisphere(unit(hash(h, 2 * j)), unit(hash(h, 2 * j + 1))));
+                RTCRay r;
+                Scene::set_ray(r, scene_.offset_origin(hit.position, ng, d), d);
+                rays.push_back(r);
+            }
+        }
+        scene_.occluded(rays.data(), rays.size());
+        traced += rays.size();
+        std::size_t hits = 0;
+        for (const auto& r : rays) hits += Scene::is_occluded(r);
+        hit_fraction_ = rays.empty() ? 1.0 : double(hits) / double(rays.size());
+        stats_[pilot].planned = true;
+        stats_[pilot].rays = traced;
+        stats_[pilot].seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+        char buf[120];
+        std::snprintf(buf, sizeof buf,
+                      "bounces requested: fraction of rays hitting geometry f = %.3g",
+                      hit_fraction_);
+        stats_[pilot].reason = buf;
+    }
+
+    void publish_plan() {
+        plan_.clear();
+        for (std::size_t k = 0; k < stat_count(); ++k) {
+            if (!enabled(k)) continue;
+            Pass p;
+            p.name = pass_name(k);
+            p.reason = stats_[k].reason.empty() ? "points not cleared by the convex test"
+                                                : stats_[k].reason;
+            p.rays = stats_[k].rays.load();
+            p.seconds = stats_[k].seconds;
+            plan_.push_back(p);
+        }
+    }
+
+    void merge(const Local& l) {
+        std::lock_guard<std::mutex> g(mutex_);
+        for (std::size_t k = 0; k < stat_count(); ++k) {
+            stats_[k].rays += l.rays[k];
+            stats_[k].points += l.points[k];
+            stats_[k].seconds += l.seconds[k];
+        }
+    }
+
+    void check_points(const std::vector<BakePoint>& pts) const {
+        const char* fn = "render::Baker::bake";
+        using namespace detail::rt;
+        const bool surface_q = wants(Quantity::ao | Quantity::bent | Quantity::transfer |
+                                     Quantity::visibility | Quantity::irradiance);
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+            const BakePoint& p = pts[i];
+            if (!finite(p.p) || !finite(p.n) || !finite(p.tangent))
+                sphbasis::detail::throw_invalid(fn,
+                                                "finite positions, normals and tangents, got "
+                                                "a NaN or an infinity at point " +
+                                                    std::to_string(i));
+            if (surface_q && !(length(p.n) > 0))
+                sphbasis::detail::throw_invalid(
+                    fn,
+                    "a surface point (non-zero normal) for ao, bent, visibility, transfer and "
+                    "irradiance, got normal 0 at point " +
+                        std::to_string(i));
+        }
+    }
+
+    // ---- sky ----------------------------------------------------------------------------
+    /// Radiance along a ray from o in direction d whose first hit is at tmax (inf: escaped).
+    RGB sky(const detail::rt::V3& o, const detail::rt::V3& d, double tmax) const noexcept {
+        const bool escaped = !(tmax < std::numeric_limits<double>::infinity());
+        RGB L = escaped ? detail::rt::environment_radiance(env_, d) : RGB{0, 0, 0};
+        detail::rt::add_light_radiance(lights_, o, d, tmax, escaped, L);
+        return L;
+    }
+
+    // ---- precomputation -------------------------------------------------------------------
+    void prepare_irradiance() {
+        const BasisInfo& info = find_basis(settings_.basis);
+        irr_rule_ = hemisphere_rule_sqrt(32, 32);
+        const bool ortho = info.orthonormal && info.domain == Domain::hemisphere;
+        irr_fit_ = std::make_shared<const LeastSquares>(info.functions(settings_.coeffs), ortho,
+                                                        irr_rule_);
+        const int n = irr_bands * irr_bands;
+        double a[irr_bands];
+        clamped_cosine_factors(irr_bands, a);
+        Eigen::MatrixXd m(static_cast<Eigen::Index>(irr_rule_.size()), n);
+        std::vector<double> y(static_cast<std::size_t>(n));
+        for (std::size_t i = 0; i < irr_rule_.size(); ++i) {
+            sh::eval_unit(irr_bands, irr_rule_.x[i], irr_rule_.y[i], irr_rule_.z[i], y.data());
+            for (int l = 0; l < irr_bands; ++l)
+                for (int k = l * l; k < (l + 1) * (l + 1); ++k)
+                    m(Eigen::Index(i), k) = constants::pi * a[l] * y[std::size_t(k)];
+        }
+        irr_map_ = irr_fit_->coefficients(m);  // coeffs x n: L_lm (local) -> fitted E
+    }
+    void prepare_quadrature() {
+        // Hemisphere rule in the tangent frame (irradiance of unoccluded points) and sphere
+        // rule (radiance with no geometry): the sky is sampled, not ray traced.
+        hemi_rule_ = hemisphere_rule(48);
+        sphere_rule_ = sphere_rule(48);
+    }
+
+    // ---- per point ------------------------------------------------------------------------
+    void bake_point(const BakePoint& bp, PointResult& res, Local& L) const {
+        using namespace detail::rt;
+        const V3 n = normalized(bp.n, {0, 0, 0});
+        const bool surface = length(n) > 0;
+        const std::uint64_t key = hash(settings_.seed, bp.id);
+        const double cu = unit(hash(key, 1)), cv = unit(hash(key, 2));
+        Frame<double> f;
+        if (surface) f = frame_of(n, bp.tangent);
+        const bool free_of_occluders = surface && !settings_.force_all_passes &&
+                                       !dropped_.count("analytic") && scene_.unoccluded(bp.p, n);
+        if (free_of_occluders && enabled(analytic)) {
+            Timer t{L, analytic};
+            ++L.points[analytic];
+            analytic_point(bp.p, n, f, res);
+        } else {
+            if (wants(Quantity::ao | Quantity::bent | Quantity::transfer))
+                cosine_pass(bp, n, f, key, cu, cv, res, L);
+            if (wants(Quantity::visibility | Quantity::irradiance))
+                hemisphere_pass(bp, n, f, key, cu, cv, res, L);
+        }
+        if (wants(Quantity::radiance)) {
+            if (scene_.triangle_count() == 0 && !settings_.force_all_passes) {
+                Timer t{L, analytic};
+                ++L.points[analytic];
+                radiance_closed_form(bp.p, res);
+            } else {
+                sphere_pass(bp, n, key, cu, cv, res, L);
+            }
+        }
+    }
+
+    static Frame<double> frame_of(const detail::rt::V3& n, const detail::rt::V3& tangent) {
+        using namespace detail::rt;
+        V3 t = tangent - n * dot(n, tangent);
+        const double lt = length(t);
+        if (lt > 1e-6) {
+            t = t * (1 / lt);
+            return Frame<double>(t, cross(n, t), n);
+        }
+        return Frame<double>(n);
+    }
+
+    std::size_t nsh() const noexcept { return std::size_t(settings_.bands * settings_.bands); }
+
+    void analytic_point(const detail::rt::V3& p, const detail::rt::V3& n, const Frame<double>& f,
+                        PointResult& res) const {
+        using namespace detail::rt;
+        const int B = settings_.bands;
+        std::vector<double> y(nsh()), a(static_cast<std::size_t>(B));
+        sh::eval_unit(B, n.x, n.y, n.z, y.data());
+        clamped_cosine_factors(B, a.data());
+        if (wants(Quantity::ao)) {
+            res.ao = 1;
+            res.ao_stderr = 0;
+        }
+        if (wants(Quantity::bent)) res.bent = n;
+        if (wants(Quantity::transfer)) {
+            std::vector<double> t(nsh());
+            for (int l = 0; l < B; ++l)
+                for (int k = l * l; k < (l + 1) * (l + 1); ++k)
+                    t[std::size_t(k)] = a[std::size_t(l)] * y[std::size_t(k)];
+            res.transfer = {t, t, t};
+            res.transfer_stderr.assign(nsh(), 0.0);
+            res.transfer_rgb = false;
+        }
+        if (wants(Quantity::visibility)) {
+            res.visibility.assign(nsh(), 0.0);
+            for (int l = 0; l < B; ++l)
+                for (int k = l * l; k < (l + 1) * (l + 1); ++k)
+                    res.visibility[std::size_t(k)] =
+                        constants::two_pi * legendre_tail(l, 0.0) * y[std::size_t(k)];
+            res.visibility_stderr.assign(nsh(), 0.0);
+        }
+        if (wants(Quantity::irradiance)) {
+            // L_lm in the tangent frame by quadrature of the sky over the upper hemisphere.
+            const int n8 = irr_bands * irr_bands;
+            std::array<std::vector<double>, 3> Llm;
+            for (auto& v : Llm) v.assign(std::size_t(n8), 0.0);
+            std::vector<double> yy(static_cast<std::size_t>(n8));
+            const double inf = std::numeric_limits<double>::infinity();
+            for (std::size_t q = 0; q < hemi_rule_.size(); ++q) {
+                const V3 dl{hemi_rule_.x[q], hemi_rule_.y[q], hemi_rule_.z[q]};
+                const RGB s = sky(p, f.to_world(dl), inf);
+                sh::eval_unit(irr_bands, dl.x, dl.y, dl.z, yy.data());
+                for (std::size_t c = 0; c < 3; ++c)
+                    if (s[c] != 0)
+                        for (std::size_t k = 0; k < std::size_t(n8); ++k)
+                            Llm[c][k] += hemi_rule_.w[q] * s[c] * yy[k];
+            }
+            std::vector<std::pair<V3, RGB>> dir;  // unoccluded directional lights (local)
+            for (const auto& l : lights_)
+                if (l.type == Light::Type::directional && dot(l.direction, n) > 0)
+                    dir.push_back({f.to_local(l.direction), l.color});
+            finish_irradiance(Llm, dir, res);
+        }
+    }
+
+    /// irradiance coefficients from L_lm (local, 8 bands) and visible directional lights.
+    void finish_irradiance(const std::array<std::vector<double>, 3>& Llm,
+                           const std::vector<std::pair<detail::rt::V3, RGB>>& dir,
+                           PointResult& res) const {
+        const Eigen::Index n8 = irr_bands * irr_bands;
+        Eigen::MatrixXd lm(n8, 3);
+        for (Eigen::Index k = 0; k < n8; ++k)
+            for (Eigen::Index c = 0; c < 3; ++c) lm(k, c) = Llm[std::size_t(c)][std::size_t(k)];
+        Eigen::MatrixXd e = irr_map_ * lm;  // coeffs x 3
+        if (!dir.empty()) {
+            const Eigen::Index R = static_cast<Eigen::Index>(irr_rule_.size());
+            Eigen::MatrixXd s = Eigen::MatrixXd::Zero(R, 3);
+            for (const auto& [d, col] : dir)
+                for (Eigen::Index i = 0; i < R; ++i) {
+                    const std::size_t ii = std::size_t(i);
+                    const double c =
+                        irr_rule_.x[ii] * d.x + irr_rule_.y[ii] * d.y + irr_rule_.z[ii] * d.z;
+                    if (c > 0)
+                        for (Eigen::Index k = 0; k < 3; ++k) s(i, k) += c * col[std::size_t(k)];
+                }
+            e += irr_fit_->coefficients(s);
+        }
+        for (std::size_t c = 0; c < 3; ++c) {
+            res.irradiance[c].resize(std::size_t(e.rows()));
+            for (Eigen::Index k = 0; k < e.rows(); ++k)
+                res.irradiance[c][std::size_t(k)] = e(k, Eigen::Index(c));
+        }
+    }
+
+    /// Zonal SH of a cap of half-angle alpha about d with radiance col, added to out.
+    void add_cap(const detail::rt::V3& d, double cos_alpha, const RGB& col,
+                 std::array<std::vector<double>, 3>& out) const {
+        const int B = settings_.bands;
+        std::vector<double> y(nsh());
+        sh::eval_unit(B, d.x, d.y, d.z, y.data());
+        for (int l = 0; l < B; ++l) {
+            const double lam = constants::two_pi * detail::rt::legendre_tail(l, cos_alpha);
+            for (int k = l * l; k < (l + 1) * (l + 1); ++k)
+                for (std::size_t c = 0; c < 3; ++c)
+                    out[c][std::size_t(k)] += col[c] * lam * y[std::size_t(k)];
+        }
+    }
+
+    /// radiance with no geometry: the environment by quadrature, lights in closed form.
+    void radiance_closed_form(const detail::rt::V3& p, PointResult& res) const {
+        using namespace detail::rt;
+        for (auto& v : res.radiance) v.assign(nsh(), 0.0);
+        std::vector<double> y(nsh());
+        if (env_.kind != Environment::Kind::none)
+            for (std::size_t q = 0; q < sphere_rule_.size(); ++q) {
+                const V3 d{sphere_rule_.x[q], sphere_rule_.y[q], sphere_rule_.z[q]};
+                const RGB s = environment_radiance(env_, d);
+                sh::eval_unit(settings_.bands, d.x, d.y, d.z, y.data());
+                for (std::size_t c = 0; c < 3; ++c)
+                    for (std::size_t k = 0; k < nsh(); ++k)
+                        res.radiance[c][k] += sphere_rule_.w[q] * s[c] * y[k];
+            }
+        for (const Light& l : lights_) {
+            switch (l.type) {
+                case Light::Type::directional: {
+                    sh::eval_unit(settings_.bands, l.direction.x, l.direction.y, l.direction.z,
+                                  y.data());
+                    for (std::size_t c = 0; c < 3; ++c)
+                        for (std::size_t k = 0; k < nsh(); ++k)
+                            res.radiance[c][k] += l.color[c] * y[k];
+                    break;
+                }
+                case Light::Type::cone:
+                    add_cap(l.direction, std::cos(l.angle_deg * constants::pi / 180), l.color,
+                            res.radiance);
+                    break;
+                case Light::Type::hemisphere: {
+                    add_cap(l.direction, -1.0, l.ground, res.radiance);
+                    const RGB diff{l.color[0] - l.ground[0], l.color[1] - l.ground[1],
+                                   l.color[2] - l.ground[2]};
+                    add_cap(l.direction, 0.0, diff, res.radiance);
+                    break;
+                }
+                case Light::Type::sphere: {
+                    const V3 dc = l.position - p;
+                    const double dist = length(dc);
+                    if (dist <= l.radius)
+                        add_cap({0, 0, 1}, -1.0, l.color, res.radiance);
+                    else
+                        add_cap(dc * (1 / dist),
+                                std::sqrt(std::max(0.0, 1 - (l.radius / dist) * (l.radius / dist))),
+                                l.color, res.radiance);
+                    break;
+                }
+            }
+        }
+    }
+
+    // ---- ray passes -----------------------------------------------------------------------
+    /// A bounce path: which primary sample, its throughput and its current hit.
+    struct PathState {
+        std::uint32_t sample;
+        RGB throughput;
+        Hit hit;
+    };
+
+    /// Continues paths from their hits for the planned bounces. For each escape (and, with
+    /// `lit`, each light seen or each directional light reached from a vertex), calls
+    /// emit(sample, direction, weight RGB, escaped) ... simplified: escape(sample, dir, T) and
+    /// light(sample, radiance RGB).
+    template <class Escape, class Gather>
+    void continue_paths(std::vector<PathState>& paths, std::uint64_t key, bool lit, Local& L,
+                        Escape&& escape, Gather&& gather) const {
+        using namespace detail::rt;
+        for (int k = 1; k <= bounces_ && !paths.empty(); ++k) {
+            const std::size_t pass = bounce0 + std::size_t(k - 1);
+            if (dropped_.count(pass_name(pass))) break;
+            Timer t{L, pass};
+            std::vector<PathState> next;
+            std::vector<V3> dirs;
+            L.rayhit.clear();
+            std::vector<PathState> live;
+            for (PathState& ps : paths) {
+                for (std::size_t c = 0; c < 3; ++c) ps.throughput[c] *= ps.hit.albedo[c];
+                if (!(std::max({ps.throughput[0], ps.throughput[1], ps.throughput[2]}) > 0))
+                    continue;
+                const std::uint64_t h = hash(key, ps.sample, std::uint64_t(k));
+                const Frame<double> f(ps.hit.shading_normal);
+                const V3 d =
+                    f.to_world(square_to_cosine_hemisphere(unit(hash(h, 1)), unit(hash(h, 2))));
+                if (!(dot(d, ps.hit.geometric_normal) > 0)) continue;
+                RTCRayHit r;
+                Scene::set_ray(r, scene_.offset_origin(ps.hit.position, ps.hit.geometric_normal, d),
+                               d);
+                L.rayhit.push_back(r);
+                dirs.push_back(d);
+                live.push_back(ps);
+            }
+            if (lit) direct_lights_at_vertices(live, L, gather);
+            scene_.intersect(L.rayhit.data(), L.rayhit.size());
+            L.rays[pass] += L.rayhit.size();
+            for (std::size_t i = 0; i < live.size(); ++i) {
+                const RTCRayHit& r = L.rayhit[i];
+                const bool esc = r.hit.geomID == RTC_INVALID_GEOMETRY_ID;
+                const V3 o{r.ray.org_x, r.ray.org_y, r.ray.org_z};
+                escape(live[i].sample, dirs[i], live[i].throughput, o,
+                       esc ? std::numeric_limits<double>::infinity() : double(r.ray.tfar));
+                if (!esc && k < bounces_) {
+                    PathState ps = live[i];
+                    ps.hit = scene_.hit(r);
+                    next.push_back(ps);
+                }
+            }
+            paths.swap(next);
+        }
+    }
+
+    /// Next-event estimation of directional lights at path vertices (throughput already
+    /// includes the vertex albedo): T color max(ns.l, 0) / pi when unshadowed.
+    template <class Gather>
+    void direct_lights_at_vertices(const std::vector<PathState>& live, Local& L,
+                                   Gather&& gather) const {
+        using namespace detail::rt;
+        if (!has_directional()) return;
+        Timer t{L, shadow};
+        std::vector<RTCRay> rays;
+        std::vector<std::pair<std::uint32_t, RGB>> contrib;
+        for (const PathState& ps : live)
+            for (const Light& l : lights_) {
+                if (l.type != Light::Type::directional) continue;
+                const double c = dot(ps.hit.shading_normal, l.direction);
+                if (!(c > 0) || !(dot(ps.hit.geometric_normal, l.direction) > 0)) continue;
+                RTCRay r;
+                Scene::set_ray(
+                    r, scene_.offset_origin(ps.hit.position, ps.hit.geometric_normal, l.direction),
+                    l.direction);
+                rays.push_back(r);
+                RGB w;
+                for (std::size_t k = 0; k < 3; ++k)
+                    w[k] = ps.throughput[k] * l.color[k] * c * constants::inv_pi;
+                contrib.push_back({ps.sample, w});
+            }
+        if (!dropped_.count("shadow")) {
+            scene_.occluded(rays.data(), rays.size());
+            L.rays[shadow] += rays.size();
+        }
+        for (std::size_t i = 0; i < rays.size(); ++i)
+            if (!Scene::is_occluded(rays[i])) gather(contrib[i].first, contrib[i].second);
+    }
+
+    /// SH accumulation of weighted directions: out_c[k] = scale * sum_e w_c[e] y_k(d_e) and the
+    /// standard error of the mean of per-sample values (samples without an entry are 0).
+    void accumulate_sh(Local& L, std::size_t m, const std::vector<std::array<double, 3>>& w,
+                       const std::vector<std::uint32_t>& sample, std::size_t nsamples, double scale,
+                       bool rgb, std::array<std::vector<double>, 3>& out,
+                       std::vector<double>* stderr_out) const {
+        const std::size_t K = nsh();
+        for (auto& v : out) v.assign(K, 0.0);
+        if (stderr_out) stderr_out->assign(K, 0.0);
+        if (m == 0) return;
+        L.ysh.resize(K * m);
+        sh::eval_batch(settings_.bands, m, L.xs.data(), L.ys.data(), L.zs.data(), L.ysh.data(), m);
+        const std::size_t nc = rgb ? 3 : 1;
+        // Per-sample totals are needed for the error when a sample has several entries.
+        bool unique = true;
+        for (std::size_t e = 1; e < m && unique; ++e) unique = sample[e] != sample[e - 1];
+        std::vector<double> acc;
+        // Weights per channel, contiguous; sums in 4 independent lanes (a fixed order, so the
+        // result does not depend on threads; the lanes let the loop run at SIMD width instead of
+        // one dependent add chain).
+        std::array<std::vector<double>, 3>& wc = L.wc;
+        for (std::size_t c = 0; c < nc; ++c) {
+            wc[c].resize(m);
+            for (std::size_t e = 0; e < m; ++e) wc[c][e] = w[e][c];
+        }
+        for (std::size_t k = 0; k < K; ++k) {
+            const double* yk = &L.ysh[k * m];
+            for (std::size_t c = 0; c < nc; ++c) {
+                double s = 0, s2 = 0;
+                if (unique || !stderr_out) {
+                    const double* wp = wc[c].data();
+                    double a[4] = {0, 0, 0, 0}, b[4] = {0, 0, 0, 0};
+                    std::size_t e = 0;
+                    for (; e + 4 <= m; e += 4)
+                        for (std::size_t q = 0; q < 4; ++q) {
+                            const double v = wp[e + q] * yk[e + q];
+                            a[q] += v;
+                            b[q] += v * v;
+                        }
+                    for (; e < m; ++e) {
+                        const double v = wp[e] * yk[e];
+                        a[0] += v;
+                        b[0] += v * v;
+                    }
+                    s = (a[0] + a[1]) + (a[2] + a[3]);
+                    s2 = (b[0] + b[1]) + (b[2] + b[3]);
+                } else {
+                    acc.assign(nsamples, 0.0);
+                    for (std::size_t e = 0; e < m; ++e) acc[sample[e]] += wc[c][e] * yk[e];
+                    for (double v : acc) {
+                        s += v;
+                        s2 += v * v;
+                    }
+                }
+                const double N = double(nsamples);
+                const double mean = s / N;
+                out[c][k] = scale * mean;
+                if (stderr_out && nsamples > 1) {
+                    const double var = std::max(0.0, (s2 / N - mean * mean)) * N / (N - 1);
+                    (*stderr_out)[k] = std::max((*stderr_out)[k], scale * std::sqrt(var / N));
+                }
+            }
+            if (!rgb) out[1][k] = out[2][k] = out[0][k];
+        }
+    }
+
+    void push_dir(Local& L, const detail::rt::V3& d) const {
+        L.xs.push_back(d.x);
+        L.ys.push_back(d.y);
+        L.zs.push_back(d.z);
+    }
+    void clear_dirs(Local& L) const {
+        L.xs.clear();
+        L.ys.clear();
+        L.zs.clear();
+    }
+
+    void cosine_pass(const BakePoint& bp, const detail::rt::V3& n, const Frame<double>& f,
+                     std::uint64_t key, double cu, double cv, PointResult& res, Local& L) const {
+        using namespace detail::rt;
+        const std::size_t N = std::size_t(settings_.rays);
+        const bool tr = wants(Quantity::transfer);
+        const double maxd = settings_.max_distance;
+        const bool finite_max = maxd < std::numeric_limits<double>::infinity();
+        const bool use_hits =
+            tr && (bounces_ > 0 || (finite_max && wants(Quantity::ao | Quantity::bent)));
+        const bool run = !dropped_.count("cosine");
+        const V3 o = bp.p + n * scene_.epsilon();
+        std::vector<V3>& dirs = L.dirs;
+        std::vector<char>& vis_ao = L.va;
+        std::vector<char>& vis_tr = L.vt;
+        dirs.resize(N);
+        vis_ao.assign(N, 1);
+        vis_tr.assign(N, 1);
+        std::vector<PathState> paths;
+        {
+            Timer t{L, cosine};
+            qmc_.directions(Warp::cosine, f, cu, cv, dirs.data());
+            if (run && use_hits) {
+                L.rayhit.resize(N);
+                for (std::size_t j = 0; j < N; ++j) Scene::set_ray(L.rayhit[j], o, dirs[j]);
+                scene_.intersect(L.rayhit.data(), N);
+                for (std::size_t j = 0; j < N; ++j) {
+                    const RTCRayHit& r = L.rayhit[j];
+                    if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+                    vis_tr[j] = 0;
+                    vis_ao[j] = r.ray.tfar > maxd;
+                    if (bounces_ > 0)
+                        paths.push_back({std::uint32_t(j), RGB{1, 1, 1}, scene_.hit(r)});
+                }
+            } else if (run) {
+                L.ray.resize(N);
+                const double tfar = tr ? std::numeric_limits<double>::infinity() : maxd;
+                for (std::size_t j = 0; j < N; ++j) Scene::set_ray(L.ray[j], o, dirs[j], 0, tfar);
+                scene_.occluded(L.ray.data(), N);
+                for (std::size_t j = 0; j < N; ++j)
+                    if (Scene::is_occluded(L.ray[j])) vis_ao[j] = vis_tr[j] = 0;
+            }
+            if (run) L.rays[cosine] += N;
+            if (wants(Quantity::ao | Quantity::bent)) ao_bent(N, dirs, vis_ao, n, res);
+        }
+        if (!tr) return;
+        transfer_part(N, dirs, vis_tr, paths, key, res, L);
+    }
+
+    void ao_bent(std::size_t N, const std::vector<detail::rt::V3>& dirs,
+                 const std::vector<char>& vis_ao, const detail::rt::V3& n, PointResult& res) const {
+        using namespace detail::rt;
+        {
+            double s = 0;
+            V3 b{0, 0, 0};
+            for (std::size_t j = 0; j < N; ++j)
+                if (vis_ao[j]) {
+                    s += 1;
+                    b = b + dirs[j];
+                }
+            if (wants(Quantity::ao)) {
+                res.ao = s / double(N);
+                res.ao_stderr = N > 1 ? std::sqrt(res.ao * (1 - res.ao) / double(N - 1)) : 0;
+            }
+            if (wants(Quantity::bent)) res.bent = normalized(b, n);
+        }
+    }
+
+    void transfer_part(std::size_t N, const std::vector<detail::rt::V3>& dirs,
+                       const std::vector<char>& vis_tr, std::vector<PathState>& paths,
+                       std::uint64_t key, PointResult& res, Local& L) const {
+        using namespace detail::rt;
+        // Transfer: entries (sample, direction, weight) for direct escapes, then bounces.
+        clear_dirs(L);
+        std::vector<std::array<double, 3>>& w = L.entry_w;
+        std::vector<std::uint32_t>& smp = L.entry_sample;
+        w.clear();
+        smp.clear();
+        for (std::size_t j = 0; j < N; ++j)
+            if (vis_tr[j]) {
+                push_dir(L, dirs[j]);
+                w.push_back({1, 1, 1});
+                smp.push_back(std::uint32_t(j));
+            }
+        continue_paths(
+            paths, hash(key, 0x7472ull), false, L,
+            [&](std::uint32_t sample, const V3& d, const RGB& T, const V3&, double tmax) {
+                if (tmax < std::numeric_limits<double>::infinity()) return;
+                push_dir(L, d);
+                w.push_back({T[0], T[1], T[2]});
+                smp.push_back(sample);
+            },
+            [](std::uint32_t, const RGB&) {});
+        // Entries must be grouped by sample for the error: sort by sample (stable).
+        sort_entries(L, w, smp);
+        bool rgb = false;
+        for (const auto& x : w) rgb = rgb || x[0] != x[1] || x[1] != x[2];
+        accumulate_sh(L, smp.size(), w, smp, N, 1.0, rgb, res.transfer, &res.transfer_stderr);
+        res.transfer_rgb = rgb;
+    }
+
+    void sort_entries(Local& L, std::vector<std::array<double, 3>>& w,
+                      std::vector<std::uint32_t>& smp) const {
+        if (std::is_sorted(smp.begin(), smp.end())) return;
+        std::vector<std::size_t> idx(smp.size());
+        std::iota(idx.begin(), idx.end(), std::size_t(0));
+        std::stable_sort(idx.begin(), idx.end(),
+                         [&](std::size_t a, std::size_t b) { return smp[a] < smp[b]; });
+        auto perm = [&](auto& v) {
+            auto c = v;
+            for (std::size_t i = 0; i < idx.size(); ++i) v[i] = c[idx[i]];
+        };
+        perm(w);
+        perm(smp);
+        perm(L.xs);
+        perm(L.ys);
+        perm(L.zs);
+    }
+
+    /// Shadow rays toward directional lights from o; returns (light, visible) pairs.
+    std::vector<std::pair<const Light*, bool>> directional_visibility(const detail::rt::V3& o,
+                                                                      const detail::rt::V3* n,
+                                                                      Local& L) const {
+        using namespace detail::rt;
+        std::vector<std::pair<const Light*, bool>> out;
+        std::vector<RTCRay> rays;
+        for (const Light& l : lights_) {
+            if (l.type != Light::Type::directional) continue;
+            if (n && !(dot(*n, l.direction) > 0)) continue;
+            RTCRay r;
+            Scene::set_ray(r, o, l.direction);
+            rays.push_back(r);
+            out.push_back({&l, true});
+        }
+        if (rays.empty()) return out;
+        if (!dropped_.count("shadow")) {
+            Timer t{L, shadow};
+            scene_.occluded(rays.data(), rays.size());
+            L.rays[shadow] += rays.size();
+        }
+        for (std::size_t i = 0; i < rays.size(); ++i) out[i].second = !Scene::is_occluded(rays[i]);
+        return out;
+    }
+
+    /// Incoming radiance samples L_j along traced rays (sky, lights, bounces with NEE).
+    void radiance_samples(const detail::rt::V3& o, const std::vector<detail::rt::V3>& dirs,
+                          std::uint64_t key, std::size_t pass, bool run, std::vector<RGB>& Ls,
+                          std::size_t* back, std::vector<char>* vis, Local& L) const {
+        using namespace detail::rt;
+        const std::size_t N = dirs.size();
+        Ls.assign(N, RGB{0, 0, 0});
+        std::vector<PathState> paths;
+        {
+            Timer t{L, pass};
+            L.rayhit.resize(N);
+            for (std::size_t j = 0; j < N; ++j) Scene::set_ray(L.rayhit[j], o, dirs[j]);
+            if (run) {
+                scene_.intersect(L.rayhit.data(), N);
+                L.rays[pass] += N;
+            }
+            for (std::size_t j = 0; j < N; ++j) {
+                const RTCRayHit& r = L.rayhit[j];
+                const bool esc = r.hit.geomID == RTC_INVALID_GEOMETRY_ID;
+                if (vis) (*vis)[j] = esc;
+                Ls[j] = sky(o, dirs[j],
+                            esc ? std::numeric_limits<double>::infinity() : double(r.ray.tfar));
+                if (esc) continue;
+                const Hit h = scene_.hit(r);
+                if (back && h.back_face) ++*back;
+                if (bounces_ > 0) paths.push_back({std::uint32_t(j), RGB{1, 1, 1}, h});
+            }
+        }
+        auto gather = [&](std::uint32_t s, const RGB& c) {
+            for (std::size_t k = 0; k < 3; ++k) Ls[s][k] += c[k];
+        };
+        continue_paths(
+            paths, hash(key, 0x6972ull), true, L,
+            [&](std::uint32_t s, const V3& d, const RGB& T, const V3& org, double tmax) {
+                const RGB c = sky(org, d, tmax);
+                for (std::size_t k = 0; k < 3; ++k) Ls[s][k] += T[k] * c[k];
+            },
+            gather);
+    }
+
+    void hemisphere_pass(const BakePoint& bp, const detail::rt::V3& n, const Frame<double>& f,
+                         std::uint64_t key, double cu, double cv, PointResult& res,
+                         Local& L) const {
+        using namespace detail::rt;
+        const std::size_t N = std::size_t(settings_.rays);
+        const bool run = !dropped_.count("hemisphere");
+        const V3 o = bp.p + n * scene_.epsilon();
+        std::vector<V3> dirs(N), local(N);
+        qmc_.directions(Warp::uniform_hemisphere, f, cu, cv, dirs.data());
+        for (std::size_t j = 0; j < N; ++j) local[j] = f.to_local(dirs[j]);
+        std::vector<char> vis(N, 1);
+        std::vector<RGB> Ls;
+        if (wants(Quantity::irradiance)) {
+            radiance_samples(o, dirs, hash(key, 3), hemisphere, run, Ls, nullptr, &vis, L);
+        } else if (run) {
+            Timer t{L, hemisphere};
+            L.ray.resize(N);
+            for (std::size_t j = 0; j < N; ++j) Scene::set_ray(L.ray[j], o, dirs[j]);
+            scene_.occluded(L.ray.data(), N);
+            L.rays[hemisphere] += N;
+            for (std::size_t j = 0; j < N; ++j) vis[j] = !Scene::is_occluded(L.ray[j]);
+        }
+        Timer t{L, hemisphere};
+        if (wants(Quantity::visibility)) {
+            clear_dirs(L);
+            std::vector<std::array<double, 3>> w;
+            std::vector<std::uint32_t> smp;
+            for (std::size_t j = 0; j < N; ++j)
+                if (vis[j]) {
+                    push_dir(L, dirs[j]);
+                    w.push_back({1, 1, 1});
+                    smp.push_back(std::uint32_t(j));
+                }
+            std::array<std::vector<double>, 3> v3;
+            accumulate_sh(L, smp.size(), w, smp, N, constants::two_pi, false, v3,
+                          &res.visibility_stderr);
+            res.visibility = v3[0];
+        }
+        if (wants(Quantity::irradiance)) {
+            const std::size_t n8 = std::size_t(irr_bands * irr_bands);
+            std::array<std::vector<double>, 3> Llm;
+            for (auto& v : Llm) v.assign(n8, 0.0);
+            std::vector<double> yy(n8);
+            for (std::size_t j = 0; j < N; ++j) {
+                if (Ls[j][0] == 0 && Ls[j][1] == 0 && Ls[j][2] == 0) continue;
+                sh::eval_unit(irr_bands, local[j].x, local[j].y, local[j].z, yy.data());
+                for (std::size_t c = 0; c < 3; ++c)
+                    for (std::size_t k = 0; k < n8; ++k) Llm[c][k] += Ls[j][c] * yy[k];
+            }
+            for (auto& v : Llm)
+                for (double& x : v) x *= constants::two_pi / double(N);
+            std::vector<std::pair<V3, RGB>> dl;
+            for (const auto& [light, visible] : directional_visibility(o, &n, L))
+                if (visible) dl.push_back({f.to_local(light->direction), light->color});
+            finish_irradiance(Llm, dl, res);
+        }
+    }
+
+    void sphere_pass(const BakePoint& bp, const detail::rt::V3& n, std::uint64_t key, double cu,
+                     double cv, PointResult& res, Local& L) const {
+        using namespace detail::rt;
+        const std::size_t N = std::size_t(settings_.rays);
+        const bool run = !dropped_.count("sphere");
+        const V3 o = bp.p + n * scene_.epsilon();
+        std::vector<V3> dirs(N);
+        qmc_.directions(Warp::uniform_sphere, Frame<double>(), cu, cv, dirs.data());
+        std::vector<RGB> Ls;
+        std::size_t back = 0;
+        radiance_samples(o, dirs, hash(key, 5), sphere, run, Ls, &back, nullptr, L);
+        Timer t{L, sphere};
+        res.inside = 2 * back > N;
+        clear_dirs(L);
+        std::vector<std::array<double, 3>> w;
+        std::vector<std::uint32_t> smp;
+        for (std::size_t j = 0; j < N; ++j)
+            if (Ls[j][0] != 0 || Ls[j][1] != 0 || Ls[j][2] != 0) {
+                push_dir(L, dirs[j]);
+                w.push_back(Ls[j]);
+                smp.push_back(std::uint32_t(j));
+            }
+        accumulate_sh(L, smp.size(), w, smp, N, constants::four_pi, true, res.radiance, nullptr);
+        std::vector<double> y(nsh());
+        for (const auto& [light, visible] : directional_visibility(o, nullptr, L)) {
+            if (!visible) continue;
+            sh::eval_unit(settings_.bands, light->direction.x, light->direction.y,
+                          light->direction.z, y.data());
+            for (std::size_t c = 0; c < 3; ++c)
+                for (std::size_t k = 0; k < nsh(); ++k)
+                    res.radiance[c][k] += light->color[c] * y[k];
+        }
+    }
+
     BakeSettings settings_;
+    double build_seconds_ = 0;
+    Scene scene_;
+    Environment env_;
+    std::vector<Light> lights_;
     std::vector<Pass> plan_;
+    std::unique_ptr<Stat[]> stats_;
+    std::mutex mutex_;
+    std::set<std::string> dropped_;
+    double hit_fraction_ = 0;
+    int bounces_ = 0;
+    DirectionalRule irr_rule_, hemi_rule_, sphere_rule_;
+    std::shared_ptr<const LeastSquares> irr_fit_;
+    Eigen::MatrixXd irr_map_;
+    detail::rt::QmcTable qmc_;
 };
 
 }  // namespace sphbasis::render

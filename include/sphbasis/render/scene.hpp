@@ -1,0 +1,569 @@
+// sphbasis render tier: a ray-tracing scene built from mesh arrays (an RAII wrapper of Embree 3).
+//
+// render::Scene copies the positions and indices of a list of MeshView into Embree triangle
+// geometries (one geometry per mesh, geometry ID = mesh index) and keeps its own copies of the
+// normals and UVs it needs for hit records, so the MeshView arrays may be freed after
+// construction (the albedo_map texels stay borrowed). Queries are batched: occluded() and
+// intersect() take arrays of Embree rays and trace them as ray streams (rtcOccluded1M,
+// rtcIntersect1M); hit() turns an Embree hit into a Hit record.
+//
+// Validation (std::invalid_argument, "sphbasis::render::Scene(): expected ..."): null position
+// or index arrays with a non-zero count, non-finite positions, normals or UVs, indices out of
+// range, albedo outside [0, 1], an albedo map with a null buffer, a bad size or a channel count
+// other than 1, 3 or 4. Degenerate triangles (repeated indices, or twice the area below 1e-12
+// times the longest squared edge) are skipped, not an error: Embree would never report a hit on
+// them and no normal is defined; degenerate_triangles() counts them.
+//
+// Self-intersection: a ray leaving a surface starts at offset_origin(p, ng, d), p moved along the
+// geometric normal (to the side d leaves through) by epsilon() = 1e-5 * extent + 2^-14 * max|c|,
+// extent the diagonal of the scene's bounding box and max|c| its largest coordinate magnitude:
+// the first term covers the BVH's and the hit point's relative error, the second the absolute
+// float rounding of coordinates far from the origin (2^-14 is ~500 float ulps of max|c|). The
+// offset shifts a surface point by a relative 1e-5 of the scene, far below the bake's errors.
+//
+// can_occlude(): false only when the scene cannot occlude any point on its own surface from the
+// directions above that point's tangent plane. Detected: no triangles at all, or exactly one mesh
+// with triangles that is closed (every edge, after welding vertices at equal positions, shared by
+// exactly two triangles traversing it in opposite directions), connected, and convex (at every
+// edge the far vertex of one triangle lies on the inner side of the other's plane, within 1e-7
+// times the extent; all dihedrals convex for one orientation). A connected closed surface that
+// is convex at every edge bounds a convex body. Cost: O(triangles) hash-map work, once.
+// unoccluded(p, n) then confirms a given point: every vertex lies on or below p's tangent plane
+// (within 0.02 of its distance, about 1.1 degrees: occlusion within that band of the horizon
+// weighs under 4e-4 of the cosine-weighted hemisphere), O(vertices) per point.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "../core/error.hpp"
+#include "../core/vec.hpp"
+#include "detail/rt_math.hpp"
+#include "mesh.hpp"
+
+namespace sphbasis::render {
+
+/// What a ray hit. Barycentrics: position = (1 - u - v) p0 + u p1 + v p2 of the mesh's
+/// triangle `primitive` (index into the mesh's own triangle list, degenerate ones included).
+struct Hit {
+    bool valid = false;
+    std::uint32_t mesh = 0, primitive = 0;
+    double t = 0, u = 0, v = 0;
+    vec3<double> position{0, 0, 0};
+    /// Unit geometric normal, flipped to face the ray (dot(geometric_normal, d) <= 0).
+    vec3<double> geometric_normal{0, 0, 1};
+    /// Unit interpolated shading normal (geometric without normals), flipped with the geometric
+    /// normal (meshes are two-sided).
+    vec3<double> shading_normal{0, 0, 1};
+    /// The ray arrived at the back: the side opposite the counter-clockwise normal
+    /// (p1 - p0) x (p2 - p0).
+    bool back_face = false;
+    /// Mesh albedo times the albedo map at the interpolated UV (bilinear, wrapping), per channel.
+    std::array<double, 3> albedo{0, 0, 0};
+};
+
+class Scene {
+  public:
+    /// Builds the Embree scene (validation and degenerate triangles: header comment).
+    explicit Scene(const std::vector<MeshView>& meshes) {
+        meshes_.resize(meshes.size());
+        for (std::size_t m = 0; m < meshes.size(); ++m) copy_mesh(m, meshes[m]);
+        bounds();
+        device_ = rtcNewDevice(nullptr);
+        if (!device_)
+            sphbasis::detail::throw_runtime("render::Scene",
+                                            "an Embree device, got rtcNewDevice() failing");
+        scene_ = rtcNewScene(device_);
+        rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+        for (std::size_t m = 0; m < meshes_.size(); ++m) attach(m);
+        rtcCommitScene(scene_);
+        if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) {
+            release();
+            sphbasis::detail::throw_runtime("render::Scene",
+                                            "an Embree scene, got an error building it");
+        }
+        analyse_convexity();
+    }
+    Scene(const Scene&) = delete;
+    Scene& operator=(const Scene&) = delete;
+    Scene(Scene&& o) noexcept { swap(o); }
+    Scene& operator=(Scene&& o) noexcept {
+        if (this != &o) {
+            release();
+            swap(o);
+        }
+        return *this;
+    }
+    ~Scene() { release(); }
+
+    /// The Embree scene (for callers tracing their own rays).
+    RTCScene handle() const noexcept { return scene_; }
+    std::size_t mesh_count() const noexcept { return meshes_.size(); }
+    std::size_t triangle_count() const noexcept { return triangles_; }
+    std::size_t degenerate_triangles() const noexcept { return degenerate_; }
+    /// Diagonal of the bounding box (0 for an empty scene) and the largest |coordinate|.
+    double extent() const noexcept { return extent_; }
+    double max_coordinate() const noexcept { return max_abs_; }
+    vec3<double> bounds_min() const noexcept { return lo_; }
+    vec3<double> bounds_max() const noexcept { return hi_; }
+    /// The self-intersection offset (header comment).
+    double epsilon() const noexcept { return 1e-5 * extent_ + 0x1p-14 * max_abs_; }
+    /// p moved by epsilon() along the geometric normal ng (unit) to the side direction d leaves.
+    vec3<double> offset_origin(const vec3<double>& p, const vec3<double>& ng,
+                               const vec3<double>& d) const noexcept {
+        const double e = dot(ng, d) >= 0 ? epsilon() : -epsilon();
+        return {p.x + e * ng.x, p.y + e * ng.y, p.z + e * ng.z};
+    }
+    /// The largest albedo channel over meshes (albedo maps counted at their maximum texel).
+    double max_albedo() const noexcept { return max_albedo_; }
+    /// Whether some albedo channel differs between meshes' channels (RGB transfer needed).
+    bool albedo_chromatic() const noexcept { return chromatic_; }
+
+    /// Whether the scene can occlude points on its own surface (header comment).
+    bool can_occlude() const noexcept { return can_occlude_; }
+    /// Why can_occlude() has its value, in one sentence.
+    const std::string& occlusion_reason() const noexcept { return occlusion_reason_; }
+    /// Whether nothing can occlude the hemisphere of unit normal n at p: !can_occlude() and
+    /// every vertex on or below p's tangent plane (header comment). O(vertices).
+    bool unoccluded(const vec3<double>& p, const vec3<double>& n) const noexcept {
+        if (can_occlude_) return false;
+        for (const auto& mesh : meshes_) {
+            const std::size_t nv = mesh.positions.size() / 3;
+            for (std::size_t i = 0; i < nv; ++i) {
+                const vec3<double> d{mesh.positions[3 * i] - p.x, mesh.positions[3 * i + 1] - p.y,
+                                     mesh.positions[3 * i + 2] - p.z};
+                const double h = dot(n, d);
+                if (h > 0.02 * std::sqrt(dot(d, d)) + epsilon()) return false;
+            }
+        }
+        return true;
+    }
+
+    /// Fills an Embree ray (mask all ones, time 0).
+    static void set_ray(RTCRay& r, const vec3<double>& o, const vec3<double>& d, double tnear = 0,
+                        double tfar = std::numeric_limits<double>::infinity()) noexcept {
+        r.org_x = static_cast<float>(o.x);
+        r.org_y = static_cast<float>(o.y);
+        r.org_z = static_cast<float>(o.z);
+        r.dir_x = static_cast<float>(d.x);
+        r.dir_y = static_cast<float>(d.y);
+        r.dir_z = static_cast<float>(d.z);
+        r.tnear = static_cast<float>(tnear);
+        r.tfar = tfar > 3e38 ? std::numeric_limits<float>::infinity() : static_cast<float>(tfar);
+        r.time = 0;
+        r.mask = 0xFFFFFFFFu;
+        r.id = 0;
+        r.flags = 0;
+    }
+    static void set_ray(RTCRayHit& r, const vec3<double>& o, const vec3<double>& d,
+                        double tnear = 0,
+                        double tfar = std::numeric_limits<double>::infinity()) noexcept {
+        set_ray(r.ray, o, d, tnear, tfar);
+        r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        r.hit.primID = RTC_INVALID_GEOMETRY_ID;
+        r.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
+    /// Occlusion of n rays as one stream: an occluded ray's tfar becomes -inf.
+    void occluded(RTCRay* rays, std::size_t n) const {
+        if (n == 0) return;
+        sphbasis::detail::check_buffer("render::Scene::occluded", "rays", rays, n);
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        for (std::size_t i = 0; i < n; i += chunk) {
+            const auto m = static_cast<unsigned>(std::min(chunk, n - i));
+            rtcOccluded1M(scene_, &ctx, rays + i, m, sizeof(RTCRay));
+        }
+    }
+    static bool is_occluded(const RTCRay& r) noexcept { return !(r.tfar >= 0); }
+    /// Closest hits of n rays as one stream (hit.geomID stays RTC_INVALID_GEOMETRY_ID on a miss).
+    void intersect(RTCRayHit* rays, std::size_t n) const {
+        if (n == 0) return;
+        sphbasis::detail::check_buffer("render::Scene::intersect", "rays", rays, n);
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        for (std::size_t i = 0; i < n; i += chunk) {
+            const auto m = static_cast<unsigned>(std::min(chunk, n - i));
+            rtcIntersect1M(scene_, &ctx, rays + i, m, sizeof(RTCRayHit));
+        }
+    }
+    /// One ray (convenience for tests and tools; the bake uses the streams).
+    Hit intersect(const vec3<double>& o, const vec3<double>& d,
+                  double tfar = std::numeric_limits<double>::infinity()) const {
+        RTCRayHit r;
+        set_ray(r, o, d, 0, tfar);
+        intersect(&r, 1);
+        return hit(r);
+    }
+    bool occluded(const vec3<double>& o, const vec3<double>& d,
+                  double tfar = std::numeric_limits<double>::infinity()) const {
+        RTCRay r;
+        set_ray(r, o, d, 0, tfar);
+        occluded(&r, 1);
+        return is_occluded(r);
+    }
+
+    /// The hit record of a traced ray (valid = false on a miss).
+    Hit hit(const RTCRayHit& r) const noexcept {
+        Hit h;
+        if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID || r.hit.geomID >= meshes_.size()) return h;
+        const MeshData& m = meshes_[r.hit.geomID];
+        if (r.hit.primID >= m.prim.size()) return h;
+        using namespace detail::rt;
+        h.valid = true;
+        h.mesh = r.hit.geomID;
+        h.primitive = m.prim[r.hit.primID];
+        h.t = r.ray.tfar;
+        h.u = r.hit.u;
+        h.v = r.hit.v;
+        const std::uint32_t* tri = &m.indices[3 * std::size_t(r.hit.primID)];
+        const double w0 = 1 - h.u - h.v, w1 = h.u, w2 = h.v;
+        const V3 p0 = m.pos(tri[0]), p1 = m.pos(tri[1]), p2 = m.pos(tri[2]);
+        h.position = p0 * w0 + p1 * w1 + p2 * w2;
+        const V3 d{r.ray.dir_x, r.ray.dir_y, r.ray.dir_z};
+        V3 ng = normalized(cross(p1 - p0, p2 - p0));
+        h.back_face = dot(ng, d) > 0;
+        if (h.back_face) ng = -ng;
+        h.geometric_normal = ng;
+        if (!m.normals.empty()) {
+            const V3 ns = m.nrm(tri[0]) * w0 + m.nrm(tri[1]) * w1 + m.nrm(tri[2]) * w2;
+            h.shading_normal = normalized(h.back_face ? -ns : ns, ng);
+        } else {
+            h.shading_normal = ng;
+        }
+        h.albedo = {m.albedo[0], m.albedo[1], m.albedo[2]};
+        if (m.map.texels && !m.uvs.empty()) {
+            const std::size_t a = tri[0], b = tri[1], c = tri[2];
+            const double tu = m.uvs[2 * a] * w0 + m.uvs[2 * b] * w1 + m.uvs[2 * c] * w2;
+            const double tv = m.uvs[2 * a + 1] * w0 + m.uvs[2 * b + 1] * w1 + m.uvs[2 * c + 1] * w2;
+            const auto t = texture(m.map, tu, tv);
+            for (int k = 0; k < 3; ++k) h.albedo[std::size_t(k)] *= t[std::size_t(k)];
+        }
+        return h;
+    }
+
+    /// Bilinear lookup of a texture at uv, wrapping (texel (0, 0) at uv (0, 1): mesh.hpp).
+    static std::array<double, 3> texture(const TextureView& tex, double u, double v) noexcept {
+        std::array<double, 3> out{1, 1, 1};
+        if (!tex.texels || tex.width <= 0 || tex.height <= 0 || !std::isfinite(u) ||
+            !std::isfinite(v))
+            return out;
+        const double x = (u - std::floor(u)) * tex.width - 0.5;
+        const double y = ((1 - v) - std::floor(1 - v)) * tex.height - 0.5;
+        const double fx = std::floor(x), fy = std::floor(y);
+        const double ax = x - fx, ay = y - fy;
+        auto wrap = [](long i, int n) { return static_cast<std::size_t>(((i % n) + n) % n); };
+        const long ix = static_cast<long>(fx), iy = static_cast<long>(fy);
+        const std::size_t x0 = wrap(ix, tex.width), x1 = wrap(ix + 1, tex.width);
+        const std::size_t y0 = wrap(iy, tex.height), y1 = wrap(iy + 1, tex.height);
+        const std::size_t w = static_cast<std::size_t>(tex.width);
+        const std::size_t ch = static_cast<std::size_t>(tex.channels);
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::size_t kk = ch == 1 ? 0 : k;
+            auto at = [&](std::size_t xx, std::size_t yy) {
+                return static_cast<double>(tex.texels[(yy * w + xx) * ch + kk]);
+            };
+            out[k] = (1 - ay) * ((1 - ax) * at(x0, y0) + ax * at(x1, y0)) +
+                     ay * ((1 - ax) * at(x0, y1) + ax * at(x1, y1));
+        }
+        return out;
+    }
+
+  private:
+    static constexpr std::size_t chunk = 1024;
+
+    struct MeshData {
+        std::vector<float> positions, normals, uvs;
+        std::vector<std::uint32_t> indices;  // kept (non-degenerate) triangles
+        std::vector<std::uint32_t> prim;     // kept triangle -> original triangle
+        std::array<double, 3> albedo{0, 0, 0};
+        TextureView map{};
+        detail::rt::V3 pos(std::uint32_t i) const noexcept {
+            return {positions[3 * std::size_t(i)], positions[3 * std::size_t(i) + 1],
+                    positions[3 * std::size_t(i) + 2]};
+        }
+        detail::rt::V3 nrm(std::uint32_t i) const noexcept {
+            return {normals[3 * std::size_t(i)], normals[3 * std::size_t(i) + 1],
+                    normals[3 * std::size_t(i) + 2]};
+        }
+    };
+
+    [[noreturn]] static void bad(std::size_t m, const std::string& what) {
+        sphbasis::detail::throw_invalid("render::Scene",
+                                        what + " (mesh " + std::to_string(m) + ")");
+    }
+    static bool all_finite(const float* p, std::size_t n) noexcept {
+        for (std::size_t i = 0; i < n; ++i)
+            if (!std::isfinite(p[i])) return false;
+        return true;
+    }
+
+    void copy_mesh(std::size_t m, const MeshView& v) {
+        const char* fn = "render::Scene";
+        sphbasis::detail::check_buffer(fn, "positions", v.positions, v.vertex_count);
+        sphbasis::detail::check_buffer(fn, "indices", v.indices, v.triangle_count);
+        if (v.vertex_count > std::size_t(std::numeric_limits<std::uint32_t>::max()))
+            bad(m, "fewer than 2^32 vertices, got " + std::to_string(v.vertex_count));
+        MeshData& d = meshes_[m];
+        const std::size_t nv = v.vertex_count;
+        if (nv) d.positions.assign(v.positions, v.positions + 3 * nv);
+        if (!all_finite(d.positions.data(), d.positions.size()))
+            bad(m, "finite vertex positions, got a NaN or an infinity");
+        if (v.normals && nv) {
+            d.normals.assign(v.normals, v.normals + 3 * nv);
+            if (!all_finite(d.normals.data(), d.normals.size()))
+                bad(m, "finite normals, got a NaN or an infinity");
+        }
+        if (v.uvs && nv) {
+            d.uvs.assign(v.uvs, v.uvs + 2 * nv);
+            if (!all_finite(d.uvs.data(), d.uvs.size()))
+                bad(m, "finite UVs, got a NaN or an infinity");
+        }
+        for (std::size_t k = 0; k < 3; ++k) {
+            const double a = v.albedo[k];
+            if (!(a >= 0 && a <= 1)) bad(m, "albedo in [0, 1], got " + std::to_string(a));
+            d.albedo[k] = a;
+        }
+        double map_max = 1;
+        const TextureView& t = v.albedo_map;
+        if (t.texels || t.width || t.height) {
+            if (!t.texels || t.width <= 0 || t.height <= 0 ||
+                !(t.channels == 1 || t.channels == 3 || t.channels == 4))
+                bad(m, "an albedo map with texels, width, height > 0 and 1, 3 or 4 channels, got " +
+                           std::to_string(t.width) + "x" + std::to_string(t.height) + "x" +
+                           std::to_string(t.channels) + (t.texels ? "" : " without texels"));
+            map_max = 0;
+            const std::size_t n = std::size_t(t.width) * std::size_t(t.height);
+            const std::size_t ch = std::size_t(t.channels);
+            for (std::size_t i = 0; i < n; ++i)
+                for (std::size_t k = 0; k < std::min<std::size_t>(ch, 3); ++k) {
+                    const double x = t.texels[i * ch + k];
+                    if (!(x >= 0 && x <= 1))
+                        bad(m, "albedo map texels in [0, 1], got " + std::to_string(x));
+                    map_max = std::max(map_max, x);
+                }
+            d.map = t;
+        }
+        for (std::size_t k = 0; k < 3; ++k)
+            max_albedo_ = std::max(max_albedo_, d.albedo[k] * map_max);
+        if (d.albedo[0] != d.albedo[1] || d.albedo[1] != d.albedo[2] ||
+            (d.map.texels && d.map.channels != 1))
+            chromatic_ = true;
+        d.indices.reserve(3 * v.triangle_count);
+        for (std::size_t f = 0; f < v.triangle_count; ++f) {
+            const std::uint32_t a = v.indices[3 * f], b = v.indices[3 * f + 1],
+                                c = v.indices[3 * f + 2];
+            if (a >= nv || b >= nv || c >= nv)
+                bad(m, "indices < vertex_count = " + std::to_string(nv) + ", got triangle " +
+                           std::to_string(f) + " = (" + std::to_string(a) + ", " +
+                           std::to_string(b) + ", " + std::to_string(c) + ")");
+            using namespace detail::rt;
+            const V3 p0 = d.pos(a), p1 = d.pos(b), p2 = d.pos(c);
+            const V3 c2 = cross(p1 - p0, p2 - p0);
+            const double e =
+                std::max({dot(p1 - p0, p1 - p0), dot(p2 - p1, p2 - p1), dot(p0 - p2, p0 - p2)});
+            if (a == b || b == c || a == c || !(std::sqrt(dot(c2, c2)) > 1e-12 * e)) {
+                ++degenerate_;
+                continue;
+            }
+            d.indices.insert(d.indices.end(), {a, b, c});
+            d.prim.push_back(static_cast<std::uint32_t>(f));
+        }
+        triangles_ += d.prim.size();
+    }
+
+    void bounds() {
+        const double inf = std::numeric_limits<double>::infinity();
+        lo_ = {inf, inf, inf};
+        hi_ = {-inf, -inf, -inf};
+        bool any = false;
+        for (const auto& m : meshes_)
+            for (std::uint32_t i : m.indices) {
+                const auto p = m.pos(i);
+                lo_ = {std::min(lo_.x, p.x), std::min(lo_.y, p.y), std::min(lo_.z, p.z)};
+                hi_ = {std::max(hi_.x, p.x), std::max(hi_.y, p.y), std::max(hi_.z, p.z)};
+                any = true;
+            }
+        if (!any) {
+            lo_ = hi_ = {0, 0, 0};
+            return;
+        }
+        using namespace detail::rt;
+        extent_ = length(hi_ - lo_);
+        max_abs_ = std::max({std::fabs(lo_.x), std::fabs(lo_.y), std::fabs(lo_.z), std::fabs(hi_.x),
+                             std::fabs(hi_.y), std::fabs(hi_.z)});
+    }
+
+    void attach(std::size_t m) {
+        const MeshData& d = meshes_[m];
+        if (d.prim.empty()) return;
+        RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+        const std::size_t nv = d.positions.size() / 3;
+        auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
+            g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
+        auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+            g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), d.prim.size()));
+        if (!vb || !ib) {
+            rtcReleaseGeometry(g);
+            release();
+            sphbasis::detail::throw_runtime("render::Scene", "Embree geometry buffers, got none");
+        }
+        std::memcpy(vb, d.positions.data(), d.positions.size() * sizeof(float));
+        std::memcpy(ib, d.indices.data(), d.indices.size() * sizeof(unsigned));
+        rtcCommitGeometry(g);
+        rtcAttachGeometryByID(scene_, g, static_cast<unsigned>(m));
+        rtcReleaseGeometry(g);
+    }
+
+    void analyse_convexity() {
+        std::size_t with = 0, which = 0;
+        for (std::size_t m = 0; m < meshes_.size(); ++m)
+            if (!meshes_[m].prim.empty()) {
+                ++with;
+                which = m;
+            }
+        if (with == 0) {
+            can_occlude_ = false;
+            occlusion_reason_ = "the scene has no triangles";
+            return;
+        }
+        can_occlude_ = true;
+        if (with > 1) {
+            occlusion_reason_ = "the scene has " + std::to_string(with) + " meshes";
+            return;
+        }
+        const MeshData& d = meshes_[which];
+        // Weld vertices at bit-equal positions (UV seams split vertices).
+        struct Key {
+            float x, y, z;
+            bool operator==(const Key& o) const noexcept {
+                return x == o.x && y == o.y && z == o.z;
+            }
+        };
+        struct KeyHash {
+            std::size_t operator()(const Key& k) const noexcept {
+                std::uint32_t a, b, c;
+                const float x = k.x + 0.0f, y = k.y + 0.0f, z = k.z + 0.0f;  // -0 == +0
+                std::memcpy(&a, &x, 4);
+                std::memcpy(&b, &y, 4);
+                std::memcpy(&c, &z, 4);
+                return static_cast<std::size_t>(detail::rt::hash(a, b, c));
+            }
+        };
+        const std::size_t nv = d.positions.size() / 3, nf = d.prim.size();
+        std::unordered_map<Key, std::uint32_t, KeyHash> weld;
+        std::vector<std::uint32_t> id(nv);
+        for (std::size_t i = 0; i < nv; ++i) {
+            const Key k{d.positions[3 * i], d.positions[3 * i + 1], d.positions[3 * i + 2]};
+            id[i] = weld.emplace(k, static_cast<std::uint32_t>(weld.size())).first->second;
+        }
+        // Directed edges: (a, b) -> triangle; each undirected edge must appear once each way.
+        std::unordered_map<std::uint64_t, std::uint32_t> directed;
+        directed.reserve(3 * nf);
+        auto key = [](std::uint32_t a, std::uint32_t b) { return (std::uint64_t(a) << 32) | b; };
+        for (std::size_t f = 0; f < nf; ++f)
+            for (int e = 0; e < 3; ++e) {
+                const std::uint32_t a = id[d.indices[3 * f + std::size_t(e)]];
+                const std::uint32_t b = id[d.indices[3 * f + std::size_t((e + 1) % 3)]];
+                if (a == b || !directed.emplace(key(a, b), std::uint32_t(f)).second) {
+                    occlusion_reason_ = "the mesh is not a closed, consistently oriented manifold";
+                    return;
+                }
+            }
+        std::vector<std::uint32_t> parent(nf);
+        std::iota(parent.begin(), parent.end(), 0u);
+        auto find = [&](std::uint32_t x) {
+            while (parent[x] != x) x = parent[x] = parent[parent[x]];
+            return x;
+        };
+        using namespace detail::rt;
+        const double tol = 1e-7 * extent_ + epsilon() * 1e-3;
+        int sign = 0;
+        for (const auto& [k, f] : directed) {
+            const std::uint32_t a = std::uint32_t(k >> 32), b = std::uint32_t(k & 0xFFFFFFFFu);
+            const auto other = directed.find(key(b, a));
+            if (other == directed.end()) {
+                occlusion_reason_ = "the mesh is not closed";
+                return;
+            }
+            const std::uint32_t g = other->second;
+            parent[find(f)] = find(g);
+            // The far vertex of g against f's plane.
+            const std::uint32_t* tf = &d.indices[3 * std::size_t(f)];
+            const std::uint32_t* tg = &d.indices[3 * std::size_t(g)];
+            const V3 p0 = d.pos(tf[0]);
+            const V3 nf_ = normalized(cross(d.pos(tf[1]) - p0, d.pos(tf[2]) - p0));
+            double s = 0;
+            for (int e = 0; e < 3; ++e) {
+                const std::uint32_t w = id[tg[e]];
+                if (w != a && w != b) s = dot(nf_, d.pos(tg[e]) - p0);
+            }
+            const int sg = s > tol ? 1 : (s < -tol ? -1 : 0);
+            if (sg != 0) {
+                if (sign != 0 && sg != sign) {
+                    occlusion_reason_ = "the mesh is not convex";
+                    return;
+                }
+                sign = sg;
+            }
+        }
+        const std::uint32_t root = find(0);
+        for (std::uint32_t f = 1; f < nf; ++f)
+            if (find(f) != root) {
+                occlusion_reason_ = "the mesh has several connected components";
+                return;
+            }
+        if (sign == 0) {
+            occlusion_reason_ = "the mesh is flat";
+            return;
+        }
+        can_occlude_ = false;
+        occlusion_reason_ = "the scene is one closed convex mesh";
+    }
+
+    void release() noexcept {
+        if (scene_) rtcReleaseScene(scene_);
+        if (device_) rtcReleaseDevice(device_);
+        scene_ = nullptr;
+        device_ = nullptr;
+    }
+    void swap(Scene& o) noexcept {
+        std::swap(device_, o.device_);
+        std::swap(scene_, o.scene_);
+        std::swap(meshes_, o.meshes_);
+        std::swap(triangles_, o.triangles_);
+        std::swap(degenerate_, o.degenerate_);
+        std::swap(extent_, o.extent_);
+        std::swap(max_abs_, o.max_abs_);
+        std::swap(lo_, o.lo_);
+        std::swap(hi_, o.hi_);
+        std::swap(max_albedo_, o.max_albedo_);
+        std::swap(chromatic_, o.chromatic_);
+        std::swap(can_occlude_, o.can_occlude_);
+        std::swap(occlusion_reason_, o.occlusion_reason_);
+    }
+
+    RTCDevice device_ = nullptr;
+    RTCScene scene_ = nullptr;
+    std::vector<MeshData> meshes_;
+    std::size_t triangles_ = 0, degenerate_ = 0;
+    double extent_ = 0, max_abs_ = 0;
+    vec3<double> lo_{0, 0, 0}, hi_{0, 0, 0};
+    double max_albedo_ = 0;
+    bool chromatic_ = false;
+    bool can_occlude_ = true;
+    std::string occlusion_reason_;
+};
+
+}  // namespace sphbasis::render

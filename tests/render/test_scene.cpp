@@ -1,0 +1,101 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+
+#include "render_shapes_for_tests.hpp"
+#include "sphbasis/render/scene.hpp"
+
+using namespace sphbasis;
+using namespace sphbasis::render;
+
+TEST_CASE("render::Scene: hits, normals, barycentrics and albedo", "[render]") {
+    auto quad = sphbasis_test::quad_grid(-1, 1, -1, 1, 0, 1);
+    quad.albedo = {0.25f, 0.5f, 0.75f};
+    Scene s({quad.view()});
+    CHECK(s.triangle_count() == 2);
+    CHECK(s.degenerate_triangles() == 0);
+    const Hit h = s.intersect({0.25, -0.5, 2}, {0, 0, -1});
+    REQUIRE(h.valid);
+    CHECK(h.mesh == 0);
+    CHECK(h.t == Approx(2).epsilon(1e-6));
+    CHECK(h.position.x == Approx(0.25).margin(1e-6));
+    CHECK(h.position.y == Approx(-0.5).margin(1e-6));
+    CHECK(h.position.z == Approx(0).margin(1e-6));
+    CHECK(h.geometric_normal.z == Approx(1));
+    CHECK(h.shading_normal.z == Approx(1));
+    CHECK_FALSE(h.back_face);
+    CHECK(h.albedo[0] == Approx(0.25));
+    CHECK(h.albedo[2] == Approx(0.75));
+    // From below: back face, normals flipped toward the ray.
+    const Hit b = s.intersect({0.25, 0.5, -1}, {0, 0, 1});
+    REQUIRE(b.valid);
+    CHECK(b.back_face);
+    CHECK(b.geometric_normal.z == Approx(-1));
+    CHECK(b.shading_normal.z == Approx(-1));
+    CHECK_FALSE(s.intersect({2, 2, 1}, {0, 0, -1}).valid);
+    CHECK(s.occluded({0, 0, 1}, {0, 0, -1}));
+    CHECK_FALSE(s.occluded({0, 0, 1}, {0, 0, -1}, 0.5));
+    // Barycentrics reproduce the position.
+    CHECK(h.u >= 0);
+    CHECK(h.v >= 0);
+    CHECK(h.u + h.v <= 1 + 1e-6);
+}
+
+TEST_CASE("render::Scene: albedo map, bilinear and wrapping", "[render]") {
+    // 2x1 texture: left texel 0, right texel 1 (grey). Texel centres at u = 0.25 and 0.75.
+    const float tex[2] = {0.f, 1.f};
+    TextureView t{tex, 2, 1, 1};
+    CHECK(Scene::texture(t, 0.25, 0.5)[0] == Approx(0));
+    CHECK(Scene::texture(t, 0.75, 0.5)[0] == Approx(1));
+    CHECK(Scene::texture(t, 0.5, 0.5)[0] == Approx(0.5));
+    CHECK(Scene::texture(t, 0.0, 0.5)[1] == Approx(0.5));  // wraps between texel 1 and 0
+    CHECK(Scene::texture(t, 1.25, 0.5)[2] == Approx(0));
+}
+
+TEST_CASE("render::Scene: can_occlude analysis", "[render]") {
+    auto sphere = sphbasis_test::uv_sphere(0, 0, 0, 1, 12, 24);
+    auto boxm = sphbasis_test::box(0, 0, 0, 1, 2, 3);
+    auto open = sphbasis_test::box(0, 0, 0, 1, 1, 1, true);
+    auto quad = sphbasis_test::quad_grid(-1, 1, -1, 1, 0, 2);
+    {
+        Scene s({sphere.view()});
+        CHECK_FALSE(s.can_occlude());
+        CHECK(s.unoccluded({0, 0, 1}, {0, 0, 1}));
+        CHECK_FALSE(s.unoccluded({0, 0, 1.5}, {0, 0, -1}));  // faces the sphere
+    }
+    CHECK_FALSE(Scene({boxm.view()}).can_occlude());
+    CHECK(Scene({open.view()}).can_occlude());
+    CHECK(Scene({quad.view()}).can_occlude());
+    CHECK(Scene({sphere.view(), boxm.view()}).can_occlude());
+    CHECK_FALSE(Scene(std::vector<MeshView>{}).can_occlude());
+    // A non-convex closed mesh: a box with one corner pushed in.
+    auto dent = boxm;
+    dent.positions[3 * 7 + 0] = 0.5f;
+    dent.positions[3 * 7 + 1] = 1.0f;
+    dent.positions[3 * 7 + 2] = 1.5f;
+    CHECK(Scene({dent.view()}).can_occlude());
+}
+
+TEST_CASE("render::Scene: bad input and degenerate triangles", "[render]") {
+    auto quad = sphbasis_test::quad_grid(-1, 1, -1, 1, 0, 1);
+    auto bad = quad;
+    bad.positions[4] = std::numeric_limits<float>::quiet_NaN();
+    CHECK_THROWS_WITH(Scene({bad.view()}), Catch::Contains("finite vertex positions"));
+    bad = quad;
+    bad.indices[2] = 99;
+    CHECK_THROWS_WITH(Scene({bad.view()}), Catch::Contains("indices < vertex_count"));
+    MeshView v = quad.view();
+    v.positions = nullptr;
+    CHECK_THROWS_AS(Scene({v}), std::invalid_argument);
+    bad = quad;
+    bad.albedo = {1.5f, 0, 0};
+    CHECK_THROWS_WITH(Scene({bad.view()}), Catch::Contains("albedo in [0, 1]"));
+    auto deg = sphbasis_test::quad_grid(-1, 1, -1, 1, 0, 2);    // vertices 0, 1, 2: one row
+    deg.indices.insert(deg.indices.end(), {0, 0, 1, 0, 1, 2});  // repeated, collinear
+    Scene s({deg.view()});
+    CHECK(s.degenerate_triangles() == 2);
+    CHECK(s.triangle_count() == 8);
+    // Offsets scale with the scene.
+    auto big = sphbasis_test::quad_grid(1e4, 1e4 + 2, 0, 2, 0, 1);
+    CHECK(Scene({big.view()}).epsilon() > 100 * s.epsilon());
+}
