@@ -221,6 +221,7 @@ Work vertex_work(const SceneFile& scene) {
                 }
                 const double tl = std::sqrt(tx * tx + ty * ty + tz * tz);
                 if (tl > 1e-6 && std::isfinite(tl)) p.tangent = {tx / tl, ty / tl, tz / tl};
+                p.bitangent_sign = m.tangents[4 * v + 3] < 0 ? -1 : 1;
             }
             p.id = id++;
             w.points.push_back(p);

@@ -20,10 +20,7 @@
 
 #include "exr.hpp"
 
-#if __has_include(<sphbasis/render/shapes.hpp>)
 #include <sphbasis/render/shapes.hpp>
-#define SPHBASIS_HAVE_RENDER_SHAPES 1
-#endif
 
 namespace sphbasis::cli {
 
@@ -289,105 +286,7 @@ void apply(const Ctx& c, const std::string& where, const Affine& m, render::Mesh
 // ---------------------------------------------------------------------------------------------
 // Procedural shapes.
 //
-// FALLBACK (delete when render/shapes.hpp is merged): private generators with the contract's
-// signatures, used only while <sphbasis/render/shapes.hpp> does not exist.
-#if !defined(SPHBASIS_HAVE_RENDER_SHAPES)
-namespace fallback_shapes {
-
-void push3(std::vector<float>& v, double x, double y, double z) {
-    v.push_back(static_cast<float>(x));
-    v.push_back(static_cast<float>(y));
-    v.push_back(static_cast<float>(z));
-}
-
-/// UV sphere: u = longitude / 2 pi, v = 1 at +z; one triangle per segment at the poles.
-render::Mesh sphere(const V3& c, double r, int rings, int segments) {
-    render::Mesh m;
-    const double pi = 3.14159265358979323846;
-    for (int i = 0; i <= rings; ++i) {
-        const double th = pi * i / rings, st = std::sin(th), ct = std::cos(th);
-        for (int j = 0; j <= segments; ++j) {
-            const double ph = 2 * pi * j / segments, sp = std::sin(ph), cp = std::cos(ph);
-            push3(m.positions, c.x + r * st * cp, c.y + r * st * sp, c.z + r * ct);
-            push3(m.normals, st * cp, st * sp, ct);
-            m.uvs.push_back(static_cast<float>(double(j) / segments));
-            m.uvs.push_back(static_cast<float>(1 - double(i) / rings));
-            push3(m.tangents, -sp, cp, 0);
-            m.tangents.push_back(1.0f);
-        }
-    }
-    const auto id = [&](int i, int j) {
-        return static_cast<std::uint32_t>(i * (segments + 1) + j);
-    };
-    for (int i = 0; i < rings; ++i)
-        for (int j = 0; j < segments; ++j) {
-            if (i != 0) m.indices.insert(m.indices.end(), {id(i, j), id(i + 1, j), id(i, j + 1)});
-            if (i != rings - 1)
-                m.indices.insert(m.indices.end(), {id(i, j + 1), id(i + 1, j), id(i + 1, j + 1)});
-        }
-    return m;
-}
-
-/// Quad center +- u +- v, normal u x v, UVs [0,1]^2 (u along u_half, v along v_half).
-render::Mesh quad(const V3& c, const V3& u, const V3& v, int s) {
-    render::Mesh m;
-    V3 n{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
-    const double nr = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
-    const double ur = std::sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
-    for (int i = 0; i <= s; ++i)
-        for (int j = 0; j <= s; ++j) {
-            const double a = 2.0 * j / s - 1, b = 2.0 * i / s - 1;
-            push3(m.positions, c.x + a * u.x + b * v.x, c.y + a * u.y + b * v.y,
-                  c.z + a * u.z + b * v.z);
-            push3(m.normals, n.x / nr, n.y / nr, n.z / nr);
-            m.uvs.push_back(static_cast<float>(double(j) / s));
-            m.uvs.push_back(static_cast<float>(double(i) / s));
-            push3(m.tangents, u.x / ur, u.y / ur, u.z / ur);
-            m.tangents.push_back(1.0f);
-        }
-    const auto id = [&](int i, int j) { return static_cast<std::uint32_t>(i * (s + 1) + j); };
-    for (int i = 0; i < s; ++i)
-        for (int j = 0; j < s; ++j)
-            m.indices.insert(m.indices.end(), {id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i, j),
-                                               id(i + 1, j + 1), id(i + 1, j)});
-    return m;
-}
-
-/// Axis-aligned box, 4 vertices per face (flat normals, outward), faces in a 3 x 2 UV atlas
-/// with a margin so that lightmap texels of different faces do not overlap.
-render::Mesh box(const V3& c, const V3& h) {
-    render::Mesh m;
-    const V3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    int face = 0;
-    for (int ax = 0; ax < 3; ++ax)
-        for (int sgn = -1; sgn <= 1; sgn += 2, ++face) {
-            const V3 n{axes[ax].x * sgn, axes[ax].y * sgn, axes[ax].z * sgn};
-            const V3 ua = axes[(ax + 1) % 3], va = axes[(ax + 2) % 3];
-            const double hn = ax == 0 ? h.x : ax == 1 ? h.y : h.z;
-            const int iu = (ax + 1) % 3, iv = (ax + 2) % 3;
-            const double hu = iu == 0 ? h.x : iu == 1 ? h.y : h.z;
-            const double hv = iv == 0 ? h.x : iv == 1 ? h.y : h.z;
-            const auto base = static_cast<std::uint32_t>(m.vertex_count());
-            const double cu = (face % 3) / 3.0, cv = (face / 3) / 2.0, mu = 0.02, mv = 0.03;
-            for (int k = 0; k < 4; ++k) {
-                const double a = (k == 1 || k == 2) ? 1 : -1, b = k >= 2 ? 1 : -1;
-                const double as = a * sgn;  // keep u x v along n
-                push3(m.positions, c.x + n.x * hn + as * hu * ua.x + b * hv * va.x,
-                      c.y + n.y * hn + as * hu * ua.y + b * hv * va.y,
-                      c.z + n.z * hn + as * hu * ua.z + b * hv * va.z);
-                push3(m.normals, n.x, n.y, n.z);
-                m.uvs.push_back(static_cast<float>(cu + mu + (a + 1) / 2 * (1.0 / 3 - 2 * mu)));
-                m.uvs.push_back(static_cast<float>(cv + mv + (b + 1) / 2 * (0.5 - 2 * mv)));
-                push3(m.tangents, ua.x * sgn, ua.y * sgn, ua.z * sgn);
-                m.tangents.push_back(1.0f);
-            }
-            m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
-        }
-    return m;
-}
-
-}  // namespace fallback_shapes
-#endif
+// Built by render/shapes.hpp.
 
 render::Mesh make_shape(const Ctx& c, const json& j, const std::string& where,
                         const std::string& kind) {
@@ -400,11 +299,7 @@ render::Mesh make_shape(const Ctx& c, const json& j, const std::string& where,
         const int segments = j.contains("segments")
                                  ? integer(c, j["segments"], sub(where, "segments"), 3, 8192)
                                  : 64;
-#if defined(SPHBASIS_HAVE_RENDER_SHAPES)
         return render::shapes::sphere(center, radius, rings, segments);
-#else
-        return fallback_shapes::sphere(center, radius, rings, segments);
-#endif
     }
     if (kind == "box") {
         const V3 center = j.contains("center") ? vec(c, j["center"], sub(where, "center")) : V3{};
@@ -414,11 +309,7 @@ render::Mesh make_shape(const Ctx& c, const json& j, const std::string& where,
             if (!(half.x > 0 && half.y > 0 && half.z > 0))
                 c.fail(sub(where, "half_extents"), "expected three positive numbers");
         }
-#if defined(SPHBASIS_HAVE_RENDER_SHAPES)
         return render::shapes::box(center, half);
-#else
-        return fallback_shapes::box(center, half);
-#endif
     }
     if (kind == "quad") {
         const V3 center = j.contains("center") ? vec(c, j["center"], sub(where, "center")) : V3{};
@@ -430,11 +321,7 @@ render::Mesh make_shape(const Ctx& c, const json& j, const std::string& where,
         const int s = j.contains("subdivisions")
                           ? integer(c, j["subdivisions"], sub(where, "subdivisions"), 1, 8192)
                           : 1;
-#if defined(SPHBASIS_HAVE_RENDER_SHAPES)
         return render::shapes::quad(center, u, v, s);
-#else
-        return fallback_shapes::quad(center, u, v, s);
-#endif
     }
     c.fail(sub(where, "shape"), "unknown shape '" + kind + "' (expected sphere, box or quad)");
 }

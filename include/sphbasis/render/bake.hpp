@@ -132,6 +132,9 @@ struct BakeSettings {
 /// or the order of points, which is what makes sharded bakes bit-identical to one run.
 struct BakePoint {
     vec3<double> p{0, 0, 0}, n{0, 0, 0}, tangent{0, 0, 0};
+    /// The tangent frame of `irradiance` is (tangent, bitangent_sign * n x tangent, n): -1 where
+    /// the UVs are mirrored (glTF's tangent w), so the frame follows the normal map's.
+    double bitangent_sign = 1;
     std::uint64_t id = 0;
 };
 
@@ -544,7 +547,7 @@ class Baker {
     /// Radiance along a ray from o in direction d whose first hit is at tmax (inf: escaped).
     RGB sky(const detail::rt::V3& o, const detail::rt::V3& d, double tmax) const noexcept {
         const bool escaped = !(tmax < std::numeric_limits<double>::infinity());
-        RGB L = escaped ? detail::rt::environment_radiance(env_, d) : RGB{0, 0, 0};
+        RGB L = escaped ? env_.radiance({d.x, d.y, d.z}) : RGB{0, 0, 0};
         detail::rt::add_light_radiance(lights_, o, d, tmax, escaped, L);
         return L;
     }
@@ -584,7 +587,7 @@ class Baker {
         const std::uint64_t key = hash(settings_.seed, bp.id);
         const double cu = unit(hash(key, 1)), cv = unit(hash(key, 2));
         Frame<double> f;
-        if (surface) f = frame_of(n, bp.tangent);
+        if (surface) f = frame_of(n, bp.tangent, bp.bitangent_sign);
         const bool free_of_occluders = surface && !settings_.force_all_passes &&
                                        !dropped_.count("analytic") && scene_.unoccluded(bp.p, n);
         if (free_of_occluders && enabled(analytic)) {
@@ -608,13 +611,14 @@ class Baker {
         }
     }
 
-    static Frame<double> frame_of(const detail::rt::V3& n, const detail::rt::V3& tangent) {
+    static Frame<double> frame_of(const detail::rt::V3& n, const detail::rt::V3& tangent,
+                                  double bitangent_sign = 1) {
         using namespace detail::rt;
         V3 t = tangent - n * dot(n, tangent);
         const double lt = length(t);
         if (lt > 1e-6) {
             t = t * (1 / lt);
-            return Frame<double>(t, cross(n, t), n);
+            return Frame<double>(t, cross(n, t) * (bitangent_sign < 0 ? -1.0 : 1.0), n);
         }
         return Frame<double>(n);
     }
@@ -644,10 +648,11 @@ class Baker {
         }
         if (wants(Quantity::visibility)) {
             res.visibility.assign(nsh(), 0.0);
+            std::vector<double> lam(static_cast<std::size_t>(B));
+            sh::detail::cap_factors(B, 1.0, lam.data());  // the upper hemisphere: 1 - cos = 1
             for (int l = 0; l < B; ++l)
                 for (int k = l * l; k < (l + 1) * (l + 1); ++k)
-                    res.visibility[std::size_t(k)] =
-                        constants::two_pi * legendre_tail(l, 0.0) * y[std::size_t(k)];
+                    res.visibility[std::size_t(k)] = lam[std::size_t(l)] * y[std::size_t(k)];
             res.visibility_stderr.assign(nsh(), 0.0);
         }
         if (wants(Quantity::irradiance)) {
@@ -709,11 +714,12 @@ class Baker {
         const int B = settings_.bands;
         std::vector<double> y(nsh());
         sh::eval_unit(B, d.x, d.y, d.z, y.data());
+        std::vector<double> lam(static_cast<std::size_t>(B));
+        sh::detail::cap_factors(B, 1 - cos_alpha, lam.data());  // Funk-Hecke factors of the cap
         for (int l = 0; l < B; ++l) {
-            const double lam = constants::two_pi * detail::rt::legendre_tail(l, cos_alpha);
             for (int k = l * l; k < (l + 1) * (l + 1); ++k)
                 for (std::size_t c = 0; c < 3; ++c)
-                    out[c][std::size_t(k)] += col[c] * lam * y[std::size_t(k)];
+                    out[c][std::size_t(k)] += col[c] * lam[std::size_t(l)] * y[std::size_t(k)];
         }
     }
 
@@ -725,7 +731,7 @@ class Baker {
         if (env_.kind != Environment::Kind::none)
             for (std::size_t q = 0; q < sphere_rule_.size(); ++q) {
                 const V3 d{sphere_rule_.x[q], sphere_rule_.y[q], sphere_rule_.z[q]};
-                const RGB s = environment_radiance(env_, d);
+                const RGB s = env_.radiance({d.x, d.y, d.z});
                 sh::eval_unit(settings_.bands, d.x, d.y, d.z, y.data());
                 for (std::size_t c = 0; c < 3; ++c)
                     for (std::size_t k = 0; k < nsh(); ++k)

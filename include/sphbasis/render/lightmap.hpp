@@ -395,6 +395,7 @@ inline LightmapLayout layout_lightmap(const MeshView& mesh, int width, int heigh
                 tangent = lightmap_detail::unit_or_zero(lightmap_detail::add(
                     acc, lightmap_detail::scale(n, -dot(acc, n))));  // Gram-Schmidt
                 s.bitangent_sign = w < 0 ? -1.0 : 1.0;
+                s.point.bitangent_sign = s.bitangent_sign;
             }
             // World-space size of a texel on this triangle: sqrt(area / UV area in texels).
             const double area3 = 0.5 * lightmap_detail::norm(gcross);
