@@ -5,6 +5,10 @@
 //   rotation_build_apply<N>: Rotation::from_matrix(quaternion) + apply, N bands
 //   rotate_streaming<N>:     sh::rotate (band by band, matrix never stored)
 //   rotation_apply<N>:       apply of a prebuilt rotation (one channel, and RGB)
+//   fixed_rotation_build_apply<N>: FixedRotation<N, float>::from_quaternion + apply (generated)
+//   fixed_rotate<N>:         sh::rotate<N>(Mat3, in, out), the matrices precomputed
+//   fixed_rotation_apply<N>: apply of a prebuilt FixedRotation (one channel, and RGB)
+//   *_light_fixed:           the analytic lights with a compile-time band count (3), float RGB
 //   rotate_z<N>:             rotation about z (cos/sin of m phi), for comparison
 //   *_light<3>:              the analytic lights at 3 bands, float RGB
 //   cubemap_project:         6 x 64 x 64 cube map (float RGB) to 3 bands
@@ -20,6 +24,7 @@
 #include <sphbasis/ops/sh_convolution.hpp>
 #include <sphbasis/ops/sh_lights.hpp>
 #include <sphbasis/ops/sh_rotation.hpp>
+#include <sphbasis/ops/sh_rotation_fixed.hpp>
 #include <vector>
 
 namespace sh = sphbasis::sh;
@@ -114,6 +119,52 @@ void rotation_apply_rgb(benchmark::State& st) {
 }
 
 template <int N>
+void fixed_rotation_build_apply(benchmark::State& st) {
+    std::vector<float> in(N * N, 0.5f), out(N * N);
+    per_quaternion(st, [&](const std::array<float, 4>& v) {
+        const auto d = sh::FixedRotation<N, float>::from_quaternion(v[0], v[1], v[2], v[3]);
+        d.apply(in.data(), out.data());
+        benchmark::DoNotOptimize(out.data());
+    });
+}
+
+template <int N>
+void fixed_rotate(benchmark::State& st) {
+    std::vector<sh::Mat3<float>> m;
+    for (const auto& v : quaternions()) m.push_back(sh::matrix_from_quaternion(v[0], v[1], v[2], v[3]));
+    std::vector<float> in(N * N, 0.5f), out(N * N);
+    for (auto _ : st) {
+        for (const auto& r : m) {
+            sh::rotate<N>(r, in.data(), out.data());
+            benchmark::DoNotOptimize(out.data());
+        }
+    }
+    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+}
+
+/// A prebuilt FixedRotation applied to kCount vectors of N^2 coefficients of type C.
+template <int N, class C>
+void fixed_rotation_apply_of(benchmark::State& st, const C& fill) {
+    const auto q = quaternions();
+    const auto d = sh::FixedRotation<N, float>::from_quaternion(q[0][0], q[0][1], q[0][2], q[0][3]);
+    std::vector<C> in(N * N * kCount, fill), out(N * N * kCount);
+    for (auto _ : st) {
+        for (std::size_t i = 0; i < kCount; ++i)
+            d.apply(in.data() + i * N * N, out.data() + i * N * N);
+        benchmark::DoNotOptimize(out.data());
+    }
+    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+}
+template <int N>
+void fixed_rotation_apply(benchmark::State& st) {
+    fixed_rotation_apply_of<N>(st, 0.5f);
+}
+template <int N>
+void fixed_rotation_apply_rgb(benchmark::State& st) {
+    fixed_rotation_apply_of<N>(st, RGB{0.5f, 0.25f, 1.0f});
+}
+
+template <int N>
 void rotate_z(benchmark::State& st) {
     std::vector<float> in(N * N, 0.5f), out(N * N);
     float a = 0.1f;
@@ -153,6 +204,26 @@ void cone_light(benchmark::State& st) {
 void spherical_light(benchmark::State& st) {
     light_bench(st, [](const sphbasis::vec3<float>& v, RGB* out) {
         sh::spherical_light(3, 4 * v.x, 4 * v.y, 4 * v.z, 1.0f, RGB{1, 2, 3}, out);
+    });
+}
+void directional_light_fixed(benchmark::State& st) {
+    light_bench(st, [](const sphbasis::vec3<float>& v, RGB* out) {
+        sh::directional_light<3>(v.x, v.y, v.z, RGB{1, 2, 3}, out);
+    });
+}
+void cone_light_fixed(benchmark::State& st) {
+    light_bench(st, [](const sphbasis::vec3<float>& v, RGB* out) {
+        sh::cone_light<3>(v.x, v.y, v.z, 0.3f, RGB{1, 2, 3}, out);
+    });
+}
+void spherical_light_fixed(benchmark::State& st) {
+    light_bench(st, [](const sphbasis::vec3<float>& v, RGB* out) {
+        sh::spherical_light<3>(4 * v.x, 4 * v.y, 4 * v.z, 1.0f, RGB{1, 2, 3}, out);
+    });
+}
+void hemisphere_light_fixed(benchmark::State& st) {
+    light_bench(st, [](const sphbasis::vec3<float>& v, RGB* out) {
+        sh::hemisphere_light<3>(v.x, v.y, v.z, RGB{1, 2, 3}, RGB{0.1f, 0.2f, 0.3f}, out);
     });
 }
 void hemisphere_light(benchmark::State& st) {
@@ -226,6 +297,18 @@ BENCHMARK_TEMPLATE(rotation_apply, 3);
 BENCHMARK_TEMPLATE(rotation_apply, 6);
 BENCHMARK_TEMPLATE(rotation_apply_rgb, 3);
 BENCHMARK_TEMPLATE(rotation_apply_rgb, 6);
+BENCHMARK_TEMPLATE(fixed_rotation_build_apply, 3);
+BENCHMARK_TEMPLATE(fixed_rotation_build_apply, 6);
+BENCHMARK_TEMPLATE(fixed_rotate, 3);
+BENCHMARK_TEMPLATE(fixed_rotate, 6);
+BENCHMARK_TEMPLATE(fixed_rotation_apply, 3);
+BENCHMARK_TEMPLATE(fixed_rotation_apply, 6);
+BENCHMARK_TEMPLATE(fixed_rotation_apply_rgb, 3);
+BENCHMARK_TEMPLATE(fixed_rotation_apply_rgb, 6);
+BENCHMARK(directional_light_fixed);
+BENCHMARK(cone_light_fixed);
+BENCHMARK(spherical_light_fixed);
+BENCHMARK(hemisphere_light_fixed);
 BENCHMARK_TEMPLATE(rotate_z, 3);
 BENCHMARK_TEMPLATE(rotate_z, 6);
 BENCHMARK(directional_light);

@@ -16,5 +16,6 @@
 #include "ops/sh_lights.hpp"
 #include "ops/sh_product.hpp"
 #include "ops/sh_rotation.hpp"
+#include "ops/sh_rotation_fixed.hpp"
 #include "ops/sh_windowing.hpp"
 // clang-format on

@@ -361,3 +361,77 @@ TEST_CASE("lights: cube-map projection of a smooth map converges to quadrature",
     CHECK_THROWS_WITH(sh::directional_light(-1, 0.0, 0.0, 1.0, 1.0, c64.data()),
                       Catch::Contains("sphbasis::sh::directional_light(): expected 0 <= bands"));
 }
+
+namespace {
+struct RGBf {
+    float r = 0, g = 0, b = 0;
+};
+RGBf operator+(const RGBf& a, const RGBf& b) { return {a.r + b.r, a.g + b.g, a.b + b.b}; }
+RGBf operator*(const RGBf& a, float s) { return {a.r * s, a.g * s, a.b * s}; }
+
+template <int N, class T>
+void check_fixed_lights(std::mt19937& rng) {
+    using C = T;  // one channel in T; the RGB case is below
+    const double tol = std::is_same_v<T, float> ? 3e-5 : 1e-12;
+    std::normal_distribution<double> nd;
+    for (int trial = 0; trial < 8; ++trial) {
+        const T x = T(nd(rng)), y = T(nd(rng)), z = T(nd(rng));
+        const T a = T(0.05 + 0.4 * trial), rad = T(0.3 + 0.5 * trial);
+        C f[N * N], r[N * N];
+        auto same = [&](const char* what) {
+            INFO(what << " N = " << N << " trial " << trial);
+            for (int k = 0; k < N * N; ++k)
+                CHECK(double(f[k]) == Approx(double(r[k])).margin(tol * 4 * pi).epsilon(tol));
+        };
+        sh::directional_light<N>(x, y, z, T(1.5), f);
+        sh::directional_light(N, x, y, z, T(1.5), r);
+        same("directional");
+        sh::cone_light<N>(x, y, z, a, T(0.7), f);
+        sh::cone_light(N, x, y, z, a, T(0.7), r);
+        same("cone");
+        sh::spherical_light<N>(x, y, z, rad, T(0.7), f);
+        sh::spherical_light(N, x, y, z, rad, T(0.7), r);
+        same("sphere");
+        sh::hemisphere_light<N>(x, y, z, T(1.25), T(0.25), f);
+        sh::hemisphere_light(N, x, y, z, T(1.25), T(0.25), r);
+        same("hemisphere");
+    }
+}
+
+template <int... Ns, class T>
+void fixed_lights_all(std::mt19937& rng, T) {
+    (check_fixed_lights<Ns, T>(rng), ...);
+}
+}  // namespace
+
+TEMPLATE_TEST_CASE("directional/cone/spherical/hemisphere_light<N> equal the run-time lights",
+                   "[ops][lights]", float, double) {
+    std::mt19937 rng(21);
+    fixed_lights_all<1, 2, 3, 4, 5, 6, 7, 8>(rng, TestType(0));
+}
+
+TEST_CASE("fixed-band lights: RGB in one pass, hemisphere constants, clamped arguments",
+          "[ops][lights]") {
+    RGBf f[9], r[9];
+    const RGBf c{1, 2, 3}, g{0.1f, 0.2f, 0.3f};
+    sh::hemisphere_light<3>(0.2f, -0.3f, 0.9f, c, g, f);
+    sh::hemisphere_light(3, 0.2f, -0.3f, 0.9f, c, g, r);
+    for (int k = 0; k < 9; ++k) {
+        CHECK(f[k].r == Approx(r[k].r).margin(1e-6));
+        CHECK(f[k].g == Approx(r[k].g).margin(1e-6));
+        CHECK(f[k].b == Approx(r[k].b).margin(1e-6));
+    }
+    // u = 1 cap factors: 2 pi, pi, 0, -pi/4, 0, pi/8, 0, -5 pi/64
+    constexpr auto h = sh::detail::hemisphere_factors<8>();
+    const double want[8] = {2 * pi, pi, 0, -pi / 4, 0, pi / 8, 0, -5 * pi / 64};
+    for (int l = 0; l < 8; ++l) CHECK(h[std::size_t(l)] == Approx(want[l]).margin(1e-15));
+    // out-of-domain arguments stay finite: a half-angle above pi is the whole sphere, a zero
+    // direction is the pole
+    double o[16], w[16];
+    sh::cone_light<4>(0.0, 0.0, 1.0, 7.0, 1.0, o);
+    sh::cone_light(4, 0.0, 0.0, 1.0, pi, 1.0, w);
+    for (int k = 0; k < 16; ++k) CHECK(o[k] == Approx(w[k]).margin(1e-14));
+    sh::directional_light<4>(0.0, 0.0, 0.0, 1.0, o);
+    sh::directional_light(4, 0.0, 0.0, 1.0, 1.0, w);
+    for (int k = 0; k < 16; ++k) CHECK(o[k] == Approx(w[k]).margin(1e-15));
+}

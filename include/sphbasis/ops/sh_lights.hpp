@@ -329,6 +329,135 @@ void hemisphere_light(int bands, const D& up, const C& sky, const C& ground, Out
 #undef SPHBASIS_LIGHT_DIRECTION_OVERLOAD_REQUIRES
 
 // ---------------------------------------------------------------------------------------------
+// The lights with a compile-time band count N (1..8): directional_light<N>, cone_light<N>,
+// spherical_light<N>, hemisphere_light<N>. The same coefficients as the run-time forms above,
+// for the hot path: the basis by the unrolled sh::eval<N> (normalising) in the coefficient's
+// scalar (float for float or float RGB coefficients, else double), the zonal factors as
+// constants (directional, hemisphere) or by the cap recurrence unrolled (cone, sphere), no
+// run-time checks (SPHBASIS_ASSERT in debug builds), noexcept. Arguments outside the domain of
+// the run-time forms give finite results instead of throwing: a zero direction is taken as +z
+// (sh::eval's pole), a half-angle is clamped to [0, pi], a negative radius to 0.
+
+namespace detail {
+/// Floating-point type the fixed-band lights evaluate in: float for float coefficients, else
+/// double.
+template <class C>
+using light_eval_t = std::conditional_t<std::is_same_v<coefficient_scalar_t<C>, float>, float, double>;
+
+/// cap_factors() for a compile-time band count, in E (unrolled).
+template <int N, class E>
+SPHBASIS_FORCEINLINE void cap_factors_fixed(E u, E* out) noexcept {
+    const E two_pi = E(constants::two_pi);
+    out[0] = two_pi * u;
+    E p = 1, d = 0;
+    for (int l = 0; l + 1 < N; ++l) {
+        const E dn = l == 0 ? -u : (E(l) * d - E(2 * l + 1) * u * p) / E(l + 1);
+        p += dn;
+        d = dn;
+        out[l + 1] = two_pi * (u * p - d) / E(l + 2);
+    }
+}
+
+/// The hemisphere's factors (u = 1), exact at compile time: 2 pi, pi, 0, -pi/4, 0, pi/8, 0, ...
+template <int N>
+constexpr std::array<double, N> hemisphere_factors() noexcept {
+    std::array<double, N> f{};
+    f[0] = constants::two_pi;
+    double p = 1, d = 0;
+    for (int l = 0; l + 1 < N; ++l) {
+        const double dn = l == 0 ? -1.0 : (l * d - (2 * l + 1) * p) / (l + 1);
+        p += dn;
+        d = dn;
+        f[static_cast<std::size_t>(l + 1)] = constants::two_pi * (p - d) / (l + 2);
+    }
+    return f;
+}
+
+/// out_k = colour * (a_l y_k(d)) for N bands, y by the unrolled eval<N> in E.
+template <int N, class E, class T, class C>
+SPHBASIS_FORCEINLINE void zonal_out_fixed(T x, T y, T z, const E* a, const C& colour,
+                                          C* out) noexcept {
+    static_assert(N >= 1 && N <= 8, "sphbasis::sh lights: N is a band count in 1..8.");
+    static_assert(sphbasis::detail::is_scalable<C, coefficient_scalar_t<C>>::value,
+                  "sphbasis::sh lights: the coefficient type C needs C + C and "
+                  "C * coefficient_scalar_t<C> (specialise sphbasis::coefficient_scalar).");
+    using S = coefficient_scalar_t<C>;
+    E yv[N * N];
+    eval<N>(static_cast<E>(x), static_cast<E>(y), static_cast<E>(z), yv);
+    for (int l = 0; l < N; ++l)
+        for (int k = l * l; k < (l + 1) * (l + 1); ++k) out[k] = colour * static_cast<S>(a[l] * yv[k]);
+}
+}  // namespace detail
+
+/// directional_light() for a compile-time band count N: out_lm = irradiance * y_lm(d), N^2
+/// values. Unchecked (see above).
+template <int N, class T, class C>
+SPHBASIS_FORCEINLINE void directional_light(T x, T y, T z, const C& irradiance, C* out) noexcept {
+    static_assert(N >= 1 && N <= 8, "sphbasis::sh::directional_light<N>: N is in 1..8.");
+    SPHBASIS_ASSERT(out != nullptr);
+    using E = detail::light_eval_t<C>;
+    using S = coefficient_scalar_t<C>;
+    E yv[N * N];
+    eval<N>(static_cast<E>(x), static_cast<E>(y), static_cast<E>(z), yv);
+    for (int k = 0; k < N * N; ++k) out[k] = irradiance * static_cast<S>(yv[k]);
+}
+
+/// cone_light() for a compile-time band count N (half_angle in radians, clamped to [0, pi]).
+template <int N, class T, class C>
+SPHBASIS_FORCEINLINE void cone_light(T x, T y, T z, T half_angle, const C& radiance,
+                                     C* out) noexcept {
+    static_assert(N >= 1 && N <= 8, "sphbasis::sh::cone_light<N>: N is in 1..8.");
+    SPHBASIS_ASSERT(out != nullptr);
+    using E = detail::light_eval_t<C>;
+    const E a = std::fmin(std::fmax(static_cast<E>(half_angle), E(0)), E(constants::pi));
+    const E s = std::sin(E(0.5) * a);
+    E f[N];
+    detail::cap_factors_fixed<N>(E(2) * s * s, f);  // 1 - cos a = 2 sin^2(a/2)
+    detail::zonal_out_fixed<N>(x, y, z, f, radiance, out);
+}
+
+/// spherical_light() for a compile-time band count N (a ball of radius `radius` at (px, py, pz)
+/// relative to the receiver; the whole sphere when |p| <= radius).
+template <int N, class T, class C>
+SPHBASIS_FORCEINLINE void spherical_light(T px, T py, T pz, T radius, const C& radiance,
+                                          C* out) noexcept {
+    static_assert(N >= 1 && N <= 8, "sphbasis::sh::spherical_light<N>: N is in 1..8.");
+    SPHBASIS_ASSERT(out != nullptr);
+    using E = detail::light_eval_t<C>;
+    const E x = static_cast<E>(px), y = static_cast<E>(py), z = static_cast<E>(pz);
+    const E dist = std::sqrt(x * x + y * y + z * z);
+    const E r = std::fmax(static_cast<E>(radius), E(0));
+    E u = 2;  // inside the ball: everything
+    if (r < dist) {
+        const E s = r / dist;
+        u = s * s / (1 + std::sqrt((1 - s) * (1 + s)));  // 1 - cos a without cancellation
+    }
+    E f[N];
+    detail::cap_factors_fixed<N>(u, f);
+    detail::zonal_out_fixed<N>(x, y, z, f, radiance, out);
+}
+
+/// hemisphere_light() for a compile-time band count N: `sky` around the up direction (x, y,
+/// z), `ground` opposite; the factors are compile-time constants.
+template <int N, class T, class C>
+SPHBASIS_FORCEINLINE void hemisphere_light(T x, T y, T z, const C& sky, const C& ground,
+                                           C* out) noexcept {
+    static_assert(N >= 1 && N <= 8, "sphbasis::sh::hemisphere_light<N>: N is in 1..8.");
+    SPHBASIS_ASSERT(out != nullptr);
+    using E = detail::light_eval_t<C>;
+    using S = coefficient_scalar_t<C>;
+    constexpr std::array<double, N> f = detail::hemisphere_factors<N>();
+    E yv[N * N];
+    eval<N>(static_cast<E>(x), static_cast<E>(y), static_cast<E>(z), yv);
+    for (int l = 0; l < N; ++l) {
+        const E cs = E(f[static_cast<std::size_t>(l)]);
+        const E cg = E((l == 0 ? constants::four_pi : 0.0) - f[static_cast<std::size_t>(l)]);
+        for (int k = l * l; k < (l + 1) * (l + 1); ++k)
+            out[k] = sky * static_cast<S>(cs * yv[k]) + ground * static_cast<S>(cg * yv[k]);
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
 // Environment maps
 
 /// Projects a cube map (6 faces of size x size; texel(face, col, row) returns its radiance)
