@@ -14,7 +14,15 @@ with folded constants:
 No Condon-Shortley phase; ACN index l(l+1)+m.
 
 Usage: /usr/bin/python3 tools/gen/gen_sh_fixed.py > include/sphbasis/basis/sh_fixed.hpp
+       /usr/bin/python3 tools/gen/gen_sh_fixed.py --glsl > shaders/sphbasis.glsl
+       /usr/bin/python3 tools/gen/gen_sh_fixed.py --hlsl > shaders/sphbasis.hlsl
+The shader twins (--glsl, --hlsl) carry the same kernels with the same operation order, each
+constant the float nearest to the exact sympy value (9 significant digits identify it), plus the
+Ramamoorthi-Hanrahan irradiance of sh::irradiance (ops/sh_convolution.hpp).
 """
+import struct
+import sys
+
 import sympy as sp
 
 MAX_BANDS = 8
@@ -120,5 +128,140 @@ def main():
     print("// clang-format on")
 
 
+# ---------------------------------------------------------------------------------------------
+# Shader twins (GLSL 4.50 / GLSL ES 3.10 and HLSL SM 5.0/6.0).
+
+
+def _f32(d):
+    """The float nearest to the double d (round to nearest even)."""
+    return struct.unpack("<f", struct.pack("<f", d))[0]
+
+
+def _f32_step(f, up):
+    bits = struct.unpack("<I", struct.pack("<f", f))[0]
+    if f == 0:
+        bits = 1 if up else 0x80000001
+    elif (f > 0) == up:
+        bits += 1
+    else:
+        bits -= 1
+    return struct.unpack("<f", struct.pack("<I", bits))[0]
+
+
+def f32_nearest(v):
+    """The float nearest to the exact value v, chosen by exact comparison among the float of the
+    double and its two neighbours. Fails if the C++ kernels' float (the 17-digit double literal
+    rounded to float) is a different float: then the two sides would not share one constant."""
+    d = float(sp.N(v, 40))
+    f = _f32(d)
+    cands = [f, _f32_step(f, True), _f32_step(f, False)]
+    best = min(cands, key=lambda c: abs(sp.N(sp.Rational(c) - v, 60)))
+    cxx = _f32(float("%.17g" % d))
+    if best != cxx:
+        raise SystemExit("gen_sh_fixed.py: %s rounds to float %r but the C++ literal gives %r"
+                         % (v, best, cxx))
+    return best
+
+
+def flit(v, lang):
+    s = "%.9g" % f32_nearest(v)
+    if "e" not in s and "." not in s:
+        s += ".0"
+    return s + ("f" if lang == "hlsl" else "")
+
+
+def shader_kernel(n, lang):
+    vec3 = "vec3" if lang == "glsl" else "float3"
+    out = []
+    w = out.append
+    w("/// %d band%s (%d function%s) at the unit direction d: sh[l*(l+1)+m] = y_lm(d), as" % (
+        n, "" if n == 1 else "s", n * n, "" if n == 1 else "s"))
+    w("/// sphbasis::sh::eval_unit<%d>. Precondition: d unit (z up)." % n)
+    w("void sphbasis_sh_eval%d(%s d, out float sh[%d])" % (n, vec3, n * n))
+    w("{")
+    w("    float x = d.x; float y = d.y; float z = d.z;")
+    if n > 1:
+        w("    float c1 = x; float s1 = y;")
+    for m in range(2, n):
+        w("    float c%d = x * c%d - y * s%d; float s%d = x * s%d + y * c%d;" % (m, m - 1, m - 1, m, m - 1, m - 1))
+    for m in range(0, n):
+        qmm = sectoral(m)
+        for l in range(m, n):
+            name = "q%d_%d" % (l, m)
+            if l == m:
+                w("    float %s = %s;  // %s" % (name, flit(qmm, lang), closed(qmm)))
+            elif l == m + 1:
+                c = sp.sqrt(2 * m + 3) * qmm
+                w("    float %s = %s * z;  // %s z" % (name, flit(c, lang), closed(sp.simplify(c))))
+            else:
+                A = a(l, m)
+                B = A * b(l, m)
+                w("    float %s = %s * z * q%d_%d - %s * q%d_%d;" % (name, flit(A, lang), l - 1, m, flit(B, lang), l - 2, m))
+            k = l * (l + 1)
+            if m == 0:
+                w("    sh[%d] = %s;" % (k, name))
+            else:
+                w("    sh[%d] = %s * c%d;" % (k + m, name, m))
+                w("    sh[%d] = %s * s%d;" % (k - m, name, m))
+    w("}")
+    return "\n".join(out)
+
+
+def shader_irradiance(lang):
+    vec3 = "vec3" if lang == "glsl" else "float3"
+    pi = sp.pi
+    cs = [sp.sqrt(15 * pi) / 16, sp.sqrt(3 * pi) / 6, 3 * sp.sqrt(5 * pi) / 16, sp.sqrt(pi) / 2,
+          sp.sqrt(5 * pi) / 16]
+    two = "2.0f" if lang == "hlsl" else "2.0"
+    out = []
+    w = out.append
+    w("/// Irradiance E(n) at the unit normal n from 9 RGB radiance coefficients L (3 bands, ACN),")
+    w("/// Ramamoorthi and Hanrahan, \"An Efficient Representation for Irradiance Environment Maps\"")
+    w("/// (SIGGRAPH 2001), eq. 13, as sphbasis::sh::irradiance. Divide by pi for the exit radiance")
+    w("/// of a white Lambertian surface.")
+    w("%s sphbasis_sh_irradiance(%s L[9], %s n)" % (vec3, vec3, vec3))
+    w("{")
+    for i, c in enumerate(cs):
+        w("    const float c%d = %s;  // %s" % (i + 1, flit(c, lang), c))
+    w("    float x = n.x; float y = n.y; float z = n.z;")
+    w("    %s e = L[8] * (c1 * (x * x - y * y)) + L[6] * (c3 * z * z - c5) + L[0] * c4;" % vec3)
+    w("    e = e + L[4] * (%s * c1 * x * y) + L[7] * (%s * c1 * x * z) + L[5] * (%s * c1 * y * z);" % (two, two, two))
+    w("    e = e + L[3] * (%s * c2 * x) + L[1] * (%s * c2 * y) + L[2] * (%s * c2 * z);" % (two, two, two))
+    w("    return e;")
+    w("}")
+    return "\n".join(out)
+
+
+def main_shader(lang):
+    guard = "SPHBASIS_GLSL" if lang == "glsl" else "SPHBASIS_HLSL"
+    ext = lang
+    print("// GENERATED by tools/gen/gen_sh_fixed.py -- do not edit.")
+    print("// Regenerate: /usr/bin/python3 tools/gen/gen_sh_fixed.py --%s > shaders/sphbasis.%s" % (lang, ext))
+    print("//")
+    if lang == "glsl":
+        print("// sphbasis shader twins, GLSL 4.50 (also GLSL ES 3.10). No #version line: include or paste it")
+        print("// after your own (#extension GL_GOOGLE_include_directive, or your engine's includer).")
+    else:
+        print("// sphbasis shader twins, HLSL (Shader Model 5.0 and 6.0): #include \"sphbasis.hlsl\".")
+    print("// Each function mirrors a C++ kernel of the sphbasis headers, with the same operation order and")
+    print("// each constant the float nearest to the exact value the C++ constant rounds (same generator,")
+    print("// same sympy expressions). Real SH without the Condon-Shortley phase, ACN index l(l+1)+m,")
+    print("// directions z up.")
+    print("#ifndef %s" % guard)
+    print("#define %s" % guard)
+    print()
+    for n in range(1, MAX_BANDS + 1):
+        print(shader_kernel(n, lang))
+        print()
+    print(shader_irradiance(lang))
+    print()
+    print("#endif  // %s" % guard)
+
+
 if __name__ == "__main__":
-    main()
+    if len(sys.argv) > 1 and sys.argv[1] in ("--glsl", "--hlsl"):
+        main_shader(sys.argv[1][2:])
+    elif len(sys.argv) > 1:
+        raise SystemExit("usage: gen_sh_fixed.py [--glsl | --hlsl]")
+    else:
+        main()

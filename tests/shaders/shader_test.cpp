@@ -1,0 +1,422 @@
+// GPU/C++ agreement of the shader twins: runs the functions of shaders/sphbasis.glsl as an OpenGL
+// 4.3 compute shader on Mesa's llvmpipe (EGL surfaceless: no display, no GPU) over a grid of
+// directions including the poles, the horizon and x = y = 0, reads the values back and compares
+// them with the C++ kernels (sh::eval_unit<N>, sh::irradiance) in float.
+//
+// Error measure: |gpu - cpu| in units of the float ulp of max(|cpu|, scale), where scale is the
+// largest magnitude the function reaches in its band (sqrt((2l+1)/(4 pi)) for y_lm; for the
+// irradiance, the sum of its nine terms' magnitudes): a plain relative ulp count is meaningless
+// where a function crosses zero (at x = y = 0 the m != 0 functions are exactly 0 on both sides).
+//
+// Not a Catch2 test: it needs a driver, so it is its own executable and ctest (label shaders).
+// If no context can be created it says why and fails: a missing driver is never a pass.
+//
+// Usage: sphbasis_shader_test [path/to/sphbasis.glsl] (default: the source tree's shaders/).
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/glcorearb.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "sphbasis/basis/sh.hpp"
+#include "sphbasis/ops/sh_convolution.hpp"
+
+namespace {
+
+// Stated bound. Measured on Mesa 22.3.6 llvmpipe (LLVM 15, x86-64) against g++ 12 -O3
+// -march=native -ffp-contract=off: eval1..3 bit-identical, eval4 1, eval5 2, eval6..8 3 ulps,
+// irradiance 3 ulps (llvmpipe fuses some multiply-adds). The worst case is printed every run.
+// (With the C++ side also fusing, -ffp-contract=fast, the two disagree by up to 6 ulps.)
+constexpr double max_ulps = 4.0;
+
+constexpr int max_n = 8;
+constexpr int sh_values = 204;  // sum_{n=1..8} n^2
+constexpr int stride = sh_values + 3;
+
+int offset_of(int n) {
+    int o = 0;
+    for (int k = 1; k < n; ++k) o += k * k;
+    return o;
+}
+
+[[noreturn]] void fail(const std::string& why) {
+    std::fprintf(stderr, "sphbasis_shader_test: FAIL: %s\n", why.c_str());
+    std::exit(1);
+}
+
+struct Gl {
+    PFNGLCREATESHADERPROC CreateShader;
+    PFNGLSHADERSOURCEPROC ShaderSource;
+    PFNGLCOMPILESHADERPROC CompileShader;
+    PFNGLGETSHADERIVPROC GetShaderiv;
+    PFNGLGETSHADERINFOLOGPROC GetShaderInfoLog;
+    PFNGLCREATEPROGRAMPROC CreateProgram;
+    PFNGLATTACHSHADERPROC AttachShader;
+    PFNGLLINKPROGRAMPROC LinkProgram;
+    PFNGLGETPROGRAMIVPROC GetProgramiv;
+    PFNGLGETPROGRAMINFOLOGPROC GetProgramInfoLog;
+    PFNGLUSEPROGRAMPROC UseProgram;
+    PFNGLGENBUFFERSPROC GenBuffers;
+    PFNGLBINDBUFFERPROC BindBuffer;
+    PFNGLBUFFERDATAPROC BufferData;
+    PFNGLBINDBUFFERBASEPROC BindBufferBase;
+    PFNGLGETBUFFERSUBDATAPROC GetBufferSubData;
+    PFNGLDISPATCHCOMPUTEPROC DispatchCompute;
+    PFNGLMEMORYBARRIERPROC MemoryBarrier;
+    PFNGLGETSTRINGPROC GetString;
+    PFNGLGETERRORPROC GetError;
+    PFNGLGETUNIFORMLOCATIONPROC GetUniformLocation;
+    PFNGLUNIFORM1UIPROC Uniform1ui;
+    PFNGLFINISHPROC Finish;
+};
+
+template <class F>
+void load(F& f, const char* name) {
+    f = reinterpret_cast<F>(eglGetProcAddress(name));
+    if (!f) fail(std::string("eglGetProcAddress(\"") + name + "\") returned null");
+}
+
+Gl load_gl() {
+    Gl g{};
+    load(g.CreateShader, "glCreateShader");
+    load(g.ShaderSource, "glShaderSource");
+    load(g.CompileShader, "glCompileShader");
+    load(g.GetShaderiv, "glGetShaderiv");
+    load(g.GetShaderInfoLog, "glGetShaderInfoLog");
+    load(g.CreateProgram, "glCreateProgram");
+    load(g.AttachShader, "glAttachShader");
+    load(g.LinkProgram, "glLinkProgram");
+    load(g.GetProgramiv, "glGetProgramiv");
+    load(g.GetProgramInfoLog, "glGetProgramInfoLog");
+    load(g.UseProgram, "glUseProgram");
+    load(g.GenBuffers, "glGenBuffers");
+    load(g.BindBuffer, "glBindBuffer");
+    load(g.BufferData, "glBufferData");
+    load(g.BindBufferBase, "glBindBufferBase");
+    load(g.GetBufferSubData, "glGetBufferSubData");
+    load(g.DispatchCompute, "glDispatchCompute");
+    load(g.MemoryBarrier, "glMemoryBarrier");
+    load(g.GetString, "glGetString");
+    load(g.GetError, "glGetError");
+    load(g.GetUniformLocation, "glGetUniformLocation");
+    load(g.Uniform1ui, "glUniform1ui");
+    load(g.Finish, "glFinish");
+    return g;
+}
+
+bool has_extension(const char* list, const char* ext) {
+    if (!list) return false;
+    const std::size_t n = std::strlen(ext);
+    for (const char* p = list; (p = std::strstr(p, ext)) != nullptr; p += n)
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
+    return false;
+}
+
+// A headless OpenGL 4.3 core context on EGL's surfaceless platform (EGL_MESA_platform_surfaceless).
+void create_context() {
+    // Mesa's software rasterizer unless the caller chose otherwise.
+    setenv("LIBGL_ALWAYS_SOFTWARE", "1", 0);
+    const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (!has_extension(client, "EGL_MESA_platform_surfaceless"))
+        fail(std::string("EGL has no EGL_MESA_platform_surfaceless (client extensions: ") +
+             (client ? client : "none") + "): install Mesa's EGL (libegl-mesa0, libgl1-mesa-dri)");
+    auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+        eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    if (!get_platform_display) fail("eglGetPlatformDisplayEXT is missing");
+    EGLDisplay dpy =
+        get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    EGLint major = 0, minor = 0;
+    if (dpy == EGL_NO_DISPLAY || !eglInitialize(dpy, &major, &minor))
+        fail("eglInitialize on the surfaceless platform failed (EGL error 0x" + [] {
+            char b[16];
+            std::snprintf(b, sizeof b, "%x", static_cast<unsigned>(eglGetError()));
+            return std::string(b);
+        }() + ")");
+    if (!eglBindAPI(EGL_OPENGL_API)) fail("eglBindAPI(EGL_OPENGL_API) failed");
+    const EGLint cfg_attr[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    EGLConfig cfg = nullptr;
+    EGLint ncfg = 0;
+    if (!eglChooseConfig(dpy, cfg_attr, &cfg, 1, &ncfg) || ncfg < 1) cfg = nullptr;  // no-config
+    const EGLint ctx_attr[] = {EGL_CONTEXT_MAJOR_VERSION,
+                               4,
+                               EGL_CONTEXT_MINOR_VERSION,
+                               3,
+                               EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                               EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                               EGL_NONE};
+    EGLContext ctx = eglCreateContext(dpy, cfg, EGL_NO_CONTEXT, ctx_attr);
+    if (ctx == EGL_NO_CONTEXT)
+        fail("eglCreateContext(OpenGL 4.3 core) failed: the driver offers no OpenGL 4.3");
+    if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx))
+        fail("eglMakeCurrent without a surface failed (EGL_KHR_surfaceless_context missing?)");
+}
+
+std::string read_file(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) fail("cannot read " + path);
+    std::ostringstream s;
+    s << f.rdbuf();
+    return s.str();
+}
+
+std::string compute_source(const std::string& library) {
+    std::ostringstream s;
+    s << "#version 430\n" << library << "\n";
+    s << "layout(local_size_x = 64) in;\n"
+         "layout(std430, binding = 0) readonly buffer Dirs { vec4 dirs[]; };\n"
+         "layout(std430, binding = 1) readonly buffer Coef { vec4 coef[]; };\n"
+         "layout(std430, binding = 2) writeonly buffer Vals { float vals[]; };\n"
+         "uniform uint count;\n"
+         "void main() {\n"
+         "    uint i = gl_GlobalInvocationID.x;\n"
+         "    if (i >= count) return;\n"
+         "    vec3 d = dirs[i].xyz;\n"
+         "    uint base = i * "
+      << stride << "u;\n";
+    for (int n = 1; n <= max_n; ++n) {
+        s << "    { float s[" << n * n << "]; sphbasis_sh_eval" << n << "(d, s);\n"
+          << "      for (int k = 0; k < " << n * n << "; ++k) vals[base + " << offset_of(n)
+          << "u + uint(k)] = s[k]; }\n";
+    }
+    s << "    vec3 L[9];\n"
+         "    for (int k = 0; k < 9; ++k) L[k] = coef[k].xyz;\n"
+         "    vec3 e = sphbasis_sh_irradiance(L, d);\n"
+      << "    vals[base + " << sh_values << "u] = e.x; vals[base + " << sh_values + 1
+      << "u] = e.y; vals[base + " << sh_values + 2 << "u] = e.z;\n"
+      << "}\n";
+    return s.str();
+}
+
+unsigned compile_program(const Gl& gl, const std::string& src) {
+    const unsigned sh = gl.CreateShader(GL_COMPUTE_SHADER);
+    const char* p = src.c_str();
+    gl.ShaderSource(sh, 1, &p, nullptr);
+    gl.CompileShader(sh);
+    int ok = 0;
+    gl.GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[8192] = {};
+        gl.GetShaderInfoLog(sh, sizeof log, nullptr, log);
+        fail(std::string("the compute shader did not compile:\n") + log);
+    }
+    const unsigned prog = gl.CreateProgram();
+    gl.AttachShader(prog, sh);
+    gl.LinkProgram(prog);
+    gl.GetProgramiv(prog, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[8192] = {};
+        gl.GetProgramInfoLog(prog, sizeof log, nullptr, log);
+        fail(std::string("the compute program did not link:\n") + log);
+    }
+    return prog;
+}
+
+// Float ulp of |v| (v normal, > 0).
+double ulp_of(double v) {
+    int e = 0;
+    std::frexp(v, &e);  // v = f 2^e, f in [0.5, 1)
+    return std::ldexp(1.0, e - 24);
+}
+
+// Directions: a theta x phi grid with the poles, the horizon and the axes on it, the exact axes
+// (x = y = 0 at both poles), and random directions (fixed seed). All unit in double, then
+// rounded to float: both sides see the same float components.
+std::vector<float> directions() {
+    std::vector<float> d;
+    auto push = [&](double x, double y, double z) {
+        float fx = float(x), fy = float(y), fz = float(z);
+        // A fixed point of the library's float normalisation (sh::irradiance normalises its
+        // input; the shader, like eval_unit, takes the direction as unit): both sides then see
+        // the same components.
+        for (int it = 0; it < 8; ++it) {
+            float nx = fx, ny = fy, nz = fz;
+            sphbasis::normalize_or_pole(nx, ny, nz);
+            if (nx == fx && ny == fy && nz == fz) break;
+            fx = nx, fy = ny, fz = nz;
+        }
+        d.push_back(fx);
+        d.push_back(fy);
+        d.push_back(fz);
+        d.push_back(0.0f);
+    };
+    const double pi = 3.14159265358979323846;
+    const int nt = 32, np = 48;
+    for (int i = 0; i <= nt; ++i) {
+        const double t = pi * i / nt;  // i = 0, nt: poles; i = nt/2: horizon
+        for (int j = 0; j < np; ++j) {
+            const double p = 2 * pi * j / np;
+            push(std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t));
+        }
+    }
+    push(0, 0, 1);
+    push(0, 0, -1);
+    push(1, 0, 0);
+    push(-1, 0, 0);
+    push(0, 1, 0);
+    push(0, -1, 0);
+    std::mt19937 rng(20260530u);
+    std::normal_distribution<double> g;
+    for (int i = 0; i < 1024; ++i) {
+        double x = g(rng), y = g(rng), z = g(rng);
+        const double r = std::sqrt(x * x + y * y + z * z);
+        push(x / r, y / r, z / r);
+    }
+    return d;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const std::string glsl_path =
+        argc > 1 ? argv[1] : std::string(SPHBASIS_SOURCE_DIR) + "/shaders/sphbasis.glsl";
+    create_context();
+    const Gl gl = load_gl();
+    const char* renderer = reinterpret_cast<const char*>(gl.GetString(GL_RENDERER));
+    const char* version = reinterpret_cast<const char*>(gl.GetString(GL_VERSION));
+    std::printf("sphbasis_shader_test: %s, OpenGL %s\n", renderer ? renderer : "?",
+                version ? version : "?");
+    std::printf("  shader file: %s\n", glsl_path.c_str());
+
+    const unsigned prog = compile_program(gl, compute_source(read_file(glsl_path)));
+
+    const std::vector<float> dirs = directions();
+    const unsigned count = unsigned(dirs.size() / 4);
+    // RGB radiance coefficients of modest size with every term present.
+    std::vector<float> coef(9 * 4);
+    for (std::size_t k = 0; k < 9; ++k) {
+        coef[4 * k + 0] = 1.0f / float(k + 1);
+        coef[4 * k + 1] = 0.5f - 0.1f * float(k);
+        coef[4 * k + 2] = (k % 2 ? -0.3f : 0.7f) + 0.01f * float(k);
+    }
+    unsigned buf[3];
+    gl.GenBuffers(3, buf);
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buf[0]);
+    gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(dirs.size() * sizeof(float)), dirs.data(),
+                  GL_STATIC_DRAW);
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buf[1]);
+    gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(coef.size() * sizeof(float)), coef.data(),
+                  GL_STATIC_DRAW);
+    const std::size_t nvals = std::size_t(count) * stride;
+    std::vector<float> gpu(nvals, std::nanf(""));
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buf[2]);
+    gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(nvals * sizeof(float)), gpu.data(),
+                  GL_DYNAMIC_READ);
+    for (unsigned i = 0; i < 3; ++i) gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buf[i]);
+    gl.UseProgram(prog);
+    gl.Uniform1ui(gl.GetUniformLocation(prog, "count"), count);
+    gl.DispatchCompute((count + 63) / 64, 1, 1);
+    gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buf[2]);
+    gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(nvals * sizeof(float)), gpu.data());
+    gl.Finish();
+    if (const unsigned err = gl.GetError(); err != GL_NO_ERROR) {
+        char b[64];
+        std::snprintf(b, sizeof b, "OpenGL error 0x%x", err);
+        fail(b);
+    }
+
+    // CPU side, in float, and the comparison.
+    const double four_pi = 4 * 3.14159265358979323846;
+    bool ok = true;
+    std::printf("  %u directions (poles, horizon, x = y = 0 included), bound %.1f ulps\n", count,
+                max_ulps);
+    for (int n = 1; n <= max_n; ++n) {
+        double worst = 0;
+        std::size_t identical = 0, total = 0;
+        unsigned worst_i = 0;
+        int worst_k = 0;
+        std::vector<float> cpu(std::size_t(n) * std::size_t(n));
+        for (unsigned i = 0; i < count; ++i) {
+            const float x = dirs[4 * i], y = dirs[4 * i + 1], z = dirs[4 * i + 2];
+            switch (n) {
+                case 1:
+                    sphbasis::sh::eval_unit<1>(x, y, z, cpu.data());
+                    break;
+                case 2:
+                    sphbasis::sh::eval_unit<2>(x, y, z, cpu.data());
+                    break;
+                case 3:
+                    sphbasis::sh::eval_unit<3>(x, y, z, cpu.data());
+                    break;
+                case 4:
+                    sphbasis::sh::eval_unit<4>(x, y, z, cpu.data());
+                    break;
+                case 5:
+                    sphbasis::sh::eval_unit<5>(x, y, z, cpu.data());
+                    break;
+                case 6:
+                    sphbasis::sh::eval_unit<6>(x, y, z, cpu.data());
+                    break;
+                case 7:
+                    sphbasis::sh::eval_unit<7>(x, y, z, cpu.data());
+                    break;
+                default:
+                    sphbasis::sh::eval_unit<8>(x, y, z, cpu.data());
+                    break;
+            }
+            for (int k = 0; k < n * n; ++k) {
+                const int l = int(std::sqrt(double(k)));
+                const double scale = std::sqrt((2 * l + 1) / four_pi);
+                const double c = cpu[std::size_t(k)];
+                const double v = gpu[std::size_t(i) * stride + std::size_t(offset_of(n) + k)];
+                const double e = std::isfinite(v)
+                                     ? std::abs(v - c) / ulp_of(std::max(std::abs(c), scale))
+                                     : 1e30;
+                identical += (v == c);
+                ++total;
+                if (e > worst) worst = e, worst_i = i, worst_k = k;
+            }
+        }
+        const bool pass = worst <= max_ulps;
+        ok = ok && pass;
+        std::printf(
+            "  sphbasis_sh_eval%d: max %.2f ulps (direction %u, function %d), %zu/%zu "
+            "bit-identical  %s\n",
+            n, worst, worst_i, worst_k, identical, total, pass ? "ok" : "FAIL");
+    }
+    {
+        double worst = 0;
+        std::size_t identical = 0, total = 0;
+        float L[3][9];
+        for (int k = 0; k < 9; ++k)
+            for (int c = 0; c < 3; ++c) L[c][k] = coef[std::size_t(4 * k + c)];
+        for (unsigned i = 0; i < count; ++i) {
+            const float x = dirs[4 * i], y = dirs[4 * i + 1], z = dirs[4 * i + 2];
+            for (int c = 0; c < 3; ++c) {
+                const double ref = sphbasis::sh::irradiance(L[c], x, y, z);
+                // The sum of the terms' magnitudes: the scale of a sum's rounding error.
+                const double xd = x, yd = y, zd = z;
+                const double scale =
+                    0.4290 * std::abs(L[c][8] * (xd * xd - yd * yd)) +
+                    std::abs(L[c][6] * (0.7431 * zd * zd - 0.2477)) + 0.8862 * std::abs(L[c][0]) +
+                    0.8581 * (std::abs(L[c][4] * xd * yd) + std::abs(L[c][7] * xd * zd) +
+                              std::abs(L[c][5] * yd * zd)) +
+                    1.0233 *
+                        (std::abs(L[c][3] * xd) + std::abs(L[c][1] * yd) + std::abs(L[c][2] * zd));
+                const double v = gpu[std::size_t(i) * stride + std::size_t(sh_values + c)];
+                const double e = std::isfinite(v)
+                                     ? std::abs(v - ref) / ulp_of(std::max(std::abs(ref), scale))
+                                     : 1e30;
+                identical += (v == ref);
+                ++total;
+                worst = std::max(worst, e);
+            }
+        }
+        const bool pass = worst <= max_ulps;
+        ok = ok && pass;
+        std::printf("  sphbasis_sh_irradiance: max %.2f ulps, %zu/%zu bit-identical  %s\n", worst,
+                    identical, total, pass ? "ok" : "FAIL");
+    }
+    std::printf("sphbasis_shader_test: %s\n", ok ? "PASS" : "FAIL");
+    return ok ? 0 : 1;
+}
