@@ -1,10 +1,10 @@
 // Tests for basis/sh.hpp: conventions, orthonormality, references, kernels, bad input.
 #include <catch2/catch.hpp>
+#include <climits>
 #include <cmath>
 #include <fstream>
 #include <glm/vec3.hpp>
 #include <limits>
-#include <climits>
 #include <sphbasis/basis/hsh.hpp>
 #include <sphbasis/basis/makhotkin.hpp>
 #include <sphbasis/basis/sh.hpp>
@@ -405,7 +405,8 @@ TEST_CASE("sh: values against the mpmath reference (l <= 2000)", "[sh][reference
 TEST_CASE("sh: counts near the int range are refused, never wrapped or looped on", "[sh]") {
     using namespace sphbasis;
     CHECK(sh::count(46340) == 2147395600);
-    CHECK_THROWS_WITH(sh::count(46341), Catch::Contains("sh::count(): expected 0 <= bands <= 46340"));
+    CHECK_THROWS_WITH(sh::count(46341),
+                      Catch::Contains("sh::count(): expected 0 <= bands <= 46340"));
     CHECK_THROWS_AS(sh::count(100000), std::invalid_argument);
     CHECK_THROWS_AS(sh::count(-1), std::invalid_argument);
     CHECK(sh::degree_of(2147395599) == 46339);

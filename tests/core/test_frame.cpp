@@ -192,7 +192,8 @@ TEST_CASE("frame: quaternions of any finite magnitude give their rotation", "[fr
     using namespace sphbasis;
     const Mat3<double> ref = matrix_from_quaternion(0.5, 0.5, 0.5, 0.5);
     for (double scale : {1e-310, 1e-300, 1e-150, 1.0, 1e150, 1e300}) {
-        const Mat3<double> r = matrix_from_quaternion(0.5 * scale, 0.5 * scale, 0.5 * scale, 0.5 * scale);
+        const Mat3<double> r =
+            matrix_from_quaternion(0.5 * scale, 0.5 * scale, 0.5 * scale, 0.5 * scale);
         for (int i = 0; i < 9; ++i) CHECK(r[i] == Approx(ref[i]).margin(1e-15));
     }
     // (1e300, 1e300, 0, 0) is (1, 1, 0, 0) scaled: 90 degrees about x.

@@ -139,9 +139,10 @@ TEST_CASE("sampling: warps land on their domain and pdfs integrate to one", "[sa
     REQUIRE_THROWS_AS(stratified(0, 1, u, v), std::invalid_argument);
 }
 
-TEST_CASE("quadrature: a rule beyond the table ceiling is refused before allocating", "[quadrature]") {
-    CHECK_THROWS_WITH(sphbasis::sphere_rule(100000),
-                      Catch::Contains("SPHBASIS_MAX_TABLE_BYTES") && Catch::Contains("degree-100000 rule"));
+TEST_CASE("quadrature: a rule beyond the table ceiling is refused before allocating",
+          "[quadrature]") {
+    CHECK_THROWS_WITH(sphbasis::sphere_rule(100000), Catch::Contains("SPHBASIS_MAX_TABLE_BYTES") &&
+                                                         Catch::Contains("degree-100000 rule"));
     CHECK_THROWS_AS(sphbasis::hemisphere_rule(20000), std::invalid_argument);
     CHECK(sphbasis::sphere_rule(64).size() == 33u * 65u);
 }

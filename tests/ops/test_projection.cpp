@@ -117,7 +117,8 @@ TEST_CASE("projection: a malformed BasisFunctions is an error message", "[projec
     const DirectionalRule rule = sphere_rule(4);
     const BasisFunctions negative{-1, [](double, double, double, double*) {}};
     const BasisFunctions empty{4, {}};
-    CHECK_THROWS_WITH(evaluation_matrix(negative, rule), Catch::Contains("n >= 1 functions, got n = -1"));
+    CHECK_THROWS_WITH(evaluation_matrix(negative, rule),
+                      Catch::Contains("n >= 1 functions, got n = -1"));
     CHECK_THROWS_WITH(evaluation_matrix(empty, rule), Catch::Contains("an evaluation function"));
     CHECK_THROWS_AS(gram(empty, rule), std::invalid_argument);
     CHECK_THROWS_AS(LeastSquares(negative, rule), std::invalid_argument);

@@ -575,9 +575,11 @@ TEST_CASE("product: ranges and pointers, checked at the boundary", "[product]") 
                       Catch::Contains("sphbasis::sh::product(): expected 1 <= bands"));
 }
 
-TEST_CASE("product: a triple table beyond the table ceiling is refused before building", "[product]") {
-    CHECK_THROWS_WITH(sphbasis::sh::TripleTable(64, 64, 64),
-                      Catch::Contains("SPHBASIS_MAX_TABLE_BYTES") && Catch::Contains("bands 64 x 64 -> 64"));
+TEST_CASE("product: a triple table beyond the table ceiling is refused before building",
+          "[product]") {
+    CHECK_THROWS_WITH(
+        sphbasis::sh::TripleTable(64, 64, 64),
+        Catch::Contains("SPHBASIS_MAX_TABLE_BYTES") && Catch::Contains("bands 64 x 64 -> 64"));
     std::vector<double> a(64 * 64, 0.0), b(64 * 64, 0.0), c(64 * 64, 0.0);
     CHECK_THROWS_AS(sphbasis::sh::product(64, a, b, c), std::invalid_argument);
 }

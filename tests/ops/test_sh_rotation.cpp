@@ -658,10 +658,12 @@ TEST_CASE("rotation: rotate_z refuses a non-finite angle", "[rotation]") {
     CHECK_THROWS_WITH(sphbasis::sh::rotate_z(4, std::nan(""), in, out),
                       Catch::Contains("sh::rotate_z(): expected a finite angle"));
     CHECK_THROWS_AS(sphbasis::sh::rotate_z(4, HUGE_VAL, in, out), std::invalid_argument);
-    CHECK_THROWS_AS(sphbasis::sh::rotate_z(4, -HUGE_VALF, in.data(), out.data()), std::invalid_argument);
+    CHECK_THROWS_AS(sphbasis::sh::rotate_z(4, -HUGE_VALF, in.data(), out.data()),
+                    std::invalid_argument);
 }
 
-TEST_CASE("rotation: a rotation table beyond the table ceiling is refused before allocating", "[rotation]") {
+TEST_CASE("rotation: a rotation table beyond the table ceiling is refused before allocating",
+          "[rotation]") {
     CHECK_THROWS_WITH(sphbasis::sh::rotation_from_quaternion(1024, 1.0, 0.0, 0.0, 0.0),
                       Catch::Contains("SPHBASIS_MAX_TABLE_BYTES") && Catch::Contains("1024 bands"));
     CHECK(sphbasis::sh::rotation_from_quaternion(8, 1.0, 0.0, 0.0, 0.0).bands() == 8);

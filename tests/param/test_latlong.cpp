@@ -91,7 +91,9 @@ TEST_CASE("lat-long: convergence", "[param][latlong]") {
     CHECK(a / b > 6);
 }
 
-TEST_CASE("lat-long: a resolution near INT_MAX is refused before 2n is formed", "[param][latlong]") {
-    CHECK_THROWS_WITH(sphbasis::param::LatLong<float>(INT_MAX), Catch::Contains("resolution <= 32768"));
+TEST_CASE("lat-long: a resolution near INT_MAX is refused before 2n is formed",
+          "[param][latlong]") {
+    CHECK_THROWS_WITH(sphbasis::param::LatLong<float>(INT_MAX),
+                      Catch::Contains("resolution <= 32768"));
     CHECK_THROWS_AS(sphbasis::param::LatLong<double>(INT_MAX / 2 + 1), std::invalid_argument);
 }

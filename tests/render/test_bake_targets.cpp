@@ -26,7 +26,8 @@ TEST_CASE("bake targets: per-texel ao equals per-vertex ao interpolated, on a fi
 
     std::vector<BakePoint> vertices(plane.vertex_count());
     for (std::size_t v = 0; v < vertices.size(); ++v) {
-        vertices[v].p = {plane.positions[3 * v], plane.positions[3 * v + 1], plane.positions[3 * v + 2]};
+        vertices[v].p = {plane.positions[3 * v], plane.positions[3 * v + 1],
+                         plane.positions[3 * v + 2]};
         vertices[v].n = {0, 0, 1};
         vertices[v].id = v;
     }
@@ -48,10 +49,12 @@ TEST_CASE("bake targets: per-texel ao equals per-vertex ao interpolated, on a fi
         for (int k = 0; k < 3; ++k) {
             const std::uint32_t v = plane.indices[3 * s.triangle + static_cast<std::uint32_t>(k)];
             interpolated += s.barycentric[std::size_t(k)] * at_vertices[v].ao;
-            se2 += s.barycentric[std::size_t(k)] * at_vertices[v].ao_stderr * at_vertices[v].ao_stderr;
+            se2 +=
+                s.barycentric[std::size_t(k)] * at_vertices[v].ao_stderr * at_vertices[v].ao_stderr;
         }
         const double diff = std::fabs(at_texels[i].ao - interpolated);
-        const double tol = 4 * std::sqrt(se2 + at_texels[i].ao_stderr * at_texels[i].ao_stderr) + 2e-3;
+        const double tol =
+            4 * std::sqrt(se2 + at_texels[i].ao_stderr * at_texels[i].ao_stderr) + 2e-3;
         worst = std::max(worst, diff);
         if (diff > tol) ++beyond;
     }

@@ -21,8 +21,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <memory>
-#include <sstream>
 #include <sphbasis/param/reconstruction_error.hpp>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>

@@ -18,9 +18,9 @@
 #define STBI_FAILURE_USERMSG
 #include <stb/stb_image.h>
 
-#include "exr.hpp"
-
 #include <sphbasis/render/shapes.hpp>
+
+#include "exr.hpp"
 
 namespace sphbasis::cli {
 

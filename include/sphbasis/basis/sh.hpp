@@ -67,7 +67,8 @@ constexpr int index(int l, int m) noexcept {
 constexpr int count(int bands) {
     if (bands < 0 || bands > max_countable_bands)
         sphbasis::detail::throw_invalid(
-            "sh::count", "0 <= bands <= 46340 (bands^2 must fit in an int), got " + std::to_string(bands));
+            "sh::count",
+            "0 <= bands <= 46340 (bands^2 must fit in an int), got " + std::to_string(bands));
     return bands * bands;
 }
 /// Degree of the function with ACN index k >= 0 (computed in 64 bits: valid for every int k).

@@ -64,12 +64,15 @@ SPHBASIS_FORCEINLINE void check_range(const char* fn, const char* name, I value,
 /// Throws unless a table of `bytes` bytes (an estimate in double, so it cannot overflow) fits
 /// under SPHBASIS_MAX_TABLE_BYTES: "expected a table of at most <limit> bytes
 /// (SPHBASIS_MAX_TABLE_BYTES), got <bytes> bytes for <what>".
-SPHBASIS_NOINLINE inline void check_table_bytes(const char* fn, double bytes, const std::string& what) {
+SPHBASIS_NOINLINE inline void check_table_bytes(const char* fn, double bytes,
+                                                const std::string& what) {
     const double limit = static_cast<double>(SPHBASIS_MAX_TABLE_BYTES);
     if (!(bytes <= limit)) {
         char buf[160];
-        std::snprintf(buf, sizeof buf, "a table of at most %.4g bytes (SPHBASIS_MAX_TABLE_BYTES), got %.4g bytes for ",
-                      limit, bytes);
+        std::snprintf(
+            buf, sizeof buf,
+            "a table of at most %.4g bytes (SPHBASIS_MAX_TABLE_BYTES), got %.4g bytes for ", limit,
+            bytes);
         throw_invalid(fn, buf + what);
     }
 }

@@ -218,7 +218,8 @@ Mat3<T> matrix_from_quaternion(T w, T x, T y, T z) {
         detail::throw_invalid("matrix_from_quaternion", "a finite non-zero quaternion");
     // Scale by the largest magnitude first, so that quaternions of any finite size (1e-310
     // or 1e300 per component) normalise instead of under- or overflowing in the squared norm.
-    const T big = std::fmax(std::fmax(std::fabs(w), std::fabs(x)), std::fmax(std::fabs(y), std::fabs(z)));
+    const T big =
+        std::fmax(std::fmax(std::fabs(w), std::fabs(x)), std::fmax(std::fabs(y), std::fabs(z)));
     if (!(big > T(0)))
         detail::throw_invalid("matrix_from_quaternion", "a finite non-zero quaternion");
     w /= big, x /= big, y /= big, z /= big;

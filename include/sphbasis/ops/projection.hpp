@@ -57,10 +57,12 @@ namespace detail {
 template <class Basis>
 void check_basis_functions(const Basis& b, const char* fn) {
     if (b.n < 1)
-        sphbasis::detail::throw_invalid(fn, "a basis of n >= 1 functions, got n = " + std::to_string(b.n));
+        sphbasis::detail::throw_invalid(
+            fn, "a basis of n >= 1 functions, got n = " + std::to_string(b.n));
     if constexpr (std::is_constructible_v<bool, decltype(b.eval)>)
         if (!static_cast<bool>(b.eval))
-            sphbasis::detail::throw_invalid(fn, "a basis with an evaluation function, got an empty one");
+            sphbasis::detail::throw_invalid(
+                fn, "a basis with an evaluation function, got an empty one");
 }
 }  // namespace detail
 

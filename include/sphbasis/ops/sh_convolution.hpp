@@ -229,9 +229,9 @@ void scale_bands_any(const char* fn, int bands, K&& kernel, In&& in, Out&& out) 
     auto pi = sphbasis::detail::buffer_data(fn, "in", in, n * n);
     auto po = sphbasis::detail::buffer_data(fn, "out", out, n * n);
     using C = std::remove_cv_t<std::remove_pointer_t<decltype(po)>>;
-    scale_bands_unchecked(bands,
-                static_cast<const std::remove_cv_t<std::remove_pointer_t<decltype(pk)>>*>(pk),
-                static_cast<const C*>(pi), po);
+    scale_bands_unchecked(
+        bands, static_cast<const std::remove_cv_t<std::remove_pointer_t<decltype(pk)>>*>(pk),
+        static_cast<const C*>(pi), po);
 }
 
 /// Selects the range overloads of convolve() and apply_window(): not all three buffers pointers.

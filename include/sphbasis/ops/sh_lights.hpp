@@ -342,7 +342,8 @@ namespace detail {
 /// Floating-point type the fixed-band lights evaluate in: float for float coefficients, else
 /// double.
 template <class C>
-using light_eval_t = std::conditional_t<std::is_same_v<coefficient_scalar_t<C>, float>, float, double>;
+using light_eval_t =
+    std::conditional_t<std::is_same_v<coefficient_scalar_t<C>, float>, float, double>;
 
 /// cap_factors() for a compile-time band count, in E (unrolled).
 template <int N, class E>
@@ -385,7 +386,8 @@ SPHBASIS_FORCEINLINE void zonal_out_fixed(T x, T y, T z, const E* a, const C& co
     E yv[N * N];
     eval<N>(static_cast<E>(x), static_cast<E>(y), static_cast<E>(z), yv);
     for (int l = 0; l < N; ++l)
-        for (int k = l * l; k < (l + 1) * (l + 1); ++k) out[k] = colour * static_cast<S>(a[l] * yv[k]);
+        for (int k = l * l; k < (l + 1) * (l + 1); ++k)
+            out[k] = colour * static_cast<S>(a[l] * yv[k]);
 }
 }  // namespace detail
 

@@ -305,8 +305,8 @@ inline double gaunt(int l1, int m1, int l2, int m2, int l3, int m3) {
 /// With bands_a() == bands_b() <= 256 it also holds the symmetric layout product() uses.
 /// Memory about 28 bytes an ordered entry (both layouts); the count grows like n^5: n = 8: 12868
 /// entries, n = 16: 0.44 M (12 MB), n = 24: 3.4 M (96 MB), n = 48: 0.11 G (3 GB); checked
-/// before building against SPHBASIS_MAX_TABLE_BYTES (n = 64 would need 13 GB). Cost to build: one 3j sweep per
-/// (l1, l2, m1, m2, m3 candidate), about 1 us an entry (n = 16: 0.4 s, n = 24: 3.4 s).
+/// before building against SPHBASIS_MAX_TABLE_BYTES (n = 64 would need 13 GB). Cost to build: one
+/// 3j sweep per (l1, l2, m1, m2, m3 candidate), about 1 us an entry (n = 16: 0.4 s, n = 24: 3.4 s).
 class TripleTable {
   public:
     /// Builds the table. Throws std::invalid_argument unless 1 <= na, nb, nc <= max_bands.
@@ -320,8 +320,8 @@ class TripleTable {
         // counts above for equal band counts), 28 bytes each: n = 64 would need 13 GB.
         const double entries = 0.45 * double(na) * na * nb * nb * std::min(nc, na + nb - 1) / 2;
         sphbasis::detail::check_table_bytes("sh::TripleTable", 28 * entries,
-                                            "bands " + std::to_string(na) + " x " + std::to_string(nb) +
-                                                " -> " + std::to_string(nc));
+                                            "bands " + std::to_string(na) + " x " +
+                                                std::to_string(nb) + " -> " + std::to_string(nc));
         build();
     }
 

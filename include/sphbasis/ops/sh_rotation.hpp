@@ -838,7 +838,8 @@ template <class T, class In, class Out>
 void rotate_z(int bands, T angle, const In& in, Out&& out) {
     check_bands(bands, "sh::rotate_z");
     if (!std::isfinite(static_cast<double>(angle)))
-        sphbasis::detail::throw_invalid("sh::rotate_z", "a finite angle, got " + std::to_string(static_cast<double>(angle)));
+        sphbasis::detail::throw_invalid(
+            "sh::rotate_z", "a finite angle, got " + std::to_string(static_cast<double>(angle)));
     const auto [pin, pout] =
         detail::coefficient_buffers("sh::rotate_z", in, out, detail::coefficient_count(bands));
     if (bands == 0) return;

@@ -67,8 +67,7 @@ class LatLong : public detail::TexelGrid, public detail::MapMethods<LatLong<T>, 
     /// 0 <= subtexel_bits <= 24.
     explicit LatLong(int resolution, int subtexel_bits = 0)
         : detail::TexelGrid("LatLong", 1, 2 * detail::checked_resolution("LatLong", resolution, 1),
-                            resolution, resolution, 1,
-                            subtexel_bits) {}
+                            resolution, resolution, 1, subtexel_bits) {}
 
     FaceUV<T> direction_to_uv(T x, T y, T z) const noexcept {
         const vec3<T> d = detail::unit(x, y, z);

@@ -57,7 +57,8 @@ SPHBASIS_FORCEINLINE T clamp01(T x) noexcept {
 /// value, so no formula below meets inf/inf or 0 * inf.
 template <class T>
 SPHBASIS_FORCEINLINE T finite_shininess(T s) noexcept {
-    return s > T(0) ? (s < std::numeric_limits<T>::max() ? s : std::numeric_limits<T>::max()) : T(0);
+    return s > T(0) ? (s < std::numeric_limits<T>::max() ? s : std::numeric_limits<T>::max())
+                    : T(0);
 }
 }  // namespace detail
 

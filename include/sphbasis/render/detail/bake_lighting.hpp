@@ -1,8 +1,9 @@
 // sphbasis render tier, internal: the distant lighting as render/bake.hpp samples it.
 //
 // The non-delta analytic lights along a ray (cone, hemisphere, and a sphere light the ray meets
-// before its first hit); the environment is Environment::radiance (render/lighting.hpp). Directional lights
-// are deltas: the bake handles them with shadow rays or analytically. Not part of the API.
+// before its first hit); the environment is Environment::radiance (render/lighting.hpp).
+// Directional lights are deltas: the bake handles them with shadow rays or analytically. Not part
+// of the API.
 #pragma once
 
 #include <algorithm>
