@@ -50,16 +50,17 @@
 // threads or order. Rays leave surfaces from x + epsilon n (render::Scene::epsilon(); hits:
 // offset_origin()).
 //
-// The pass plan (plan()): "build" (the Embree scene); "pilot" (the fraction f of cosine rays
-// from random surface points, either side, that hit geometry: 1024 rays, hashed from the seed);
+// The pass plan (plan()): "build" (the Embree scene);
 // "analytic" (points that nothing can occlude, render::Scene::can_occlude(): ao = 1, bent = n,
 // t_lm = a_l y_lm(n) with a_l the clamped-cosine factors, v_lm = 2pi y_lm(n) int_0^1 P_l,
 // irradiance and radiance by quadrature of the sky and closed-form lights: zero rays);
 // "cosine" (ao, bent, transfer rays); "hemisphere" (visibility, irradiance); "sphere"
 // (radiance); "shadow" (directional lights); "bounce k" for k = 1..K, K the largest k <= bounces
-// with rho_max^k f > target_error (rho_max the largest albedo channel). force_all_passes runs
-// the ray passes for every point and all `bounces`. Pass::seconds is thread time (summed over
-// threads); Pass::rays is exact.
+// with rho_max^k > target_error (rho_max the largest albedo channel), and at a point only while
+// rho_max^k f_x > target_error, f_x the fraction of the point's own rays that hit geometry
+// (its paths; paths end when they escape). target_error is relative to unit radiance.
+// force_all_passes runs the ray passes for every point and all `bounces`. Pass::seconds is thread
+// time (summed over threads); Pass::rays is exact.
 #pragma once
 
 #include <tbb/blocked_range.h>
@@ -95,6 +96,7 @@
 #include "detail/bake_lighting.hpp"
 #include "detail/qmc.hpp"
 #include "detail/rt_math.hpp"
+#include "irradiance_fit.hpp"
 #include "lighting.hpp"
 #include "mesh.hpp"
 #include "scene.hpp"
@@ -237,8 +239,6 @@ class Baker {
     }
     /// The ray-tracing scene.
     const Scene& scene() const noexcept { return scene_; }
-    /// The pilot's fraction of rays that hit geometry (0 when no pilot ran).
-    double hit_fraction() const noexcept { return hit_fraction_; }
     /// The bounces that run (K of the header comment).
     int planned_bounces() const noexcept { return bounces_; }
     /// Drops a planned pass by name ("cosine", "hemisphere", "sphere", "shadow", "bounce k",
@@ -252,7 +252,7 @@ class Baker {
 
   private:
     // Pass indices: fixed ones, then bounce k at bounce0 + k - 1.
-    enum : std::size_t { build, pilot, analytic, cosine, hemisphere, sphere, shadow, bounce0 };
+    enum : std::size_t { build, analytic, cosine, hemisphere, sphere, shadow, bounce0 };
     static constexpr int irr_bands = 8;  // SH bands of L_in for irradiance
     struct Stat {
         std::atomic<std::uint64_t> rays{0};
@@ -287,8 +287,8 @@ class Baker {
         return bounce0 + static_cast<std::size_t>(std::max(settings_.bounces, 0));
     }
     static std::string pass_name(std::size_t k) {
-        static const char* names[] = {"build",      "pilot",  "analytic", "cosine",
-                                      "hemisphere", "sphere", "shadow"};
+        static const char* names[] = {"build",      "analytic", "cosine",
+                                      "hemisphere", "sphere",   "shadow"};
         if (k < bounce0) return names[k];
         return "bounce " + std::to_string(k - bounce0 + 1);
     }
@@ -333,24 +333,14 @@ class Baker {
     }
 
     void validate_lighting() {
+        // render::validate (lighting.hpp) is the one check of environments and lights (finite
+        // texels, an orthonormal rotation, sizes, angles); the Baker adds its own below.
         const char* fn = "render::Baker";
         using namespace detail::rt;
-        if (!std::isfinite(env_.scale))
-            sphbasis::detail::throw_invalid(
-                fn, "a finite environment scale, got " + std::to_string(env_.scale));
-        for (double r : env_.rotation)
-            if (!std::isfinite(r))
-                sphbasis::detail::throw_invalid(fn, "a finite environment rotation, got a NaN");
-        if (env_.kind == Environment::Kind::latlong &&
-            (!env_.texels || env_.width <= 0 || env_.height <= 0))
-            sphbasis::detail::throw_invalid(
-                fn, "a lat-long environment with texels and a size > 0, got " +
-                        std::to_string(env_.width) + "x" + std::to_string(env_.height));
-        for (double c : env_.constant)
-            if (!std::isfinite(c))
-                sphbasis::detail::throw_invalid(fn, "a finite constant environment, got a NaN");
+        validate(env_);
         for (std::size_t i = 0; i < lights_.size(); ++i) {
             Light& l = lights_[i];
+            validate(l);
             const std::string at = " (light " + std::to_string(i) + ")";
             if (l.type != Light::Type::sphere) {
                 const double len = length(l.direction);
@@ -424,79 +414,33 @@ class Baker {
         if (force) {
             bounces_ = settings_.bounces;
         } else if (rho > 0 && scene_.triangle_count() > 0) {
-            if (occl) {
-                run_pilot();
-            } else {
-                hit_fraction_ = wants(Quantity::radiance) ? 1.0 : 0.0;
-            }
+            // A point's fraction f_x of rays that hit geometry is at most 1, so rho_max^k bounds
+            // bounce k everywhere; each point then stops at the first k with rho_max^k f_x <=
+            // target_error (continue_paths). (A scene-wide estimate of f is no bound: a point in
+            // a small enclosure of a large open scene has f_x near 1.)
             for (int k = 1; k <= settings_.bounces; ++k) {
-                if (std::pow(rho, k) * hit_fraction_ > settings_.target_error)
+                if (std::pow(rho, k) > settings_.target_error)
                     bounces_ = k;
                 else
                     break;
             }
         }
+        rho_max_ = rho;
         for (int k = 1; k <= bounces_; ++k) {
             Stat& s = stats_[bounce0 + std::size_t(k - 1)];
-            s.planned = true;
-            char buf[160];
-            std::snprintf(buf, sizeof buf,
-                          "bound rho_max^%d * f = %.3g^%d * %.3g = %.3g > target_error %.3g%s", k,
-                          rho, k, hit_fraction_, std::pow(rho, k) * hit_fraction_,
-                          settings_.target_error, force ? " (forced)" : "");
+            // On a lone convex mesh only points the convex test does not clear trace rays: the
+            // bounce passes then appear in the plan only if such points traced them.
+            s.planned = occl || force || wants(Quantity::radiance);
+            char buf[200];
+            if (force)
+                std::snprintf(buf, sizeof buf, "forced (force_all_passes), every point");
+            else
+                std::snprintf(buf, sizeof buf,
+                              "bound rho_max^%d = %.3g > target_error %.3g; at the points with "
+                              "rho_max^%d f_x > target_error (f_x: the point's rays that hit)",
+                              k, std::pow(rho, k), settings_.target_error, k);
             s.reason = buf;
         }
-    }
-
-    /// The pilot: the fraction of cosine-weighted rays from surface points that hit geometry.
-    /// Surface points are the hits of 1024 probe rays (hashed origins in the bounding box,
-    /// uniform directions); from up to 256 of them, 4 cosine rays each about the geometric
-    /// normal of a hashed side. Depends only on the scene and the seed, so shards agree.
-    void run_pilot() {
-        const auto t0 = Clock::now();
-        using namespace detail::rt;
-        const std::size_t npts = 256, per = 4;
-        std::vector<RTCRayHit> probe(npts * 4);
-        const V3 lo = scene_.bounds_min(), hi = scene_.bounds_max();
-        for (std::size_t i = 0; i < probe.size(); ++i) {
-            const std::uint64_t h = hash(settings_.seed, 0x7069'6c6f'74ull, i);
-            const V3 o{lo.x + (hi.x - lo.x) * unit(hash(h, 1)),
-                       lo.y + (hi.y - lo.y) * unit(hash(h, 2)),
-                       lo.z + (hi.z - lo.z) * unit(hash(h, 3))};
-            const V3 d = square_to_uniform_sphere(unit(hash(h, 4)), unit(hash(h, 5)));
-            Scene::set_ray(probe[i], o, d);
-        }
-        scene_.intersect(probe.data(), probe.size());
-        std::vector<RTCRay> rays;
-        std::uint64_t traced = probe.size();
-        for (std::size_t i = 0; i < probe.size() && rays.size() < npts * per; ++i) {
-            const Hit hit = scene_.hit(probe[i]);
-            if (!hit.valid) continue;
-            const std::uint64_t h = hash(settings_.seed, 0x7069'6c6f'75ull, i);
-            // Either side: the side the probe came from (geometric_normal faces it) or the other.
-            const V3 ng = (hash(h, 9) & 1) ? hit.geometric_normal : -hit.geometric_normal;
-            const Frame<double> f(ng);
-            for (std::size_t j = 0; j < per; ++j) {
-                const V3 d = f.to_world(
-                    square_to_cosine_hemisphere(unit(hash(h, 2 * j)), unit(hash(h, 2 * j + 1))));
-                RTCRay r;
-                Scene::set_ray(r, scene_.offset_origin(hit.position, ng, d), d);
-                rays.push_back(r);
-            }
-        }
-        scene_.occluded(rays.data(), rays.size());
-        traced += rays.size();
-        std::size_t hits = 0;
-        for (const auto& r : rays) hits += Scene::is_occluded(r);
-        hit_fraction_ = rays.empty() ? 1.0 : double(hits) / double(rays.size());
-        stats_[pilot].planned = true;
-        stats_[pilot].rays = traced;
-        stats_[pilot].seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-        char buf[120];
-        std::snprintf(buf, sizeof buf,
-                      "bounces requested: fraction of rays hitting geometry f = %.3g",
-                      hit_fraction_);
-        stats_[pilot].reason = buf;
     }
 
     void publish_plan() {
@@ -554,11 +498,15 @@ class Baker {
 
     // ---- precomputation -------------------------------------------------------------------
     void prepare_irradiance() {
-        const BasisInfo& info = find_basis(settings_.basis);
-        irr_rule_ = hemisphere_rule_sqrt(32, 32);
-        const bool ortho = info.orthonormal && info.domain == Domain::hemisphere;
-        irr_fit_ = std::make_shared<const LeastSquares>(info.functions(settings_.coeffs), ortho,
-                                                        irr_rule_);
+        // One fit for every irradiance in the library (render/irradiance_fit.hpp): least squares
+        // over hemisphere_rule_sqrt(32, 32) in the tangent frame, as a projector P (coeffs x M).
+        irr_fit_ = std::make_shared<const IrradianceFit>(settings_.basis, settings_.coeffs,
+                                                         hemisphere_rule_sqrt(32, 32));
+        irr_rule_ = irr_fit_->rule();
+        irr_projector_ = Eigen::Map<
+            const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+            irr_fit_->projector().data(), irr_fit_->coeffs(),
+            static_cast<Eigen::Index>(irr_fit_->directions()));
         const int n = irr_bands * irr_bands;
         double a[irr_bands];
         clamped_cosine_factors(irr_bands, a);
@@ -570,7 +518,7 @@ class Baker {
                 for (int k = l * l; k < (l + 1) * (l + 1); ++k)
                     m(Eigen::Index(i), k) = constants::pi * a[l] * y[std::size_t(k)];
         }
-        irr_map_ = irr_fit_->coefficients(m);  // coeffs x n: L_lm (local) -> fitted E
+        irr_map_ = irr_projector_ * m;  // coeffs x n: L_lm (local) -> fitted E
     }
     void prepare_quadrature() {
         // Hemisphere rule in the tangent frame (irradiance of unoccluded points) and sphere
@@ -699,7 +647,7 @@ class Baker {
                     if (c > 0)
                         for (Eigen::Index k = 0; k < 3; ++k) s(i, k) += c * col[std::size_t(k)];
                 }
-            e += irr_fit_->coefficients(s);
+            e += irr_projector_ * s;
         }
         for (std::size_t c = 0; c < 3; ++c) {
             res.irradiance[c].resize(std::size_t(e.rows()));
@@ -786,21 +734,30 @@ class Baker {
     /// emit(sample, direction, weight RGB, escaped) ... simplified: escape(sample, dir, T) and
     /// light(sample, radiance RGB).
     template <class Escape, class Gather>
-    void continue_paths(std::vector<PathState>& paths, std::uint64_t key, bool lit, Local& L,
-                        Escape&& escape, Gather&& gather) const {
+    void continue_paths(std::vector<PathState>& paths, std::size_t primary_rays, std::uint64_t key,
+                        bool lit, Local& L, Escape&& escape, Gather&& gather) const {
         using namespace detail::rt;
+        // f_x: the fraction of this point's primary rays that hit geometry (every hit starts a
+        // path), the point's own factor of the bound rho_max^k f_x.
+        const double fx = primary_rays > 0 ? double(paths.size()) / double(primary_rays) : 0.0;
         for (int k = 1; k <= bounces_ && !paths.empty(); ++k) {
             const std::size_t pass = bounce0 + std::size_t(k - 1);
             if (dropped_.count(pass_name(pass))) break;
+            if (!settings_.force_all_passes &&
+                !(std::pow(rho_max_, k) * fx > settings_.target_error))
+                break;
             Timer t{L, pass};
             std::vector<PathState> next;
             std::vector<V3> dirs;
             L.rayhit.clear();
-            std::vector<PathState> live;
+            std::vector<PathState> live, lit_paths;
             for (PathState& ps : paths) {
                 for (std::size_t c = 0; c < 3; ++c) ps.throughput[c] *= ps.hit.albedo[c];
                 if (!(std::max({ps.throughput[0], ps.throughput[1], ps.throughput[2]}) > 0))
                     continue;
+                // Direct light at this vertex whatever the continuation does (a continuation
+                // below the geometric normal ends the path, not its vertex's sunlight).
+                if (lit) lit_paths.push_back(ps);
                 const std::uint64_t h = hash(key, ps.sample, std::uint64_t(k));
                 const Frame<double> f(ps.hit.shading_normal);
                 const V3 d =
@@ -813,7 +770,7 @@ class Baker {
                 dirs.push_back(d);
                 live.push_back(ps);
             }
-            if (lit) direct_lights_at_vertices(live, L, gather);
+            if (lit) direct_lights_at_vertices(lit_paths, L, gather);
             scene_.intersect(L.rayhit.data(), L.rayhit.size());
             L.rays[pass] += L.rayhit.size();
             for (std::size_t i = 0; i < live.size(); ++i) {
@@ -1026,7 +983,7 @@ class Baker {
                 smp.push_back(std::uint32_t(j));
             }
         continue_paths(
-            paths, hash(key, 0x7472ull), false, L,
+            paths, N, hash(key, 0x7472ull), false, L,
             [&](std::uint32_t sample, const V3& d, const RGB& T, const V3&, double tmax) {
                 if (tmax < std::numeric_limits<double>::infinity()) return;
                 push_dir(L, d);
@@ -1117,7 +1074,7 @@ class Baker {
             for (std::size_t k = 0; k < 3; ++k) Ls[s][k] += c[k];
         };
         continue_paths(
-            paths, hash(key, 0x6972ull), true, L,
+            paths, N, hash(key, 0x6972ull), true, L,
             [&](std::uint32_t s, const V3& d, const RGB& T, const V3& org, double tmax) {
                 const RGB c = sky(org, d, tmax);
                 for (std::size_t k = 0; k < 3; ++k) Ls[s][k] += T[k] * c[k];
@@ -1226,11 +1183,11 @@ class Baker {
     std::unique_ptr<Stat[]> stats_;
     std::mutex mutex_;
     std::set<std::string> dropped_;
-    double hit_fraction_ = 0;
+    double rho_max_ = 0;
     int bounces_ = 0;
     DirectionalRule irr_rule_, hemi_rule_, sphere_rule_;
-    std::shared_ptr<const LeastSquares> irr_fit_;
-    Eigen::MatrixXd irr_map_;
+    std::shared_ptr<const IrradianceFit> irr_fit_;
+    Eigen::MatrixXd irr_projector_, irr_map_;
     detail::rt::QmcTable qmc_;
 };
 
