@@ -158,3 +158,64 @@ TEST_CASE("FixedRotation rotates RGB coefficients in one pass like each channel"
     sh::rotate<4>(r, in.data(), out2.data());
     for (int k = 0; k < 16; ++k) CHECK(out2[k].g == Approx(out[k].g).margin(1e-15));
 }
+
+namespace {
+
+sh::Mat3<double> zyz_matrix(double a, double b, double c) {
+    const double ca = std::cos(a), sa = std::sin(a), cb = std::cos(b), sb = std::sin(b), cc = std::cos(c),
+                 sc = std::sin(c);
+    const sh::Mat3<double> rza{ca, -sa, 0, sa, ca, 0, 0, 0, 1}, ry{cb, 0, sb, 0, 1, 0, -sb, 0, cb},
+        rzc{cc, -sc, 0, sc, cc, 0, 0, 0, 1};
+    return sh::multiply(rza, sh::multiply(ry, rzc));
+}
+
+/// rotate<N>(r) against the run-time sh::rotate: max |difference| over the coefficients (and
+/// in place: bit-identical to out of place).
+template <int N, class T>
+double rotate_direct_error(const sh::Mat3<double>& rd, bool improper, std::mt19937& rng) {
+    sh::Mat3<T> r;
+    for (std::size_t k = 0; k < 9; ++k) r[k] = T(improper ? -rd[k] : rd[k]);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::array<T, N * N> in{}, a{}, b{};
+    for (auto& v : in) v = T(u(rng));
+    sh::rotate<N>(r, in.data(), a.data());
+    sh::rotate(N, r, in.data(), b.data());
+    std::array<T, N * N> ip = in;
+    sh::rotate<N>(r, ip.data(), ip.data());
+    double worst = 0;
+    for (int k = 0; k < N * N; ++k) {
+        worst = std::max(worst, std::fabs(double(a[k]) - double(b[k])));
+        if (ip[k] != a[k]) worst = 1e300;
+    }
+    return worst;
+}
+
+template <class T, int... Ns>
+void rotate_direct_cases(std::mt19937& rng) {
+    const double eps = std::is_same_v<T, float> ? 1e-5 : 3e-14;
+    const double pi = 3.14159265358979323846;
+    const double betas[] = {0.0, 1e-8, -1e-8, 1e-12, 3e-5, pi, pi - 1e-8, pi + 1e-8, pi - 1e-12, 0.5 * pi, 1.3};
+    std::uniform_real_distribution<double> ang(-pi, pi);
+    double worst = 0;
+    for (double beta : betas)
+        for (int trial = 0; trial < 6; ++trial) {
+            const auto rd = zyz_matrix(trial == 0 ? 0.0 : ang(rng), beta, trial == 1 ? 0.0 : ang(rng));
+            for (bool improper : {false, true})
+                worst = std::max({worst, rotate_direct_error<Ns, T>(rd, improper, rng)...});
+        }
+    for (int trial = 0; trial < 40; ++trial) {
+        const auto rd = random_rotation<double>(rng, trial % 2 == 1);
+        worst = std::max({worst, rotate_direct_error<Ns, T>(rd, false, rng)...});
+    }
+    INFO("worst " << worst);
+    CHECK(worst <= eps);
+}
+
+}  // namespace
+
+TEMPLATE_TEST_CASE("rotate<N> (factored, D never formed) equals the run-time sh::rotate for N = 1..8, near "
+                   "the Euler singularity and for improper matrices",
+                   "[ops][rotation]", float, double) {
+    std::mt19937 rng(141);
+    rotate_direct_cases<TestType, 1, 2, 3, 4, 5, 6, 7, 8>(rng);
+}

@@ -165,6 +165,146 @@ def band_function(l):
     return "\n".join(out)
 
 
+
+# ------------------------------------------------------------------------------------------
+# Direct rotation of coefficients (sh::rotate<N>): band 1 is R, band 2 the tensor R Q R^T,
+# bands >= 3 the factorisation R = Rz(a) X Rz(b) X^T Rz(c), X the quarter turn about x that
+# takes z to y (X Rz(b) X^T = Ry(b)).
+
+XMAT = [[1, 0, 0], [0, 0, 1], [0, -1, 0]]  # Rx(-pi/2): x -> x, y -> -z, z -> y
+
+
+def dmat(lmax, r):
+    """D^0..D^lmax of the 3x3 matrix r (row-major nested lists, exact sympy or float entries) by
+    the recurrence above (band 1 = r permuted to (y, z, x))."""
+    p = [1, 2, 0]
+    b1 = [[r[p[i]][p[j]] for j in range(3)] for i in range(3)]
+
+    def R(i, j):
+        return b1[i + 1][j + 1]
+    ds = [[[sp.Integer(1)]], b1]
+    for l in range(2, lmax + 1):
+        invd, us, vs, ws = factors(l)
+        prevm = ds[l - 1]
+
+        def M(a, n):
+            return prevm[a + l - 1][n + l - 1]
+
+        def P(i, a, n):
+            if -l < n < l:
+                return R(i, 0) * M(a, n)
+            if n == l:
+                return R(i, 1) * M(a, l - 1) - R(i, -1) * M(a, 1 - l)
+            return R(i, 1) * M(a, 1 - l) + R(i, -1) * M(a, l - 1)
+        d = [[None] * (2 * l + 1) for _ in range(2 * l + 1)]
+        for m in range(-l, l + 1):
+            terms = row_terms(l, m, us, vs, ws)
+            for n in range(-l, l + 1):
+                d[m + l][n + l] = sp.expand(invd[n] * sum(f * P(i, a, n) for (f, i, a) in terms))
+        ds.append(d)
+    return ds
+
+
+def zmat(l, t):
+    """D^l(Rz(t)): c'_m = c_m cos(mt) - c_-m sin(mt), c'_-m = c_-m cos(mt) + c_m sin(mt)."""
+    w = 2 * l + 1
+    z = [[0.0] * w for _ in range(w)]
+    z[l][l] = 1.0
+    import math
+    for m in range(1, l + 1):
+        c, s = math.cos(m * t), math.sin(m * t)
+        z[l + m][l + m] = c
+        z[l + m][l - m] = -s
+        z[l - m][l - m] = c
+        z[l - m][l + m] = s
+    return z
+
+
+def matmul(a, b):
+    return [[sum(a[i][k] * b[k][j] for k in range(len(b))) for j in range(len(b[0]))] for i in range(len(a))]
+
+
+def transpose(a):
+    return [list(x) for x in zip(*a)]
+
+
+def self_check(dx):
+    """The factorisation reproduces the recurrence's D for a sample rotation (float)."""
+    import math
+    al, be, ga = 0.7, 1.1, -2.3
+
+    def rz(t):
+        return [[math.cos(t), -math.sin(t), 0], [math.sin(t), math.cos(t), 0], [0, 0, 1]]
+    xm = [[float(v) for v in row] for row in XMAT]
+    ry = [[math.cos(be), 0, math.sin(be)], [0, 1, 0], [-math.sin(be), 0, math.cos(be)]]
+    assert max(abs(a - b) for ra, rb in zip(matmul(matmul(xm, rz(be)), transpose(xm)), ry) for a, b in zip(ra, rb)) < 1e-15
+    r = matmul(matmul(rz(al), ry), rz(ga))
+    ref = dmat(MAX_BANDS - 1, [[sp.Float(v, 30) for v in row] for row in r])
+    for l in range(3, MAX_BANDS):
+        x = [[float(v) for v in row] for row in dx[l]]
+        f = matmul(zmat(l, al), matmul(x, matmul(zmat(l, be), matmul(transpose(x), zmat(l, ga)))))
+        err = max(abs(float(a) - b) for ra, rb in zip(ref[l], f) for a, b in zip(ra, rb))
+        assert err < 1e-12, (l, err)
+
+
+def zyz_band_function(l, dx):
+    """Straight-line out = Z(a) X Z(b) X^T Z(c) in for band l (2l + 1 values each)."""
+    w = 2 * l + 1
+    x = dx[l]
+    consts = {}
+
+    def const(v):
+        key = sp.srepr(v)
+        if key not in consts:
+            consts[key] = ("x%d" % len(consts), v)
+        return consts[key][0]
+
+    body = []
+    body.append("    const C %s;" % ", ".join("i%d = in[%d]" % (j, j) for j in range(w)))
+
+    def zrot(src, dst, ang):
+        # dst = Z(ang) src; cos/sin of m*ang in c<ang>[m - 1], s<ang>[m - 1]
+        lines = ["    const C %s%d = %s%d;" % (dst, l, src, l)]
+        for m in range(1, l + 1):
+            cm, sm = "c%s[%d]" % (ang, m - 1), "s%s[%d]" % (ang, m - 1)
+            lines.append("    const C %s%d = %s%d * %s + %s%d * (-%s);" % (dst, l + m, src, l + m, cm, src, l - m, sm))
+            lines.append("    const C %s%d = %s%d * %s + %s%d * %s;" % (dst, l - m, src, l - m, cm, src, l + m, sm))
+        return lines
+
+    def xmul(src, dst, mat):
+        lines = []
+        for i in range(w):
+            parts = []
+            for j in range(w):
+                v = mat[i][j]
+                if v == 0:
+                    continue
+                if v == 1:
+                    parts.append("%s%d" % (src, j))
+                else:
+                    parts.append("%s%d * %s" % (src, j, const(v)))
+            assert parts
+            lines.append("    const C %s%d = %s;" % (dst, i, " + ".join(parts)))
+        return lines
+
+    body += zrot("i", "a", "g")
+    body += xmul("a", "b", transpose(x))
+    body += zrot("b", "e", "b")
+    body += xmul("e", "f", x)
+    zl = zrot("f", "h", "a")
+    body += zl
+    body.append("    " + " ".join("out[%d] = h%d;" % (j, j) for j in range(w)))
+    out = []
+    out.append("/// Band %d of out = Z(alpha) X Z(beta) X^T Z(gamma) in; c<a>[m-1], s<a>[m-1] = cos, sin of m a." % l)
+    out.append("template <class T, class C>")
+    out.append("SPHBASIS_FORCEINLINE void rotate_zyz_band_%d(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const C* in, C* out) noexcept {" % l)
+    for key, (nm, v) in sorted(consts.items(), key=lambda kv: int(kv[1][0][1:])):
+        out.append("    const T %s = %s;  // %s" % (nm, lit(v), closed(v)))
+    out += body
+    out.append("}")
+    return "\n".join(out)
+
+
 HEADER = r'''// GENERATED by tools/gen/gen_sh_rotation.py -- do not edit.
 // Regenerate: /usr/bin/python3 tools/gen/gen_sh_rotation.py > include/sphbasis/ops/sh_rotation_fixed.hpp
 //
@@ -192,6 +332,7 @@ HEADER = r'''// GENERATED by tools/gen/gen_sh_rotation.py -- do not edit.
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <type_traits>
 
 #include "../config.hpp"
@@ -243,6 +384,108 @@ SPHBASIS_FORCEINLINE void rotation_fixed_apply(const T* SPHBASIS_RESTRICT d, con
             C acc = x[k0] * (Transposed ? b[i] : b[i * w]);
             for (int j = 1; j < w; ++j) acc = acc + x[k0 + j] * (Transposed ? b[j * w + i] : b[i * w + j]);
             out[k0 + i] = acc;
+        }
+    }
+}
+
+/// cos(m t), sin(m t) for m = 1..L into cm[m - 1], sm[m - 1], from c = cos t, s = sin t, by the
+/// Chebyshev recurrence x_{m+1} = 2 c x_m - x_{m-1} (error O(m^2 eps), a few ulp for m <= 7).
+template <int L, class T>
+SPHBASIS_FORCEINLINE void rotation_multiples(T c, T s, T* SPHBASIS_RESTRICT cm, T* SPHBASIS_RESTRICT sm) noexcept {
+    cm[0] = c;
+    sm[0] = s;
+    const T c2 = c + c;
+    if constexpr (L >= 2) {
+        cm[1] = c2 * c - T(1);
+        sm[1] = c2 * s;
+    }
+    for (int m = 2; m < L; ++m) {
+        cm[m] = c2 * cm[m - 1] - cm[m - 2];
+        sm[m] = c2 * sm[m - 1] - sm[m - 2];
+    }
+}
+
+/// out = D(R) in for L bands of the row-major matrix r, D never formed:
+///   * band 1: D^1 = R permuted to (y, z, x);
+///   * band 2: the coefficients are a traceless symmetric Q with f(w) = w^T Q w on the sphere
+///     (scaled by 2 / sqrt(15 / (4 pi)): Q_xy = c_-2, Q_yz = c_-1, Q_xz = c_1,
+///     Q_xx = c_2 - c_0 / sqrt3, Q_yy = -c_2 - c_0 / sqrt3, Q_zz = 2 c_0 / sqrt3); the rotated
+///     function is w^T (R Q R^T) w, 45 multiply-adds;
+///   * bands l >= 3: R = Rz(alpha) Ry(beta) Rz(gamma) with Ry(beta) = X Rz(beta) X^T, X the
+///     quarter turn about x taking z to y, so D^l = Z(alpha) D^l(X) Z(beta) D^l(X)^T Z(gamma):
+///     three z rotations (cos, sin of m times each angle on the pairs (m, -m)) and two sparse
+///     constant matrices (rotate_zyz_band_l, generated with exact constants, zeros skipped).
+///     The angles are never formed: cos beta = R_22, (cos alpha, sin alpha) = (R_02, R_12) /
+///     sin beta, sin beta = |(R_02, R_12)|, and (cos gamma, sin gamma) is read from the middle
+///     row of Rz(-alpha) R = Ry(beta) Rz(gamma): cos gamma = ca R_11 - sa R_01, sin gamma =
+///     ca R_10 - sa R_00. Any unit (ca, sa) makes that row exact, so at and near beta = 0 or
+///     pi (sin beta below the smallest normal: alpha = 0) the factorisation still reproduces R
+///     to rounding: gamma absorbs the error of alpha.
+///   * improper R (det < 0): bands >= 3 use -R and negate the odd bands ((-1)^l D(-R), as
+///     the recurrence gives); bands 1 and 2 are homogeneous in R and need nothing.
+/// in == out is allowed: every band reads its input before writing.
+template <int L, class T, class C>
+SPHBASIS_FORCEINLINE void rotate_direct(const T* SPHBASIS_RESTRICT r, const C* in, C* out) noexcept {
+    out[0] = in[0];
+    if constexpr (L >= 2) {
+        const C y = in[1], z = in[2], x = in[3];
+        out[1] = y * r[4] + z * r[5] + x * r[3];
+        out[2] = y * r[7] + z * r[8] + x * r[6];
+        out[3] = y * r[1] + z * r[2] + x * r[0];
+    }
+    if constexpr (L >= 3) {
+        const T a = T(0.57735026918962576);  // 1/sqrt(3)
+        const C c0 = in[6], c2 = in[8];
+        const C qxy = in[4], qyz = in[5], qxz = in[7];
+        const C qzz = c0 * (a + a);
+        const C qxx = c2 + c0 * (-a), qyy = c2 * T(-1) + c0 * (-a);
+        const C t00 = qxx * r[0] + qxy * r[1] + qxz * r[2];
+        const C t01 = qxy * r[0] + qyy * r[1] + qyz * r[2];
+        const C t02 = qxz * r[0] + qyz * r[1] + qzz * r[2];
+        const C t10 = qxx * r[3] + qxy * r[4] + qxz * r[5];
+        const C t11 = qxy * r[3] + qyy * r[4] + qyz * r[5];
+        const C t12 = qxz * r[3] + qyz * r[4] + qzz * r[5];
+        const C t20 = qxx * r[6] + qxy * r[7] + qxz * r[8];
+        const C t21 = qxy * r[6] + qyy * r[7] + qyz * r[8];
+        const C t22 = qxz * r[6] + qyz * r[7] + qzz * r[8];
+        const T k = T(0.86602540378443865);  // sqrt(3)/2
+        const T h = T(0.5);
+        out[4] = t00 * r[3] + t01 * r[4] + t02 * r[5];
+        out[5] = t10 * r[6] + t11 * r[7] + t12 * r[8];
+        out[6] = t20 * (k * r[6]) + t21 * (k * r[7]) + t22 * (k * r[8]);
+        out[7] = t00 * r[6] + t01 * r[7] + t02 * r[8];
+        out[8] = t00 * (h * r[0]) + t01 * (h * r[1]) + t02 * (h * r[2]) + t10 * (-h * r[3]) + t11 * (-h * r[4]) +
+                 t12 * (-h * r[5]);
+    }
+    if constexpr (L >= 4) {
+        const T det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
+                      r[2] * (r[3] * r[7] - r[4] * r[6]);
+        const T sg = det < T(0) ? T(-1) : T(1);
+        const T m00 = sg * r[0], m01 = sg * r[1], m02 = sg * r[2];
+        const T m10 = sg * r[3], m11 = sg * r[4], m12 = sg * r[5], m22 = sg * r[8];
+        const T h2 = m02 * m02 + m12 * m12;
+        T ca1 = T(1), sa1 = T(0), sb1 = T(0);
+        if (h2 >= std::numeric_limits<T>::min()) {
+            const T inv = T(1) / std::sqrt(h2);
+            ca1 = m02 * inv;
+            sa1 = m12 * inv;
+            sb1 = h2 * inv;
+        }
+        T ca[L - 1], sa[L - 1], cb[L - 1], sb[L - 1], cg[L - 1], sgm[L - 1];
+        rotation_multiples<L - 1>(ca1, sa1, ca, sa);
+        rotation_multiples<L - 1>(m22, sb1, cb, sb);
+        rotation_multiples<L - 1>(ca1 * m11 - sa1 * m01, ca1 * m10 - sa1 * m00, cg, sgm);
+        rotate_zyz_band_3(ca, sa, cb, sb, cg, sgm, in + 9, out + 9);
+        if constexpr (L >= 5) rotate_zyz_band_4(ca, sa, cb, sb, cg, sgm, in + 16, out + 16);
+        if constexpr (L >= 6) rotate_zyz_band_5(ca, sa, cb, sb, cg, sgm, in + 25, out + 25);
+        if constexpr (L >= 7) rotate_zyz_band_6(ca, sa, cb, sb, cg, sgm, in + 36, out + 36);
+        if constexpr (L >= 8) rotate_zyz_band_7(ca, sa, cb, sb, cg, sgm, in + 49, out + 49);
+        if (det < T(0)) {
+            for (int kk = 9; kk < 16; ++kk) out[kk] = out[kk] * T(-1);
+            if constexpr (L >= 6)
+                for (int kk = 25; kk < 36; ++kk) out[kk] = out[kk] * T(-1);
+            if constexpr (L >= 8)
+                for (int kk = 49; kk < 64; ++kk) out[kk] = out[kk] * T(-1);
         }
     }
 }
@@ -339,16 +582,20 @@ class FixedRotation {
     std::array<T, size_v> d_;
 };
 
-/// out = D(R) in for N bands without keeping D (D is built on the stack by the straight-line
-/// code of FixedRotation, then applied). R is a row-major Mat3<T>, unchecked (SPHBASIS_ASSERT
-/// in debug builds); in == out is allowed. C is any type with C + C and C * T.
+/// out = D(R) in for N bands without forming D: band 1 is R itself, band 2 the quadratic form
+/// R Q R^T, bands 3.. the Euler factorisation R = Rz(alpha) X Rz(beta) X^T Rz(gamma) applied
+/// as generated straight-line code (see detail::rotate_direct). The result equals
+/// FixedRotation<N, T>(r).apply(in, out) and the run-time sh::rotate to rounding, for proper
+/// and improper matrices. R is a row-major Mat3<T>, unchecked (SPHBASIS_ASSERT in debug
+/// builds); in == out is allowed. C is any type with C + C and C * T. To rotate many vectors by
+/// the same R, build a FixedRotation once and apply it.
 template <int N, class T, class C>
 SPHBASIS_FORCEINLINE void rotate(const Mat3<T>& r, const C* in, C* out) noexcept {
     static_assert(N >= 1 && N <= 8, "sphbasis::sh::rotate<N>: N is a band count in 1..8.");
+    static_assert(std::is_floating_point_v<T>, "sphbasis::sh::rotate<N>: T is float or double.");
     SPHBASIS_ASSERT(detail::fixed_rotation_orthonormal(r));
-    T d[detail::fixed_rotation_size(N)];
-    detail::rotation_fixed_bands<N>(r.data(), d);
-    detail::rotation_fixed_apply<N, false>(d, in, out);
+    SPHBASIS_ASSERT(in && out);
+    detail::rotate_direct<N>(r.data(), in, out);
 }
 
 }  // namespace sphbasis::sh
@@ -373,6 +620,11 @@ def main():
     parts = [HEADER, ORTHO]
     for l in range(2, MAX_BANDS):
         parts.append(band_function(l))
+        parts.append("\n\n")
+    dx = dmat(MAX_BANDS - 1, [[sp.Integer(v) for v in row] for row in XMAT])
+    self_check(dx)
+    for l in range(3, MAX_BANDS):
+        parts.append(zyz_band_function(l, dx))
         parts.append("\n\n")
     parts.append(FOOTER)
     print("".join(parts), end="")

@@ -25,6 +25,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <type_traits>
 
 #include "../config.hpp"
@@ -1632,6 +1633,444 @@ SPHBASIS_FORCEINLINE void rotation_band_7(const T* SPHBASIS_RESTRICT r1, const T
     }
 }
 
+/// Band 3 of out = Z(alpha) X Z(beta) X^T Z(gamma) in; c<a>[m-1], s<a>[m-1] = cos, sin of m a.
+template <class T, class C>
+SPHBASIS_FORCEINLINE void rotate_zyz_band_3(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const C* in, C* out) noexcept {
+    const T x0 = T(0.79056941504209488);  // sqrt(10)/4
+    const T x1 = T(-0.61237243569579447);  // -sqrt(6)/4
+    const T x2 = T(-1.0);  // -1
+    const T x3 = T(0.61237243569579447);  // sqrt(6)/4
+    const T x4 = T(-0.79056941504209488);  // -sqrt(10)/4
+    const T x5 = T(-0.25);  // -1/4
+    const T x6 = T(-0.96824583655185426);  // -sqrt(15)/4
+    const T x7 = T(0.25);  // 1/4
+    const C i0 = in[0], i1 = in[1], i2 = in[2], i3 = in[3], i4 = in[4], i5 = in[5], i6 = in[6];
+    const C a3 = i3;
+    const C a4 = i4 * cg[0] + i2 * (-sg[0]);
+    const C a2 = i2 * cg[0] + i4 * sg[0];
+    const C a5 = i5 * cg[1] + i1 * (-sg[1]);
+    const C a1 = i1 * cg[1] + i5 * sg[1];
+    const C a6 = i6 * cg[2] + i0 * (-sg[2]);
+    const C a0 = i0 * cg[2] + i6 * sg[2];
+    const C b0 = a3 * x0 + a5 * x1;
+    const C b1 = a1 * x2;
+    const C b2 = a3 * x3 + a5 * x0;
+    const C b3 = a0 * x4 + a2 * x1;
+    const C b4 = a4 * x5 + a6 * x6;
+    const C b5 = a0 * x3 + a2 * x4;
+    const C b6 = a4 * x6 + a6 * x7;
+    const C e3 = b3;
+    const C e4 = b4 * cb[0] + b2 * (-sb[0]);
+    const C e2 = b2 * cb[0] + b4 * sb[0];
+    const C e5 = b5 * cb[1] + b1 * (-sb[1]);
+    const C e1 = b1 * cb[1] + b5 * sb[1];
+    const C e6 = b6 * cb[2] + b0 * (-sb[2]);
+    const C e0 = b0 * cb[2] + b6 * sb[2];
+    const C f0 = e3 * x4 + e5 * x3;
+    const C f1 = e1 * x2;
+    const C f2 = e3 * x1 + e5 * x4;
+    const C f3 = e0 * x0 + e2 * x3;
+    const C f4 = e4 * x5 + e6 * x6;
+    const C f5 = e0 * x1 + e2 * x0;
+    const C f6 = e4 * x6 + e6 * x7;
+    const C h3 = f3;
+    const C h4 = f4 * ca[0] + f2 * (-sa[0]);
+    const C h2 = f2 * ca[0] + f4 * sa[0];
+    const C h5 = f5 * ca[1] + f1 * (-sa[1]);
+    const C h1 = f1 * ca[1] + f5 * sa[1];
+    const C h6 = f6 * ca[2] + f0 * (-sa[2]);
+    const C h0 = f0 * ca[2] + f6 * sa[2];
+    out[0] = h0; out[1] = h1; out[2] = h2; out[3] = h3; out[4] = h4; out[5] = h5; out[6] = h6;
+}
+
+/// Band 4 of out = Z(alpha) X Z(beta) X^T Z(gamma) in; c<a>[m-1], s<a>[m-1] = cos, sin of m a.
+template <class T, class C>
+SPHBASIS_FORCEINLINE void rotate_zyz_band_4(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const C* in, C* out) noexcept {
+    const T x0 = T(0.93541434669348533);  // sqrt(14)/4
+    const T x1 = T(-0.35355339059327379);  // -sqrt(2)/4
+    const T x2 = T(-0.75);  // -3/4
+    const T x3 = T(0.66143782776614768);  // sqrt(7)/4
+    const T x4 = T(0.35355339059327379);  // sqrt(2)/4
+    const T x5 = T(0.75);  // 3/4
+    const T x6 = T(0.375);  // 3/8
+    const T x7 = T(0.55901699437494745);  // sqrt(5)/4
+    const T x8 = T(0.73950997288745202);  // sqrt(35)/8
+    const T x9 = T(-0.93541434669348533);  // -sqrt(14)/4
+    const T x10 = T(0.5);  // 1/2
+    const T x11 = T(-0.66143782776614768);  // -sqrt(7)/4
+    const T x12 = T(0.125);  // 1/8
+    const C i0 = in[0], i1 = in[1], i2 = in[2], i3 = in[3], i4 = in[4], i5 = in[5], i6 = in[6], i7 = in[7], i8 = in[8];
+    const C a4 = i4;
+    const C a5 = i5 * cg[0] + i3 * (-sg[0]);
+    const C a3 = i3 * cg[0] + i5 * sg[0];
+    const C a6 = i6 * cg[1] + i2 * (-sg[1]);
+    const C a2 = i2 * cg[1] + i6 * sg[1];
+    const C a7 = i7 * cg[2] + i1 * (-sg[2]);
+    const C a1 = i1 * cg[2] + i7 * sg[2];
+    const C a8 = i8 * cg[3] + i0 * (-sg[3]);
+    const C a0 = i0 * cg[3] + i8 * sg[3];
+    const C b0 = a5 * x0 + a7 * x1;
+    const C b1 = a1 * x2 + a3 * x3;
+    const C b2 = a5 * x4 + a7 * x0;
+    const C b3 = a1 * x3 + a3 * x5;
+    const C b4 = a4 * x6 + a6 * x7 + a8 * x8;
+    const C b5 = a0 * x9 + a2 * x1;
+    const C b6 = a4 * x7 + a6 * x10 + a8 * x11;
+    const C b7 = a0 * x4 + a2 * x9;
+    const C b8 = a4 * x8 + a6 * x11 + a8 * x12;
+    const C e4 = b4;
+    const C e5 = b5 * cb[0] + b3 * (-sb[0]);
+    const C e3 = b3 * cb[0] + b5 * sb[0];
+    const C e6 = b6 * cb[1] + b2 * (-sb[1]);
+    const C e2 = b2 * cb[1] + b6 * sb[1];
+    const C e7 = b7 * cb[2] + b1 * (-sb[2]);
+    const C e1 = b1 * cb[2] + b7 * sb[2];
+    const C e8 = b8 * cb[3] + b0 * (-sb[3]);
+    const C e0 = b0 * cb[3] + b8 * sb[3];
+    const C f0 = e5 * x9 + e7 * x4;
+    const C f1 = e1 * x2 + e3 * x3;
+    const C f2 = e5 * x1 + e7 * x9;
+    const C f3 = e1 * x3 + e3 * x5;
+    const C f4 = e4 * x6 + e6 * x7 + e8 * x8;
+    const C f5 = e0 * x0 + e2 * x4;
+    const C f6 = e4 * x7 + e6 * x10 + e8 * x11;
+    const C f7 = e0 * x1 + e2 * x0;
+    const C f8 = e4 * x8 + e6 * x11 + e8 * x12;
+    const C h4 = f4;
+    const C h5 = f5 * ca[0] + f3 * (-sa[0]);
+    const C h3 = f3 * ca[0] + f5 * sa[0];
+    const C h6 = f6 * ca[1] + f2 * (-sa[1]);
+    const C h2 = f2 * ca[1] + f6 * sa[1];
+    const C h7 = f7 * ca[2] + f1 * (-sa[2]);
+    const C h1 = f1 * ca[2] + f7 * sa[2];
+    const C h8 = f8 * ca[3] + f0 * (-sa[3]);
+    const C h0 = f0 * ca[3] + f8 * sa[3];
+    out[0] = h0; out[1] = h1; out[2] = h2; out[3] = h3; out[4] = h4; out[5] = h5; out[6] = h6; out[7] = h7; out[8] = h8;
+}
+
+/// Band 5 of out = Z(alpha) X Z(beta) X^T Z(gamma) in; c<a>[m-1], s<a>[m-1] = cos, sin of m a.
+template <class T, class C>
+SPHBASIS_FORCEINLINE void rotate_zyz_band_5(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const C* in, C* out) noexcept {
+    const T x0 = T(-0.70156076002011403);  // -3*sqrt(14)/16
+    const T x1 = T(0.68465319688145765);  // sqrt(30)/8
+    const T x2 = T(-0.19764235376052372);  // -sqrt(10)/16
+    const T x3 = T(-0.5);  // -1/2
+    const T x4 = T(0.8660254037844386);  // sqrt(3)/2
+    const T x5 = T(-0.52291251658379723);  // -sqrt(70)/16
+    const T x6 = T(-0.30618621784789724);  // -sqrt(6)/8
+    const T x7 = T(0.79549512883486595);  // 9*sqrt(2)/16
+    const T x8 = T(0.5);  // 1/2
+    const T x9 = T(-0.48412291827592713);  // -sqrt(15)/8
+    const T x10 = T(-0.66143782776614768);  // -sqrt(7)/4
+    const T x11 = T(-0.57282196186947998);  // -sqrt(21)/8
+    const T x12 = T(0.70156076002011403);  // 3*sqrt(14)/16
+    const T x13 = T(0.52291251658379723);  // sqrt(70)/16
+    const T x14 = T(0.48412291827592713);  // sqrt(15)/8
+    const T x15 = T(0.125);  // 1/8
+    const T x16 = T(0.40504629365049127);  // sqrt(42)/16
+    const T x17 = T(0.90571104663683988);  // sqrt(210)/16
+    const T x18 = T(-0.68465319688145765);  // -sqrt(30)/8
+    const T x19 = T(0.30618621784789724);  // sqrt(6)/8
+    const T x20 = T(0.66143782776614768);  // sqrt(7)/4
+    const T x21 = T(0.8125);  // 13/16
+    const T x22 = T(-0.41926274578121059);  // -3*sqrt(5)/16
+    const T x23 = T(0.19764235376052372);  // sqrt(10)/16
+    const T x24 = T(-0.79549512883486595);  // -9*sqrt(2)/16
+    const T x25 = T(0.57282196186947998);  // sqrt(21)/8
+    const T x26 = T(0.0625);  // 1/16
+    const C i0 = in[0], i1 = in[1], i2 = in[2], i3 = in[3], i4 = in[4], i5 = in[5], i6 = in[6], i7 = in[7], i8 = in[8], i9 = in[9], i10 = in[10];
+    const C a5 = i5;
+    const C a6 = i6 * cg[0] + i4 * (-sg[0]);
+    const C a4 = i4 * cg[0] + i6 * sg[0];
+    const C a7 = i7 * cg[1] + i3 * (-sg[1]);
+    const C a3 = i3 * cg[1] + i7 * sg[1];
+    const C a8 = i8 * cg[2] + i2 * (-sg[2]);
+    const C a2 = i2 * cg[2] + i8 * sg[2];
+    const C a9 = i9 * cg[3] + i1 * (-sg[3]);
+    const C a1 = i1 * cg[3] + i9 * sg[3];
+    const C a10 = i10 * cg[4] + i0 * (-sg[4]);
+    const C a0 = i0 * cg[4] + i10 * sg[4];
+    const C b0 = a5 * x0 + a7 * x1 + a9 * x2;
+    const C b1 = a1 * x3 + a3 * x4;
+    const C b2 = a5 * x5 + a7 * x6 + a9 * x7;
+    const C b3 = a1 * x4 + a3 * x8;
+    const C b4 = a5 * x9 + a7 * x10 + a9 * x11;
+    const C b5 = a0 * x12 + a2 * x13 + a4 * x14;
+    const C b6 = a6 * x15 + a8 * x16 + a10 * x17;
+    const C b7 = a0 * x18 + a2 * x19 + a4 * x20;
+    const C b8 = a6 * x16 + a8 * x21 + a10 * x22;
+    const C b9 = a0 * x23 + a2 * x24 + a4 * x25;
+    const C b10 = a6 * x17 + a8 * x22 + a10 * x26;
+    const C e5 = b5;
+    const C e6 = b6 * cb[0] + b4 * (-sb[0]);
+    const C e4 = b4 * cb[0] + b6 * sb[0];
+    const C e7 = b7 * cb[1] + b3 * (-sb[1]);
+    const C e3 = b3 * cb[1] + b7 * sb[1];
+    const C e8 = b8 * cb[2] + b2 * (-sb[2]);
+    const C e2 = b2 * cb[2] + b8 * sb[2];
+    const C e9 = b9 * cb[3] + b1 * (-sb[3]);
+    const C e1 = b1 * cb[3] + b9 * sb[3];
+    const C e10 = b10 * cb[4] + b0 * (-sb[4]);
+    const C e0 = b0 * cb[4] + b10 * sb[4];
+    const C f0 = e5 * x12 + e7 * x18 + e9 * x23;
+    const C f1 = e1 * x3 + e3 * x4;
+    const C f2 = e5 * x13 + e7 * x19 + e9 * x24;
+    const C f3 = e1 * x4 + e3 * x8;
+    const C f4 = e5 * x14 + e7 * x20 + e9 * x25;
+    const C f5 = e0 * x0 + e2 * x5 + e4 * x9;
+    const C f6 = e6 * x15 + e8 * x16 + e10 * x17;
+    const C f7 = e0 * x1 + e2 * x6 + e4 * x10;
+    const C f8 = e6 * x16 + e8 * x21 + e10 * x22;
+    const C f9 = e0 * x2 + e2 * x7 + e4 * x11;
+    const C f10 = e6 * x17 + e8 * x22 + e10 * x26;
+    const C h5 = f5;
+    const C h6 = f6 * ca[0] + f4 * (-sa[0]);
+    const C h4 = f4 * ca[0] + f6 * sa[0];
+    const C h7 = f7 * ca[1] + f3 * (-sa[1]);
+    const C h3 = f3 * ca[1] + f7 * sa[1];
+    const C h8 = f8 * ca[2] + f2 * (-sa[2]);
+    const C h2 = f2 * ca[2] + f8 * sa[2];
+    const C h9 = f9 * ca[3] + f1 * (-sa[3]);
+    const C h1 = f1 * ca[3] + f9 * sa[3];
+    const C h10 = f10 * ca[4] + f0 * (-sa[4]);
+    const C h0 = f0 * ca[4] + f10 * sa[4];
+    out[0] = h0; out[1] = h1; out[2] = h2; out[3] = h3; out[4] = h4; out[5] = h5; out[6] = h6; out[7] = h7; out[8] = h8; out[9] = h9; out[10] = h10;
+}
+
+/// Band 6 of out = Z(alpha) X Z(beta) X^T Z(gamma) in; c<a>[m-1], s<a>[m-1] = cos, sin of m a.
+template <class T, class C>
+SPHBASIS_FORCEINLINE void rotate_zyz_band_6(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const C* in, C* out) noexcept {
+    const T x0 = T(-0.87945295496689302);  // -3*sqrt(22)/16
+    const T x1 = T(0.46351240544347894);  // sqrt(55)/16
+    const T x2 = T(-0.10825317547305482);  // -sqrt(3)/16
+    const T x3 = T(-0.3125);  // -5/16
+    const T x4 = T(0.80282703616657058);  // sqrt(165)/16
+    const T x5 = T(-0.50775240028974755);  // -sqrt(66)/16
+    const T x6 = T(-0.4330127018922193);  // -sqrt(3)/4
+    const T x7 = T(-0.68465319688145765);  // -sqrt(30)/8
+    const T x8 = T(0.58630196997792872);  // sqrt(22)/8
+    const T x9 = T(-0.0625);  // -1/16
+    const T x10 = T(-0.59292706128157113);  // -3*sqrt(10)/16
+    const T x11 = T(-0.19764235376052372);  // -sqrt(10)/16
+    const T x12 = T(-0.5625);  // -9/16
+    const T x13 = T(-0.80282703616657058);  // -sqrt(165)/16
+    const T x14 = T(-0.625);  // -5/8
+    const T x15 = T(-0.45285552331841994);  // -sqrt(210)/32
+    const T x16 = T(-0.49607837082461076);  // -3*sqrt(7)/16
+    const T x17 = T(-0.67169328938139616);  // -sqrt(462)/32
+    const T x18 = T(0.87945295496689302);  // 3*sqrt(22)/16
+    const T x19 = T(0.4330127018922193);  // sqrt(3)/4
+    const T x20 = T(0.19764235376052372);  // sqrt(10)/16
+    const T x21 = T(-0.53125);  // -17/32
+    const T x22 = T(-0.17116329922036441);  // -sqrt(30)/32
+    const T x23 = T(0.6952686081652184);  // 3*sqrt(55)/32
+    const T x24 = T(-0.46351240544347894);  // -sqrt(55)/16
+    const T x25 = T(0.68465319688145765);  // sqrt(30)/8
+    const T x26 = T(0.5625);  // 9/16
+    const T x27 = T(0.8125);  // 13/16
+    const T x28 = T(-0.25387620014487378);  // -sqrt(66)/32
+    const T x29 = T(0.10825317547305482);  // sqrt(3)/16
+    const T x30 = T(-0.58630196997792872);  // -sqrt(22)/8
+    const T x31 = T(0.03125);  // 1/32
+    const C i0 = in[0], i1 = in[1], i2 = in[2], i3 = in[3], i4 = in[4], i5 = in[5], i6 = in[6], i7 = in[7], i8 = in[8], i9 = in[9], i10 = in[10], i11 = in[11], i12 = in[12];
+    const C a6 = i6;
+    const C a7 = i7 * cg[0] + i5 * (-sg[0]);
+    const C a5 = i5 * cg[0] + i7 * sg[0];
+    const C a8 = i8 * cg[1] + i4 * (-sg[1]);
+    const C a4 = i4 * cg[1] + i8 * sg[1];
+    const C a9 = i9 * cg[2] + i3 * (-sg[2]);
+    const C a3 = i3 * cg[2] + i9 * sg[2];
+    const C a10 = i10 * cg[3] + i2 * (-sg[3]);
+    const C a2 = i2 * cg[3] + i10 * sg[3];
+    const C a11 = i11 * cg[4] + i1 * (-sg[4]);
+    const C a1 = i1 * cg[4] + i11 * sg[4];
+    const C a12 = i12 * cg[5] + i0 * (-sg[5]);
+    const C a0 = i0 * cg[5] + i12 * sg[5];
+    const C b0 = a7 * x0 + a9 * x1 + a11 * x2;
+    const C b1 = a1 * x3 + a3 * x4 + a5 * x5;
+    const C b2 = a7 * x6 + a9 * x7 + a11 * x8;
+    const C b3 = a1 * x4 + a3 * x9 + a5 * x10;
+    const C b4 = a7 * x11 + a9 * x12 + a11 * x13;
+    const C b5 = a1 * x5 + a3 * x10 + a5 * x14;
+    const C b6 = a6 * x3 + a8 * x15 + a10 * x16 + a12 * x17;
+    const C b7 = a0 * x18 + a2 * x19 + a4 * x20;
+    const C b8 = a6 * x15 + a8 * x21 + a10 * x22 + a12 * x23;
+    const C b9 = a0 * x24 + a2 * x25 + a4 * x26;
+    const C b10 = a6 * x16 + a8 * x22 + a10 * x27 + a12 * x28;
+    const C b11 = a0 * x29 + a2 * x30 + a4 * x4;
+    const C b12 = a6 * x17 + a8 * x23 + a10 * x28 + a12 * x31;
+    const C e6 = b6;
+    const C e7 = b7 * cb[0] + b5 * (-sb[0]);
+    const C e5 = b5 * cb[0] + b7 * sb[0];
+    const C e8 = b8 * cb[1] + b4 * (-sb[1]);
+    const C e4 = b4 * cb[1] + b8 * sb[1];
+    const C e9 = b9 * cb[2] + b3 * (-sb[2]);
+    const C e3 = b3 * cb[2] + b9 * sb[2];
+    const C e10 = b10 * cb[3] + b2 * (-sb[3]);
+    const C e2 = b2 * cb[3] + b10 * sb[3];
+    const C e11 = b11 * cb[4] + b1 * (-sb[4]);
+    const C e1 = b1 * cb[4] + b11 * sb[4];
+    const C e12 = b12 * cb[5] + b0 * (-sb[5]);
+    const C e0 = b0 * cb[5] + b12 * sb[5];
+    const C f0 = e7 * x18 + e9 * x24 + e11 * x29;
+    const C f1 = e1 * x3 + e3 * x4 + e5 * x5;
+    const C f2 = e7 * x19 + e9 * x25 + e11 * x30;
+    const C f3 = e1 * x4 + e3 * x9 + e5 * x10;
+    const C f4 = e7 * x20 + e9 * x26 + e11 * x4;
+    const C f5 = e1 * x5 + e3 * x10 + e5 * x14;
+    const C f6 = e6 * x3 + e8 * x15 + e10 * x16 + e12 * x17;
+    const C f7 = e0 * x0 + e2 * x6 + e4 * x11;
+    const C f8 = e6 * x15 + e8 * x21 + e10 * x22 + e12 * x23;
+    const C f9 = e0 * x1 + e2 * x7 + e4 * x12;
+    const C f10 = e6 * x16 + e8 * x22 + e10 * x27 + e12 * x28;
+    const C f11 = e0 * x2 + e2 * x8 + e4 * x13;
+    const C f12 = e6 * x17 + e8 * x23 + e10 * x28 + e12 * x31;
+    const C h6 = f6;
+    const C h7 = f7 * ca[0] + f5 * (-sa[0]);
+    const C h5 = f5 * ca[0] + f7 * sa[0];
+    const C h8 = f8 * ca[1] + f4 * (-sa[1]);
+    const C h4 = f4 * ca[1] + f8 * sa[1];
+    const C h9 = f9 * ca[2] + f3 * (-sa[2]);
+    const C h3 = f3 * ca[2] + f9 * sa[2];
+    const C h10 = f10 * ca[3] + f2 * (-sa[3]);
+    const C h2 = f2 * ca[3] + f10 * sa[3];
+    const C h11 = f11 * ca[4] + f1 * (-sa[4]);
+    const C h1 = f1 * ca[4] + f11 * sa[4];
+    const C h12 = f12 * ca[5] + f0 * (-sa[5]);
+    const C h0 = f0 * ca[5] + f12 * sa[5];
+    out[0] = h0; out[1] = h1; out[2] = h2; out[3] = h3; out[4] = h4; out[5] = h5; out[6] = h6; out[7] = h7; out[8] = h8; out[9] = h9; out[10] = h10; out[11] = h11; out[12] = h12;
+}
+
+/// Band 7 of out = Z(alpha) X Z(beta) X^T Z(gamma) in; c<a>[m-1], s<a>[m-1] = cos, sin of m a.
+template <class T, class C>
+SPHBASIS_FORCEINLINE void rotate_zyz_band_7(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const C* in, C* out) noexcept {
+    const T x0 = T(0.64725984928774938);  // sqrt(429)/32
+    const T x1 = T(-0.69912054128740919);  // -sqrt(2002)/64
+    const T x2 = T(0.2981060004427955);  // sqrt(91)/32
+    const T x3 = T(-0.058463396668342833);  // -sqrt(14)/64
+    const T x4 = T(-0.1875);  // -3/16
+    const T x5 = T(0.63737743919909806);  // sqrt(26)/8
+    const T x6 = T(-0.74739129644383739);  // -sqrt(143)/16
+    const T x7 = T(0.47495887979908324);  // sqrt(231)/32
+    const T x8 = T(0.07328774624724109);  // sqrt(22)/64
+    const T x9 = T(-0.78125);  // -25/32
+    const T x10 = T(0.39836089949943632);  // 5*sqrt(26)/64
+    const T x11 = T(-0.5);  // -1/2
+    const T x12 = T(-0.58630196997792872);  // -sqrt(22)/8
+    const T x13 = T(0.42961647140211001);  // 3*sqrt(21)/32
+    const T x14 = T(0.4198446513295126);  // 19*sqrt(2)/64
+    const T x15 = T(-0.10364452469860624);  // -sqrt(11)/32
+    const T x16 = T(-0.7927281808728639);  // -3*sqrt(286)/64
+    const T x17 = T(-0.3125);  // -5/16
+    const T x18 = T(0.41339864235384227);  // 5*sqrt(7)/32
+    const T x19 = T(0.57409915846480741);  // 15*sqrt(6)/64
+    const T x20 = T(0.53855274811294018);  // 3*sqrt(33)/32
+    const T x21 = T(0.45768182862115031);  // sqrt(858)/64
+    const T x22 = T(-0.64725984928774938);  // -sqrt(429)/32
+    const T x23 = T(-0.47495887979908324);  // -sqrt(231)/32
+    const T x24 = T(-0.42961647140211001);  // -3*sqrt(21)/32
+    const T x25 = T(-0.41339864235384227);  // -5*sqrt(7)/32
+    const T x26 = T(-0.078125);  // -5/64
+    const T x27 = T(-0.24356964481437338);  // -9*sqrt(3)/64
+    const T x28 = T(-0.44879395676078349);  // -5*sqrt(33)/64
+    const T x29 = T(-0.85624429742626607);  // -sqrt(3003)/64
+    const T x30 = T(0.69912054128740919);  // sqrt(2002)/64
+    const T x31 = T(-0.07328774624724109);  // -sqrt(22)/64
+    const T x32 = T(-0.4198446513295126);  // -19*sqrt(2)/64
+    const T x33 = T(-0.57409915846480741);  // -15*sqrt(6)/64
+    const T x34 = T(-0.609375);  // -39/64
+    const T x35 = T(-0.57004488584233437);  // -11*sqrt(11)/64
+    const T x36 = T(0.49435287561113672);  // sqrt(1001)/64
+    const T x37 = T(-0.2981060004427955);  // -sqrt(91)/32
+    const T x38 = T(0.78125);  // 25/32
+    const T x39 = T(0.10364452469860624);  // sqrt(11)/32
+    const T x40 = T(-0.53855274811294018);  // -3*sqrt(33)/32
+    const T x41 = T(0.671875);  // 43/64
+    const T x42 = T(-0.14905300022139775);  // -sqrt(91)/64
+    const T x43 = T(0.058463396668342833);  // sqrt(14)/64
+    const T x44 = T(-0.39836089949943632);  // -5*sqrt(26)/64
+    const T x45 = T(0.7927281808728639);  // 3*sqrt(286)/64
+    const T x46 = T(-0.45768182862115031);  // -sqrt(858)/64
+    const T x47 = T(0.015625);  // 1/64
+    const C i0 = in[0], i1 = in[1], i2 = in[2], i3 = in[3], i4 = in[4], i5 = in[5], i6 = in[6], i7 = in[7], i8 = in[8], i9 = in[9], i10 = in[10], i11 = in[11], i12 = in[12], i13 = in[13], i14 = in[14];
+    const C a7 = i7;
+    const C a8 = i8 * cg[0] + i6 * (-sg[0]);
+    const C a6 = i6 * cg[0] + i8 * sg[0];
+    const C a9 = i9 * cg[1] + i5 * (-sg[1]);
+    const C a5 = i5 * cg[1] + i9 * sg[1];
+    const C a10 = i10 * cg[2] + i4 * (-sg[2]);
+    const C a4 = i4 * cg[2] + i10 * sg[2];
+    const C a11 = i11 * cg[3] + i3 * (-sg[3]);
+    const C a3 = i3 * cg[3] + i11 * sg[3];
+    const C a12 = i12 * cg[4] + i2 * (-sg[4]);
+    const C a2 = i2 * cg[4] + i12 * sg[4];
+    const C a13 = i13 * cg[5] + i1 * (-sg[5]);
+    const C a1 = i1 * cg[5] + i13 * sg[5];
+    const C a14 = i14 * cg[6] + i0 * (-sg[6]);
+    const C a0 = i0 * cg[6] + i14 * sg[6];
+    const C b0 = a7 * x0 + a9 * x1 + a11 * x2 + a13 * x3;
+    const C b1 = a1 * x4 + a3 * x5 + a5 * x6;
+    const C b2 = a7 * x7 + a9 * x8 + a11 * x9 + a13 * x10;
+    const C b3 = a1 * x5 + a3 * x11 + a5 * x12;
+    const C b4 = a7 * x13 + a9 * x14 + a11 * x15 + a13 * x16;
+    const C b5 = a1 * x6 + a3 * x12 + a5 * x17;
+    const C b6 = a7 * x18 + a9 * x19 + a11 * x20 + a13 * x21;
+    const C b7 = a0 * x22 + a2 * x23 + a4 * x24 + a6 * x25;
+    const C b8 = a8 * x26 + a10 * x27 + a12 * x28 + a14 * x29;
+    const C b9 = a0 * x30 + a2 * x31 + a4 * x32 + a6 * x33;
+    const C b10 = a8 * x27 + a10 * x34 + a12 * x35 + a14 * x36;
+    const C b11 = a0 * x37 + a2 * x38 + a4 * x39 + a6 * x40;
+    const C b12 = a8 * x28 + a10 * x35 + a12 * x41 + a14 * x42;
+    const C b13 = a0 * x43 + a2 * x44 + a4 * x45 + a6 * x46;
+    const C b14 = a8 * x29 + a10 * x36 + a12 * x42 + a14 * x47;
+    const C e7 = b7;
+    const C e8 = b8 * cb[0] + b6 * (-sb[0]);
+    const C e6 = b6 * cb[0] + b8 * sb[0];
+    const C e9 = b9 * cb[1] + b5 * (-sb[1]);
+    const C e5 = b5 * cb[1] + b9 * sb[1];
+    const C e10 = b10 * cb[2] + b4 * (-sb[2]);
+    const C e4 = b4 * cb[2] + b10 * sb[2];
+    const C e11 = b11 * cb[3] + b3 * (-sb[3]);
+    const C e3 = b3 * cb[3] + b11 * sb[3];
+    const C e12 = b12 * cb[4] + b2 * (-sb[4]);
+    const C e2 = b2 * cb[4] + b12 * sb[4];
+    const C e13 = b13 * cb[5] + b1 * (-sb[5]);
+    const C e1 = b1 * cb[5] + b13 * sb[5];
+    const C e14 = b14 * cb[6] + b0 * (-sb[6]);
+    const C e0 = b0 * cb[6] + b14 * sb[6];
+    const C f0 = e7 * x22 + e9 * x30 + e11 * x37 + e13 * x43;
+    const C f1 = e1 * x4 + e3 * x5 + e5 * x6;
+    const C f2 = e7 * x23 + e9 * x31 + e11 * x38 + e13 * x44;
+    const C f3 = e1 * x5 + e3 * x11 + e5 * x12;
+    const C f4 = e7 * x24 + e9 * x32 + e11 * x39 + e13 * x45;
+    const C f5 = e1 * x6 + e3 * x12 + e5 * x17;
+    const C f6 = e7 * x25 + e9 * x33 + e11 * x40 + e13 * x46;
+    const C f7 = e0 * x0 + e2 * x7 + e4 * x13 + e6 * x18;
+    const C f8 = e8 * x26 + e10 * x27 + e12 * x28 + e14 * x29;
+    const C f9 = e0 * x1 + e2 * x8 + e4 * x14 + e6 * x19;
+    const C f10 = e8 * x27 + e10 * x34 + e12 * x35 + e14 * x36;
+    const C f11 = e0 * x2 + e2 * x9 + e4 * x15 + e6 * x20;
+    const C f12 = e8 * x28 + e10 * x35 + e12 * x41 + e14 * x42;
+    const C f13 = e0 * x3 + e2 * x10 + e4 * x16 + e6 * x21;
+    const C f14 = e8 * x29 + e10 * x36 + e12 * x42 + e14 * x47;
+    const C h7 = f7;
+    const C h8 = f8 * ca[0] + f6 * (-sa[0]);
+    const C h6 = f6 * ca[0] + f8 * sa[0];
+    const C h9 = f9 * ca[1] + f5 * (-sa[1]);
+    const C h5 = f5 * ca[1] + f9 * sa[1];
+    const C h10 = f10 * ca[2] + f4 * (-sa[2]);
+    const C h4 = f4 * ca[2] + f10 * sa[2];
+    const C h11 = f11 * ca[3] + f3 * (-sa[3]);
+    const C h3 = f3 * ca[3] + f11 * sa[3];
+    const C h12 = f12 * ca[4] + f2 * (-sa[4]);
+    const C h2 = f2 * ca[4] + f12 * sa[4];
+    const C h13 = f13 * ca[5] + f1 * (-sa[5]);
+    const C h1 = f1 * ca[5] + f13 * sa[5];
+    const C h14 = f14 * ca[6] + f0 * (-sa[6]);
+    const C h0 = f0 * ca[6] + f14 * sa[6];
+    out[0] = h0; out[1] = h1; out[2] = h2; out[3] = h3; out[4] = h4; out[5] = h5; out[6] = h6; out[7] = h7; out[8] = h8; out[9] = h9; out[10] = h10; out[11] = h11; out[12] = h12; out[13] = h13; out[14] = h14;
+}
+
 // clang-format on
 
 /// Number of stored values of D for n bands: sum_l (2l+1)^2 = n (4 n^2 - 1) / 3.
@@ -1672,6 +2111,108 @@ SPHBASIS_FORCEINLINE void rotation_fixed_apply(const T* SPHBASIS_RESTRICT d, con
             C acc = x[k0] * (Transposed ? b[i] : b[i * w]);
             for (int j = 1; j < w; ++j) acc = acc + x[k0 + j] * (Transposed ? b[j * w + i] : b[i * w + j]);
             out[k0 + i] = acc;
+        }
+    }
+}
+
+/// cos(m t), sin(m t) for m = 1..L into cm[m - 1], sm[m - 1], from c = cos t, s = sin t, by the
+/// Chebyshev recurrence x_{m+1} = 2 c x_m - x_{m-1} (error O(m^2 eps), a few ulp for m <= 7).
+template <int L, class T>
+SPHBASIS_FORCEINLINE void rotation_multiples(T c, T s, T* SPHBASIS_RESTRICT cm, T* SPHBASIS_RESTRICT sm) noexcept {
+    cm[0] = c;
+    sm[0] = s;
+    const T c2 = c + c;
+    if constexpr (L >= 2) {
+        cm[1] = c2 * c - T(1);
+        sm[1] = c2 * s;
+    }
+    for (int m = 2; m < L; ++m) {
+        cm[m] = c2 * cm[m - 1] - cm[m - 2];
+        sm[m] = c2 * sm[m - 1] - sm[m - 2];
+    }
+}
+
+/// out = D(R) in for L bands of the row-major matrix r, D never formed:
+///   * band 1: D^1 = R permuted to (y, z, x);
+///   * band 2: the coefficients are a traceless symmetric Q with f(w) = w^T Q w on the sphere
+///     (scaled by 2 / sqrt(15 / (4 pi)): Q_xy = c_-2, Q_yz = c_-1, Q_xz = c_1,
+///     Q_xx = c_2 - c_0 / sqrt3, Q_yy = -c_2 - c_0 / sqrt3, Q_zz = 2 c_0 / sqrt3); the rotated
+///     function is w^T (R Q R^T) w, 45 multiply-adds;
+///   * bands l >= 3: R = Rz(alpha) Ry(beta) Rz(gamma) with Ry(beta) = X Rz(beta) X^T, X the
+///     quarter turn about x taking z to y, so D^l = Z(alpha) D^l(X) Z(beta) D^l(X)^T Z(gamma):
+///     three z rotations (cos, sin of m times each angle on the pairs (m, -m)) and two sparse
+///     constant matrices (rotate_zyz_band_l, generated with exact constants, zeros skipped).
+///     The angles are never formed: cos beta = R_22, (cos alpha, sin alpha) = (R_02, R_12) /
+///     sin beta, sin beta = |(R_02, R_12)|, and (cos gamma, sin gamma) is read from the middle
+///     row of Rz(-alpha) R = Ry(beta) Rz(gamma): cos gamma = ca R_11 - sa R_01, sin gamma =
+///     ca R_10 - sa R_00. Any unit (ca, sa) makes that row exact, so at and near beta = 0 or
+///     pi (sin beta below the smallest normal: alpha = 0) the factorisation still reproduces R
+///     to rounding: gamma absorbs the error of alpha.
+///   * improper R (det < 0): bands >= 3 use -R and negate the odd bands ((-1)^l D(-R), as
+///     the recurrence gives); bands 1 and 2 are homogeneous in R and need nothing.
+/// in == out is allowed: every band reads its input before writing.
+template <int L, class T, class C>
+SPHBASIS_FORCEINLINE void rotate_direct(const T* SPHBASIS_RESTRICT r, const C* in, C* out) noexcept {
+    out[0] = in[0];
+    if constexpr (L >= 2) {
+        const C y = in[1], z = in[2], x = in[3];
+        out[1] = y * r[4] + z * r[5] + x * r[3];
+        out[2] = y * r[7] + z * r[8] + x * r[6];
+        out[3] = y * r[1] + z * r[2] + x * r[0];
+    }
+    if constexpr (L >= 3) {
+        const T a = T(0.57735026918962576);  // 1/sqrt(3)
+        const C c0 = in[6], c2 = in[8];
+        const C qxy = in[4], qyz = in[5], qxz = in[7];
+        const C qzz = c0 * (a + a);
+        const C qxx = c2 + c0 * (-a), qyy = c2 * T(-1) + c0 * (-a);
+        const C t00 = qxx * r[0] + qxy * r[1] + qxz * r[2];
+        const C t01 = qxy * r[0] + qyy * r[1] + qyz * r[2];
+        const C t02 = qxz * r[0] + qyz * r[1] + qzz * r[2];
+        const C t10 = qxx * r[3] + qxy * r[4] + qxz * r[5];
+        const C t11 = qxy * r[3] + qyy * r[4] + qyz * r[5];
+        const C t12 = qxz * r[3] + qyz * r[4] + qzz * r[5];
+        const C t20 = qxx * r[6] + qxy * r[7] + qxz * r[8];
+        const C t21 = qxy * r[6] + qyy * r[7] + qyz * r[8];
+        const C t22 = qxz * r[6] + qyz * r[7] + qzz * r[8];
+        const T k = T(0.86602540378443865);  // sqrt(3)/2
+        const T h = T(0.5);
+        out[4] = t00 * r[3] + t01 * r[4] + t02 * r[5];
+        out[5] = t10 * r[6] + t11 * r[7] + t12 * r[8];
+        out[6] = t20 * (k * r[6]) + t21 * (k * r[7]) + t22 * (k * r[8]);
+        out[7] = t00 * r[6] + t01 * r[7] + t02 * r[8];
+        out[8] = t00 * (h * r[0]) + t01 * (h * r[1]) + t02 * (h * r[2]) + t10 * (-h * r[3]) + t11 * (-h * r[4]) +
+                 t12 * (-h * r[5]);
+    }
+    if constexpr (L >= 4) {
+        const T det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
+                      r[2] * (r[3] * r[7] - r[4] * r[6]);
+        const T sg = det < T(0) ? T(-1) : T(1);
+        const T m00 = sg * r[0], m01 = sg * r[1], m02 = sg * r[2];
+        const T m10 = sg * r[3], m11 = sg * r[4], m12 = sg * r[5], m22 = sg * r[8];
+        const T h2 = m02 * m02 + m12 * m12;
+        T ca1 = T(1), sa1 = T(0), sb1 = T(0);
+        if (h2 >= std::numeric_limits<T>::min()) {
+            const T inv = T(1) / std::sqrt(h2);
+            ca1 = m02 * inv;
+            sa1 = m12 * inv;
+            sb1 = h2 * inv;
+        }
+        T ca[L - 1], sa[L - 1], cb[L - 1], sb[L - 1], cg[L - 1], sgm[L - 1];
+        rotation_multiples<L - 1>(ca1, sa1, ca, sa);
+        rotation_multiples<L - 1>(m22, sb1, cb, sb);
+        rotation_multiples<L - 1>(ca1 * m11 - sa1 * m01, ca1 * m10 - sa1 * m00, cg, sgm);
+        rotate_zyz_band_3(ca, sa, cb, sb, cg, sgm, in + 9, out + 9);
+        if constexpr (L >= 5) rotate_zyz_band_4(ca, sa, cb, sb, cg, sgm, in + 16, out + 16);
+        if constexpr (L >= 6) rotate_zyz_band_5(ca, sa, cb, sb, cg, sgm, in + 25, out + 25);
+        if constexpr (L >= 7) rotate_zyz_band_6(ca, sa, cb, sb, cg, sgm, in + 36, out + 36);
+        if constexpr (L >= 8) rotate_zyz_band_7(ca, sa, cb, sb, cg, sgm, in + 49, out + 49);
+        if (det < T(0)) {
+            for (int kk = 9; kk < 16; ++kk) out[kk] = out[kk] * T(-1);
+            if constexpr (L >= 6)
+                for (int kk = 25; kk < 36; ++kk) out[kk] = out[kk] * T(-1);
+            if constexpr (L >= 8)
+                for (int kk = 49; kk < 64; ++kk) out[kk] = out[kk] * T(-1);
         }
     }
 }
@@ -1768,16 +2309,20 @@ class FixedRotation {
     std::array<T, size_v> d_;
 };
 
-/// out = D(R) in for N bands without keeping D (D is built on the stack by the straight-line
-/// code of FixedRotation, then applied). R is a row-major Mat3<T>, unchecked (SPHBASIS_ASSERT
-/// in debug builds); in == out is allowed. C is any type with C + C and C * T.
+/// out = D(R) in for N bands without forming D: band 1 is R itself, band 2 the quadratic form
+/// R Q R^T, bands 3.. the Euler factorisation R = Rz(alpha) X Rz(beta) X^T Rz(gamma) applied
+/// as generated straight-line code (see detail::rotate_direct). The result equals
+/// FixedRotation<N, T>(r).apply(in, out) and the run-time sh::rotate to rounding, for proper
+/// and improper matrices. R is a row-major Mat3<T>, unchecked (SPHBASIS_ASSERT in debug
+/// builds); in == out is allowed. C is any type with C + C and C * T. To rotate many vectors by
+/// the same R, build a FixedRotation once and apply it.
 template <int N, class T, class C>
 SPHBASIS_FORCEINLINE void rotate(const Mat3<T>& r, const C* in, C* out) noexcept {
     static_assert(N >= 1 && N <= 8, "sphbasis::sh::rotate<N>: N is a band count in 1..8.");
+    static_assert(std::is_floating_point_v<T>, "sphbasis::sh::rotate<N>: T is float or double.");
     SPHBASIS_ASSERT(detail::fixed_rotation_orthonormal(r));
-    T d[detail::fixed_rotation_size(N)];
-    detail::rotation_fixed_bands<N>(r.data(), d);
-    detail::rotation_fixed_apply<N, false>(d, in, out);
+    SPHBASIS_ASSERT(in && out);
+    detail::rotate_direct<N>(r.data(), in, out);
 }
 
 }  // namespace sphbasis::sh
