@@ -169,8 +169,9 @@ sh::Mat3<double> zyz_matrix(double a, double b, double c) {
     return sh::multiply(rza, sh::multiply(ry, rzc));
 }
 
-/// rotate<N>(r) against the run-time sh::rotate: max |difference| over the coefficients (and
-/// in place: bit-identical to out of place).
+/// rotate<N>(r), its scalar and its vector implementation (the latter in place) against the
+/// run-time sh::rotate: max |difference| over the coefficients (rotate<N> in place must be
+/// bit-identical to out of place).
 template <int N, class T>
 double rotate_direct_error(const sh::Mat3<double>& rd, bool improper, std::mt19937& rng) {
     sh::Mat3<T> r;
@@ -182,9 +183,17 @@ double rotate_direct_error(const sh::Mat3<double>& rd, bool improper, std::mt199
     sh::rotate(N, r, in.data(), b.data());
     std::array<T, N * N> ip = in;
     sh::rotate<N>(r, ip.data(), ip.data());
+    // both implementations, whichever rotate<N> picks on this target
+    std::array<T, N * N> s{}, v = in;
+    sh::detail::rotate_direct_scalar<N>(r.data(), in.data(), s.data());
+#if SPHBASIS_SH_ROTATION_VECTOR
+    if constexpr (N >= 4) sh::detail::rotate_direct_vec<N>(r.data(), v.data(), v.data());
+#endif
+    if constexpr (N < 4) v = s;
     double worst = 0;
     for (int k = 0; k < N * N; ++k) {
-        worst = std::max(worst, std::fabs(double(a[k]) - double(b[k])));
+        worst = std::max({worst, std::fabs(double(a[k]) - double(b[k])), std::fabs(double(s[k]) - double(b[k])),
+                          std::fabs(double(v[k]) - double(b[k]))});
         if (ip[k] != a[k]) worst = 1e300;
     }
     return worst;

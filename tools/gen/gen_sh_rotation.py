@@ -305,6 +305,214 @@ def zyz_band_function(l, dx):
     return "\n".join(out)
 
 
+
+# ------------------------------------------------------------------------------------------
+# The same factorisation in 16-lane vectors (GNU vector extensions, float or double): per band
+# l the coefficients sit in two vectors U, V of l + 1 lanes each, lane k = 0..l holding the pair
+# of |m| = k: U = c_{+k} (k odd) or c_{-k} (k even, k > 0; lane 0 is padding), V = the partner
+# (V lane 0 = c_0). A z rotation is then lane-wise (U' = U cos + V su, V' = V cos + U sv), and
+# the quarter turn X maps U to U and V to V (odd-m cosines and even-m sines to themselves,
+# the rest with m = 0 to themselves), each output lane a sum of at most K products with
+# constants: K lane permutations per vector. Bands are packed into 16-lane groups.
+
+LANES = 16
+
+
+def vec_groups(N):
+    groups, cur, used = [], [], 0
+    for l in range(3, N):
+        if used + l + 1 > LANES:
+            groups.append(cur)
+            cur, used = [], 0
+        cur.append(l)
+        used += l + 1
+    if cur:
+        groups.append(cur)
+    return groups
+
+
+def lane_m(k, which):
+    """m of lane k of U (which = 0) or V (which = 1); None for the padding lane."""
+    if k == 0:
+        return None if which == 0 else 0
+    pos = (k % 2 == 1) == (which == 0)
+    return k if pos else -k
+
+
+def shuffle_code(out_name, sources, srcvecs, temps, vt):
+    """Emit `const V out_name = ...` selecting lane i from srcvecs[sources[i][0]] lane
+    sources[i][1] (None: don't care), with 2-operand __builtin_shufflevector steps."""
+    used = sorted({s[0] for s in sources if s is not None})
+    lines = []
+
+    def build(name, vecs):
+        if len(vecs) <= 2:
+            a = vecs[0]
+            b = vecs[1] if len(vecs) == 2 else vecs[0]
+            idx = []
+            for s in sources:
+                if s is None or s[0] not in vecs:
+                    idx.append(0)
+                else:
+                    idx.append(s[1] + (LANES if (len(vecs) == 2 and s[0] == b) else 0))
+            lines.append("    const %s %s = __builtin_shufflevector(%s, %s, %s);" % (vt, name, srcvecs[a], srcvecs[b], ", ".join(map(str, idx))))
+            return
+        h = len(vecs) // 2
+        n1, n2 = name + "_a", name + "_b"
+        build(n1, vecs[:h])
+        build(n2, vecs[h:])
+        idx = []
+        for i, s in enumerate(sources):
+            if s is None:
+                idx.append(0)
+            else:
+                idx.append(i + (LANES if s[0] in vecs[h:] else 0))
+        lines.append("    const %s %s = __builtin_shufflevector(%s, %s, %s);" % (vt, name, n1, n2, ", ".join(map(str, idx))))
+    build(out_name, used if used else [0])
+    return lines
+
+
+def vec_function(N, dx):
+    groups = vec_groups(N)
+    n2 = N * N
+    starts = []
+    s = 9
+    while s < n2:
+        starts.append(min(s, n2 - LANES))
+        s += LANES
+    # lane tables per group
+    lanes = []  # per group: list over lane of (l, k) or None
+    for g in groups:
+        tab = []
+        for l in g:
+            tab += [(l, k) for k in range(l + 1)]
+        tab += [None] * (LANES - len(tab))
+        lanes.append(tab)
+
+    def acn(l, m):
+        return l * l + l + m
+
+    def chunk_of(a):
+        for c, st in enumerate(starts):
+            if st <= a < st + LANES:
+                return (c, a - st)
+        raise AssertionError
+    body = []
+    body.append("    using V = typename rot_vec<T>::v16;")
+    body.append("    using V8 = typename rot_vec<T>::v8;")
+    for c, st in enumerate(starts):
+        body.append("    V in%d;" % c)
+        body.append("    std::memcpy(&in%d, in + %d, sizeof(V));" % (c, st))
+    inv = ["in%d" % c for c in range(len(starts))]
+    for gi, tab in enumerate(lanes):
+        for which, nm in ((0, "u"), (1, "v")):
+            src = []
+            for e in tab:
+                if e is None:
+                    src.append(None)
+                    continue
+                m = lane_m(e[1], which)
+                src.append(None if m is None else chunk_of(acn(e[0], m)))
+            body += shuffle_code("%s%d_0" % (nm, gi), src, inv, None, "V")
+    # angle vectors: cm8 = (1, cos t, ..., cos 7t), sm8 = (0, sin t, ...)
+    for ang in ("a", "b", "g"):
+        cs = ", ".join(["T(1)"] + ["c%s[%d]" % (ang, m - 1) if m < N else "T(0)" for m in range(1, 8)])
+        ss = ", ".join(["T(0)"] + ["s%s[%d]" % (ang, m - 1) if m < N else "T(0)" for m in range(1, 8)])
+        body.append("    const V8 c%s8 = {%s};" % (ang, cs))
+        body.append("    const V8 s%s8 = {%s};" % (ang, ss))
+        body.append("    const V8 n%s8 = -s%s8;" % (ang, ang))
+        for gi, tab in enumerate(lanes):
+            kc, ku, kv = [], [], []
+            for e in tab:
+                k = 0 if e is None else e[1]
+                kc.append(k)
+                odd = k % 2 == 1
+                ku.append(k + (8 if odd else 0))   # su = -sin for odd k
+                kv.append(k + (0 if odd else 8))   # sv = +sin for odd k
+            body.append("    const V c%s%d = __builtin_shufflevector(c%s8, c%s8, %s);" % (ang, gi, ang, ang, ", ".join(map(str, kc))))
+            body.append("    const V su%s%d = __builtin_shufflevector(s%s8, n%s8, %s);" % (ang, gi, ang, ang, ", ".join(map(str, ku))))
+            body.append("    const V sv%s%d = __builtin_shufflevector(s%s8, n%s8, %s);" % (ang, gi, ang, ang, ", ".join(map(str, kv))))
+    cnt = [0]
+
+    def zstep(gi, ang, st):
+        u, v = "u%d_%d" % (gi, st), "v%d_%d" % (gi, st)
+        body.append("    const V u%d_%d = %s * c%s%d + %s * su%s%d;" % (gi, st + 1, u, ang, gi, v, ang, gi))
+        body.append("    const V v%d_%d = %s * c%s%d + %s * sv%s%d;" % (gi, st + 1, v, ang, gi, u, ang, gi))
+
+    def xstep(gi, st, transposed):
+        tab = lanes[gi]
+        for which, nm in ((0, "u"), (1, "v")):
+            rows = []
+            for i, e in enumerate(tab):
+                terms = []
+                if e is not None and lane_m(e[1], which) is not None:
+                    l, k = e
+                    mi = lane_m(k, which)
+                    mat = dx[l]
+                    for j, e2 in enumerate(tab):
+                        if e2 is None or e2[0] != l:
+                            continue
+                        mj = lane_m(e2[1], which)
+                        if mj is None:
+                            continue
+                        val = mat[mj + l][mi + l] if transposed else mat[mi + l][mj + l]
+                        if val != 0:
+                            terms.append((j, val))
+                    # completeness: nothing maps across U and V
+                    for mj in range(-l, l + 1):
+                        val = mat[mj + l][mi + l] if transposed else mat[mi + l][mj + l]
+                        if val != 0:
+                            assert any(e2 is not None and e2[0] == l and lane_m(e2[1], which) == mj for e2 in tab), (l, mi, mj)
+                rows.append(terms)
+            K = max(len(t) for t in rows)
+            src = "%s%d_%d" % (nm, gi, st)
+            parts = []
+            for t in range(K):
+                perm = [r[t][0] if t < len(r) else i for i, r in enumerate(rows)]
+                coef = [lit(r[t][1]) if t < len(r) else "T(0)" for r in rows]
+                cnt[0] += 1
+                kn = "k%d" % cnt[0]
+                body.append("    const V %s = {%s};" % (kn, ", ".join(coef)))
+                if perm == list(range(LANES)):
+                    parts.append("%s * %s" % (src, kn))
+                else:
+                    body.append("    const V p%d = __builtin_shufflevector(%s, %s, %s);" % (cnt[0], src, src, ", ".join(map(str, perm))))
+                    parts.append("p%d * %s" % (cnt[0], kn))
+            body.append("    const V %s%d_%d = %s;" % (nm, gi, st + 1, " + ".join(parts)))
+
+    for gi in range(len(groups)):
+        zstep(gi, "g", 0)
+        xstep(gi, 1, True)
+        zstep(gi, "b", 2)
+        xstep(gi, 3, False)
+        zstep(gi, "a", 4)
+    # output chunks
+    srcs = []
+    for gi in range(len(groups)):
+        srcs += ["u%d_5" % gi, "v%d_5" % gi]
+    where = {}
+    for gi, tab in enumerate(lanes):
+        for i, e in enumerate(tab):
+            if e is None:
+                continue
+            for which in (0, 1):
+                m = lane_m(e[1], which)
+                if m is not None:
+                    where[acn(e[0], m)] = (2 * gi + which, i)
+    for c, st in enumerate(starts):
+        src = [where.get(st + i) for i in range(LANES)]
+        body += shuffle_code("o%d" % c, src, srcs, None, "V")
+    for c, st in enumerate(starts):
+        body.append("    std::memcpy(out + %d, &o%d, sizeof(V));" % (st, c))
+    out = []
+    out.append("/// Bands 3..%d of out = D(R) in, %d bands, in 16-lane vectors (see rotate_direct_vec)." % (N - 1, N))
+    out.append("template <class T>")
+    out.append("SPHBASIS_FORCEINLINE void rotate_zyz_vec_%d(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const T* in, T* out) noexcept {" % N)
+    out += body
+    out.append("}")
+    return "\n".join(out)
+
+
 HEADER = r'''// GENERATED by tools/gen/gen_sh_rotation.py -- do not edit.
 // Regenerate: /usr/bin/python3 tools/gen/gen_sh_rotation.py > include/sphbasis/ops/sh_rotation_fixed.hpp
 //
@@ -339,7 +547,34 @@ HEADER = r'''// GENERATED by tools/gen/gen_sh_rotation.py -- do not edit.
 #include "../core/frame.hpp"
 #include "sh_rotation.hpp"
 
+#if !defined(SPHBASIS_SH_ROTATION_VECTOR)
+#if defined(__GNUC__) || defined(__clang__)
+#define SPHBASIS_SH_ROTATION_VECTOR 1
+#else
+#define SPHBASIS_SH_ROTATION_VECTOR 0
+#endif
+#endif
+#if SPHBASIS_SH_ROTATION_VECTOR
+#include <cstring>
+#endif
+
 namespace sphbasis::sh::detail {
+
+#if SPHBASIS_SH_ROTATION_VECTOR
+/// GNU vector types of rotate_direct_vec: 16 and 8 lanes.
+template <class T>
+struct rot_vec;
+template <>
+struct rot_vec<float> {
+    typedef float v16 __attribute__((vector_size(64)));
+    typedef float v8 __attribute__((vector_size(32)));
+};
+template <>
+struct rot_vec<double> {
+    typedef double v16 __attribute__((vector_size(128)));
+    typedef double v8 __attribute__((vector_size(64)));
+};
+#endif
 
 // clang-format off
 '''
@@ -424,14 +659,15 @@ SPHBASIS_FORCEINLINE void rotation_multiples(T c, T s, T* SPHBASIS_RESTRICT cm, 
 ///   * improper R (det < 0): bands >= 3 use -R and negate the odd bands ((-1)^l D(-R), as
 ///     the recurrence gives); bands 1 and 2 are homogeneous in R and need nothing.
 /// in == out is allowed: every band reads its input before writing.
+/// Bands 0..min(L, 3) - 1 of D(R) in into lo (in read before anything is written).
 template <int L, class T, class C>
-SPHBASIS_FORCEINLINE void rotate_direct(const T* SPHBASIS_RESTRICT r, const C* in, C* out) noexcept {
-    out[0] = in[0];
+SPHBASIS_FORCEINLINE void rotate_low_bands(const T* SPHBASIS_RESTRICT r, const C* in, C* lo) noexcept {
+    lo[0] = in[0];
     if constexpr (L >= 2) {
         const C y = in[1], z = in[2], x = in[3];
-        out[1] = y * r[4] + z * r[5] + x * r[3];
-        out[2] = y * r[7] + z * r[8] + x * r[6];
-        out[3] = y * r[1] + z * r[2] + x * r[0];
+        lo[1] = y * r[4] + z * r[5] + x * r[3];
+        lo[2] = y * r[7] + z * r[8] + x * r[6];
+        lo[3] = y * r[1] + z * r[2] + x * r[0];
     }
     if constexpr (L >= 3) {
         const T a = T(0.57735026918962576);  // 1/sqrt(3)
@@ -450,44 +686,115 @@ SPHBASIS_FORCEINLINE void rotate_direct(const T* SPHBASIS_RESTRICT r, const C* i
         const C t22 = qxz * r[6] + qyz * r[7] + qzz * r[8];
         const T k = T(0.86602540378443865);  // sqrt(3)/2
         const T h = T(0.5);
-        out[4] = t00 * r[3] + t01 * r[4] + t02 * r[5];
-        out[5] = t10 * r[6] + t11 * r[7] + t12 * r[8];
-        out[6] = t20 * (k * r[6]) + t21 * (k * r[7]) + t22 * (k * r[8]);
-        out[7] = t00 * r[6] + t01 * r[7] + t02 * r[8];
-        out[8] = t00 * (h * r[0]) + t01 * (h * r[1]) + t02 * (h * r[2]) + t10 * (-h * r[3]) + t11 * (-h * r[4]) +
-                 t12 * (-h * r[5]);
+        lo[4] = t00 * r[3] + t01 * r[4] + t02 * r[5];
+        lo[5] = t10 * r[6] + t11 * r[7] + t12 * r[8];
+        lo[6] = t20 * (k * r[6]) + t21 * (k * r[7]) + t22 * (k * r[8]);
+        lo[7] = t00 * r[6] + t01 * r[7] + t02 * r[8];
+        lo[8] = t00 * (h * r[0]) + t01 * (h * r[1]) + t02 * (h * r[2]) + t10 * (-h * r[3]) + t11 * (-h * r[4]) +
+                t12 * (-h * r[5]);
     }
+}
+
+/// cos, sin of m alpha, m beta, m gamma (m = 1..L-1) of the Euler factorisation of s R, s the
+/// sign of det R; returns true for det R < 0.
+template <int L, class T>
+SPHBASIS_FORCEINLINE bool zyz_multiples(const T* SPHBASIS_RESTRICT r, T* ca, T* sa, T* cb, T* sb, T* cg, T* sg) noexcept {
+    const T det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
+                  r[2] * (r[3] * r[7] - r[4] * r[6]);
+    const T s = det < T(0) ? T(-1) : T(1);
+    const T m00 = s * r[0], m01 = s * r[1], m02 = s * r[2];
+    const T m10 = s * r[3], m11 = s * r[4], m12 = s * r[5], m22 = s * r[8];
+    const T h2 = m02 * m02 + m12 * m12;
+    T ca1 = T(1), sa1 = T(0), sb1 = T(0);
+    if (h2 >= std::numeric_limits<T>::min()) {
+        const T inv = T(1) / std::sqrt(h2);
+        ca1 = m02 * inv;
+        sa1 = m12 * inv;
+        sb1 = h2 * inv;
+    }
+    rotation_multiples<L - 1>(ca1, sa1, ca, sa);
+    rotation_multiples<L - 1>(m22, sb1, cb, sb);
+    rotation_multiples<L - 1>(ca1 * m11 - sa1 * m01, ca1 * m10 - sa1 * m00, cg, sg);
+    return det < T(0);
+}
+
+/// Odd bands >= 3 of out negated (improper R).
+template <int L, class T, class C>
+SPHBASIS_FORCEINLINE void negate_odd_high_bands(C* out) noexcept {
+    for (int l = 3; l < L; l += 2)
+        for (int k = l * l; k < (l + 1) * (l + 1); ++k) out[k] = out[k] * T(-1);
+}
+
+/// out = D(R) in, scalar straight-line code for any coefficient type C (see rotate_direct).
+template <int L, class T, class C>
+SPHBASIS_FORCEINLINE void rotate_direct_scalar(const T* SPHBASIS_RESTRICT r, const C* in, C* out) noexcept {
+    C lo[9];
+    rotate_low_bands<L>(r, in, lo);
     if constexpr (L >= 4) {
-        const T det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
-                      r[2] * (r[3] * r[7] - r[4] * r[6]);
-        const T sg = det < T(0) ? T(-1) : T(1);
-        const T m00 = sg * r[0], m01 = sg * r[1], m02 = sg * r[2];
-        const T m10 = sg * r[3], m11 = sg * r[4], m12 = sg * r[5], m22 = sg * r[8];
-        const T h2 = m02 * m02 + m12 * m12;
-        T ca1 = T(1), sa1 = T(0), sb1 = T(0);
-        if (h2 >= std::numeric_limits<T>::min()) {
-            const T inv = T(1) / std::sqrt(h2);
-            ca1 = m02 * inv;
-            sa1 = m12 * inv;
-            sb1 = h2 * inv;
-        }
-        T ca[L - 1], sa[L - 1], cb[L - 1], sb[L - 1], cg[L - 1], sgm[L - 1];
-        rotation_multiples<L - 1>(ca1, sa1, ca, sa);
-        rotation_multiples<L - 1>(m22, sb1, cb, sb);
-        rotation_multiples<L - 1>(ca1 * m11 - sa1 * m01, ca1 * m10 - sa1 * m00, cg, sgm);
-        rotate_zyz_band_3(ca, sa, cb, sb, cg, sgm, in + 9, out + 9);
-        if constexpr (L >= 5) rotate_zyz_band_4(ca, sa, cb, sb, cg, sgm, in + 16, out + 16);
-        if constexpr (L >= 6) rotate_zyz_band_5(ca, sa, cb, sb, cg, sgm, in + 25, out + 25);
-        if constexpr (L >= 7) rotate_zyz_band_6(ca, sa, cb, sb, cg, sgm, in + 36, out + 36);
-        if constexpr (L >= 8) rotate_zyz_band_7(ca, sa, cb, sb, cg, sgm, in + 49, out + 49);
-        if (det < T(0)) {
-            for (int kk = 9; kk < 16; ++kk) out[kk] = out[kk] * T(-1);
-            if constexpr (L >= 6)
-                for (int kk = 25; kk < 36; ++kk) out[kk] = out[kk] * T(-1);
-            if constexpr (L >= 8)
-                for (int kk = 49; kk < 64; ++kk) out[kk] = out[kk] * T(-1);
-        }
+        T ca[L - 1], sa[L - 1], cb[L - 1], sb[L - 1], cg[L - 1], sg[L - 1];
+        const bool improper = zyz_multiples<L>(r, ca, sa, cb, sb, cg, sg);
+        rotate_zyz_band_3(ca, sa, cb, sb, cg, sg, in + 9, out + 9);
+        if constexpr (L >= 5) rotate_zyz_band_4(ca, sa, cb, sb, cg, sg, in + 16, out + 16);
+        if constexpr (L >= 6) rotate_zyz_band_5(ca, sa, cb, sb, cg, sg, in + 25, out + 25);
+        if constexpr (L >= 7) rotate_zyz_band_6(ca, sa, cb, sb, cg, sg, in + 36, out + 36);
+        if constexpr (L >= 8) rotate_zyz_band_7(ca, sa, cb, sb, cg, sg, in + 49, out + 49);
+        if (improper) negate_odd_high_bands<L, T>(out);
     }
+    for (int k = 0; k < (L < 3 ? L * L : 9); ++k) out[k] = lo[k];
+}
+
+#if SPHBASIS_SH_ROTATION_VECTOR
+/// out = D(R) in for C = T (float or double): bands 0..2 as in rotate_direct_scalar, bands >= 3
+/// in 16-lane GNU vectors (rotate_zyz_vec_L). Reads in[0..L^2) and writes out[0..L^2) only,
+/// all reads before the first write.
+template <int L, class T>
+SPHBASIS_FORCEINLINE void rotate_direct_vec(const T* SPHBASIS_RESTRICT r, const T* in, T* out) noexcept {
+    static_assert(L >= 4, "rotate_direct_vec: L >= 4");
+    T lo[9];
+    rotate_low_bands<L>(r, in, lo);
+    T ca[L - 1], sa[L - 1], cb[L - 1], sb[L - 1], cg[L - 1], sg[L - 1];
+    const bool improper = zyz_multiples<L>(r, ca, sa, cb, sb, cg, sg);
+    if constexpr (L == 4) rotate_zyz_vec_4(ca, sa, cb, sb, cg, sg, in, out);
+    if constexpr (L == 5) rotate_zyz_vec_5(ca, sa, cb, sb, cg, sg, in, out);
+    if constexpr (L == 6) rotate_zyz_vec_6(ca, sa, cb, sb, cg, sg, in, out);
+    if constexpr (L == 7) rotate_zyz_vec_7(ca, sa, cb, sb, cg, sg, in, out);
+    if constexpr (L == 8) rotate_zyz_vec_8(ca, sa, cb, sb, cg, sg, in, out);
+    if (improper) negate_odd_high_bands<L, T>(out);
+    for (int k = 0; k < 9; ++k) out[k] = lo[k];
+}
+#endif
+
+/// out = D(R) in for L bands of the row-major matrix r, D never formed:
+///   * band 1: D^1 = R permuted to (y, z, x);
+///   * band 2: the coefficients are a traceless symmetric Q with f(w) = w^T Q w on the sphere
+///     (scaled by 2 / sqrt(15 / (4 pi)): Q_xy = c_-2, Q_yz = c_-1, Q_xz = c_1,
+///     Q_xx = c_2 - c_0 / sqrt3, Q_yy = -c_2 - c_0 / sqrt3, Q_zz = 2 c_0 / sqrt3); the rotated
+///     function is w^T (R Q R^T) w, 45 multiply-adds;
+///   * bands l >= 3: R = Rz(alpha) Ry(beta) Rz(gamma) with Ry(beta) = X Rz(beta) X^T, X the
+///     quarter turn about x taking z to y, so D^l = Z(alpha) D^l(X) Z(beta) D^l(X)^T Z(gamma):
+///     three z rotations (cos, sin of m times each angle on the pairs (m, -m)) and two sparse
+///     constant matrices (generated with exact constants, zeros skipped). The angles are never
+///     formed: cos beta = R_22, sin beta = |(R_02, R_12)|, (cos alpha, sin alpha) = (R_02,
+///     R_12) / sin beta, and (cos gamma, sin gamma) is read from the middle row of
+///     Rz(-alpha) R = Ry(beta) Rz(gamma): cos gamma = ca R_11 - sa R_01, sin gamma = ca R_10 -
+///     sa R_00. Any unit (ca, sa) makes that row exact, so at and near beta = 0 or pi (sin^2
+///     beta below the smallest normal: alpha = 0) the factorisation still reproduces R to
+///     rounding: gamma absorbs the error of alpha.
+///   * improper R (det < 0): bands >= 3 use -R and negate the odd bands ((-1)^l D(-R), as the
+///     recurrence gives); bands 1 and 2 are homogeneous in R and need nothing.
+/// For C = T with AVX-512 the bands >= 3 run in 16-lane vectors (rotate_direct_vec; the lanes
+/// pair m with -m so that a z rotation is lane-wise and the quarter turn is a few lane
+/// permutations times constants); otherwise straight-line scalar code (rotate_direct_scalar).
+/// in == out is allowed: every input is read before the first write.
+template <int L, class T, class C>
+SPHBASIS_FORCEINLINE void rotate_direct(const T* SPHBASIS_RESTRICT r, const C* in, C* out) noexcept {
+#if SPHBASIS_SH_ROTATION_VECTOR && defined(__AVX512F__)
+    if constexpr (L >= 4 && std::is_same_v<C, T>) {
+        rotate_direct_vec<L>(r, in, out);
+        return;
+    }
+#endif
+    rotate_direct_scalar<L>(r, in, out);
 }
 
 }  // namespace sphbasis::sh::detail
@@ -626,6 +933,11 @@ def main():
     for l in range(3, MAX_BANDS):
         parts.append(zyz_band_function(l, dx))
         parts.append("\n\n")
+    parts.append("#if SPHBASIS_SH_ROTATION_VECTOR\n")
+    for n in range(4, MAX_BANDS + 1):
+        parts.append(vec_function(n, dx))
+        parts.append("\n\n")
+    parts.append("#endif\n\n")
     parts.append(FOOTER)
     print("".join(parts), end="")
 

@@ -32,7 +32,34 @@
 #include "../core/frame.hpp"
 #include "sh_rotation.hpp"
 
+#if !defined(SPHBASIS_SH_ROTATION_VECTOR)
+#if defined(__GNUC__) || defined(__clang__)
+#define SPHBASIS_SH_ROTATION_VECTOR 1
+#else
+#define SPHBASIS_SH_ROTATION_VECTOR 0
+#endif
+#endif
+#if SPHBASIS_SH_ROTATION_VECTOR
+#include <cstring>
+#endif
+
 namespace sphbasis::sh::detail {
+
+#if SPHBASIS_SH_ROTATION_VECTOR
+/// GNU vector types of rotate_direct_vec: 16 and 8 lanes.
+template <class T>
+struct rot_vec;
+template <>
+struct rot_vec<float> {
+    typedef float v16 __attribute__((vector_size(64)));
+    typedef float v8 __attribute__((vector_size(32)));
+};
+template <>
+struct rot_vec<double> {
+    typedef double v16 __attribute__((vector_size(128)));
+    typedef double v8 __attribute__((vector_size(64)));
+};
+#endif
 
 // clang-format off
 /// Debug-assert helper: R orthonormal within the default tolerance (never throws).
@@ -2071,6 +2098,458 @@ SPHBASIS_FORCEINLINE void rotate_zyz_band_7(const T* ca, const T* sa, const T* c
     out[0] = h0; out[1] = h1; out[2] = h2; out[3] = h3; out[4] = h4; out[5] = h5; out[6] = h6; out[7] = h7; out[8] = h8; out[9] = h9; out[10] = h10; out[11] = h11; out[12] = h12; out[13] = h13; out[14] = h14;
 }
 
+#if SPHBASIS_SH_ROTATION_VECTOR
+/// Bands 3..3 of out = D(R) in, 4 bands, in 16-lane vectors (see rotate_direct_vec).
+template <class T>
+SPHBASIS_FORCEINLINE void rotate_zyz_vec_4(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const T* in, T* out) noexcept {
+    using V = typename rot_vec<T>::v16;
+    using V8 = typename rot_vec<T>::v8;
+    V in0;
+    std::memcpy(&in0, in + 0, sizeof(V));
+    const V u0_0 = __builtin_shufflevector(in0, in0, 0, 13, 10, 15, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V v0_0 = __builtin_shufflevector(in0, in0, 12, 11, 14, 9, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V8 ca8 = {T(1), ca[0], ca[1], ca[2], T(0), T(0), T(0), T(0)};
+    const V8 sa8 = {T(0), sa[0], sa[1], sa[2], T(0), T(0), T(0), T(0)};
+    const V8 na8 = -sa8;
+    const V ca0 = __builtin_shufflevector(ca8, ca8, 0, 1, 2, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V sua0 = __builtin_shufflevector(sa8, na8, 0, 9, 2, 11, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V sva0 = __builtin_shufflevector(sa8, na8, 8, 1, 10, 3, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8);
+    const V8 cb8 = {T(1), cb[0], cb[1], cb[2], T(0), T(0), T(0), T(0)};
+    const V8 sb8 = {T(0), sb[0], sb[1], sb[2], T(0), T(0), T(0), T(0)};
+    const V8 nb8 = -sb8;
+    const V cb0 = __builtin_shufflevector(cb8, cb8, 0, 1, 2, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V sub0 = __builtin_shufflevector(sb8, nb8, 0, 9, 2, 11, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V svb0 = __builtin_shufflevector(sb8, nb8, 8, 1, 10, 3, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8);
+    const V8 cg8 = {T(1), cg[0], cg[1], cg[2], T(0), T(0), T(0), T(0)};
+    const V8 sg8 = {T(0), sg[0], sg[1], sg[2], T(0), T(0), T(0), T(0)};
+    const V8 ng8 = -sg8;
+    const V cg0 = __builtin_shufflevector(cg8, cg8, 0, 1, 2, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V sug0 = __builtin_shufflevector(sg8, ng8, 0, 9, 2, 11, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V svg0 = __builtin_shufflevector(sg8, ng8, 8, 1, 10, 3, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8);
+    const V u0_1 = u0_0 * cg0 + v0_0 * sug0;
+    const V v0_1 = v0_0 * cg0 + u0_0 * svg0;
+    const V k1 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p1 = __builtin_shufflevector(u0_1, u0_1, 0, 1, 2, 1, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k2 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p2 = __builtin_shufflevector(u0_1, u0_1, 0, 3, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V u0_2 = p1 * k1 + p2 * k2;
+    const V k3 = {T(-0.61237243569579447), T(0.61237243569579447), T(-0.79056941504209488), T(0.79056941504209488), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p3 = __builtin_shufflevector(v0_1, v0_1, 1, 0, 1, 0, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k4 = {T(-0.79056941504209488), T(0.79056941504209488), T(0.61237243569579447), T(-0.61237243569579447), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p4 = __builtin_shufflevector(v0_1, v0_1, 3, 2, 3, 2, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V v0_2 = p3 * k3 + p4 * k4;
+    const V u0_3 = u0_2 * cb0 + v0_2 * sub0;
+    const V v0_3 = v0_2 * cb0 + u0_2 * svb0;
+    const V k5 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p5 = __builtin_shufflevector(u0_3, u0_3, 0, 1, 2, 1, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k6 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p6 = __builtin_shufflevector(u0_3, u0_3, 0, 3, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V u0_4 = p5 * k5 + p6 * k6;
+    const V k7 = {T(0.61237243569579447), T(-0.61237243569579447), T(0.79056941504209488), T(-0.79056941504209488), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p7 = __builtin_shufflevector(v0_3, v0_3, 1, 0, 1, 0, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k8 = {T(0.79056941504209488), T(-0.79056941504209488), T(-0.61237243569579447), T(0.61237243569579447), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p8 = __builtin_shufflevector(v0_3, v0_3, 3, 2, 3, 2, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V v0_4 = p7 * k7 + p8 * k8;
+    const V u0_5 = u0_4 * ca0 + v0_4 * sua0;
+    const V v0_5 = v0_4 * ca0 + u0_4 * sva0;
+    const V o0 = __builtin_shufflevector(u0_5, v0_5, 0, 0, 0, 0, 0, 0, 0, 0, 0, 19, 2, 17, 16, 1, 18, 3);
+    std::memcpy(out + 0, &o0, sizeof(V));
+}
+
+/// Bands 3..4 of out = D(R) in, 5 bands, in 16-lane vectors (see rotate_direct_vec).
+template <class T>
+SPHBASIS_FORCEINLINE void rotate_zyz_vec_5(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const T* in, T* out) noexcept {
+    using V = typename rot_vec<T>::v16;
+    using V8 = typename rot_vec<T>::v8;
+    V in0;
+    std::memcpy(&in0, in + 9, sizeof(V));
+    const V u0_0 = __builtin_shufflevector(in0, in0, 0, 4, 1, 6, 0, 12, 9, 14, 7, 0, 0, 0, 0, 0, 0, 0);
+    const V v0_0 = __builtin_shufflevector(in0, in0, 3, 2, 5, 0, 11, 10, 13, 8, 15, 0, 0, 0, 0, 0, 0, 0);
+    const V8 ca8 = {T(1), ca[0], ca[1], ca[2], ca[3], T(0), T(0), T(0)};
+    const V8 sa8 = {T(0), sa[0], sa[1], sa[2], sa[3], T(0), T(0), T(0)};
+    const V8 na8 = -sa8;
+    const V ca0 = __builtin_shufflevector(ca8, ca8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 0, 0, 0, 0, 0, 0);
+    const V sua0 = __builtin_shufflevector(sa8, na8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 0, 0, 0, 0, 0, 0);
+    const V sva0 = __builtin_shufflevector(sa8, na8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 8, 8, 8, 8, 8, 8);
+    const V8 cb8 = {T(1), cb[0], cb[1], cb[2], cb[3], T(0), T(0), T(0)};
+    const V8 sb8 = {T(0), sb[0], sb[1], sb[2], sb[3], T(0), T(0), T(0)};
+    const V8 nb8 = -sb8;
+    const V cb0 = __builtin_shufflevector(cb8, cb8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 0, 0, 0, 0, 0, 0);
+    const V sub0 = __builtin_shufflevector(sb8, nb8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 0, 0, 0, 0, 0, 0);
+    const V svb0 = __builtin_shufflevector(sb8, nb8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 8, 8, 8, 8, 8, 8);
+    const V8 cg8 = {T(1), cg[0], cg[1], cg[2], cg[3], T(0), T(0), T(0)};
+    const V8 sg8 = {T(0), sg[0], sg[1], sg[2], sg[3], T(0), T(0), T(0)};
+    const V8 ng8 = -sg8;
+    const V cg0 = __builtin_shufflevector(cg8, cg8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 0, 0, 0, 0, 0, 0);
+    const V sug0 = __builtin_shufflevector(sg8, ng8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 0, 0, 0, 0, 0, 0);
+    const V svg0 = __builtin_shufflevector(sg8, ng8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 8, 8, 8, 8, 8, 8);
+    const V u0_1 = u0_0 * cg0 + v0_0 * sug0;
+    const V v0_1 = v0_0 * cg0 + u0_0 * svg0;
+    const V k1 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(-0.35355339059327379), T(0.35355339059327379), T(-0.93541434669348533), T(0.93541434669348533), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p1 = __builtin_shufflevector(u0_1, u0_1, 0, 1, 2, 1, 4, 6, 5, 6, 5, 9, 10, 11, 12, 13, 14, 15);
+    const V k2 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(-0.93541434669348533), T(0.93541434669348533), T(0.35355339059327379), T(-0.35355339059327379), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p2 = __builtin_shufflevector(u0_1, u0_1, 0, 3, 2, 3, 4, 8, 7, 8, 7, 9, 10, 11, 12, 13, 14, 15);
+    const V u0_2 = p1 * k1 + p2 * k2;
+    const V k3 = {T(-0.61237243569579447), T(0.61237243569579447), T(-0.79056941504209488), T(0.79056941504209488), T(0.375), T(0.75), T(0.55901699437494745), T(0.66143782776614768), T(0.73950997288745202), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p3 = __builtin_shufflevector(v0_1, v0_1, 1, 0, 1, 0, 4, 5, 4, 5, 4, 9, 10, 11, 12, 13, 14, 15);
+    const V k4 = {T(-0.79056941504209488), T(0.79056941504209488), T(0.61237243569579447), T(-0.61237243569579447), T(0.55901699437494745), T(0.66143782776614768), T(0.5), T(-0.75), T(-0.66143782776614768), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p4 = __builtin_shufflevector(v0_1, v0_1, 3, 2, 3, 2, 6, 7, 6, 7, 6, 9, 10, 11, 12, 13, 14, 15);
+    const V k5 = {T(0), T(0), T(0), T(0), T(0.73950997288745202), T(0), T(-0.66143782776614768), T(0), T(0.125), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p5 = __builtin_shufflevector(v0_1, v0_1, 0, 1, 2, 3, 8, 5, 8, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V v0_2 = p3 * k3 + p4 * k4 + p5 * k5;
+    const V u0_3 = u0_2 * cb0 + v0_2 * sub0;
+    const V v0_3 = v0_2 * cb0 + u0_2 * svb0;
+    const V k6 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(0.35355339059327379), T(-0.35355339059327379), T(0.93541434669348533), T(-0.93541434669348533), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p6 = __builtin_shufflevector(u0_3, u0_3, 0, 1, 2, 1, 4, 6, 5, 6, 5, 9, 10, 11, 12, 13, 14, 15);
+    const V k7 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(0.93541434669348533), T(-0.93541434669348533), T(-0.35355339059327379), T(0.35355339059327379), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p7 = __builtin_shufflevector(u0_3, u0_3, 0, 3, 2, 3, 4, 8, 7, 8, 7, 9, 10, 11, 12, 13, 14, 15);
+    const V u0_4 = p6 * k6 + p7 * k7;
+    const V k8 = {T(0.61237243569579447), T(-0.61237243569579447), T(0.79056941504209488), T(-0.79056941504209488), T(0.375), T(0.75), T(0.55901699437494745), T(0.66143782776614768), T(0.73950997288745202), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p8 = __builtin_shufflevector(v0_3, v0_3, 1, 0, 1, 0, 4, 5, 4, 5, 4, 9, 10, 11, 12, 13, 14, 15);
+    const V k9 = {T(0.79056941504209488), T(-0.79056941504209488), T(-0.61237243569579447), T(0.61237243569579447), T(0.55901699437494745), T(0.66143782776614768), T(0.5), T(-0.75), T(-0.66143782776614768), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p9 = __builtin_shufflevector(v0_3, v0_3, 3, 2, 3, 2, 6, 7, 6, 7, 6, 9, 10, 11, 12, 13, 14, 15);
+    const V k10 = {T(0), T(0), T(0), T(0), T(0.73950997288745202), T(0), T(-0.66143782776614768), T(0), T(0.125), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p10 = __builtin_shufflevector(v0_3, v0_3, 0, 1, 2, 3, 8, 5, 8, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V v0_4 = p8 * k8 + p9 * k9 + p10 * k10;
+    const V u0_5 = u0_4 * ca0 + v0_4 * sua0;
+    const V v0_5 = v0_4 * ca0 + u0_4 * sva0;
+    const V o0 = __builtin_shufflevector(u0_5, v0_5, 19, 2, 17, 16, 1, 18, 3, 8, 23, 6, 21, 20, 5, 22, 7, 24);
+    std::memcpy(out + 9, &o0, sizeof(V));
+}
+
+/// Bands 3..5 of out = D(R) in, 6 bands, in 16-lane vectors (see rotate_direct_vec).
+template <class T>
+SPHBASIS_FORCEINLINE void rotate_zyz_vec_6(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const T* in, T* out) noexcept {
+    using V = typename rot_vec<T>::v16;
+    using V8 = typename rot_vec<T>::v8;
+    V in0;
+    std::memcpy(&in0, in + 9, sizeof(V));
+    V in1;
+    std::memcpy(&in1, in + 20, sizeof(V));
+    const V u0_0 = __builtin_shufflevector(in0, in1, 0, 4, 1, 6, 0, 12, 9, 14, 7, 0, 27, 24, 29, 22, 31, 0);
+    const V v0_0 = __builtin_shufflevector(in0, in1, 3, 2, 5, 0, 11, 10, 13, 8, 15, 26, 25, 28, 23, 30, 21, 0);
+    const V8 ca8 = {T(1), ca[0], ca[1], ca[2], ca[3], ca[4], T(0), T(0)};
+    const V8 sa8 = {T(0), sa[0], sa[1], sa[2], sa[3], sa[4], T(0), T(0)};
+    const V8 na8 = -sa8;
+    const V ca0 = __builtin_shufflevector(ca8, ca8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sua0 = __builtin_shufflevector(sa8, na8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V sva0 = __builtin_shufflevector(sa8, na8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V8 cb8 = {T(1), cb[0], cb[1], cb[2], cb[3], cb[4], T(0), T(0)};
+    const V8 sb8 = {T(0), sb[0], sb[1], sb[2], sb[3], sb[4], T(0), T(0)};
+    const V8 nb8 = -sb8;
+    const V cb0 = __builtin_shufflevector(cb8, cb8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sub0 = __builtin_shufflevector(sb8, nb8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V svb0 = __builtin_shufflevector(sb8, nb8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V8 cg8 = {T(1), cg[0], cg[1], cg[2], cg[3], cg[4], T(0), T(0)};
+    const V8 sg8 = {T(0), sg[0], sg[1], sg[2], sg[3], sg[4], T(0), T(0)};
+    const V8 ng8 = -sg8;
+    const V cg0 = __builtin_shufflevector(cg8, cg8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sug0 = __builtin_shufflevector(sg8, ng8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V svg0 = __builtin_shufflevector(sg8, ng8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V u0_1 = u0_0 * cg0 + v0_0 * sug0;
+    const V v0_1 = v0_0 * cg0 + u0_0 * svg0;
+    const V k1 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(-0.35355339059327379), T(0.35355339059327379), T(-0.93541434669348533), T(0.93541434669348533), T(0), T(0.125), T(0.5), T(0.40504629365049127), T(0.8660254037844386), T(0.90571104663683988), T(0)};
+    const V p1 = __builtin_shufflevector(u0_1, u0_1, 0, 1, 2, 1, 4, 6, 5, 6, 5, 9, 10, 11, 10, 11, 10, 15);
+    const V k2 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(-0.93541434669348533), T(0.93541434669348533), T(0.35355339059327379), T(-0.35355339059327379), T(0), T(0.40504629365049127), T(0.8660254037844386), T(0.8125), T(-0.5), T(-0.41926274578121059), T(0)};
+    const V p2 = __builtin_shufflevector(u0_1, u0_1, 0, 3, 2, 3, 4, 8, 7, 8, 7, 9, 12, 13, 12, 13, 12, 15);
+    const V k3 = {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0.90571104663683988), T(0), T(-0.41926274578121059), T(0), T(0.0625), T(0)};
+    const V p3 = __builtin_shufflevector(u0_1, u0_1, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 14, 11, 14, 13, 14, 15);
+    const V u0_2 = p1 * k1 + p2 * k2 + p3 * k3;
+    const V k4 = {T(-0.61237243569579447), T(0.61237243569579447), T(-0.79056941504209488), T(0.79056941504209488), T(0.375), T(0.75), T(0.55901699437494745), T(0.66143782776614768), T(0.73950997288745202), T(0.48412291827592713), T(-0.48412291827592713), T(0.66143782776614768), T(-0.52291251658379723), T(0.57282196186947998), T(-0.70156076002011403), T(0)};
+    const V p4 = __builtin_shufflevector(v0_1, v0_1, 1, 0, 1, 0, 4, 5, 4, 5, 4, 10, 9, 10, 9, 10, 9, 15);
+    const V k5 = {T(-0.79056941504209488), T(0.79056941504209488), T(0.61237243569579447), T(-0.61237243569579447), T(0.55901699437494745), T(0.66143782776614768), T(0.5), T(-0.75), T(-0.66143782776614768), T(0.52291251658379723), T(-0.66143782776614768), T(0.30618621784789724), T(-0.30618621784789724), T(-0.79549512883486595), T(0.68465319688145765), T(0)};
+    const V p5 = __builtin_shufflevector(v0_1, v0_1, 3, 2, 3, 2, 6, 7, 6, 7, 6, 12, 11, 12, 11, 12, 11, 15);
+    const V k6 = {T(0), T(0), T(0), T(0), T(0.73950997288745202), T(0), T(-0.66143782776614768), T(0), T(0.125), T(0.70156076002011403), T(-0.57282196186947998), T(-0.68465319688145765), T(0.79549512883486595), T(0.19764235376052372), T(-0.19764235376052372), T(0)};
+    const V p6 = __builtin_shufflevector(v0_1, v0_1, 0, 1, 2, 3, 8, 5, 8, 7, 8, 14, 13, 14, 13, 14, 13, 15);
+    const V v0_2 = p4 * k4 + p5 * k5 + p6 * k6;
+    const V u0_3 = u0_2 * cb0 + v0_2 * sub0;
+    const V v0_3 = v0_2 * cb0 + u0_2 * svb0;
+    const V k7 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(0.35355339059327379), T(-0.35355339059327379), T(0.93541434669348533), T(-0.93541434669348533), T(0), T(0.125), T(0.5), T(0.40504629365049127), T(0.8660254037844386), T(0.90571104663683988), T(0)};
+    const V p7 = __builtin_shufflevector(u0_3, u0_3, 0, 1, 2, 1, 4, 6, 5, 6, 5, 9, 10, 11, 10, 11, 10, 15);
+    const V k8 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(0.93541434669348533), T(-0.93541434669348533), T(-0.35355339059327379), T(0.35355339059327379), T(0), T(0.40504629365049127), T(0.8660254037844386), T(0.8125), T(-0.5), T(-0.41926274578121059), T(0)};
+    const V p8 = __builtin_shufflevector(u0_3, u0_3, 0, 3, 2, 3, 4, 8, 7, 8, 7, 9, 12, 13, 12, 13, 12, 15);
+    const V k9 = {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0.90571104663683988), T(0), T(-0.41926274578121059), T(0), T(0.0625), T(0)};
+    const V p9 = __builtin_shufflevector(u0_3, u0_3, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 14, 11, 14, 13, 14, 15);
+    const V u0_4 = p7 * k7 + p8 * k8 + p9 * k9;
+    const V k10 = {T(0.61237243569579447), T(-0.61237243569579447), T(0.79056941504209488), T(-0.79056941504209488), T(0.375), T(0.75), T(0.55901699437494745), T(0.66143782776614768), T(0.73950997288745202), T(-0.48412291827592713), T(0.48412291827592713), T(-0.66143782776614768), T(0.52291251658379723), T(-0.57282196186947998), T(0.70156076002011403), T(0)};
+    const V p10 = __builtin_shufflevector(v0_3, v0_3, 1, 0, 1, 0, 4, 5, 4, 5, 4, 10, 9, 10, 9, 10, 9, 15);
+    const V k11 = {T(0.79056941504209488), T(-0.79056941504209488), T(-0.61237243569579447), T(0.61237243569579447), T(0.55901699437494745), T(0.66143782776614768), T(0.5), T(-0.75), T(-0.66143782776614768), T(-0.52291251658379723), T(0.66143782776614768), T(-0.30618621784789724), T(0.30618621784789724), T(0.79549512883486595), T(-0.68465319688145765), T(0)};
+    const V p11 = __builtin_shufflevector(v0_3, v0_3, 3, 2, 3, 2, 6, 7, 6, 7, 6, 12, 11, 12, 11, 12, 11, 15);
+    const V k12 = {T(0), T(0), T(0), T(0), T(0.73950997288745202), T(0), T(-0.66143782776614768), T(0), T(0.125), T(-0.70156076002011403), T(0.57282196186947998), T(0.68465319688145765), T(-0.79549512883486595), T(-0.19764235376052372), T(0.19764235376052372), T(0)};
+    const V p12 = __builtin_shufflevector(v0_3, v0_3, 0, 1, 2, 3, 8, 5, 8, 7, 8, 14, 13, 14, 13, 14, 13, 15);
+    const V v0_4 = p10 * k10 + p11 * k11 + p12 * k12;
+    const V u0_5 = u0_4 * ca0 + v0_4 * sua0;
+    const V v0_5 = v0_4 * ca0 + u0_4 * sva0;
+    const V o0 = __builtin_shufflevector(u0_5, v0_5, 19, 2, 17, 16, 1, 18, 3, 8, 23, 6, 21, 20, 5, 22, 7, 24);
+    const V o1 = __builtin_shufflevector(u0_5, v0_5, 20, 5, 22, 7, 24, 30, 13, 28, 11, 26, 25, 10, 27, 12, 29, 14);
+    std::memcpy(out + 9, &o0, sizeof(V));
+    std::memcpy(out + 20, &o1, sizeof(V));
+}
+
+/// Bands 3..6 of out = D(R) in, 7 bands, in 16-lane vectors (see rotate_direct_vec).
+template <class T>
+SPHBASIS_FORCEINLINE void rotate_zyz_vec_7(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const T* in, T* out) noexcept {
+    using V = typename rot_vec<T>::v16;
+    using V8 = typename rot_vec<T>::v8;
+    V in0;
+    std::memcpy(&in0, in + 9, sizeof(V));
+    V in1;
+    std::memcpy(&in1, in + 25, sizeof(V));
+    V in2;
+    std::memcpy(&in2, in + 33, sizeof(V));
+    const V u0_0 = __builtin_shufflevector(in0, in1, 0, 4, 1, 6, 0, 12, 9, 14, 7, 0, 22, 19, 24, 17, 26, 0);
+    const V v0_0 = __builtin_shufflevector(in0, in1, 3, 2, 5, 0, 11, 10, 13, 8, 15, 21, 20, 23, 18, 25, 16, 0);
+    const V u1_0 = __builtin_shufflevector(in1, in2, 0, 26, 15, 28, 13, 30, 11, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V v1_0 = __builtin_shufflevector(in1, in2, 25, 24, 27, 14, 29, 12, 31, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V8 ca8 = {T(1), ca[0], ca[1], ca[2], ca[3], ca[4], ca[5], T(0)};
+    const V8 sa8 = {T(0), sa[0], sa[1], sa[2], sa[3], sa[4], sa[5], T(0)};
+    const V8 na8 = -sa8;
+    const V ca0 = __builtin_shufflevector(ca8, ca8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sua0 = __builtin_shufflevector(sa8, na8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V sva0 = __builtin_shufflevector(sa8, na8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V ca1 = __builtin_shufflevector(ca8, ca8, 0, 1, 2, 3, 4, 5, 6, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V sua1 = __builtin_shufflevector(sa8, na8, 0, 9, 2, 11, 4, 13, 6, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V sva1 = __builtin_shufflevector(sa8, na8, 8, 1, 10, 3, 12, 5, 14, 8, 8, 8, 8, 8, 8, 8, 8, 8);
+    const V8 cb8 = {T(1), cb[0], cb[1], cb[2], cb[3], cb[4], cb[5], T(0)};
+    const V8 sb8 = {T(0), sb[0], sb[1], sb[2], sb[3], sb[4], sb[5], T(0)};
+    const V8 nb8 = -sb8;
+    const V cb0 = __builtin_shufflevector(cb8, cb8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sub0 = __builtin_shufflevector(sb8, nb8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V svb0 = __builtin_shufflevector(sb8, nb8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V cb1 = __builtin_shufflevector(cb8, cb8, 0, 1, 2, 3, 4, 5, 6, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V sub1 = __builtin_shufflevector(sb8, nb8, 0, 9, 2, 11, 4, 13, 6, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V svb1 = __builtin_shufflevector(sb8, nb8, 8, 1, 10, 3, 12, 5, 14, 8, 8, 8, 8, 8, 8, 8, 8, 8);
+    const V8 cg8 = {T(1), cg[0], cg[1], cg[2], cg[3], cg[4], cg[5], T(0)};
+    const V8 sg8 = {T(0), sg[0], sg[1], sg[2], sg[3], sg[4], sg[5], T(0)};
+    const V8 ng8 = -sg8;
+    const V cg0 = __builtin_shufflevector(cg8, cg8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sug0 = __builtin_shufflevector(sg8, ng8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V svg0 = __builtin_shufflevector(sg8, ng8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V cg1 = __builtin_shufflevector(cg8, cg8, 0, 1, 2, 3, 4, 5, 6, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V sug1 = __builtin_shufflevector(sg8, ng8, 0, 9, 2, 11, 4, 13, 6, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V svg1 = __builtin_shufflevector(sg8, ng8, 8, 1, 10, 3, 12, 5, 14, 8, 8, 8, 8, 8, 8, 8, 8, 8);
+    const V u0_1 = u0_0 * cg0 + v0_0 * sug0;
+    const V v0_1 = v0_0 * cg0 + u0_0 * svg0;
+    const V k1 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(-0.35355339059327379), T(0.35355339059327379), T(-0.93541434669348533), T(0.93541434669348533), T(0), T(0.125), T(0.5), T(0.40504629365049127), T(0.8660254037844386), T(0.90571104663683988), T(0)};
+    const V p1 = __builtin_shufflevector(u0_1, u0_1, 0, 1, 2, 1, 4, 6, 5, 6, 5, 9, 10, 11, 10, 11, 10, 15);
+    const V k2 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(-0.93541434669348533), T(0.93541434669348533), T(0.35355339059327379), T(-0.35355339059327379), T(0), T(0.40504629365049127), T(0.8660254037844386), T(0.8125), T(-0.5), T(-0.41926274578121059), T(0)};
+    const V p2 = __builtin_shufflevector(u0_1, u0_1, 0, 3, 2, 3, 4, 8, 7, 8, 7, 9, 12, 13, 12, 13, 12, 15);
+    const V k3 = {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0.90571104663683988), T(0), T(-0.41926274578121059), T(0), T(0.0625), T(0)};
+    const V p3 = __builtin_shufflevector(u0_1, u0_1, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 14, 11, 14, 13, 14, 15);
+    const V u0_2 = p1 * k1 + p2 * k2 + p3 * k3;
+    const V k4 = {T(-0.61237243569579447), T(0.61237243569579447), T(-0.79056941504209488), T(0.79056941504209488), T(0.375), T(0.75), T(0.55901699437494745), T(0.66143782776614768), T(0.73950997288745202), T(0.48412291827592713), T(-0.48412291827592713), T(0.66143782776614768), T(-0.52291251658379723), T(0.57282196186947998), T(-0.70156076002011403), T(0)};
+    const V p4 = __builtin_shufflevector(v0_1, v0_1, 1, 0, 1, 0, 4, 5, 4, 5, 4, 10, 9, 10, 9, 10, 9, 15);
+    const V k5 = {T(-0.79056941504209488), T(0.79056941504209488), T(0.61237243569579447), T(-0.61237243569579447), T(0.55901699437494745), T(0.66143782776614768), T(0.5), T(-0.75), T(-0.66143782776614768), T(0.52291251658379723), T(-0.66143782776614768), T(0.30618621784789724), T(-0.30618621784789724), T(-0.79549512883486595), T(0.68465319688145765), T(0)};
+    const V p5 = __builtin_shufflevector(v0_1, v0_1, 3, 2, 3, 2, 6, 7, 6, 7, 6, 12, 11, 12, 11, 12, 11, 15);
+    const V k6 = {T(0), T(0), T(0), T(0), T(0.73950997288745202), T(0), T(-0.66143782776614768), T(0), T(0.125), T(0.70156076002011403), T(-0.57282196186947998), T(-0.68465319688145765), T(0.79549512883486595), T(0.19764235376052372), T(-0.19764235376052372), T(0)};
+    const V p6 = __builtin_shufflevector(v0_1, v0_1, 0, 1, 2, 3, 8, 5, 8, 7, 8, 14, 13, 14, 13, 14, 13, 15);
+    const V v0_2 = p4 * k4 + p5 * k5 + p6 * k6;
+    const V u0_3 = u0_2 * cb0 + v0_2 * sub0;
+    const V v0_3 = v0_2 * cb0 + u0_2 * svb0;
+    const V k7 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(0.35355339059327379), T(-0.35355339059327379), T(0.93541434669348533), T(-0.93541434669348533), T(0), T(0.125), T(0.5), T(0.40504629365049127), T(0.8660254037844386), T(0.90571104663683988), T(0)};
+    const V p7 = __builtin_shufflevector(u0_3, u0_3, 0, 1, 2, 1, 4, 6, 5, 6, 5, 9, 10, 11, 10, 11, 10, 15);
+    const V k8 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(0.93541434669348533), T(-0.93541434669348533), T(-0.35355339059327379), T(0.35355339059327379), T(0), T(0.40504629365049127), T(0.8660254037844386), T(0.8125), T(-0.5), T(-0.41926274578121059), T(0)};
+    const V p8 = __builtin_shufflevector(u0_3, u0_3, 0, 3, 2, 3, 4, 8, 7, 8, 7, 9, 12, 13, 12, 13, 12, 15);
+    const V k9 = {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0.90571104663683988), T(0), T(-0.41926274578121059), T(0), T(0.0625), T(0)};
+    const V p9 = __builtin_shufflevector(u0_3, u0_3, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 14, 11, 14, 13, 14, 15);
+    const V u0_4 = p7 * k7 + p8 * k8 + p9 * k9;
+    const V k10 = {T(0.61237243569579447), T(-0.61237243569579447), T(0.79056941504209488), T(-0.79056941504209488), T(0.375), T(0.75), T(0.55901699437494745), T(0.66143782776614768), T(0.73950997288745202), T(-0.48412291827592713), T(0.48412291827592713), T(-0.66143782776614768), T(0.52291251658379723), T(-0.57282196186947998), T(0.70156076002011403), T(0)};
+    const V p10 = __builtin_shufflevector(v0_3, v0_3, 1, 0, 1, 0, 4, 5, 4, 5, 4, 10, 9, 10, 9, 10, 9, 15);
+    const V k11 = {T(0.79056941504209488), T(-0.79056941504209488), T(-0.61237243569579447), T(0.61237243569579447), T(0.55901699437494745), T(0.66143782776614768), T(0.5), T(-0.75), T(-0.66143782776614768), T(-0.52291251658379723), T(0.66143782776614768), T(-0.30618621784789724), T(0.30618621784789724), T(0.79549512883486595), T(-0.68465319688145765), T(0)};
+    const V p11 = __builtin_shufflevector(v0_3, v0_3, 3, 2, 3, 2, 6, 7, 6, 7, 6, 12, 11, 12, 11, 12, 11, 15);
+    const V k12 = {T(0), T(0), T(0), T(0), T(0.73950997288745202), T(0), T(-0.66143782776614768), T(0), T(0.125), T(-0.70156076002011403), T(0.57282196186947998), T(0.68465319688145765), T(-0.79549512883486595), T(-0.19764235376052372), T(0.19764235376052372), T(0)};
+    const V p12 = __builtin_shufflevector(v0_3, v0_3, 0, 1, 2, 3, 8, 5, 8, 7, 8, 14, 13, 14, 13, 14, 13, 15);
+    const V v0_4 = p10 * k10 + p11 * k11 + p12 * k12;
+    const V u0_5 = u0_4 * ca0 + v0_4 * sua0;
+    const V v0_5 = v0_4 * ca0 + u0_4 * sva0;
+    const V u1_1 = u1_0 * cg1 + v1_0 * sug1;
+    const V v1_1 = v1_0 * cg1 + u1_0 * svg1;
+    const V k13 = {T(0), T(0.19764235376052372), T(-0.19764235376052372), T(0.5625), T(-0.4330127018922193), T(0.80282703616657058), T(-0.87945295496689302), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p13 = __builtin_shufflevector(u1_1, u1_1, 0, 2, 1, 2, 1, 2, 1, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k14 = {T(0), T(0.4330127018922193), T(-0.5625), T(0.68465319688145765), T(-0.68465319688145765), T(-0.58630196997792872), T(0.46351240544347894), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p14 = __builtin_shufflevector(u1_1, u1_1, 0, 4, 3, 4, 3, 4, 3, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k15 = {T(0), T(0.87945295496689302), T(-0.80282703616657058), T(-0.46351240544347894), T(0.58630196997792872), T(0.10825317547305482), T(-0.10825317547305482), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p15 = __builtin_shufflevector(u1_1, u1_1, 0, 6, 5, 6, 5, 6, 5, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V u1_2 = p13 * k13 + p14 * k14 + p15 * k15;
+    const V k16 = {T(-0.3125), T(-0.625), T(-0.45285552331841994), T(-0.59292706128157113), T(-0.49607837082461076), T(-0.50775240028974755), T(-0.67169328938139616), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p16 = __builtin_shufflevector(v1_1, v1_1, 0, 1, 0, 1, 0, 1, 0, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k17 = {T(-0.45285552331841994), T(-0.59292706128157113), T(-0.53125), T(-0.0625), T(-0.17116329922036441), T(0.80282703616657058), T(0.6952686081652184), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p17 = __builtin_shufflevector(v1_1, v1_1, 2, 3, 2, 3, 2, 3, 2, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k18 = {T(-0.49607837082461076), T(-0.50775240028974755), T(-0.17116329922036441), T(0.80282703616657058), T(0.8125), T(-0.3125), T(-0.25387620014487378), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p18 = __builtin_shufflevector(v1_1, v1_1, 4, 5, 4, 5, 4, 5, 4, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k19 = {T(-0.67169328938139616), T(0), T(0.6952686081652184), T(0), T(-0.25387620014487378), T(0), T(0.03125), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p19 = __builtin_shufflevector(v1_1, v1_1, 6, 1, 6, 3, 6, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V v1_2 = p16 * k16 + p17 * k17 + p18 * k18 + p19 * k19;
+    const V u1_3 = u1_2 * cb1 + v1_2 * sub1;
+    const V v1_3 = v1_2 * cb1 + u1_2 * svb1;
+    const V k20 = {T(0), T(-0.19764235376052372), T(0.19764235376052372), T(-0.5625), T(0.4330127018922193), T(-0.80282703616657058), T(0.87945295496689302), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p20 = __builtin_shufflevector(u1_3, u1_3, 0, 2, 1, 2, 1, 2, 1, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k21 = {T(0), T(-0.4330127018922193), T(0.5625), T(-0.68465319688145765), T(0.68465319688145765), T(0.58630196997792872), T(-0.46351240544347894), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p21 = __builtin_shufflevector(u1_3, u1_3, 0, 4, 3, 4, 3, 4, 3, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k22 = {T(0), T(-0.87945295496689302), T(0.80282703616657058), T(0.46351240544347894), T(-0.58630196997792872), T(-0.10825317547305482), T(0.10825317547305482), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p22 = __builtin_shufflevector(u1_3, u1_3, 0, 6, 5, 6, 5, 6, 5, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V u1_4 = p20 * k20 + p21 * k21 + p22 * k22;
+    const V k23 = {T(-0.3125), T(-0.625), T(-0.45285552331841994), T(-0.59292706128157113), T(-0.49607837082461076), T(-0.50775240028974755), T(-0.67169328938139616), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p23 = __builtin_shufflevector(v1_3, v1_3, 0, 1, 0, 1, 0, 1, 0, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k24 = {T(-0.45285552331841994), T(-0.59292706128157113), T(-0.53125), T(-0.0625), T(-0.17116329922036441), T(0.80282703616657058), T(0.6952686081652184), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p24 = __builtin_shufflevector(v1_3, v1_3, 2, 3, 2, 3, 2, 3, 2, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k25 = {T(-0.49607837082461076), T(-0.50775240028974755), T(-0.17116329922036441), T(0.80282703616657058), T(0.8125), T(-0.3125), T(-0.25387620014487378), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p25 = __builtin_shufflevector(v1_3, v1_3, 4, 5, 4, 5, 4, 5, 4, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k26 = {T(-0.67169328938139616), T(0), T(0.6952686081652184), T(0), T(-0.25387620014487378), T(0), T(0.03125), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p26 = __builtin_shufflevector(v1_3, v1_3, 6, 1, 6, 3, 6, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V v1_4 = p23 * k23 + p24 * k24 + p25 * k25 + p26 * k26;
+    const V u1_5 = u1_4 * ca1 + v1_4 * sua1;
+    const V v1_5 = v1_4 * ca1 + u1_4 * sva1;
+    const V o0 = __builtin_shufflevector(u0_5, v0_5, 19, 2, 17, 16, 1, 18, 3, 8, 23, 6, 21, 20, 5, 22, 7, 24);
+    const V o1_a = __builtin_shufflevector(u0_5, v0_5, 30, 13, 28, 11, 26, 25, 10, 27, 12, 29, 14, 0, 0, 0, 0, 0);
+    const V o1_b = __builtin_shufflevector(u1_5, v1_5, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 6, 21, 4, 19, 2);
+    const V o1 = __builtin_shufflevector(o1_a, o1_b, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 27, 28, 29, 30, 31);
+    const V o2_a = __builtin_shufflevector(u0_5, v0_5, 12, 29, 14, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V o2_b = __builtin_shufflevector(u1_5, v1_5, 0, 0, 0, 6, 21, 4, 19, 2, 17, 16, 1, 18, 3, 20, 5, 22);
+    const V o2 = __builtin_shufflevector(o2_a, o2_b, 0, 1, 2, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31);
+    std::memcpy(out + 9, &o0, sizeof(V));
+    std::memcpy(out + 25, &o1, sizeof(V));
+    std::memcpy(out + 33, &o2, sizeof(V));
+}
+
+/// Bands 3..7 of out = D(R) in, 8 bands, in 16-lane vectors (see rotate_direct_vec).
+template <class T>
+SPHBASIS_FORCEINLINE void rotate_zyz_vec_8(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const T* in, T* out) noexcept {
+    using V = typename rot_vec<T>::v16;
+    using V8 = typename rot_vec<T>::v8;
+    V in0;
+    std::memcpy(&in0, in + 9, sizeof(V));
+    V in1;
+    std::memcpy(&in1, in + 25, sizeof(V));
+    V in2;
+    std::memcpy(&in2, in + 41, sizeof(V));
+    V in3;
+    std::memcpy(&in3, in + 48, sizeof(V));
+    const V u0_0 = __builtin_shufflevector(in0, in1, 0, 4, 1, 6, 0, 12, 9, 14, 7, 0, 22, 19, 24, 17, 26, 0);
+    const V v0_0 = __builtin_shufflevector(in0, in1, 3, 2, 5, 0, 11, 10, 13, 8, 15, 21, 20, 23, 18, 25, 16, 0);
+    const V u1_0_a = __builtin_shufflevector(in1, in1, 0, 0, 15, 0, 13, 0, 11, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V u1_0_b = __builtin_shufflevector(in2, in3, 0, 2, 0, 4, 0, 6, 0, 0, 25, 13, 27, 11, 29, 9, 31, 0);
+    const V u1_0 = __builtin_shufflevector(u1_0_a, u1_0_b, 0, 17, 2, 19, 4, 21, 6, 0, 24, 25, 26, 27, 28, 29, 30, 0);
+    const V v1_0_a = __builtin_shufflevector(in1, in1, 0, 0, 0, 14, 0, 12, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V v1_0_b = __builtin_shufflevector(in2, in3, 1, 0, 3, 0, 5, 0, 7, 15, 14, 26, 12, 28, 10, 30, 8, 0);
+    const V v1_0 = __builtin_shufflevector(v1_0_a, v1_0_b, 16, 17, 18, 3, 20, 5, 22, 23, 24, 25, 26, 27, 28, 29, 30, 0);
+    const V8 ca8 = {T(1), ca[0], ca[1], ca[2], ca[3], ca[4], ca[5], ca[6]};
+    const V8 sa8 = {T(0), sa[0], sa[1], sa[2], sa[3], sa[4], sa[5], sa[6]};
+    const V8 na8 = -sa8;
+    const V ca0 = __builtin_shufflevector(ca8, ca8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sua0 = __builtin_shufflevector(sa8, na8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V sva0 = __builtin_shufflevector(sa8, na8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V ca1 = __builtin_shufflevector(ca8, ca8, 0, 1, 2, 3, 4, 5, 6, 0, 1, 2, 3, 4, 5, 6, 7, 0);
+    const V sua1 = __builtin_shufflevector(sa8, na8, 0, 9, 2, 11, 4, 13, 6, 0, 9, 2, 11, 4, 13, 6, 15, 0);
+    const V sva1 = __builtin_shufflevector(sa8, na8, 8, 1, 10, 3, 12, 5, 14, 8, 1, 10, 3, 12, 5, 14, 7, 8);
+    const V8 cb8 = {T(1), cb[0], cb[1], cb[2], cb[3], cb[4], cb[5], cb[6]};
+    const V8 sb8 = {T(0), sb[0], sb[1], sb[2], sb[3], sb[4], sb[5], sb[6]};
+    const V8 nb8 = -sb8;
+    const V cb0 = __builtin_shufflevector(cb8, cb8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sub0 = __builtin_shufflevector(sb8, nb8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V svb0 = __builtin_shufflevector(sb8, nb8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V cb1 = __builtin_shufflevector(cb8, cb8, 0, 1, 2, 3, 4, 5, 6, 0, 1, 2, 3, 4, 5, 6, 7, 0);
+    const V sub1 = __builtin_shufflevector(sb8, nb8, 0, 9, 2, 11, 4, 13, 6, 0, 9, 2, 11, 4, 13, 6, 15, 0);
+    const V svb1 = __builtin_shufflevector(sb8, nb8, 8, 1, 10, 3, 12, 5, 14, 8, 1, 10, 3, 12, 5, 14, 7, 8);
+    const V8 cg8 = {T(1), cg[0], cg[1], cg[2], cg[3], cg[4], cg[5], cg[6]};
+    const V8 sg8 = {T(0), sg[0], sg[1], sg[2], sg[3], sg[4], sg[5], sg[6]};
+    const V8 ng8 = -sg8;
+    const V cg0 = __builtin_shufflevector(cg8, cg8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sug0 = __builtin_shufflevector(sg8, ng8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V svg0 = __builtin_shufflevector(sg8, ng8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V cg1 = __builtin_shufflevector(cg8, cg8, 0, 1, 2, 3, 4, 5, 6, 0, 1, 2, 3, 4, 5, 6, 7, 0);
+    const V sug1 = __builtin_shufflevector(sg8, ng8, 0, 9, 2, 11, 4, 13, 6, 0, 9, 2, 11, 4, 13, 6, 15, 0);
+    const V svg1 = __builtin_shufflevector(sg8, ng8, 8, 1, 10, 3, 12, 5, 14, 8, 1, 10, 3, 12, 5, 14, 7, 8);
+    const V u0_1 = u0_0 * cg0 + v0_0 * sug0;
+    const V v0_1 = v0_0 * cg0 + u0_0 * svg0;
+    const V k1 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(-0.35355339059327379), T(0.35355339059327379), T(-0.93541434669348533), T(0.93541434669348533), T(0), T(0.125), T(0.5), T(0.40504629365049127), T(0.8660254037844386), T(0.90571104663683988), T(0)};
+    const V p1 = __builtin_shufflevector(u0_1, u0_1, 0, 1, 2, 1, 4, 6, 5, 6, 5, 9, 10, 11, 10, 11, 10, 15);
+    const V k2 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(-0.93541434669348533), T(0.93541434669348533), T(0.35355339059327379), T(-0.35355339059327379), T(0), T(0.40504629365049127), T(0.8660254037844386), T(0.8125), T(-0.5), T(-0.41926274578121059), T(0)};
+    const V p2 = __builtin_shufflevector(u0_1, u0_1, 0, 3, 2, 3, 4, 8, 7, 8, 7, 9, 12, 13, 12, 13, 12, 15);
+    const V k3 = {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0.90571104663683988), T(0), T(-0.41926274578121059), T(0), T(0.0625), T(0)};
+    const V p3 = __builtin_shufflevector(u0_1, u0_1, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 14, 11, 14, 13, 14, 15);
+    const V u0_2 = p1 * k1 + p2 * k2 + p3 * k3;
+    const V k4 = {T(-0.61237243569579447), T(0.61237243569579447), T(-0.79056941504209488), T(0.79056941504209488), T(0.375), T(0.75), T(0.55901699437494745), T(0.66143782776614768), T(0.73950997288745202), T(0.48412291827592713), T(-0.48412291827592713), T(0.66143782776614768), T(-0.52291251658379723), T(0.57282196186947998), T(-0.70156076002011403), T(0)};
+    const V p4 = __builtin_shufflevector(v0_1, v0_1, 1, 0, 1, 0, 4, 5, 4, 5, 4, 10, 9, 10, 9, 10, 9, 15);
+    const V k5 = {T(-0.79056941504209488), T(0.79056941504209488), T(0.61237243569579447), T(-0.61237243569579447), T(0.55901699437494745), T(0.66143782776614768), T(0.5), T(-0.75), T(-0.66143782776614768), T(0.52291251658379723), T(-0.66143782776614768), T(0.30618621784789724), T(-0.30618621784789724), T(-0.79549512883486595), T(0.68465319688145765), T(0)};
+    const V p5 = __builtin_shufflevector(v0_1, v0_1, 3, 2, 3, 2, 6, 7, 6, 7, 6, 12, 11, 12, 11, 12, 11, 15);
+    const V k6 = {T(0), T(0), T(0), T(0), T(0.73950997288745202), T(0), T(-0.66143782776614768), T(0), T(0.125), T(0.70156076002011403), T(-0.57282196186947998), T(-0.68465319688145765), T(0.79549512883486595), T(0.19764235376052372), T(-0.19764235376052372), T(0)};
+    const V p6 = __builtin_shufflevector(v0_1, v0_1, 0, 1, 2, 3, 8, 5, 8, 7, 8, 14, 13, 14, 13, 14, 13, 15);
+    const V v0_2 = p4 * k4 + p5 * k5 + p6 * k6;
+    const V u0_3 = u0_2 * cb0 + v0_2 * sub0;
+    const V v0_3 = v0_2 * cb0 + u0_2 * svb0;
+    const V k7 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(0.35355339059327379), T(-0.35355339059327379), T(0.93541434669348533), T(-0.93541434669348533), T(0), T(0.125), T(0.5), T(0.40504629365049127), T(0.8660254037844386), T(0.90571104663683988), T(0)};
+    const V p7 = __builtin_shufflevector(u0_3, u0_3, 0, 1, 2, 1, 4, 6, 5, 6, 5, 9, 10, 11, 10, 11, 10, 15);
+    const V k8 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(0.93541434669348533), T(-0.93541434669348533), T(-0.35355339059327379), T(0.35355339059327379), T(0), T(0.40504629365049127), T(0.8660254037844386), T(0.8125), T(-0.5), T(-0.41926274578121059), T(0)};
+    const V p8 = __builtin_shufflevector(u0_3, u0_3, 0, 3, 2, 3, 4, 8, 7, 8, 7, 9, 12, 13, 12, 13, 12, 15);
+    const V k9 = {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0.90571104663683988), T(0), T(-0.41926274578121059), T(0), T(0.0625), T(0)};
+    const V p9 = __builtin_shufflevector(u0_3, u0_3, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 14, 11, 14, 13, 14, 15);
+    const V u0_4 = p7 * k7 + p8 * k8 + p9 * k9;
+    const V k10 = {T(0.61237243569579447), T(-0.61237243569579447), T(0.79056941504209488), T(-0.79056941504209488), T(0.375), T(0.75), T(0.55901699437494745), T(0.66143782776614768), T(0.73950997288745202), T(-0.48412291827592713), T(0.48412291827592713), T(-0.66143782776614768), T(0.52291251658379723), T(-0.57282196186947998), T(0.70156076002011403), T(0)};
+    const V p10 = __builtin_shufflevector(v0_3, v0_3, 1, 0, 1, 0, 4, 5, 4, 5, 4, 10, 9, 10, 9, 10, 9, 15);
+    const V k11 = {T(0.79056941504209488), T(-0.79056941504209488), T(-0.61237243569579447), T(0.61237243569579447), T(0.55901699437494745), T(0.66143782776614768), T(0.5), T(-0.75), T(-0.66143782776614768), T(-0.52291251658379723), T(0.66143782776614768), T(-0.30618621784789724), T(0.30618621784789724), T(0.79549512883486595), T(-0.68465319688145765), T(0)};
+    const V p11 = __builtin_shufflevector(v0_3, v0_3, 3, 2, 3, 2, 6, 7, 6, 7, 6, 12, 11, 12, 11, 12, 11, 15);
+    const V k12 = {T(0), T(0), T(0), T(0), T(0.73950997288745202), T(0), T(-0.66143782776614768), T(0), T(0.125), T(-0.70156076002011403), T(0.57282196186947998), T(0.68465319688145765), T(-0.79549512883486595), T(-0.19764235376052372), T(0.19764235376052372), T(0)};
+    const V p12 = __builtin_shufflevector(v0_3, v0_3, 0, 1, 2, 3, 8, 5, 8, 7, 8, 14, 13, 14, 13, 14, 13, 15);
+    const V v0_4 = p10 * k10 + p11 * k11 + p12 * k12;
+    const V u0_5 = u0_4 * ca0 + v0_4 * sua0;
+    const V v0_5 = v0_4 * ca0 + u0_4 * sva0;
+    const V u1_1 = u1_0 * cg1 + v1_0 * sug1;
+    const V v1_1 = v1_0 * cg1 + u1_0 * svg1;
+    const V k13 = {T(0), T(0.19764235376052372), T(-0.19764235376052372), T(0.5625), T(-0.4330127018922193), T(0.80282703616657058), T(-0.87945295496689302), T(0), T(-0.078125), T(-0.3125), T(-0.24356964481437338), T(-0.58630196997792872), T(-0.44879395676078349), T(-0.74739129644383739), T(-0.85624429742626607), T(0)};
+    const V p13 = __builtin_shufflevector(u1_1, u1_1, 0, 2, 1, 2, 1, 2, 1, 7, 8, 9, 8, 9, 8, 9, 8, 15);
+    const V k14 = {T(0), T(0.4330127018922193), T(-0.5625), T(0.68465319688145765), T(-0.68465319688145765), T(-0.58630196997792872), T(0.46351240544347894), T(0), T(-0.24356964481437338), T(-0.58630196997792872), T(-0.609375), T(-0.5), T(-0.57004488584233437), T(0.63737743919909806), T(0.49435287561113672), T(0)};
+    const V p14 = __builtin_shufflevector(u1_1, u1_1, 0, 4, 3, 4, 3, 4, 3, 7, 10, 11, 10, 11, 10, 11, 10, 15);
+    const V k15 = {T(0), T(0.87945295496689302), T(-0.80282703616657058), T(-0.46351240544347894), T(0.58630196997792872), T(0.10825317547305482), T(-0.10825317547305482), T(0), T(-0.44879395676078349), T(-0.74739129644383739), T(-0.57004488584233437), T(0.63737743919909806), T(0.671875), T(-0.1875), T(-0.14905300022139775), T(0)};
+    const V p15 = __builtin_shufflevector(u1_1, u1_1, 0, 6, 5, 6, 5, 6, 5, 7, 12, 13, 12, 13, 12, 13, 12, 15);
+    const V k16 = {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(-0.85624429742626607), T(0), T(0.49435287561113672), T(0), T(-0.14905300022139775), T(0), T(0.015625), T(0)};
+    const V p16 = __builtin_shufflevector(u1_1, u1_1, 0, 1, 2, 3, 4, 5, 6, 7, 14, 9, 14, 11, 14, 13, 14, 15);
+    const V u1_2 = p13 * k13 + p14 * k14 + p15 * k15 + p16 * k16;
+    const V k17 = {T(-0.3125), T(-0.625), T(-0.45285552331841994), T(-0.59292706128157113), T(-0.49607837082461076), T(-0.50775240028974755), T(-0.67169328938139616), T(-0.41339864235384227), T(0.41339864235384227), T(-0.57409915846480741), T(0.42961647140211001), T(-0.53855274811294018), T(0.47495887979908324), T(-0.45768182862115031), T(0.64725984928774938), T(0)};
+    const V p17 = __builtin_shufflevector(v1_1, v1_1, 0, 1, 0, 1, 0, 1, 0, 8, 7, 8, 7, 8, 7, 8, 7, 15);
+    const V k18 = {T(-0.45285552331841994), T(-0.59292706128157113), T(-0.53125), T(-0.0625), T(-0.17116329922036441), T(0.80282703616657058), T(0.6952686081652184), T(-0.42961647140211001), T(0.57409915846480741), T(-0.4198446513295126), T(0.4198446513295126), T(0.10364452469860624), T(0.07328774624724109), T(0.7927281808728639), T(-0.69912054128740919), T(0)};
+    const V p18 = __builtin_shufflevector(v1_1, v1_1, 2, 3, 2, 3, 2, 3, 2, 10, 9, 10, 9, 10, 9, 10, 9, 15);
+    const V k19 = {T(-0.49607837082461076), T(-0.50775240028974755), T(-0.17116329922036441), T(0.80282703616657058), T(0.8125), T(-0.3125), T(-0.25387620014487378), T(-0.47495887979908324), T(0.53855274811294018), T(-0.07328774624724109), T(-0.10364452469860624), T(0.78125), T(-0.78125), T(-0.39836089949943632), T(0.2981060004427955), T(0)};
+    const V p19 = __builtin_shufflevector(v1_1, v1_1, 4, 5, 4, 5, 4, 5, 4, 12, 11, 12, 11, 12, 11, 12, 11, 15);
+    const V k20 = {T(-0.67169328938139616), T(0), T(0.6952686081652184), T(0), T(-0.25387620014487378), T(0), T(0.03125), T(-0.64725984928774938), T(0.45768182862115031), T(0.69912054128740919), T(-0.7927281808728639), T(-0.2981060004427955), T(0.39836089949943632), T(0.058463396668342833), T(-0.058463396668342833), T(0)};
+    const V p20 = __builtin_shufflevector(v1_1, v1_1, 6, 1, 6, 3, 6, 5, 6, 14, 13, 14, 13, 14, 13, 14, 13, 15);
+    const V v1_2 = p17 * k17 + p18 * k18 + p19 * k19 + p20 * k20;
+    const V u1_3 = u1_2 * cb1 + v1_2 * sub1;
+    const V v1_3 = v1_2 * cb1 + u1_2 * svb1;
+    const V k21 = {T(0), T(-0.19764235376052372), T(0.19764235376052372), T(-0.5625), T(0.4330127018922193), T(-0.80282703616657058), T(0.87945295496689302), T(0), T(-0.078125), T(-0.3125), T(-0.24356964481437338), T(-0.58630196997792872), T(-0.44879395676078349), T(-0.74739129644383739), T(-0.85624429742626607), T(0)};
+    const V p21 = __builtin_shufflevector(u1_3, u1_3, 0, 2, 1, 2, 1, 2, 1, 7, 8, 9, 8, 9, 8, 9, 8, 15);
+    const V k22 = {T(0), T(-0.4330127018922193), T(0.5625), T(-0.68465319688145765), T(0.68465319688145765), T(0.58630196997792872), T(-0.46351240544347894), T(0), T(-0.24356964481437338), T(-0.58630196997792872), T(-0.609375), T(-0.5), T(-0.57004488584233437), T(0.63737743919909806), T(0.49435287561113672), T(0)};
+    const V p22 = __builtin_shufflevector(u1_3, u1_3, 0, 4, 3, 4, 3, 4, 3, 7, 10, 11, 10, 11, 10, 11, 10, 15);
+    const V k23 = {T(0), T(-0.87945295496689302), T(0.80282703616657058), T(0.46351240544347894), T(-0.58630196997792872), T(-0.10825317547305482), T(0.10825317547305482), T(0), T(-0.44879395676078349), T(-0.74739129644383739), T(-0.57004488584233437), T(0.63737743919909806), T(0.671875), T(-0.1875), T(-0.14905300022139775), T(0)};
+    const V p23 = __builtin_shufflevector(u1_3, u1_3, 0, 6, 5, 6, 5, 6, 5, 7, 12, 13, 12, 13, 12, 13, 12, 15);
+    const V k24 = {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(-0.85624429742626607), T(0), T(0.49435287561113672), T(0), T(-0.14905300022139775), T(0), T(0.015625), T(0)};
+    const V p24 = __builtin_shufflevector(u1_3, u1_3, 0, 1, 2, 3, 4, 5, 6, 7, 14, 9, 14, 11, 14, 13, 14, 15);
+    const V u1_4 = p21 * k21 + p22 * k22 + p23 * k23 + p24 * k24;
+    const V k25 = {T(-0.3125), T(-0.625), T(-0.45285552331841994), T(-0.59292706128157113), T(-0.49607837082461076), T(-0.50775240028974755), T(-0.67169328938139616), T(0.41339864235384227), T(-0.41339864235384227), T(0.57409915846480741), T(-0.42961647140211001), T(0.53855274811294018), T(-0.47495887979908324), T(0.45768182862115031), T(-0.64725984928774938), T(0)};
+    const V p25 = __builtin_shufflevector(v1_3, v1_3, 0, 1, 0, 1, 0, 1, 0, 8, 7, 8, 7, 8, 7, 8, 7, 15);
+    const V k26 = {T(-0.45285552331841994), T(-0.59292706128157113), T(-0.53125), T(-0.0625), T(-0.17116329922036441), T(0.80282703616657058), T(0.6952686081652184), T(0.42961647140211001), T(-0.57409915846480741), T(0.4198446513295126), T(-0.4198446513295126), T(-0.10364452469860624), T(-0.07328774624724109), T(-0.7927281808728639), T(0.69912054128740919), T(0)};
+    const V p26 = __builtin_shufflevector(v1_3, v1_3, 2, 3, 2, 3, 2, 3, 2, 10, 9, 10, 9, 10, 9, 10, 9, 15);
+    const V k27 = {T(-0.49607837082461076), T(-0.50775240028974755), T(-0.17116329922036441), T(0.80282703616657058), T(0.8125), T(-0.3125), T(-0.25387620014487378), T(0.47495887979908324), T(-0.53855274811294018), T(0.07328774624724109), T(0.10364452469860624), T(-0.78125), T(0.78125), T(0.39836089949943632), T(-0.2981060004427955), T(0)};
+    const V p27 = __builtin_shufflevector(v1_3, v1_3, 4, 5, 4, 5, 4, 5, 4, 12, 11, 12, 11, 12, 11, 12, 11, 15);
+    const V k28 = {T(-0.67169328938139616), T(0), T(0.6952686081652184), T(0), T(-0.25387620014487378), T(0), T(0.03125), T(0.64725984928774938), T(-0.45768182862115031), T(-0.69912054128740919), T(0.7927281808728639), T(0.2981060004427955), T(-0.39836089949943632), T(-0.058463396668342833), T(0.058463396668342833), T(0)};
+    const V p28 = __builtin_shufflevector(v1_3, v1_3, 6, 1, 6, 3, 6, 5, 6, 14, 13, 14, 13, 14, 13, 14, 13, 15);
+    const V v1_4 = p25 * k25 + p26 * k26 + p27 * k27 + p28 * k28;
+    const V u1_5 = u1_4 * ca1 + v1_4 * sua1;
+    const V v1_5 = v1_4 * ca1 + u1_4 * sva1;
+    const V o0 = __builtin_shufflevector(u0_5, v0_5, 19, 2, 17, 16, 1, 18, 3, 8, 23, 6, 21, 20, 5, 22, 7, 24);
+    const V o1_a = __builtin_shufflevector(u0_5, v0_5, 30, 13, 28, 11, 26, 25, 10, 27, 12, 29, 14, 0, 0, 0, 0, 0);
+    const V o1_b = __builtin_shufflevector(u1_5, v1_5, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 6, 21, 4, 19, 2);
+    const V o1 = __builtin_shufflevector(o1_a, o1_b, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 27, 28, 29, 30, 31);
+    const V o2 = __builtin_shufflevector(u1_5, v1_5, 17, 16, 1, 18, 3, 20, 5, 22, 30, 13, 28, 11, 26, 9, 24, 23);
+    const V o3 = __builtin_shufflevector(u1_5, v1_5, 22, 30, 13, 28, 11, 26, 9, 24, 23, 8, 25, 10, 27, 12, 29, 14);
+    std::memcpy(out + 9, &o0, sizeof(V));
+    std::memcpy(out + 25, &o1, sizeof(V));
+    std::memcpy(out + 41, &o2, sizeof(V));
+    std::memcpy(out + 48, &o3, sizeof(V));
+}
+
+#endif
+
 // clang-format on
 
 /// Number of stored values of D for n bands: sum_l (2l+1)^2 = n (4 n^2 - 1) / 3.
@@ -2151,14 +2630,15 @@ SPHBASIS_FORCEINLINE void rotation_multiples(T c, T s, T* SPHBASIS_RESTRICT cm, 
 ///   * improper R (det < 0): bands >= 3 use -R and negate the odd bands ((-1)^l D(-R), as
 ///     the recurrence gives); bands 1 and 2 are homogeneous in R and need nothing.
 /// in == out is allowed: every band reads its input before writing.
+/// Bands 0..min(L, 3) - 1 of D(R) in into lo (in read before anything is written).
 template <int L, class T, class C>
-SPHBASIS_FORCEINLINE void rotate_direct(const T* SPHBASIS_RESTRICT r, const C* in, C* out) noexcept {
-    out[0] = in[0];
+SPHBASIS_FORCEINLINE void rotate_low_bands(const T* SPHBASIS_RESTRICT r, const C* in, C* lo) noexcept {
+    lo[0] = in[0];
     if constexpr (L >= 2) {
         const C y = in[1], z = in[2], x = in[3];
-        out[1] = y * r[4] + z * r[5] + x * r[3];
-        out[2] = y * r[7] + z * r[8] + x * r[6];
-        out[3] = y * r[1] + z * r[2] + x * r[0];
+        lo[1] = y * r[4] + z * r[5] + x * r[3];
+        lo[2] = y * r[7] + z * r[8] + x * r[6];
+        lo[3] = y * r[1] + z * r[2] + x * r[0];
     }
     if constexpr (L >= 3) {
         const T a = T(0.57735026918962576);  // 1/sqrt(3)
@@ -2177,44 +2657,115 @@ SPHBASIS_FORCEINLINE void rotate_direct(const T* SPHBASIS_RESTRICT r, const C* i
         const C t22 = qxz * r[6] + qyz * r[7] + qzz * r[8];
         const T k = T(0.86602540378443865);  // sqrt(3)/2
         const T h = T(0.5);
-        out[4] = t00 * r[3] + t01 * r[4] + t02 * r[5];
-        out[5] = t10 * r[6] + t11 * r[7] + t12 * r[8];
-        out[6] = t20 * (k * r[6]) + t21 * (k * r[7]) + t22 * (k * r[8]);
-        out[7] = t00 * r[6] + t01 * r[7] + t02 * r[8];
-        out[8] = t00 * (h * r[0]) + t01 * (h * r[1]) + t02 * (h * r[2]) + t10 * (-h * r[3]) + t11 * (-h * r[4]) +
-                 t12 * (-h * r[5]);
+        lo[4] = t00 * r[3] + t01 * r[4] + t02 * r[5];
+        lo[5] = t10 * r[6] + t11 * r[7] + t12 * r[8];
+        lo[6] = t20 * (k * r[6]) + t21 * (k * r[7]) + t22 * (k * r[8]);
+        lo[7] = t00 * r[6] + t01 * r[7] + t02 * r[8];
+        lo[8] = t00 * (h * r[0]) + t01 * (h * r[1]) + t02 * (h * r[2]) + t10 * (-h * r[3]) + t11 * (-h * r[4]) +
+                t12 * (-h * r[5]);
     }
+}
+
+/// cos, sin of m alpha, m beta, m gamma (m = 1..L-1) of the Euler factorisation of s R, s the
+/// sign of det R; returns true for det R < 0.
+template <int L, class T>
+SPHBASIS_FORCEINLINE bool zyz_multiples(const T* SPHBASIS_RESTRICT r, T* ca, T* sa, T* cb, T* sb, T* cg, T* sg) noexcept {
+    const T det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
+                  r[2] * (r[3] * r[7] - r[4] * r[6]);
+    const T s = det < T(0) ? T(-1) : T(1);
+    const T m00 = s * r[0], m01 = s * r[1], m02 = s * r[2];
+    const T m10 = s * r[3], m11 = s * r[4], m12 = s * r[5], m22 = s * r[8];
+    const T h2 = m02 * m02 + m12 * m12;
+    T ca1 = T(1), sa1 = T(0), sb1 = T(0);
+    if (h2 >= std::numeric_limits<T>::min()) {
+        const T inv = T(1) / std::sqrt(h2);
+        ca1 = m02 * inv;
+        sa1 = m12 * inv;
+        sb1 = h2 * inv;
+    }
+    rotation_multiples<L - 1>(ca1, sa1, ca, sa);
+    rotation_multiples<L - 1>(m22, sb1, cb, sb);
+    rotation_multiples<L - 1>(ca1 * m11 - sa1 * m01, ca1 * m10 - sa1 * m00, cg, sg);
+    return det < T(0);
+}
+
+/// Odd bands >= 3 of out negated (improper R).
+template <int L, class T, class C>
+SPHBASIS_FORCEINLINE void negate_odd_high_bands(C* out) noexcept {
+    for (int l = 3; l < L; l += 2)
+        for (int k = l * l; k < (l + 1) * (l + 1); ++k) out[k] = out[k] * T(-1);
+}
+
+/// out = D(R) in, scalar straight-line code for any coefficient type C (see rotate_direct).
+template <int L, class T, class C>
+SPHBASIS_FORCEINLINE void rotate_direct_scalar(const T* SPHBASIS_RESTRICT r, const C* in, C* out) noexcept {
+    C lo[9];
+    rotate_low_bands<L>(r, in, lo);
     if constexpr (L >= 4) {
-        const T det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
-                      r[2] * (r[3] * r[7] - r[4] * r[6]);
-        const T sg = det < T(0) ? T(-1) : T(1);
-        const T m00 = sg * r[0], m01 = sg * r[1], m02 = sg * r[2];
-        const T m10 = sg * r[3], m11 = sg * r[4], m12 = sg * r[5], m22 = sg * r[8];
-        const T h2 = m02 * m02 + m12 * m12;
-        T ca1 = T(1), sa1 = T(0), sb1 = T(0);
-        if (h2 >= std::numeric_limits<T>::min()) {
-            const T inv = T(1) / std::sqrt(h2);
-            ca1 = m02 * inv;
-            sa1 = m12 * inv;
-            sb1 = h2 * inv;
-        }
-        T ca[L - 1], sa[L - 1], cb[L - 1], sb[L - 1], cg[L - 1], sgm[L - 1];
-        rotation_multiples<L - 1>(ca1, sa1, ca, sa);
-        rotation_multiples<L - 1>(m22, sb1, cb, sb);
-        rotation_multiples<L - 1>(ca1 * m11 - sa1 * m01, ca1 * m10 - sa1 * m00, cg, sgm);
-        rotate_zyz_band_3(ca, sa, cb, sb, cg, sgm, in + 9, out + 9);
-        if constexpr (L >= 5) rotate_zyz_band_4(ca, sa, cb, sb, cg, sgm, in + 16, out + 16);
-        if constexpr (L >= 6) rotate_zyz_band_5(ca, sa, cb, sb, cg, sgm, in + 25, out + 25);
-        if constexpr (L >= 7) rotate_zyz_band_6(ca, sa, cb, sb, cg, sgm, in + 36, out + 36);
-        if constexpr (L >= 8) rotate_zyz_band_7(ca, sa, cb, sb, cg, sgm, in + 49, out + 49);
-        if (det < T(0)) {
-            for (int kk = 9; kk < 16; ++kk) out[kk] = out[kk] * T(-1);
-            if constexpr (L >= 6)
-                for (int kk = 25; kk < 36; ++kk) out[kk] = out[kk] * T(-1);
-            if constexpr (L >= 8)
-                for (int kk = 49; kk < 64; ++kk) out[kk] = out[kk] * T(-1);
-        }
+        T ca[L - 1], sa[L - 1], cb[L - 1], sb[L - 1], cg[L - 1], sg[L - 1];
+        const bool improper = zyz_multiples<L>(r, ca, sa, cb, sb, cg, sg);
+        rotate_zyz_band_3(ca, sa, cb, sb, cg, sg, in + 9, out + 9);
+        if constexpr (L >= 5) rotate_zyz_band_4(ca, sa, cb, sb, cg, sg, in + 16, out + 16);
+        if constexpr (L >= 6) rotate_zyz_band_5(ca, sa, cb, sb, cg, sg, in + 25, out + 25);
+        if constexpr (L >= 7) rotate_zyz_band_6(ca, sa, cb, sb, cg, sg, in + 36, out + 36);
+        if constexpr (L >= 8) rotate_zyz_band_7(ca, sa, cb, sb, cg, sg, in + 49, out + 49);
+        if (improper) negate_odd_high_bands<L, T>(out);
     }
+    for (int k = 0; k < (L < 3 ? L * L : 9); ++k) out[k] = lo[k];
+}
+
+#if SPHBASIS_SH_ROTATION_VECTOR
+/// out = D(R) in for C = T (float or double): bands 0..2 as in rotate_direct_scalar, bands >= 3
+/// in 16-lane GNU vectors (rotate_zyz_vec_L). Reads in[0..L^2) and writes out[0..L^2) only,
+/// all reads before the first write.
+template <int L, class T>
+SPHBASIS_FORCEINLINE void rotate_direct_vec(const T* SPHBASIS_RESTRICT r, const T* in, T* out) noexcept {
+    static_assert(L >= 4, "rotate_direct_vec: L >= 4");
+    T lo[9];
+    rotate_low_bands<L>(r, in, lo);
+    T ca[L - 1], sa[L - 1], cb[L - 1], sb[L - 1], cg[L - 1], sg[L - 1];
+    const bool improper = zyz_multiples<L>(r, ca, sa, cb, sb, cg, sg);
+    if constexpr (L == 4) rotate_zyz_vec_4(ca, sa, cb, sb, cg, sg, in, out);
+    if constexpr (L == 5) rotate_zyz_vec_5(ca, sa, cb, sb, cg, sg, in, out);
+    if constexpr (L == 6) rotate_zyz_vec_6(ca, sa, cb, sb, cg, sg, in, out);
+    if constexpr (L == 7) rotate_zyz_vec_7(ca, sa, cb, sb, cg, sg, in, out);
+    if constexpr (L == 8) rotate_zyz_vec_8(ca, sa, cb, sb, cg, sg, in, out);
+    if (improper) negate_odd_high_bands<L, T>(out);
+    for (int k = 0; k < 9; ++k) out[k] = lo[k];
+}
+#endif
+
+/// out = D(R) in for L bands of the row-major matrix r, D never formed:
+///   * band 1: D^1 = R permuted to (y, z, x);
+///   * band 2: the coefficients are a traceless symmetric Q with f(w) = w^T Q w on the sphere
+///     (scaled by 2 / sqrt(15 / (4 pi)): Q_xy = c_-2, Q_yz = c_-1, Q_xz = c_1,
+///     Q_xx = c_2 - c_0 / sqrt3, Q_yy = -c_2 - c_0 / sqrt3, Q_zz = 2 c_0 / sqrt3); the rotated
+///     function is w^T (R Q R^T) w, 45 multiply-adds;
+///   * bands l >= 3: R = Rz(alpha) Ry(beta) Rz(gamma) with Ry(beta) = X Rz(beta) X^T, X the
+///     quarter turn about x taking z to y, so D^l = Z(alpha) D^l(X) Z(beta) D^l(X)^T Z(gamma):
+///     three z rotations (cos, sin of m times each angle on the pairs (m, -m)) and two sparse
+///     constant matrices (generated with exact constants, zeros skipped). The angles are never
+///     formed: cos beta = R_22, sin beta = |(R_02, R_12)|, (cos alpha, sin alpha) = (R_02,
+///     R_12) / sin beta, and (cos gamma, sin gamma) is read from the middle row of
+///     Rz(-alpha) R = Ry(beta) Rz(gamma): cos gamma = ca R_11 - sa R_01, sin gamma = ca R_10 -
+///     sa R_00. Any unit (ca, sa) makes that row exact, so at and near beta = 0 or pi (sin^2
+///     beta below the smallest normal: alpha = 0) the factorisation still reproduces R to
+///     rounding: gamma absorbs the error of alpha.
+///   * improper R (det < 0): bands >= 3 use -R and negate the odd bands ((-1)^l D(-R), as the
+///     recurrence gives); bands 1 and 2 are homogeneous in R and need nothing.
+/// For C = T with AVX-512 the bands >= 3 run in 16-lane vectors (rotate_direct_vec; the lanes
+/// pair m with -m so that a z rotation is lane-wise and the quarter turn is a few lane
+/// permutations times constants); otherwise straight-line scalar code (rotate_direct_scalar).
+/// in == out is allowed: every input is read before the first write.
+template <int L, class T, class C>
+SPHBASIS_FORCEINLINE void rotate_direct(const T* SPHBASIS_RESTRICT r, const C* in, C* out) noexcept {
+#if SPHBASIS_SH_ROTATION_VECTOR && defined(__AVX512F__)
+    if constexpr (L >= 4 && std::is_same_v<C, T>) {
+        rotate_direct_vec<L>(r, in, out);
+        return;
+    }
+#endif
+    rotate_direct_scalar<L>(r, in, out);
 }
 
 }  // namespace sphbasis::sh::detail
