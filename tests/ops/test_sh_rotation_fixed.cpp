@@ -50,8 +50,15 @@ void check_against_runtime(std::mt19937& rng) {
         const auto d = sh::Rotation<T>::from_matrix(N, r);
         REQUIRE(d.size() == f.size());
         double worst = 0;
-        for (std::size_t k = 0; k < f.size(); ++k)
-            worst = std::max(worst, std::fabs(double(f.data()[k]) - double(d.data()[k])));
+        for (int l = 0; l < N; ++l)
+            for (int m = -l; m <= l; ++m)
+                for (int n = -l; n <= l; ++n) {
+                    const std::size_t w = static_cast<std::size_t>(2 * l + 1);
+                    const T v = d.data()[f.offset(l) + static_cast<std::size_t>(m + l) * w + static_cast<std::size_t>(n + l)];
+                    // f's blocks are column-major, the run-time ones row-major
+                    CHECK(f.block(l)[static_cast<std::size_t>(n + l) * w + static_cast<std::size_t>(m + l)] == f(l, m, n));
+                    worst = std::max(worst, std::fabs(double(f(l, m, n)) - double(v)));
+                }
         CHECK(worst <= tol<T>());
         // rotate<N> and apply equal sh::rotate; band energy is invariant.
         std::uniform_real_distribution<T> u(T(-1), T(1));
@@ -60,13 +67,13 @@ void check_against_runtime(std::mt19937& rng) {
         f.apply(in.data(), a.data());
         sh::rotate<N>(r, in.data(), b.data());
         sh::rotate(N, r, in.data(), c.data());
-        for (int k = 0; k < N * N; ++k) {
+        for (std::size_t k = 0; k < std::size_t(N * N); ++k) {
             CHECK(std::fabs(double(a[k]) - double(c[k])) <= 4 * tol<T>());
             CHECK(std::fabs(double(b[k]) - double(c[k])) <= 4 * tol<T>());
         }
         for (int l = 0; l < N; ++l) {
             double e0 = 0, e1 = 0;
-            for (int k = l * l; k < (l + 1) * (l + 1); ++k) {
+            for (std::size_t k = std::size_t(l * l); k < std::size_t((l + 1) * (l + 1)); ++k) {
                 e0 += double(in[k]) * double(in[k]);
                 e1 += double(a[k]) * double(a[k]);
             }
@@ -75,9 +82,9 @@ void check_against_runtime(std::mt19937& rng) {
         // in place; the inverse.
         std::array<T, N * N> ip = in;
         f.apply(ip.data(), ip.data());
-        for (int k = 0; k < N * N; ++k) CHECK(ip[k] == a[k]);
+        for (std::size_t k = 0; k < std::size_t(N * N); ++k) CHECK(ip[k] == a[k]);
         f.apply_transposed(a.data(), b.data());
-        for (int k = 0; k < N * N; ++k)
+        for (std::size_t k = 0; k < std::size_t(N * N); ++k)
             CHECK(std::fabs(double(b[k]) - double(in[k])) <= 8 * tol<T>());
     }
 }
@@ -112,7 +119,7 @@ TEST_CASE("FixedRotation: identity, quaternion, composition, matrix types", "[op
     d2.apply(in.data(), a.data());
     d1.apply(a.data(), a.data());
     d12.apply(in.data(), b.data());
-    for (int k = 0; k < 49; ++k) CHECK(a[k] == Approx(b[k]).margin(1e-13));
+    for (std::size_t k = 0; k < 49; ++k) CHECK(a[k] == Approx(b[k]).margin(1e-13));
     // glm (column-major) and Eigen (m(row, col)) read as the same rotation
     glm::dmat3 g;
     Eigen::Matrix3d e;
@@ -149,14 +156,14 @@ TEST_CASE("FixedRotation rotates RGB coefficients in one pass like each channel"
             ch[static_cast<std::size_t>(k)] = c == 0 ? v.r : c == 1 ? v.g : v.b;
         }
         d.apply(ch.data(), cho.data());
-        for (int k = 0; k < 16; ++k) {
-            const RGB& v = out[static_cast<std::size_t>(k)];
+        for (std::size_t k = 0; k < 16; ++k) {
+            const RGB& v = out[k];
             CHECK((c == 0 ? v.r : c == 1 ? v.g : v.b) == Approx(cho[k]).margin(1e-15));
         }
     }
     std::array<RGB, 16> out2{};
     sh::rotate<4>(r, in.data(), out2.data());
-    for (int k = 0; k < 16; ++k) CHECK(out2[k].g == Approx(out[k].g).margin(1e-15));
+    for (std::size_t k = 0; k < 16; ++k) CHECK(out2[k].g == Approx(out[k].g).margin(1e-15));
 }
 
 namespace {
@@ -191,7 +198,7 @@ double rotate_direct_error(const sh::Mat3<double>& rd, bool improper, std::mt199
 #endif
     if constexpr (N < 4) v = s;
     double worst = 0;
-    for (int k = 0; k < N * N; ++k) {
+    for (std::size_t k = 0; k < std::size_t(N * N); ++k) {
         worst = std::max({worst, std::fabs(double(a[k]) - double(b[k])), std::fabs(double(s[k]) - double(b[k])),
                           std::fabs(double(v[k]) - double(b[k]))});
         if (ip[k] != a[k]) worst = 1e300;
