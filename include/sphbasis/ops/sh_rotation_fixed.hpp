@@ -47,6 +47,9 @@
 #endif
 #if SPHBASIS_SH_ROTATION_VECTOR
 #include <cstring>
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
 #endif
 
 namespace sphbasis::sh::detail {
@@ -2774,33 +2777,60 @@ SPHBASIS_FORCEINLINE void apply_block_vec(const T* SPHBASIS_RESTRICT cols, const
     res = acc0 + acc1;
 }
 
-/// Band l of the product into out + l^2: a 16-lane store where it stays inside the L^2
-/// outputs (the garbage lanes are overwritten by the later bands), else lane by lane.
+/// The first n lanes of v into out (an AVX-512 masked store where available).
+template <int n, class T>
+SPHBASIS_FORCEINLINE void store_lanes(T* out, const typename rot_vec<T>::v16& v) noexcept {
+#if defined(__AVX512F__)
+    if constexpr (std::is_same_v<T, float>) {
+        __m512 x;
+        std::memcpy(&x, &v, sizeof(x));
+        _mm512_mask_storeu_ps(out, static_cast<__mmask16>((1u << n) - 1u), x);
+        return;
+    } else {
+        __m512d lo, hi;
+        std::memcpy(&lo, &v, sizeof(lo));
+        std::memcpy(&hi, reinterpret_cast<const char*>(&v) + sizeof(lo), sizeof(hi));
+        _mm512_mask_storeu_pd(out, static_cast<__mmask8>(n >= 8 ? 0xffu : (1u << n) - 1u), lo);
+        if constexpr (n > 8) _mm512_mask_storeu_pd(out + 8, static_cast<__mmask8>((1u << (n - 8)) - 1u), hi);
+        return;
+    }
+#else
+    T tmp[16];
+    std::memcpy(tmp, &v, sizeof(tmp));
+    for (int k = 0; k < n; ++k) out[k] = tmp[k];
+#endif
+}
+
+/// vs[l'] = band l' of the product for l' = l..L-1 (16 lanes each).
 template <int l, int L, class T>
-SPHBASIS_FORCEINLINE void apply_band_vec(const T* SPHBASIS_RESTRICT cols, const T* x, T* out) noexcept {
-    using V = typename rot_vec<T>::v16;
+SPHBASIS_FORCEINLINE void apply_bands_vec(const T* SPHBASIS_RESTRICT cols, const T* in, typename rot_vec<T>::v16* vs) noexcept {
     if constexpr (l < L) {
-        V v;
-        apply_block_vec<l>(cols + fixed_rotation_size(l), x + l * l, v);
-        if constexpr (l * l + 16 <= L * L) {
-            std::memcpy(out + l * l, &v, sizeof(V));
-        } else {
-            T tmp[16];
-            std::memcpy(tmp, &v, sizeof(V));
-            for (int k = 0; k < 2 * l + 1; ++k) out[l * l + k] = tmp[k];
-        }
-        apply_band_vec<l + 1, L>(cols, x, out);
+        apply_block_vec<l>(cols + fixed_rotation_size(l), in + l * l, vs[l]);
+        apply_bands_vec<l + 1, L>(cols, in, vs);
+    }
+}
+
+/// Bands l..L-1 from vs into out + l^2, in ascending order: 16 lanes where that stays inside
+/// the L^2 outputs (the garbage lanes are overwritten by the later bands), else 2l + 1 lanes.
+template <int l, int L, class T>
+SPHBASIS_FORCEINLINE void store_bands_vec(const typename rot_vec<T>::v16* vs, T* out) noexcept {
+    if constexpr (l < L) {
+        if constexpr (l * l + 16 <= L * L) std::memcpy(out + l * l, &vs[l], sizeof(vs[l]));
+        else store_lanes<2 * l + 1>(out + l * l, vs[l]);
+        store_bands_vec<l + 1, L>(vs, out);
     }
 }
 
 /// out = M in for the block-diagonal M whose blocks are stored column-major in cols (padded by
-/// 16 values): per band, 2l + 1 column vectors times broadcast inputs. in == out is allowed.
+/// 16 values): per band, 2l + 1 column vectors times broadcast inputs. Every input is read
+/// before the first store, so in == out is allowed.
 template <int L, class T>
 SPHBASIS_FORCEINLINE void rotation_fixed_apply_vec(const T* SPHBASIS_RESTRICT cols, const T* in, T* out) noexcept {
-    T x[L * L];
-    for (int k = 0; k < L * L; ++k) x[k] = in[k];
-    out[0] = x[0] * cols[0];
-    apply_band_vec<1, L>(cols, x, out);
+    typename rot_vec<T>::v16 vs[L];
+    const T x0 = in[0] * cols[0];
+    apply_bands_vec<1, L>(cols, in, vs);
+    out[0] = x0;
+    store_bands_vec<1, L>(vs, out);
 }
 #endif
 
