@@ -6,7 +6,8 @@
 //   rotate_streaming<N>:     sh::rotate (band by band, matrix never stored)
 //   rotation_apply<N>:       apply of a prebuilt rotation (one channel, and RGB)
 //   fixed_rotation_build_apply<N>: FixedRotation<N, float>::from_quaternion + apply (generated)
-//   fixed_rotate<N>:         sh::rotate<N>(Mat3, in, out), the matrices precomputed
+//   fixed_rotate<N>:         sh::rotate<N>(Mat3, in, out), the matrices precomputed (D never
+//                            formed: R, R Q R^T, Euler factorisation; one channel, and RGB)
 //   fixed_rotation_apply<N>: apply of a prebuilt FixedRotation (one channel, and RGB)
 //   *_light_fixed:           the analytic lights with a compile-time band count (3), float RGB
 //   rotate_z<N>:             rotation about z (cos/sin of m phi), for comparison
@@ -128,11 +129,12 @@ void fixed_rotation_build_apply(benchmark::State& st) {
     });
 }
 
-template <int N>
-void fixed_rotate(benchmark::State& st) {
+/// sh::rotate<N> of N^2 coefficients of type C (all `fill`) by kCount precomputed matrices.
+template <int N, class C>
+void fixed_rotate_of(benchmark::State& st, const C& fill) {
     std::vector<sh::Mat3<float>> m;
     for (const auto& v : quaternions()) m.push_back(sh::matrix_from_quaternion(v[0], v[1], v[2], v[3]));
-    std::vector<float> in(N * N, 0.5f), out(N * N);
+    std::vector<C> in(N * N, fill), out(N * N);
     for (auto _ : st) {
         for (const auto& r : m) {
             sh::rotate<N>(r, in.data(), out.data());
@@ -140,6 +142,14 @@ void fixed_rotate(benchmark::State& st) {
         }
     }
     st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+}
+template <int N>
+void fixed_rotate(benchmark::State& st) {
+    fixed_rotate_of<N>(st, 0.5f);
+}
+template <int N>
+void fixed_rotate_rgb(benchmark::State& st) {
+    fixed_rotate_of<N>(st, RGB{0.5f, 0.25f, 1.0f});
 }
 
 /// A prebuilt FixedRotation applied to kCount vectors of N^2 coefficients of type C.
@@ -301,6 +311,8 @@ BENCHMARK_TEMPLATE(fixed_rotation_build_apply, 3);
 BENCHMARK_TEMPLATE(fixed_rotation_build_apply, 6);
 BENCHMARK_TEMPLATE(fixed_rotate, 3);
 BENCHMARK_TEMPLATE(fixed_rotate, 6);
+BENCHMARK_TEMPLATE(fixed_rotate_rgb, 3);
+BENCHMARK_TEMPLATE(fixed_rotate_rgb, 6);
 BENCHMARK_TEMPLATE(fixed_rotation_apply, 3);
 BENCHMARK_TEMPLATE(fixed_rotation_apply, 6);
 BENCHMARK_TEMPLATE(fixed_rotation_apply_rgb, 3);

@@ -50,8 +50,15 @@ void check_against_runtime(std::mt19937& rng) {
         const auto d = sh::Rotation<T>::from_matrix(N, r);
         REQUIRE(d.size() == f.size());
         double worst = 0;
-        for (std::size_t k = 0; k < f.size(); ++k)
-            worst = std::max(worst, std::fabs(double(f.data()[k]) - double(d.data()[k])));
+        for (int l = 0; l < N; ++l)
+            for (int m = -l; m <= l; ++m)
+                for (int n = -l; n <= l; ++n) {
+                    const std::size_t w = static_cast<std::size_t>(2 * l + 1);
+                    const T v = d.data()[f.offset(l) + static_cast<std::size_t>(m + l) * w + static_cast<std::size_t>(n + l)];
+                    // f's blocks are column-major, the run-time ones row-major
+                    CHECK(f.block(l)[static_cast<std::size_t>(n + l) * w + static_cast<std::size_t>(m + l)] == f(l, m, n));
+                    worst = std::max(worst, std::fabs(double(f(l, m, n)) - double(v)));
+                }
         CHECK(worst <= tol<T>());
         // rotate<N> and apply equal sh::rotate; band energy is invariant.
         std::uniform_real_distribution<T> u(T(-1), T(1));
@@ -60,13 +67,13 @@ void check_against_runtime(std::mt19937& rng) {
         f.apply(in.data(), a.data());
         sh::rotate<N>(r, in.data(), b.data());
         sh::rotate(N, r, in.data(), c.data());
-        for (int k = 0; k < N * N; ++k) {
+        for (std::size_t k = 0; k < std::size_t(N * N); ++k) {
             CHECK(std::fabs(double(a[k]) - double(c[k])) <= 4 * tol<T>());
             CHECK(std::fabs(double(b[k]) - double(c[k])) <= 4 * tol<T>());
         }
         for (int l = 0; l < N; ++l) {
             double e0 = 0, e1 = 0;
-            for (int k = l * l; k < (l + 1) * (l + 1); ++k) {
+            for (std::size_t k = std::size_t(l * l); k < std::size_t((l + 1) * (l + 1)); ++k) {
                 e0 += double(in[k]) * double(in[k]);
                 e1 += double(a[k]) * double(a[k]);
             }
@@ -75,9 +82,9 @@ void check_against_runtime(std::mt19937& rng) {
         // in place; the inverse.
         std::array<T, N * N> ip = in;
         f.apply(ip.data(), ip.data());
-        for (int k = 0; k < N * N; ++k) CHECK(ip[k] == a[k]);
+        for (std::size_t k = 0; k < std::size_t(N * N); ++k) CHECK(ip[k] == a[k]);
         f.apply_transposed(a.data(), b.data());
-        for (int k = 0; k < N * N; ++k)
+        for (std::size_t k = 0; k < std::size_t(N * N); ++k)
             CHECK(std::fabs(double(b[k]) - double(in[k])) <= 8 * tol<T>());
     }
 }
@@ -112,7 +119,7 @@ TEST_CASE("FixedRotation: identity, quaternion, composition, matrix types", "[op
     d2.apply(in.data(), a.data());
     d1.apply(a.data(), a.data());
     d12.apply(in.data(), b.data());
-    for (int k = 0; k < 49; ++k) CHECK(a[k] == Approx(b[k]).margin(1e-13));
+    for (std::size_t k = 0; k < 49; ++k) CHECK(a[k] == Approx(b[k]).margin(1e-13));
     // glm (column-major) and Eigen (m(row, col)) read as the same rotation
     glm::dmat3 g;
     Eigen::Matrix3d e;
@@ -149,12 +156,82 @@ TEST_CASE("FixedRotation rotates RGB coefficients in one pass like each channel"
             ch[static_cast<std::size_t>(k)] = c == 0 ? v.r : c == 1 ? v.g : v.b;
         }
         d.apply(ch.data(), cho.data());
-        for (int k = 0; k < 16; ++k) {
-            const RGB& v = out[static_cast<std::size_t>(k)];
+        for (std::size_t k = 0; k < 16; ++k) {
+            const RGB& v = out[k];
             CHECK((c == 0 ? v.r : c == 1 ? v.g : v.b) == Approx(cho[k]).margin(1e-15));
         }
     }
     std::array<RGB, 16> out2{};
     sh::rotate<4>(r, in.data(), out2.data());
-    for (int k = 0; k < 16; ++k) CHECK(out2[k].g == Approx(out[k].g).margin(1e-15));
+    for (std::size_t k = 0; k < 16; ++k) CHECK(out2[k].g == Approx(out[k].g).margin(1e-15));
+}
+
+namespace {
+
+sh::Mat3<double> zyz_matrix(double a, double b, double c) {
+    const double ca = std::cos(a), sa = std::sin(a), cb = std::cos(b), sb = std::sin(b), cc = std::cos(c),
+                 sc = std::sin(c);
+    const sh::Mat3<double> rza{ca, -sa, 0, sa, ca, 0, 0, 0, 1}, ry{cb, 0, sb, 0, 1, 0, -sb, 0, cb},
+        rzc{cc, -sc, 0, sc, cc, 0, 0, 0, 1};
+    return sh::multiply(rza, sh::multiply(ry, rzc));
+}
+
+/// rotate<N>(r), its scalar and its vector implementation (the latter in place) against the
+/// run-time sh::rotate: max |difference| over the coefficients (rotate<N> in place must be
+/// bit-identical to out of place).
+template <int N, class T>
+double rotate_direct_error(const sh::Mat3<double>& rd, bool improper, std::mt19937& rng) {
+    sh::Mat3<T> r;
+    for (std::size_t k = 0; k < 9; ++k) r[k] = T(improper ? -rd[k] : rd[k]);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::array<T, N * N> in{}, a{}, b{};
+    for (auto& v : in) v = T(u(rng));
+    sh::rotate<N>(r, in.data(), a.data());
+    sh::rotate(N, r, in.data(), b.data());
+    std::array<T, N * N> ip = in;
+    sh::rotate<N>(r, ip.data(), ip.data());
+    // both implementations, whichever rotate<N> picks on this target
+    std::array<T, N * N> s{}, v = in;
+    sh::detail::rotate_direct_scalar<N>(r.data(), in.data(), s.data());
+#if SPHBASIS_SH_ROTATION_VECTOR
+    if constexpr (N >= 4) sh::detail::rotate_direct_vec<N>(r.data(), v.data(), v.data());
+#endif
+    if constexpr (N < 4) v = s;
+    double worst = 0;
+    for (std::size_t k = 0; k < std::size_t(N * N); ++k) {
+        worst = std::max({worst, std::fabs(double(a[k]) - double(b[k])), std::fabs(double(s[k]) - double(b[k])),
+                          std::fabs(double(v[k]) - double(b[k]))});
+        if (ip[k] != a[k]) worst = 1e300;
+    }
+    return worst;
+}
+
+template <class T, int... Ns>
+void rotate_direct_cases(std::mt19937& rng) {
+    const double eps = std::is_same_v<T, float> ? 1e-5 : 3e-14;
+    const double pi = 3.14159265358979323846;
+    const double betas[] = {0.0, 1e-8, -1e-8, 1e-12, 3e-5, pi, pi - 1e-8, pi + 1e-8, pi - 1e-12, 0.5 * pi, 1.3};
+    std::uniform_real_distribution<double> ang(-pi, pi);
+    double worst = 0;
+    for (double beta : betas)
+        for (int trial = 0; trial < 6; ++trial) {
+            const auto rd = zyz_matrix(trial == 0 ? 0.0 : ang(rng), beta, trial == 1 ? 0.0 : ang(rng));
+            for (bool improper : {false, true})
+                worst = std::max({worst, rotate_direct_error<Ns, T>(rd, improper, rng)...});
+        }
+    for (int trial = 0; trial < 40; ++trial) {
+        const auto rd = random_rotation<double>(rng, trial % 2 == 1);
+        worst = std::max({worst, rotate_direct_error<Ns, T>(rd, false, rng)...});
+    }
+    INFO("worst " << worst);
+    CHECK(worst <= eps);
+}
+
+}  // namespace
+
+TEMPLATE_TEST_CASE("rotate<N> (factored, D never formed) equals the run-time sh::rotate for N = 1..8, near "
+                   "the Euler singularity and for improper matrices",
+                   "[ops][rotation]", float, double) {
+    std::mt19937 rng(141);
+    rotate_direct_cases<TestType, 1, 2, 3, 4, 5, 6, 7, 8>(rng);
 }

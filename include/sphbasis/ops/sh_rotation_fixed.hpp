@@ -17,6 +17,12 @@
 // generator with exact constants and shared subexpressions (see its docstring). Accurate to a
 // few ulp per band at these band counts (the recurrence loses accuracy only far above 8 bands).
 //
+// sh::rotate<N>(R, in, out) rotates one coefficient vector without forming D: band 1 is R, band
+// 2 the quadratic form R Q R^T, bands >= 3 the Euler factorisation Z(alpha) X Z(beta) X^T
+// Z(gamma) with cos/sin of the angles read from R (robust at beta = 0, pi) and the quarter turn
+// X as generated sparse code (see detail::rotate_direct). FixedRotation is for applying one
+// rotation to many vectors (blocks stored column-major; 16-lane vector apply for C = T).
+//
 // Cost (float, one thread): see bench/bench_sh_ops.cpp; the construction has no run-time
 // checks (SPHBASIS_ASSERT checks orthonormality in debug builds); from_matrix() is the checked
 // entry point.
@@ -25,13 +31,44 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <type_traits>
 
 #include "../config.hpp"
 #include "../core/frame.hpp"
 #include "sh_rotation.hpp"
 
+#if !defined(SPHBASIS_SH_ROTATION_VECTOR)
+#if defined(__GNUC__) || defined(__clang__)
+#define SPHBASIS_SH_ROTATION_VECTOR 1
+#else
+#define SPHBASIS_SH_ROTATION_VECTOR 0
+#endif
+#endif
+#if SPHBASIS_SH_ROTATION_VECTOR
+#include <cstring>
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
+#endif
+
 namespace sphbasis::sh::detail {
+
+#if SPHBASIS_SH_ROTATION_VECTOR
+/// GNU vector types of rotate_direct_vec: 16 and 8 lanes.
+template <class T>
+struct rot_vec;
+template <>
+struct rot_vec<float> {
+    typedef float v16 __attribute__((vector_size(64)));
+    typedef float v8 __attribute__((vector_size(32)));
+};
+template <>
+struct rot_vec<double> {
+    typedef double v16 __attribute__((vector_size(128)));
+    typedef double v8 __attribute__((vector_size(64)));
+};
+#endif
 
 // clang-format off
 /// Debug-assert helper: R orthonormal within the default tolerance (never throws).
@@ -46,12 +83,12 @@ bool fixed_rotation_orthonormal(const Mat3<T>& r) noexcept {
     return true;
 }
 
-/// Band 2 of D(R) (5x5, row-major) from band 1 in p and band 1 in r1.
+/// Band 2 of D(R) (5x5, column-major) from band 1 in p and band 1 in r1.
 template <class T>
 SPHBASIS_FORCEINLINE void rotation_band_2(const T* SPHBASIS_RESTRICT r1, const T* SPHBASIS_RESTRICT p, T* SPHBASIS_RESTRICT c) noexcept {
-    const T rnn = r1[0], rnz = r1[1], rnp = r1[2];
-    const T rzn = r1[3], rzz = r1[4], rzp = r1[5];
-    const T rpn = r1[6], rpz = r1[7], rpp = r1[8];
+    const T rnn = r1[0], rnz = r1[3], rnp = r1[6];
+    const T rzn = r1[1], rzz = r1[4], rzp = r1[7];
+    const T rpn = r1[2], rpz = r1[5], rpp = r1[8];
     (void)rnn; (void)rnz; (void)rnp; (void)rzn; (void)rzz; (void)rzp; (void)rpn; (void)rpz; (void)rpp;
     const T k0 = T(1.7320508075688772);  // sqrt(3)
     const T k1 = T(0.5);  // 1/2
@@ -61,78 +98,78 @@ SPHBASIS_FORCEINLINE void rotation_band_2(const T* SPHBASIS_RESTRICT r1, const T
     const T k5 = T(-0.28867513459481287);  // -sqrt(3)/6
     const T k6 = T(-1.7320508075688772);  // -sqrt(3)
     const T k7 = T(-0.5);  // -1/2
-    const T enn0 = rnp * p[0] + rnn * p[2];
-    const T enn1 = rnp * p[3] + rnn * p[5];
-    const T enn2 = rnp * p[6] + rnn * p[8];
-    const T enp0 = rpp * p[0] + rpn * p[2];
-    const T enp1 = rpp * p[3] + rpn * p[5];
-    const T enp2 = rpp * p[6] + rpn * p[8];
-    const T enz0 = rzp * p[0] + rzn * p[2];
-    const T enz1 = rzp * p[3] + rzn * p[5];
-    const T enz2 = rzp * p[6] + rzn * p[8];
-    const T epn0 = rnp * p[2] - rnn * p[0];
-    const T epn1 = rnp * p[5] - rnn * p[3];
-    const T epn2 = rnp * p[8] - rnn * p[6];
-    const T epp0 = rpp * p[2] - rpn * p[0];
-    const T epp1 = rpp * p[5] - rpn * p[3];
-    const T epp2 = rpp * p[8] - rpn * p[6];
-    const T epz0 = rzp * p[2] - rzn * p[0];
-    const T epz1 = rzp * p[5] - rzn * p[3];
-    const T epz2 = rzp * p[8] - rzn * p[6];
+    const T enn0 = rnp * p[0] + rnn * p[6];
+    const T enn1 = rnp * p[1] + rnn * p[7];
+    const T enn2 = rnp * p[2] + rnn * p[8];
+    const T enp0 = rpp * p[0] + rpn * p[6];
+    const T enp1 = rpp * p[1] + rpn * p[7];
+    const T enp2 = rpp * p[2] + rpn * p[8];
+    const T enz0 = rzp * p[0] + rzn * p[6];
+    const T enz1 = rzp * p[1] + rzn * p[7];
+    const T enz2 = rzp * p[2] + rzn * p[8];
+    const T epn0 = rnp * p[6] - rnn * p[0];
+    const T epn1 = rnp * p[7] - rnn * p[1];
+    const T epn2 = rnp * p[8] - rnn * p[2];
+    const T epp0 = rpp * p[6] - rpn * p[0];
+    const T epp1 = rpp * p[7] - rpn * p[1];
+    const T epp2 = rpp * p[8] - rpn * p[2];
+    const T epz0 = rzp * p[6] - rzn * p[0];
+    const T epz1 = rzp * p[7] - rzn * p[1];
+    const T epz2 = rzp * p[8] - rzn * p[2];
     {  // m = -2
         const T g0 = k0 * rpz;
         const T g1 = k0 * rnz;
         c[0] = k1 * enp0 + k1 * enn2;
-        c[1] = (g0 * p[0] + g1 * p[6]) * k2;
-        c[2] = (g0 * p[1] + g1 * p[7]) * k1;
-        c[3] = (g0 * p[2] + g1 * p[8]) * k2;
-        c[4] = k1 * epp0 + k1 * epn2;
+        c[5] = (g0 * p[0] + g1 * p[2]) * k2;
+        c[10] = (g0 * p[3] + g1 * p[5]) * k1;
+        c[15] = (g0 * p[6] + g1 * p[8]) * k2;
+        c[20] = k1 * epp0 + k1 * epn2;
     }
     {  // m = -1
         const T g0 = k0 * rzz;
         const T g1 = k0 * rnz;
-        c[5] = k1 * enz0 + k1 * enn1;
-        c[6] = (g0 * p[0] + g1 * p[3]) * k2;
-        c[7] = (g0 * p[1] + g1 * p[4]) * k1;
-        c[8] = (g0 * p[2] + g1 * p[5]) * k2;
-        c[9] = k1 * epz0 + k1 * epn1;
+        c[1] = k1 * enz0 + k1 * enn1;
+        c[6] = (g0 * p[0] + g1 * p[1]) * k2;
+        c[11] = (g0 * p[3] + g1 * p[4]) * k1;
+        c[16] = (g0 * p[6] + g1 * p[7]) * k2;
+        c[21] = k1 * epz0 + k1 * epn1;
     }
     {  // m = 0
         const T g0 = k3 * rzz;
         const T g1 = k4 * rpz;
         const T g2 = k4 * rnz;
-        c[10] = k2 * enz1 + k5 * enp2 + k5 * enn0;
-        c[11] = (g0 * p[3] + g1 * p[6] + g2 * p[0]) * k2;
-        c[12] = (g0 * p[4] + g1 * p[7] + g2 * p[1]) * k1;
-        c[13] = (g0 * p[5] + g1 * p[8] + g2 * p[2]) * k2;
-        c[14] = k2 * epz1 + k5 * epp2 + k5 * epn0;
+        c[2] = k2 * enz1 + k5 * enp2 + k5 * enn0;
+        c[7] = (g0 * p[1] + g1 * p[2] + g2 * p[0]) * k2;
+        c[12] = (g0 * p[4] + g1 * p[5] + g2 * p[3]) * k1;
+        c[17] = (g0 * p[7] + g1 * p[8] + g2 * p[6]) * k2;
+        c[22] = k2 * epz1 + k5 * epp2 + k5 * epn0;
     }
     {  // m = 1
         const T g0 = k0 * rzz;
         const T g1 = k0 * rpz;
-        c[15] = k1 * enz2 + k1 * enp1;
-        c[16] = (g0 * p[6] + g1 * p[3]) * k2;
-        c[17] = (g0 * p[7] + g1 * p[4]) * k1;
-        c[18] = (g0 * p[8] + g1 * p[5]) * k2;
-        c[19] = k1 * epz2 + k1 * epp1;
+        c[3] = k1 * enz2 + k1 * enp1;
+        c[8] = (g0 * p[2] + g1 * p[1]) * k2;
+        c[13] = (g0 * p[5] + g1 * p[4]) * k1;
+        c[18] = (g0 * p[8] + g1 * p[7]) * k2;
+        c[23] = k1 * epz2 + k1 * epp1;
     }
     {  // m = 2
         const T g0 = k0 * rpz;
         const T g1 = k6 * rnz;
-        c[20] = k1 * enp2 + k7 * enn0;
-        c[21] = (g0 * p[6] + g1 * p[0]) * k2;
-        c[22] = (g0 * p[7] + g1 * p[1]) * k1;
-        c[23] = (g0 * p[8] + g1 * p[2]) * k2;
+        c[4] = k1 * enp2 + k7 * enn0;
+        c[9] = (g0 * p[2] + g1 * p[0]) * k2;
+        c[14] = (g0 * p[5] + g1 * p[3]) * k1;
+        c[19] = (g0 * p[8] + g1 * p[6]) * k2;
         c[24] = k1 * epp2 + k7 * epn0;
     }
 }
 
-/// Band 3 of D(R) (7x7, row-major) from band 2 in p and band 1 in r1.
+/// Band 3 of D(R) (7x7, column-major) from band 2 in p and band 1 in r1.
 template <class T>
 SPHBASIS_FORCEINLINE void rotation_band_3(const T* SPHBASIS_RESTRICT r1, const T* SPHBASIS_RESTRICT p, T* SPHBASIS_RESTRICT c) noexcept {
-    const T rnn = r1[0], rnz = r1[1], rnp = r1[2];
-    const T rzn = r1[3], rzz = r1[4], rzp = r1[5];
-    const T rpn = r1[6], rpz = r1[7], rpp = r1[8];
+    const T rnn = r1[0], rnz = r1[3], rnp = r1[6];
+    const T rzn = r1[1], rzz = r1[4], rzp = r1[7];
+    const T rpn = r1[2], rpz = r1[5], rpp = r1[8];
     (void)rnn; (void)rnz; (void)rnp; (void)rzn; (void)rzz; (void)rzp; (void)rpn; (void)rpz; (void)rpp;
     const T k0 = T(2.7386127875258306);  // sqrt(30)/2
     const T k1 = T(0.5);  // 1/2
@@ -156,128 +193,128 @@ SPHBASIS_FORCEINLINE void rotation_band_3(const T* SPHBASIS_RESTRICT r1, const T
     const T k19 = T(-0.40824829046386302);  // -sqrt(6)/6
     const T k20 = T(-2.7386127875258306);  // -sqrt(30)/2
     const T k21 = T(-0.5);  // -1/2
-    const T enn0 = rnp * p[0] + rnn * p[4];
-    const T enn1 = rnp * p[5] + rnn * p[9];
-    const T enn2 = rnp * p[10] + rnn * p[14];
-    const T enn3 = rnp * p[15] + rnn * p[19];
-    const T enn4 = rnp * p[20] + rnn * p[24];
-    const T enp0 = rpp * p[0] + rpn * p[4];
-    const T enp1 = rpp * p[5] + rpn * p[9];
-    const T enp2 = rpp * p[10] + rpn * p[14];
-    const T enp3 = rpp * p[15] + rpn * p[19];
-    const T enp4 = rpp * p[20] + rpn * p[24];
-    const T enz0 = rzp * p[0] + rzn * p[4];
-    const T enz1 = rzp * p[5] + rzn * p[9];
-    const T enz2 = rzp * p[10] + rzn * p[14];
-    const T enz3 = rzp * p[15] + rzn * p[19];
-    const T enz4 = rzp * p[20] + rzn * p[24];
-    const T epn0 = rnp * p[4] - rnn * p[0];
-    const T epn1 = rnp * p[9] - rnn * p[5];
-    const T epn2 = rnp * p[14] - rnn * p[10];
-    const T epn3 = rnp * p[19] - rnn * p[15];
-    const T epn4 = rnp * p[24] - rnn * p[20];
-    const T epp0 = rpp * p[4] - rpn * p[0];
-    const T epp1 = rpp * p[9] - rpn * p[5];
-    const T epp2 = rpp * p[14] - rpn * p[10];
-    const T epp3 = rpp * p[19] - rpn * p[15];
-    const T epp4 = rpp * p[24] - rpn * p[20];
-    const T epz0 = rzp * p[4] - rzn * p[0];
-    const T epz1 = rzp * p[9] - rzn * p[5];
-    const T epz2 = rzp * p[14] - rzn * p[10];
-    const T epz3 = rzp * p[19] - rzn * p[15];
-    const T epz4 = rzp * p[24] - rzn * p[20];
+    const T enn0 = rnp * p[0] + rnn * p[20];
+    const T enn1 = rnp * p[1] + rnn * p[21];
+    const T enn2 = rnp * p[2] + rnn * p[22];
+    const T enn3 = rnp * p[3] + rnn * p[23];
+    const T enn4 = rnp * p[4] + rnn * p[24];
+    const T enp0 = rpp * p[0] + rpn * p[20];
+    const T enp1 = rpp * p[1] + rpn * p[21];
+    const T enp2 = rpp * p[2] + rpn * p[22];
+    const T enp3 = rpp * p[3] + rpn * p[23];
+    const T enp4 = rpp * p[4] + rpn * p[24];
+    const T enz0 = rzp * p[0] + rzn * p[20];
+    const T enz1 = rzp * p[1] + rzn * p[21];
+    const T enz2 = rzp * p[2] + rzn * p[22];
+    const T enz3 = rzp * p[3] + rzn * p[23];
+    const T enz4 = rzp * p[4] + rzn * p[24];
+    const T epn0 = rnp * p[20] - rnn * p[0];
+    const T epn1 = rnp * p[21] - rnn * p[1];
+    const T epn2 = rnp * p[22] - rnn * p[2];
+    const T epn3 = rnp * p[23] - rnn * p[3];
+    const T epn4 = rnp * p[24] - rnn * p[4];
+    const T epp0 = rpp * p[20] - rpn * p[0];
+    const T epp1 = rpp * p[21] - rpn * p[1];
+    const T epp2 = rpp * p[22] - rpn * p[2];
+    const T epp3 = rpp * p[23] - rpn * p[3];
+    const T epp4 = rpp * p[24] - rpn * p[4];
+    const T epz0 = rzp * p[20] - rzn * p[0];
+    const T epz1 = rzp * p[21] - rzn * p[1];
+    const T epz2 = rzp * p[22] - rzn * p[2];
+    const T epz3 = rzp * p[23] - rzn * p[3];
+    const T epz4 = rzp * p[24] - rzn * p[4];
     {  // m = -3
         const T g0 = k0 * rpz;
         const T g1 = k0 * rnz;
         c[0] = k1 * enp0 + k1 * enn4;
-        c[1] = (g0 * p[0] + g1 * p[20]) * k2;
-        c[2] = (g0 * p[1] + g1 * p[21]) * k3;
-        c[3] = (g0 * p[2] + g1 * p[22]) * k4;
-        c[4] = (g0 * p[3] + g1 * p[23]) * k3;
-        c[5] = (g0 * p[4] + g1 * p[24]) * k2;
-        c[6] = k1 * epp0 + k1 * epn4;
+        c[7] = (g0 * p[0] + g1 * p[4]) * k2;
+        c[14] = (g0 * p[5] + g1 * p[9]) * k3;
+        c[21] = (g0 * p[10] + g1 * p[14]) * k4;
+        c[28] = (g0 * p[15] + g1 * p[19]) * k3;
+        c[35] = (g0 * p[20] + g1 * p[24]) * k2;
+        c[42] = k1 * epp0 + k1 * epn4;
     }
     {  // m = -2
         const T g0 = k5 * rzz;
         const T g1 = k5 * rpz;
         const T g2 = k5 * rnz;
-        c[7] = k6 * enz0 + k6 * enp1 + k6 * enn3;
-        c[8] = (g0 * p[0] + g1 * p[5] + g2 * p[15]) * k2;
-        c[9] = (g0 * p[1] + g1 * p[6] + g2 * p[16]) * k3;
-        c[10] = (g0 * p[2] + g1 * p[7] + g2 * p[17]) * k4;
-        c[11] = (g0 * p[3] + g1 * p[8] + g2 * p[18]) * k3;
-        c[12] = (g0 * p[4] + g1 * p[9] + g2 * p[19]) * k2;
-        c[13] = k6 * epz0 + k6 * epp1 + k6 * epn3;
+        c[1] = k6 * enz0 + k6 * enp1 + k6 * enn3;
+        c[8] = (g0 * p[0] + g1 * p[1] + g2 * p[3]) * k2;
+        c[15] = (g0 * p[5] + g1 * p[6] + g2 * p[8]) * k3;
+        c[22] = (g0 * p[10] + g1 * p[11] + g2 * p[13]) * k4;
+        c[29] = (g0 * p[15] + g1 * p[16] + g2 * p[18]) * k3;
+        c[36] = (g0 * p[20] + g1 * p[21] + g2 * p[23]) * k2;
+        c[43] = k6 * epz0 + k6 * epp1 + k6 * epn3;
     }
     {  // m = -1
         const T g0 = k7 * rzz;
         const T g1 = k8 * rnz;
         const T g2 = k9 * rpz;
         const T g3 = k10 * rnz;
-        c[14] = k11 * enz1 + k2 * enn2 + k12 * enp0 + k13 * enn4;
-        c[15] = (g0 * p[5] + g1 * p[10] + g2 * p[0] + g3 * p[20]) * k2;
-        c[16] = (g0 * p[6] + g1 * p[11] + g2 * p[1] + g3 * p[21]) * k3;
-        c[17] = (g0 * p[7] + g1 * p[12] + g2 * p[2] + g3 * p[22]) * k4;
-        c[18] = (g0 * p[8] + g1 * p[13] + g2 * p[3] + g3 * p[23]) * k3;
-        c[19] = (g0 * p[9] + g1 * p[14] + g2 * p[4] + g3 * p[24]) * k2;
-        c[20] = k11 * epz1 + k2 * epn2 + k12 * epp0 + k13 * epn4;
+        c[2] = k11 * enz1 + k2 * enn2 + k12 * enp0 + k13 * enn4;
+        c[9] = (g0 * p[1] + g1 * p[2] + g2 * p[0] + g3 * p[4]) * k2;
+        c[16] = (g0 * p[6] + g1 * p[7] + g2 * p[5] + g3 * p[9]) * k3;
+        c[23] = (g0 * p[11] + g1 * p[12] + g2 * p[10] + g3 * p[14]) * k4;
+        c[30] = (g0 * p[16] + g1 * p[17] + g2 * p[15] + g3 * p[19]) * k3;
+        c[37] = (g0 * p[21] + g1 * p[22] + g2 * p[20] + g3 * p[24]) * k2;
+        c[44] = k11 * epz1 + k2 * epn2 + k12 * epp0 + k13 * epn4;
     }
     {  // m = 0
         const T g0 = k14 * rzz;
         const T g1 = k15 * rpz;
         const T g2 = k15 * rnz;
-        c[21] = k16 * enz2 + k17 * enp3 + k17 * enn1;
-        c[22] = (g0 * p[10] + g1 * p[15] + g2 * p[5]) * k2;
-        c[23] = (g0 * p[11] + g1 * p[16] + g2 * p[6]) * k3;
-        c[24] = (g0 * p[12] + g1 * p[17] + g2 * p[7]) * k4;
-        c[25] = (g0 * p[13] + g1 * p[18] + g2 * p[8]) * k3;
-        c[26] = (g0 * p[14] + g1 * p[19] + g2 * p[9]) * k2;
-        c[27] = k16 * epz2 + k17 * epp3 + k17 * epn1;
+        c[3] = k16 * enz2 + k17 * enp3 + k17 * enn1;
+        c[10] = (g0 * p[2] + g1 * p[3] + g2 * p[1]) * k2;
+        c[17] = (g0 * p[7] + g1 * p[8] + g2 * p[6]) * k3;
+        c[24] = (g0 * p[12] + g1 * p[13] + g2 * p[11]) * k4;
+        c[31] = (g0 * p[17] + g1 * p[18] + g2 * p[16]) * k3;
+        c[38] = (g0 * p[22] + g1 * p[23] + g2 * p[21]) * k2;
+        c[45] = k16 * epz2 + k17 * epp3 + k17 * epn1;
     }
     {  // m = 1
         const T g0 = k7 * rzz;
         const T g1 = k8 * rpz;
         const T g2 = k9 * rpz;
         const T g3 = k9 * rnz;
-        c[28] = k11 * enz3 + k2 * enp2 + k12 * enp4 + k12 * enn0;
-        c[29] = (g0 * p[15] + g1 * p[10] + g2 * p[20] + g3 * p[0]) * k2;
-        c[30] = (g0 * p[16] + g1 * p[11] + g2 * p[21] + g3 * p[1]) * k3;
-        c[31] = (g0 * p[17] + g1 * p[12] + g2 * p[22] + g3 * p[2]) * k4;
-        c[32] = (g0 * p[18] + g1 * p[13] + g2 * p[23] + g3 * p[3]) * k3;
-        c[33] = (g0 * p[19] + g1 * p[14] + g2 * p[24] + g3 * p[4]) * k2;
-        c[34] = k11 * epz3 + k2 * epp2 + k12 * epp4 + k12 * epn0;
+        c[4] = k11 * enz3 + k2 * enp2 + k12 * enp4 + k12 * enn0;
+        c[11] = (g0 * p[3] + g1 * p[2] + g2 * p[4] + g3 * p[0]) * k2;
+        c[18] = (g0 * p[8] + g1 * p[7] + g2 * p[9] + g3 * p[5]) * k3;
+        c[25] = (g0 * p[13] + g1 * p[12] + g2 * p[14] + g3 * p[10]) * k4;
+        c[32] = (g0 * p[18] + g1 * p[17] + g2 * p[19] + g3 * p[15]) * k3;
+        c[39] = (g0 * p[23] + g1 * p[22] + g2 * p[24] + g3 * p[20]) * k2;
+        c[46] = k11 * epz3 + k2 * epp2 + k12 * epp4 + k12 * epn0;
     }
     {  // m = 2
         const T g0 = k5 * rzz;
         const T g1 = k5 * rpz;
         const T g2 = k18 * rnz;
-        c[35] = k6 * enz4 + k6 * enp3 + k19 * enn1;
-        c[36] = (g0 * p[20] + g1 * p[15] + g2 * p[5]) * k2;
-        c[37] = (g0 * p[21] + g1 * p[16] + g2 * p[6]) * k3;
-        c[38] = (g0 * p[22] + g1 * p[17] + g2 * p[7]) * k4;
-        c[39] = (g0 * p[23] + g1 * p[18] + g2 * p[8]) * k3;
-        c[40] = (g0 * p[24] + g1 * p[19] + g2 * p[9]) * k2;
-        c[41] = k6 * epz4 + k6 * epp3 + k19 * epn1;
+        c[5] = k6 * enz4 + k6 * enp3 + k19 * enn1;
+        c[12] = (g0 * p[4] + g1 * p[3] + g2 * p[1]) * k2;
+        c[19] = (g0 * p[9] + g1 * p[8] + g2 * p[6]) * k3;
+        c[26] = (g0 * p[14] + g1 * p[13] + g2 * p[11]) * k4;
+        c[33] = (g0 * p[19] + g1 * p[18] + g2 * p[16]) * k3;
+        c[40] = (g0 * p[24] + g1 * p[23] + g2 * p[21]) * k2;
+        c[47] = k6 * epz4 + k6 * epp3 + k19 * epn1;
     }
     {  // m = 3
         const T g0 = k0 * rpz;
         const T g1 = k20 * rnz;
-        c[42] = k1 * enp4 + k21 * enn0;
-        c[43] = (g0 * p[20] + g1 * p[0]) * k2;
-        c[44] = (g0 * p[21] + g1 * p[1]) * k3;
-        c[45] = (g0 * p[22] + g1 * p[2]) * k4;
-        c[46] = (g0 * p[23] + g1 * p[3]) * k3;
-        c[47] = (g0 * p[24] + g1 * p[4]) * k2;
+        c[6] = k1 * enp4 + k21 * enn0;
+        c[13] = (g0 * p[4] + g1 * p[0]) * k2;
+        c[20] = (g0 * p[9] + g1 * p[5]) * k3;
+        c[27] = (g0 * p[14] + g1 * p[10]) * k4;
+        c[34] = (g0 * p[19] + g1 * p[15]) * k3;
+        c[41] = (g0 * p[24] + g1 * p[20]) * k2;
         c[48] = k1 * epp4 + k21 * epn0;
     }
 }
 
-/// Band 4 of D(R) (9x9, row-major) from band 3 in p and band 1 in r1.
+/// Band 4 of D(R) (9x9, column-major) from band 3 in p and band 1 in r1.
 template <class T>
 SPHBASIS_FORCEINLINE void rotation_band_4(const T* SPHBASIS_RESTRICT r1, const T* SPHBASIS_RESTRICT p, T* SPHBASIS_RESTRICT c) noexcept {
-    const T rnn = r1[0], rnz = r1[1], rnp = r1[2];
-    const T rzn = r1[3], rzz = r1[4], rzp = r1[5];
-    const T rpn = r1[6], rpz = r1[7], rpp = r1[8];
+    const T rnn = r1[0], rnz = r1[3], rnp = r1[6];
+    const T rzn = r1[1], rzz = r1[4], rzp = r1[7];
+    const T rpn = r1[2], rpz = r1[5], rpp = r1[8];
     (void)rnn; (void)rnz; (void)rnp; (void)rzn; (void)rzz; (void)rzp; (void)rpn; (void)rpz; (void)rpp;
     const T k0 = T(3.7416573867739413);  // sqrt(14)
     const T k1 = T(0.5);  // 1/2
@@ -315,74 +352,74 @@ SPHBASIS_FORCEINLINE void rotation_band_4(const T* SPHBASIS_RESTRICT r1, const T
     const T k33 = T(-0.4330127018922193);  // -sqrt(3)/4
     const T k34 = T(-3.7416573867739413);  // -sqrt(14)
     const T k35 = T(-0.5);  // -1/2
-    const T enn0 = rnp * p[0] + rnn * p[6];
-    const T enn1 = rnp * p[7] + rnn * p[13];
-    const T enn2 = rnp * p[14] + rnn * p[20];
-    const T enn3 = rnp * p[21] + rnn * p[27];
-    const T enn4 = rnp * p[28] + rnn * p[34];
-    const T enn5 = rnp * p[35] + rnn * p[41];
-    const T enn6 = rnp * p[42] + rnn * p[48];
-    const T enp0 = rpp * p[0] + rpn * p[6];
-    const T enp1 = rpp * p[7] + rpn * p[13];
-    const T enp2 = rpp * p[14] + rpn * p[20];
-    const T enp3 = rpp * p[21] + rpn * p[27];
-    const T enp4 = rpp * p[28] + rpn * p[34];
-    const T enp5 = rpp * p[35] + rpn * p[41];
-    const T enp6 = rpp * p[42] + rpn * p[48];
-    const T enz0 = rzp * p[0] + rzn * p[6];
-    const T enz1 = rzp * p[7] + rzn * p[13];
-    const T enz2 = rzp * p[14] + rzn * p[20];
-    const T enz3 = rzp * p[21] + rzn * p[27];
-    const T enz4 = rzp * p[28] + rzn * p[34];
-    const T enz5 = rzp * p[35] + rzn * p[41];
-    const T enz6 = rzp * p[42] + rzn * p[48];
-    const T epn0 = rnp * p[6] - rnn * p[0];
-    const T epn1 = rnp * p[13] - rnn * p[7];
-    const T epn2 = rnp * p[20] - rnn * p[14];
-    const T epn3 = rnp * p[27] - rnn * p[21];
-    const T epn4 = rnp * p[34] - rnn * p[28];
-    const T epn5 = rnp * p[41] - rnn * p[35];
-    const T epn6 = rnp * p[48] - rnn * p[42];
-    const T epp0 = rpp * p[6] - rpn * p[0];
-    const T epp1 = rpp * p[13] - rpn * p[7];
-    const T epp2 = rpp * p[20] - rpn * p[14];
-    const T epp3 = rpp * p[27] - rpn * p[21];
-    const T epp4 = rpp * p[34] - rpn * p[28];
-    const T epp5 = rpp * p[41] - rpn * p[35];
-    const T epp6 = rpp * p[48] - rpn * p[42];
-    const T epz0 = rzp * p[6] - rzn * p[0];
-    const T epz1 = rzp * p[13] - rzn * p[7];
-    const T epz2 = rzp * p[20] - rzn * p[14];
-    const T epz3 = rzp * p[27] - rzn * p[21];
-    const T epz4 = rzp * p[34] - rzn * p[28];
-    const T epz5 = rzp * p[41] - rzn * p[35];
-    const T epz6 = rzp * p[48] - rzn * p[42];
+    const T enn0 = rnp * p[0] + rnn * p[42];
+    const T enn1 = rnp * p[1] + rnn * p[43];
+    const T enn2 = rnp * p[2] + rnn * p[44];
+    const T enn3 = rnp * p[3] + rnn * p[45];
+    const T enn4 = rnp * p[4] + rnn * p[46];
+    const T enn5 = rnp * p[5] + rnn * p[47];
+    const T enn6 = rnp * p[6] + rnn * p[48];
+    const T enp0 = rpp * p[0] + rpn * p[42];
+    const T enp1 = rpp * p[1] + rpn * p[43];
+    const T enp2 = rpp * p[2] + rpn * p[44];
+    const T enp3 = rpp * p[3] + rpn * p[45];
+    const T enp4 = rpp * p[4] + rpn * p[46];
+    const T enp5 = rpp * p[5] + rpn * p[47];
+    const T enp6 = rpp * p[6] + rpn * p[48];
+    const T enz0 = rzp * p[0] + rzn * p[42];
+    const T enz1 = rzp * p[1] + rzn * p[43];
+    const T enz2 = rzp * p[2] + rzn * p[44];
+    const T enz3 = rzp * p[3] + rzn * p[45];
+    const T enz4 = rzp * p[4] + rzn * p[46];
+    const T enz5 = rzp * p[5] + rzn * p[47];
+    const T enz6 = rzp * p[6] + rzn * p[48];
+    const T epn0 = rnp * p[42] - rnn * p[0];
+    const T epn1 = rnp * p[43] - rnn * p[1];
+    const T epn2 = rnp * p[44] - rnn * p[2];
+    const T epn3 = rnp * p[45] - rnn * p[3];
+    const T epn4 = rnp * p[46] - rnn * p[4];
+    const T epn5 = rnp * p[47] - rnn * p[5];
+    const T epn6 = rnp * p[48] - rnn * p[6];
+    const T epp0 = rpp * p[42] - rpn * p[0];
+    const T epp1 = rpp * p[43] - rpn * p[1];
+    const T epp2 = rpp * p[44] - rpn * p[2];
+    const T epp3 = rpp * p[45] - rpn * p[3];
+    const T epp4 = rpp * p[46] - rpn * p[4];
+    const T epp5 = rpp * p[47] - rpn * p[5];
+    const T epp6 = rpp * p[48] - rpn * p[6];
+    const T epz0 = rzp * p[42] - rzn * p[0];
+    const T epz1 = rzp * p[43] - rzn * p[1];
+    const T epz2 = rzp * p[44] - rzn * p[2];
+    const T epz3 = rzp * p[45] - rzn * p[3];
+    const T epz4 = rzp * p[46] - rzn * p[4];
+    const T epz5 = rzp * p[47] - rzn * p[5];
+    const T epz6 = rzp * p[48] - rzn * p[6];
     {  // m = -4
         const T g0 = k0 * rpz;
         const T g1 = k0 * rnz;
         c[0] = k1 * enp0 + k1 * enn6;
-        c[1] = (g0 * p[0] + g1 * p[42]) * k2;
-        c[2] = (g0 * p[1] + g1 * p[43]) * k3;
-        c[3] = (g0 * p[2] + g1 * p[44]) * k4;
-        c[4] = (g0 * p[3] + g1 * p[45]) * k5;
-        c[5] = (g0 * p[4] + g1 * p[46]) * k4;
-        c[6] = (g0 * p[5] + g1 * p[47]) * k3;
-        c[7] = (g0 * p[6] + g1 * p[48]) * k2;
-        c[8] = k1 * epp0 + k1 * epn6;
+        c[9] = (g0 * p[0] + g1 * p[6]) * k2;
+        c[18] = (g0 * p[7] + g1 * p[13]) * k3;
+        c[27] = (g0 * p[14] + g1 * p[20]) * k4;
+        c[36] = (g0 * p[21] + g1 * p[27]) * k5;
+        c[45] = (g0 * p[28] + g1 * p[34]) * k4;
+        c[54] = (g0 * p[35] + g1 * p[41]) * k3;
+        c[63] = (g0 * p[42] + g1 * p[48]) * k2;
+        c[72] = k1 * epp0 + k1 * epn6;
     }
     {  // m = -3
         const T g0 = k6 * rzz;
         const T g1 = k7 * rpz;
         const T g2 = k7 * rnz;
-        c[9] = k8 * enz0 + k9 * enp1 + k9 * enn5;
-        c[10] = (g0 * p[0] + g1 * p[7] + g2 * p[35]) * k2;
-        c[11] = (g0 * p[1] + g1 * p[8] + g2 * p[36]) * k3;
-        c[12] = (g0 * p[2] + g1 * p[9] + g2 * p[37]) * k4;
-        c[13] = (g0 * p[3] + g1 * p[10] + g2 * p[38]) * k5;
-        c[14] = (g0 * p[4] + g1 * p[11] + g2 * p[39]) * k4;
-        c[15] = (g0 * p[5] + g1 * p[12] + g2 * p[40]) * k3;
-        c[16] = (g0 * p[6] + g1 * p[13] + g2 * p[41]) * k2;
-        c[17] = k8 * epz0 + k9 * epp1 + k9 * epn5;
+        c[1] = k8 * enz0 + k9 * enp1 + k9 * enn5;
+        c[10] = (g0 * p[0] + g1 * p[1] + g2 * p[5]) * k2;
+        c[19] = (g0 * p[7] + g1 * p[8] + g2 * p[12]) * k3;
+        c[28] = (g0 * p[14] + g1 * p[15] + g2 * p[19]) * k4;
+        c[37] = (g0 * p[21] + g1 * p[22] + g2 * p[26]) * k5;
+        c[46] = (g0 * p[28] + g1 * p[29] + g2 * p[33]) * k4;
+        c[55] = (g0 * p[35] + g1 * p[36] + g2 * p[40]) * k3;
+        c[64] = (g0 * p[42] + g1 * p[43] + g2 * p[47]) * k2;
+        c[73] = k8 * epz0 + k9 * epp1 + k9 * epn5;
     }
     {  // m = -2
         const T g0 = k10 * rzz;
@@ -390,59 +427,59 @@ SPHBASIS_FORCEINLINE void rotation_band_4(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k11 * rnz;
         const T g3 = k12 * rpz;
         const T g4 = k13 * rnz;
-        c[18] = k14 * enz1 + k15 * enp2 + k15 * enn4 + k16 * enp0 + k17 * enn6;
-        c[19] = (g0 * p[7] + g1 * p[14] + g2 * p[28] + g3 * p[0] + g4 * p[42]) * k2;
-        c[20] = (g0 * p[8] + g1 * p[15] + g2 * p[29] + g3 * p[1] + g4 * p[43]) * k3;
-        c[21] = (g0 * p[9] + g1 * p[16] + g2 * p[30] + g3 * p[2] + g4 * p[44]) * k4;
-        c[22] = (g0 * p[10] + g1 * p[17] + g2 * p[31] + g3 * p[3] + g4 * p[45]) * k5;
-        c[23] = (g0 * p[11] + g1 * p[18] + g2 * p[32] + g3 * p[4] + g4 * p[46]) * k4;
-        c[24] = (g0 * p[12] + g1 * p[19] + g2 * p[33] + g3 * p[5] + g4 * p[47]) * k3;
-        c[25] = (g0 * p[13] + g1 * p[20] + g2 * p[34] + g3 * p[6] + g4 * p[48]) * k2;
-        c[26] = k14 * epz1 + k15 * epp2 + k15 * epn4 + k16 * epp0 + k17 * epn6;
+        c[2] = k14 * enz1 + k15 * enp2 + k15 * enn4 + k16 * enp0 + k17 * enn6;
+        c[11] = (g0 * p[1] + g1 * p[2] + g2 * p[4] + g3 * p[0] + g4 * p[6]) * k2;
+        c[20] = (g0 * p[8] + g1 * p[9] + g2 * p[11] + g3 * p[7] + g4 * p[13]) * k3;
+        c[29] = (g0 * p[15] + g1 * p[16] + g2 * p[18] + g3 * p[14] + g4 * p[20]) * k4;
+        c[38] = (g0 * p[22] + g1 * p[23] + g2 * p[25] + g3 * p[21] + g4 * p[27]) * k5;
+        c[47] = (g0 * p[29] + g1 * p[30] + g2 * p[32] + g3 * p[28] + g4 * p[34]) * k4;
+        c[56] = (g0 * p[36] + g1 * p[37] + g2 * p[39] + g3 * p[35] + g4 * p[41]) * k3;
+        c[65] = (g0 * p[43] + g1 * p[44] + g2 * p[46] + g3 * p[42] + g4 * p[48]) * k2;
+        c[74] = k14 * epz1 + k15 * epp2 + k15 * epn4 + k16 * epp0 + k17 * epn6;
     }
     {  // m = -1
         const T g0 = k18 * rzz;
         const T g1 = k19 * rnz;
         const T g2 = k20 * rpz;
         const T g3 = k21 * rnz;
-        c[27] = k22 * enz2 + k23 * enn3 + k24 * enp1 + k25 * enn5;
-        c[28] = (g0 * p[14] + g1 * p[21] + g2 * p[7] + g3 * p[35]) * k2;
-        c[29] = (g0 * p[15] + g1 * p[22] + g2 * p[8] + g3 * p[36]) * k3;
-        c[30] = (g0 * p[16] + g1 * p[23] + g2 * p[9] + g3 * p[37]) * k4;
-        c[31] = (g0 * p[17] + g1 * p[24] + g2 * p[10] + g3 * p[38]) * k5;
-        c[32] = (g0 * p[18] + g1 * p[25] + g2 * p[11] + g3 * p[39]) * k4;
-        c[33] = (g0 * p[19] + g1 * p[26] + g2 * p[12] + g3 * p[40]) * k3;
-        c[34] = (g0 * p[20] + g1 * p[27] + g2 * p[13] + g3 * p[41]) * k2;
-        c[35] = k22 * epz2 + k23 * epn3 + k24 * epp1 + k25 * epn5;
+        c[3] = k22 * enz2 + k23 * enn3 + k24 * enp1 + k25 * enn5;
+        c[12] = (g0 * p[2] + g1 * p[3] + g2 * p[1] + g3 * p[5]) * k2;
+        c[21] = (g0 * p[9] + g1 * p[10] + g2 * p[8] + g3 * p[12]) * k3;
+        c[30] = (g0 * p[16] + g1 * p[17] + g2 * p[15] + g3 * p[19]) * k4;
+        c[39] = (g0 * p[23] + g1 * p[24] + g2 * p[22] + g3 * p[26]) * k5;
+        c[48] = (g0 * p[30] + g1 * p[31] + g2 * p[29] + g3 * p[33]) * k4;
+        c[57] = (g0 * p[37] + g1 * p[38] + g2 * p[36] + g3 * p[40]) * k3;
+        c[66] = (g0 * p[44] + g1 * p[45] + g2 * p[43] + g3 * p[47]) * k2;
+        c[75] = k22 * epz2 + k23 * epn3 + k24 * epp1 + k25 * epn5;
     }
     {  // m = 0
         const T g0 = k26 * rzz;
         const T g1 = k27 * rpz;
         const T g2 = k27 * rnz;
-        c[36] = k28 * enz3 + k29 * enp4 + k29 * enn2;
-        c[37] = (g0 * p[21] + g1 * p[28] + g2 * p[14]) * k2;
-        c[38] = (g0 * p[22] + g1 * p[29] + g2 * p[15]) * k3;
-        c[39] = (g0 * p[23] + g1 * p[30] + g2 * p[16]) * k4;
-        c[40] = (g0 * p[24] + g1 * p[31] + g2 * p[17]) * k5;
-        c[41] = (g0 * p[25] + g1 * p[32] + g2 * p[18]) * k4;
-        c[42] = (g0 * p[26] + g1 * p[33] + g2 * p[19]) * k3;
-        c[43] = (g0 * p[27] + g1 * p[34] + g2 * p[20]) * k2;
-        c[44] = k28 * epz3 + k29 * epp4 + k29 * epn2;
+        c[4] = k28 * enz3 + k29 * enp4 + k29 * enn2;
+        c[13] = (g0 * p[3] + g1 * p[4] + g2 * p[2]) * k2;
+        c[22] = (g0 * p[10] + g1 * p[11] + g2 * p[9]) * k3;
+        c[31] = (g0 * p[17] + g1 * p[18] + g2 * p[16]) * k4;
+        c[40] = (g0 * p[24] + g1 * p[25] + g2 * p[23]) * k5;
+        c[49] = (g0 * p[31] + g1 * p[32] + g2 * p[30]) * k4;
+        c[58] = (g0 * p[38] + g1 * p[39] + g2 * p[37]) * k3;
+        c[67] = (g0 * p[45] + g1 * p[46] + g2 * p[44]) * k2;
+        c[76] = k28 * epz3 + k29 * epp4 + k29 * epn2;
     }
     {  // m = 1
         const T g0 = k18 * rzz;
         const T g1 = k19 * rpz;
         const T g2 = k20 * rpz;
         const T g3 = k20 * rnz;
-        c[45] = k22 * enz4 + k23 * enp3 + k24 * enp5 + k24 * enn1;
-        c[46] = (g0 * p[28] + g1 * p[21] + g2 * p[35] + g3 * p[7]) * k2;
-        c[47] = (g0 * p[29] + g1 * p[22] + g2 * p[36] + g3 * p[8]) * k3;
-        c[48] = (g0 * p[30] + g1 * p[23] + g2 * p[37] + g3 * p[9]) * k4;
-        c[49] = (g0 * p[31] + g1 * p[24] + g2 * p[38] + g3 * p[10]) * k5;
-        c[50] = (g0 * p[32] + g1 * p[25] + g2 * p[39] + g3 * p[11]) * k4;
-        c[51] = (g0 * p[33] + g1 * p[26] + g2 * p[40] + g3 * p[12]) * k3;
-        c[52] = (g0 * p[34] + g1 * p[27] + g2 * p[41] + g3 * p[13]) * k2;
-        c[53] = k22 * epz4 + k23 * epp3 + k24 * epp5 + k24 * epn1;
+        c[5] = k22 * enz4 + k23 * enp3 + k24 * enp5 + k24 * enn1;
+        c[14] = (g0 * p[4] + g1 * p[3] + g2 * p[5] + g3 * p[1]) * k2;
+        c[23] = (g0 * p[11] + g1 * p[10] + g2 * p[12] + g3 * p[8]) * k3;
+        c[32] = (g0 * p[18] + g1 * p[17] + g2 * p[19] + g3 * p[15]) * k4;
+        c[41] = (g0 * p[25] + g1 * p[24] + g2 * p[26] + g3 * p[22]) * k5;
+        c[50] = (g0 * p[32] + g1 * p[31] + g2 * p[33] + g3 * p[29]) * k4;
+        c[59] = (g0 * p[39] + g1 * p[38] + g2 * p[40] + g3 * p[36]) * k3;
+        c[68] = (g0 * p[46] + g1 * p[45] + g2 * p[47] + g3 * p[43]) * k2;
+        c[77] = k22 * epz4 + k23 * epp3 + k24 * epp5 + k24 * epn1;
     }
     {  // m = 2
         const T g0 = k10 * rzz;
@@ -450,51 +487,51 @@ SPHBASIS_FORCEINLINE void rotation_band_4(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k30 * rnz;
         const T g3 = k12 * rpz;
         const T g4 = k12 * rnz;
-        c[54] = k14 * enz5 + k15 * enp4 + k31 * enn2 + k16 * enp6 + k16 * enn0;
-        c[55] = (g0 * p[35] + g1 * p[28] + g2 * p[14] + g3 * p[42] + g4 * p[0]) * k2;
-        c[56] = (g0 * p[36] + g1 * p[29] + g2 * p[15] + g3 * p[43] + g4 * p[1]) * k3;
-        c[57] = (g0 * p[37] + g1 * p[30] + g2 * p[16] + g3 * p[44] + g4 * p[2]) * k4;
-        c[58] = (g0 * p[38] + g1 * p[31] + g2 * p[17] + g3 * p[45] + g4 * p[3]) * k5;
-        c[59] = (g0 * p[39] + g1 * p[32] + g2 * p[18] + g3 * p[46] + g4 * p[4]) * k4;
-        c[60] = (g0 * p[40] + g1 * p[33] + g2 * p[19] + g3 * p[47] + g4 * p[5]) * k3;
-        c[61] = (g0 * p[41] + g1 * p[34] + g2 * p[20] + g3 * p[48] + g4 * p[6]) * k2;
-        c[62] = k14 * epz5 + k15 * epp4 + k31 * epn2 + k16 * epp6 + k16 * epn0;
+        c[6] = k14 * enz5 + k15 * enp4 + k31 * enn2 + k16 * enp6 + k16 * enn0;
+        c[15] = (g0 * p[5] + g1 * p[4] + g2 * p[2] + g3 * p[6] + g4 * p[0]) * k2;
+        c[24] = (g0 * p[12] + g1 * p[11] + g2 * p[9] + g3 * p[13] + g4 * p[7]) * k3;
+        c[33] = (g0 * p[19] + g1 * p[18] + g2 * p[16] + g3 * p[20] + g4 * p[14]) * k4;
+        c[42] = (g0 * p[26] + g1 * p[25] + g2 * p[23] + g3 * p[27] + g4 * p[21]) * k5;
+        c[51] = (g0 * p[33] + g1 * p[32] + g2 * p[30] + g3 * p[34] + g4 * p[28]) * k4;
+        c[60] = (g0 * p[40] + g1 * p[39] + g2 * p[37] + g3 * p[41] + g4 * p[35]) * k3;
+        c[69] = (g0 * p[47] + g1 * p[46] + g2 * p[44] + g3 * p[48] + g4 * p[42]) * k2;
+        c[78] = k14 * epz5 + k15 * epp4 + k31 * epn2 + k16 * epp6 + k16 * epn0;
     }
     {  // m = 3
         const T g0 = k6 * rzz;
         const T g1 = k7 * rpz;
         const T g2 = k32 * rnz;
-        c[63] = k8 * enz6 + k9 * enp5 + k33 * enn1;
-        c[64] = (g0 * p[42] + g1 * p[35] + g2 * p[7]) * k2;
-        c[65] = (g0 * p[43] + g1 * p[36] + g2 * p[8]) * k3;
-        c[66] = (g0 * p[44] + g1 * p[37] + g2 * p[9]) * k4;
-        c[67] = (g0 * p[45] + g1 * p[38] + g2 * p[10]) * k5;
-        c[68] = (g0 * p[46] + g1 * p[39] + g2 * p[11]) * k4;
-        c[69] = (g0 * p[47] + g1 * p[40] + g2 * p[12]) * k3;
-        c[70] = (g0 * p[48] + g1 * p[41] + g2 * p[13]) * k2;
-        c[71] = k8 * epz6 + k9 * epp5 + k33 * epn1;
+        c[7] = k8 * enz6 + k9 * enp5 + k33 * enn1;
+        c[16] = (g0 * p[6] + g1 * p[5] + g2 * p[1]) * k2;
+        c[25] = (g0 * p[13] + g1 * p[12] + g2 * p[8]) * k3;
+        c[34] = (g0 * p[20] + g1 * p[19] + g2 * p[15]) * k4;
+        c[43] = (g0 * p[27] + g1 * p[26] + g2 * p[22]) * k5;
+        c[52] = (g0 * p[34] + g1 * p[33] + g2 * p[29]) * k4;
+        c[61] = (g0 * p[41] + g1 * p[40] + g2 * p[36]) * k3;
+        c[70] = (g0 * p[48] + g1 * p[47] + g2 * p[43]) * k2;
+        c[79] = k8 * epz6 + k9 * epp5 + k33 * epn1;
     }
     {  // m = 4
         const T g0 = k0 * rpz;
         const T g1 = k34 * rnz;
-        c[72] = k1 * enp6 + k35 * enn0;
-        c[73] = (g0 * p[42] + g1 * p[0]) * k2;
-        c[74] = (g0 * p[43] + g1 * p[1]) * k3;
-        c[75] = (g0 * p[44] + g1 * p[2]) * k4;
-        c[76] = (g0 * p[45] + g1 * p[3]) * k5;
-        c[77] = (g0 * p[46] + g1 * p[4]) * k4;
-        c[78] = (g0 * p[47] + g1 * p[5]) * k3;
-        c[79] = (g0 * p[48] + g1 * p[6]) * k2;
+        c[8] = k1 * enp6 + k35 * enn0;
+        c[17] = (g0 * p[6] + g1 * p[0]) * k2;
+        c[26] = (g0 * p[13] + g1 * p[7]) * k3;
+        c[35] = (g0 * p[20] + g1 * p[14]) * k4;
+        c[44] = (g0 * p[27] + g1 * p[21]) * k5;
+        c[53] = (g0 * p[34] + g1 * p[28]) * k4;
+        c[62] = (g0 * p[41] + g1 * p[35]) * k3;
+        c[71] = (g0 * p[48] + g1 * p[42]) * k2;
         c[80] = k1 * epp6 + k35 * epn0;
     }
 }
 
-/// Band 5 of D(R) (11x11, row-major) from band 4 in p and band 1 in r1.
+/// Band 5 of D(R) (11x11, column-major) from band 4 in p and band 1 in r1.
 template <class T>
 SPHBASIS_FORCEINLINE void rotation_band_5(const T* SPHBASIS_RESTRICT r1, const T* SPHBASIS_RESTRICT p, T* SPHBASIS_RESTRICT c) noexcept {
-    const T rnn = r1[0], rnz = r1[1], rnp = r1[2];
-    const T rzn = r1[3], rzz = r1[4], rzp = r1[5];
-    const T rpn = r1[6], rpz = r1[7], rpp = r1[8];
+    const T rnn = r1[0], rnz = r1[3], rnp = r1[6];
+    const T rzn = r1[1], rzz = r1[4], rzp = r1[7];
+    const T rpn = r1[2], rpz = r1[5], rpp = r1[8];
     (void)rnn; (void)rnz; (void)rnp; (void)rzn; (void)rzz; (void)rzp; (void)rpn; (void)rpz; (void)rpp;
     const T k0 = T(4.7434164902525691);  // 3*sqrt(10)/2
     const T k1 = T(0.5);  // 1/2
@@ -543,90 +580,90 @@ SPHBASIS_FORCEINLINE void rotation_band_5(const T* SPHBASIS_RESTRICT r1, const T
     const T k44 = T(-0.44721359549995793);  // -sqrt(5)/5
     const T k45 = T(-4.7434164902525691);  // -3*sqrt(10)/2
     const T k46 = T(-0.5);  // -1/2
-    const T enn0 = rnp * p[0] + rnn * p[8];
-    const T enn1 = rnp * p[9] + rnn * p[17];
-    const T enn2 = rnp * p[18] + rnn * p[26];
-    const T enn3 = rnp * p[27] + rnn * p[35];
-    const T enn4 = rnp * p[36] + rnn * p[44];
-    const T enn5 = rnp * p[45] + rnn * p[53];
-    const T enn6 = rnp * p[54] + rnn * p[62];
-    const T enn7 = rnp * p[63] + rnn * p[71];
-    const T enn8 = rnp * p[72] + rnn * p[80];
-    const T enp0 = rpp * p[0] + rpn * p[8];
-    const T enp1 = rpp * p[9] + rpn * p[17];
-    const T enp2 = rpp * p[18] + rpn * p[26];
-    const T enp3 = rpp * p[27] + rpn * p[35];
-    const T enp4 = rpp * p[36] + rpn * p[44];
-    const T enp5 = rpp * p[45] + rpn * p[53];
-    const T enp6 = rpp * p[54] + rpn * p[62];
-    const T enp7 = rpp * p[63] + rpn * p[71];
-    const T enp8 = rpp * p[72] + rpn * p[80];
-    const T enz0 = rzp * p[0] + rzn * p[8];
-    const T enz1 = rzp * p[9] + rzn * p[17];
-    const T enz2 = rzp * p[18] + rzn * p[26];
-    const T enz3 = rzp * p[27] + rzn * p[35];
-    const T enz4 = rzp * p[36] + rzn * p[44];
-    const T enz5 = rzp * p[45] + rzn * p[53];
-    const T enz6 = rzp * p[54] + rzn * p[62];
-    const T enz7 = rzp * p[63] + rzn * p[71];
-    const T enz8 = rzp * p[72] + rzn * p[80];
-    const T epn0 = rnp * p[8] - rnn * p[0];
-    const T epn1 = rnp * p[17] - rnn * p[9];
-    const T epn2 = rnp * p[26] - rnn * p[18];
-    const T epn3 = rnp * p[35] - rnn * p[27];
-    const T epn4 = rnp * p[44] - rnn * p[36];
-    const T epn5 = rnp * p[53] - rnn * p[45];
-    const T epn6 = rnp * p[62] - rnn * p[54];
-    const T epn7 = rnp * p[71] - rnn * p[63];
-    const T epn8 = rnp * p[80] - rnn * p[72];
-    const T epp0 = rpp * p[8] - rpn * p[0];
-    const T epp1 = rpp * p[17] - rpn * p[9];
-    const T epp2 = rpp * p[26] - rpn * p[18];
-    const T epp3 = rpp * p[35] - rpn * p[27];
-    const T epp4 = rpp * p[44] - rpn * p[36];
-    const T epp5 = rpp * p[53] - rpn * p[45];
-    const T epp6 = rpp * p[62] - rpn * p[54];
-    const T epp7 = rpp * p[71] - rpn * p[63];
-    const T epp8 = rpp * p[80] - rpn * p[72];
-    const T epz0 = rzp * p[8] - rzn * p[0];
-    const T epz1 = rzp * p[17] - rzn * p[9];
-    const T epz2 = rzp * p[26] - rzn * p[18];
-    const T epz3 = rzp * p[35] - rzn * p[27];
-    const T epz4 = rzp * p[44] - rzn * p[36];
-    const T epz5 = rzp * p[53] - rzn * p[45];
-    const T epz6 = rzp * p[62] - rzn * p[54];
-    const T epz7 = rzp * p[71] - rzn * p[63];
-    const T epz8 = rzp * p[80] - rzn * p[72];
+    const T enn0 = rnp * p[0] + rnn * p[72];
+    const T enn1 = rnp * p[1] + rnn * p[73];
+    const T enn2 = rnp * p[2] + rnn * p[74];
+    const T enn3 = rnp * p[3] + rnn * p[75];
+    const T enn4 = rnp * p[4] + rnn * p[76];
+    const T enn5 = rnp * p[5] + rnn * p[77];
+    const T enn6 = rnp * p[6] + rnn * p[78];
+    const T enn7 = rnp * p[7] + rnn * p[79];
+    const T enn8 = rnp * p[8] + rnn * p[80];
+    const T enp0 = rpp * p[0] + rpn * p[72];
+    const T enp1 = rpp * p[1] + rpn * p[73];
+    const T enp2 = rpp * p[2] + rpn * p[74];
+    const T enp3 = rpp * p[3] + rpn * p[75];
+    const T enp4 = rpp * p[4] + rpn * p[76];
+    const T enp5 = rpp * p[5] + rpn * p[77];
+    const T enp6 = rpp * p[6] + rpn * p[78];
+    const T enp7 = rpp * p[7] + rpn * p[79];
+    const T enp8 = rpp * p[8] + rpn * p[80];
+    const T enz0 = rzp * p[0] + rzn * p[72];
+    const T enz1 = rzp * p[1] + rzn * p[73];
+    const T enz2 = rzp * p[2] + rzn * p[74];
+    const T enz3 = rzp * p[3] + rzn * p[75];
+    const T enz4 = rzp * p[4] + rzn * p[76];
+    const T enz5 = rzp * p[5] + rzn * p[77];
+    const T enz6 = rzp * p[6] + rzn * p[78];
+    const T enz7 = rzp * p[7] + rzn * p[79];
+    const T enz8 = rzp * p[8] + rzn * p[80];
+    const T epn0 = rnp * p[72] - rnn * p[0];
+    const T epn1 = rnp * p[73] - rnn * p[1];
+    const T epn2 = rnp * p[74] - rnn * p[2];
+    const T epn3 = rnp * p[75] - rnn * p[3];
+    const T epn4 = rnp * p[76] - rnn * p[4];
+    const T epn5 = rnp * p[77] - rnn * p[5];
+    const T epn6 = rnp * p[78] - rnn * p[6];
+    const T epn7 = rnp * p[79] - rnn * p[7];
+    const T epn8 = rnp * p[80] - rnn * p[8];
+    const T epp0 = rpp * p[72] - rpn * p[0];
+    const T epp1 = rpp * p[73] - rpn * p[1];
+    const T epp2 = rpp * p[74] - rpn * p[2];
+    const T epp3 = rpp * p[75] - rpn * p[3];
+    const T epp4 = rpp * p[76] - rpn * p[4];
+    const T epp5 = rpp * p[77] - rpn * p[5];
+    const T epp6 = rpp * p[78] - rpn * p[6];
+    const T epp7 = rpp * p[79] - rpn * p[7];
+    const T epp8 = rpp * p[80] - rpn * p[8];
+    const T epz0 = rzp * p[72] - rzn * p[0];
+    const T epz1 = rzp * p[73] - rzn * p[1];
+    const T epz2 = rzp * p[74] - rzn * p[2];
+    const T epz3 = rzp * p[75] - rzn * p[3];
+    const T epz4 = rzp * p[76] - rzn * p[4];
+    const T epz5 = rzp * p[77] - rzn * p[5];
+    const T epz6 = rzp * p[78] - rzn * p[6];
+    const T epz7 = rzp * p[79] - rzn * p[7];
+    const T epz8 = rzp * p[80] - rzn * p[8];
     {  // m = -5
         const T g0 = k0 * rpz;
         const T g1 = k0 * rnz;
         c[0] = k1 * enp0 + k1 * enn8;
-        c[1] = (g0 * p[0] + g1 * p[72]) * k2;
-        c[2] = (g0 * p[1] + g1 * p[73]) * k3;
-        c[3] = (g0 * p[2] + g1 * p[74]) * k4;
-        c[4] = (g0 * p[3] + g1 * p[75]) * k5;
-        c[5] = (g0 * p[4] + g1 * p[76]) * k6;
-        c[6] = (g0 * p[5] + g1 * p[77]) * k5;
-        c[7] = (g0 * p[6] + g1 * p[78]) * k4;
-        c[8] = (g0 * p[7] + g1 * p[79]) * k3;
-        c[9] = (g0 * p[8] + g1 * p[80]) * k2;
-        c[10] = k1 * epp0 + k1 * epn8;
+        c[11] = (g0 * p[0] + g1 * p[8]) * k2;
+        c[22] = (g0 * p[9] + g1 * p[17]) * k3;
+        c[33] = (g0 * p[18] + g1 * p[26]) * k4;
+        c[44] = (g0 * p[27] + g1 * p[35]) * k5;
+        c[55] = (g0 * p[36] + g1 * p[44]) * k6;
+        c[66] = (g0 * p[45] + g1 * p[53]) * k5;
+        c[77] = (g0 * p[54] + g1 * p[62]) * k4;
+        c[88] = (g0 * p[63] + g1 * p[71]) * k3;
+        c[99] = (g0 * p[72] + g1 * p[80]) * k2;
+        c[110] = k1 * epp0 + k1 * epn8;
     }
     {  // m = -4
         const T g0 = k7 * rzz;
         const T g1 = k8 * rpz;
         const T g2 = k8 * rnz;
-        c[11] = k9 * enz0 + k10 * enp1 + k10 * enn7;
-        c[12] = (g0 * p[0] + g1 * p[9] + g2 * p[63]) * k2;
-        c[13] = (g0 * p[1] + g1 * p[10] + g2 * p[64]) * k3;
-        c[14] = (g0 * p[2] + g1 * p[11] + g2 * p[65]) * k4;
-        c[15] = (g0 * p[3] + g1 * p[12] + g2 * p[66]) * k5;
-        c[16] = (g0 * p[4] + g1 * p[13] + g2 * p[67]) * k6;
-        c[17] = (g0 * p[5] + g1 * p[14] + g2 * p[68]) * k5;
-        c[18] = (g0 * p[6] + g1 * p[15] + g2 * p[69]) * k4;
-        c[19] = (g0 * p[7] + g1 * p[16] + g2 * p[70]) * k3;
-        c[20] = (g0 * p[8] + g1 * p[17] + g2 * p[71]) * k2;
-        c[21] = k9 * epz0 + k10 * epp1 + k10 * epn7;
+        c[1] = k9 * enz0 + k10 * enp1 + k10 * enn7;
+        c[12] = (g0 * p[0] + g1 * p[1] + g2 * p[7]) * k2;
+        c[23] = (g0 * p[9] + g1 * p[10] + g2 * p[16]) * k3;
+        c[34] = (g0 * p[18] + g1 * p[19] + g2 * p[25]) * k4;
+        c[45] = (g0 * p[27] + g1 * p[28] + g2 * p[34]) * k5;
+        c[56] = (g0 * p[36] + g1 * p[37] + g2 * p[43]) * k6;
+        c[67] = (g0 * p[45] + g1 * p[46] + g2 * p[52]) * k5;
+        c[78] = (g0 * p[54] + g1 * p[55] + g2 * p[61]) * k4;
+        c[89] = (g0 * p[63] + g1 * p[64] + g2 * p[70]) * k3;
+        c[100] = (g0 * p[72] + g1 * p[73] + g2 * p[79]) * k2;
+        c[111] = k9 * epz0 + k10 * epp1 + k10 * epn7;
     }
     {  // m = -3
         const T g0 = k11 * rzz;
@@ -634,17 +671,17 @@ SPHBASIS_FORCEINLINE void rotation_band_5(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k12 * rnz;
         const T g3 = k13 * rpz;
         const T g4 = k14 * rnz;
-        c[22] = k15 * enz1 + k16 * enp2 + k16 * enn6 + k17 * enp0 + k18 * enn8;
-        c[23] = (g0 * p[9] + g1 * p[18] + g2 * p[54] + g3 * p[0] + g4 * p[72]) * k2;
-        c[24] = (g0 * p[10] + g1 * p[19] + g2 * p[55] + g3 * p[1] + g4 * p[73]) * k3;
-        c[25] = (g0 * p[11] + g1 * p[20] + g2 * p[56] + g3 * p[2] + g4 * p[74]) * k4;
-        c[26] = (g0 * p[12] + g1 * p[21] + g2 * p[57] + g3 * p[3] + g4 * p[75]) * k5;
-        c[27] = (g0 * p[13] + g1 * p[22] + g2 * p[58] + g3 * p[4] + g4 * p[76]) * k6;
-        c[28] = (g0 * p[14] + g1 * p[23] + g2 * p[59] + g3 * p[5] + g4 * p[77]) * k5;
-        c[29] = (g0 * p[15] + g1 * p[24] + g2 * p[60] + g3 * p[6] + g4 * p[78]) * k4;
-        c[30] = (g0 * p[16] + g1 * p[25] + g2 * p[61] + g3 * p[7] + g4 * p[79]) * k3;
-        c[31] = (g0 * p[17] + g1 * p[26] + g2 * p[62] + g3 * p[8] + g4 * p[80]) * k2;
-        c[32] = k15 * epz1 + k16 * epp2 + k16 * epn6 + k17 * epp0 + k18 * epn8;
+        c[2] = k15 * enz1 + k16 * enp2 + k16 * enn6 + k17 * enp0 + k18 * enn8;
+        c[13] = (g0 * p[1] + g1 * p[2] + g2 * p[6] + g3 * p[0] + g4 * p[8]) * k2;
+        c[24] = (g0 * p[10] + g1 * p[11] + g2 * p[15] + g3 * p[9] + g4 * p[17]) * k3;
+        c[35] = (g0 * p[19] + g1 * p[20] + g2 * p[24] + g3 * p[18] + g4 * p[26]) * k4;
+        c[46] = (g0 * p[28] + g1 * p[29] + g2 * p[33] + g3 * p[27] + g4 * p[35]) * k5;
+        c[57] = (g0 * p[37] + g1 * p[38] + g2 * p[42] + g3 * p[36] + g4 * p[44]) * k6;
+        c[68] = (g0 * p[46] + g1 * p[47] + g2 * p[51] + g3 * p[45] + g4 * p[53]) * k5;
+        c[79] = (g0 * p[55] + g1 * p[56] + g2 * p[60] + g3 * p[54] + g4 * p[62]) * k4;
+        c[90] = (g0 * p[64] + g1 * p[65] + g2 * p[69] + g3 * p[63] + g4 * p[71]) * k3;
+        c[101] = (g0 * p[73] + g1 * p[74] + g2 * p[78] + g3 * p[72] + g4 * p[80]) * k2;
+        c[112] = k15 * epz1 + k16 * epp2 + k16 * epn6 + k17 * epp0 + k18 * epn8;
     }
     {  // m = -2
         const T g0 = k19 * rzz;
@@ -652,67 +689,67 @@ SPHBASIS_FORCEINLINE void rotation_band_5(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k20 * rnz;
         const T g3 = k21 * rpz;
         const T g4 = k22 * rnz;
-        c[33] = k23 * enz2 + k24 * enp3 + k24 * enn5 + k25 * enp1 + k26 * enn7;
-        c[34] = (g0 * p[18] + g1 * p[27] + g2 * p[45] + g3 * p[9] + g4 * p[63]) * k2;
-        c[35] = (g0 * p[19] + g1 * p[28] + g2 * p[46] + g3 * p[10] + g4 * p[64]) * k3;
-        c[36] = (g0 * p[20] + g1 * p[29] + g2 * p[47] + g3 * p[11] + g4 * p[65]) * k4;
-        c[37] = (g0 * p[21] + g1 * p[30] + g2 * p[48] + g3 * p[12] + g4 * p[66]) * k5;
-        c[38] = (g0 * p[22] + g1 * p[31] + g2 * p[49] + g3 * p[13] + g4 * p[67]) * k6;
-        c[39] = (g0 * p[23] + g1 * p[32] + g2 * p[50] + g3 * p[14] + g4 * p[68]) * k5;
-        c[40] = (g0 * p[24] + g1 * p[33] + g2 * p[51] + g3 * p[15] + g4 * p[69]) * k4;
-        c[41] = (g0 * p[25] + g1 * p[34] + g2 * p[52] + g3 * p[16] + g4 * p[70]) * k3;
-        c[42] = (g0 * p[26] + g1 * p[35] + g2 * p[53] + g3 * p[17] + g4 * p[71]) * k2;
-        c[43] = k23 * epz2 + k24 * epp3 + k24 * epn5 + k25 * epp1 + k26 * epn7;
+        c[3] = k23 * enz2 + k24 * enp3 + k24 * enn5 + k25 * enp1 + k26 * enn7;
+        c[14] = (g0 * p[2] + g1 * p[3] + g2 * p[5] + g3 * p[1] + g4 * p[7]) * k2;
+        c[25] = (g0 * p[11] + g1 * p[12] + g2 * p[14] + g3 * p[10] + g4 * p[16]) * k3;
+        c[36] = (g0 * p[20] + g1 * p[21] + g2 * p[23] + g3 * p[19] + g4 * p[25]) * k4;
+        c[47] = (g0 * p[29] + g1 * p[30] + g2 * p[32] + g3 * p[28] + g4 * p[34]) * k5;
+        c[58] = (g0 * p[38] + g1 * p[39] + g2 * p[41] + g3 * p[37] + g4 * p[43]) * k6;
+        c[69] = (g0 * p[47] + g1 * p[48] + g2 * p[50] + g3 * p[46] + g4 * p[52]) * k5;
+        c[80] = (g0 * p[56] + g1 * p[57] + g2 * p[59] + g3 * p[55] + g4 * p[61]) * k4;
+        c[91] = (g0 * p[65] + g1 * p[66] + g2 * p[68] + g3 * p[64] + g4 * p[70]) * k3;
+        c[102] = (g0 * p[74] + g1 * p[75] + g2 * p[77] + g3 * p[73] + g4 * p[79]) * k2;
+        c[113] = k23 * epz2 + k24 * epp3 + k24 * epn5 + k25 * epp1 + k26 * epn7;
     }
     {  // m = -1
         const T g0 = k27 * rzz;
         const T g1 = k28 * rnz;
         const T g2 = k29 * rpz;
         const T g3 = k30 * rnz;
-        c[44] = k31 * enz3 + k32 * enn4 + k33 * enp2 + k34 * enn6;
-        c[45] = (g0 * p[27] + g1 * p[36] + g2 * p[18] + g3 * p[54]) * k2;
-        c[46] = (g0 * p[28] + g1 * p[37] + g2 * p[19] + g3 * p[55]) * k3;
-        c[47] = (g0 * p[29] + g1 * p[38] + g2 * p[20] + g3 * p[56]) * k4;
-        c[48] = (g0 * p[30] + g1 * p[39] + g2 * p[21] + g3 * p[57]) * k5;
-        c[49] = (g0 * p[31] + g1 * p[40] + g2 * p[22] + g3 * p[58]) * k6;
-        c[50] = (g0 * p[32] + g1 * p[41] + g2 * p[23] + g3 * p[59]) * k5;
-        c[51] = (g0 * p[33] + g1 * p[42] + g2 * p[24] + g3 * p[60]) * k4;
-        c[52] = (g0 * p[34] + g1 * p[43] + g2 * p[25] + g3 * p[61]) * k3;
-        c[53] = (g0 * p[35] + g1 * p[44] + g2 * p[26] + g3 * p[62]) * k2;
-        c[54] = k31 * epz3 + k32 * epn4 + k33 * epp2 + k34 * epn6;
+        c[4] = k31 * enz3 + k32 * enn4 + k33 * enp2 + k34 * enn6;
+        c[15] = (g0 * p[3] + g1 * p[4] + g2 * p[2] + g3 * p[6]) * k2;
+        c[26] = (g0 * p[12] + g1 * p[13] + g2 * p[11] + g3 * p[15]) * k3;
+        c[37] = (g0 * p[21] + g1 * p[22] + g2 * p[20] + g3 * p[24]) * k4;
+        c[48] = (g0 * p[30] + g1 * p[31] + g2 * p[29] + g3 * p[33]) * k5;
+        c[59] = (g0 * p[39] + g1 * p[40] + g2 * p[38] + g3 * p[42]) * k6;
+        c[70] = (g0 * p[48] + g1 * p[49] + g2 * p[47] + g3 * p[51]) * k5;
+        c[81] = (g0 * p[57] + g1 * p[58] + g2 * p[56] + g3 * p[60]) * k4;
+        c[92] = (g0 * p[66] + g1 * p[67] + g2 * p[65] + g3 * p[69]) * k3;
+        c[103] = (g0 * p[75] + g1 * p[76] + g2 * p[74] + g3 * p[78]) * k2;
+        c[114] = k31 * epz3 + k32 * epn4 + k33 * epp2 + k34 * epn6;
     }
     {  // m = 0
         const T g0 = k35 * rzz;
         const T g1 = k36 * rpz;
         const T g2 = k36 * rnz;
-        c[55] = k37 * enz4 + k38 * enp5 + k38 * enn3;
-        c[56] = (g0 * p[36] + g1 * p[45] + g2 * p[27]) * k2;
-        c[57] = (g0 * p[37] + g1 * p[46] + g2 * p[28]) * k3;
-        c[58] = (g0 * p[38] + g1 * p[47] + g2 * p[29]) * k4;
-        c[59] = (g0 * p[39] + g1 * p[48] + g2 * p[30]) * k5;
-        c[60] = (g0 * p[40] + g1 * p[49] + g2 * p[31]) * k6;
-        c[61] = (g0 * p[41] + g1 * p[50] + g2 * p[32]) * k5;
-        c[62] = (g0 * p[42] + g1 * p[51] + g2 * p[33]) * k4;
-        c[63] = (g0 * p[43] + g1 * p[52] + g2 * p[34]) * k3;
-        c[64] = (g0 * p[44] + g1 * p[53] + g2 * p[35]) * k2;
-        c[65] = k37 * epz4 + k38 * epp5 + k38 * epn3;
+        c[5] = k37 * enz4 + k38 * enp5 + k38 * enn3;
+        c[16] = (g0 * p[4] + g1 * p[5] + g2 * p[3]) * k2;
+        c[27] = (g0 * p[13] + g1 * p[14] + g2 * p[12]) * k3;
+        c[38] = (g0 * p[22] + g1 * p[23] + g2 * p[21]) * k4;
+        c[49] = (g0 * p[31] + g1 * p[32] + g2 * p[30]) * k5;
+        c[60] = (g0 * p[40] + g1 * p[41] + g2 * p[39]) * k6;
+        c[71] = (g0 * p[49] + g1 * p[50] + g2 * p[48]) * k5;
+        c[82] = (g0 * p[58] + g1 * p[59] + g2 * p[57]) * k4;
+        c[93] = (g0 * p[67] + g1 * p[68] + g2 * p[66]) * k3;
+        c[104] = (g0 * p[76] + g1 * p[77] + g2 * p[75]) * k2;
+        c[115] = k37 * epz4 + k38 * epp5 + k38 * epn3;
     }
     {  // m = 1
         const T g0 = k27 * rzz;
         const T g1 = k28 * rpz;
         const T g2 = k29 * rpz;
         const T g3 = k29 * rnz;
-        c[66] = k31 * enz5 + k32 * enp4 + k33 * enp6 + k33 * enn2;
-        c[67] = (g0 * p[45] + g1 * p[36] + g2 * p[54] + g3 * p[18]) * k2;
-        c[68] = (g0 * p[46] + g1 * p[37] + g2 * p[55] + g3 * p[19]) * k3;
-        c[69] = (g0 * p[47] + g1 * p[38] + g2 * p[56] + g3 * p[20]) * k4;
-        c[70] = (g0 * p[48] + g1 * p[39] + g2 * p[57] + g3 * p[21]) * k5;
-        c[71] = (g0 * p[49] + g1 * p[40] + g2 * p[58] + g3 * p[22]) * k6;
-        c[72] = (g0 * p[50] + g1 * p[41] + g2 * p[59] + g3 * p[23]) * k5;
-        c[73] = (g0 * p[51] + g1 * p[42] + g2 * p[60] + g3 * p[24]) * k4;
-        c[74] = (g0 * p[52] + g1 * p[43] + g2 * p[61] + g3 * p[25]) * k3;
-        c[75] = (g0 * p[53] + g1 * p[44] + g2 * p[62] + g3 * p[26]) * k2;
-        c[76] = k31 * epz5 + k32 * epp4 + k33 * epp6 + k33 * epn2;
+        c[6] = k31 * enz5 + k32 * enp4 + k33 * enp6 + k33 * enn2;
+        c[17] = (g0 * p[5] + g1 * p[4] + g2 * p[6] + g3 * p[2]) * k2;
+        c[28] = (g0 * p[14] + g1 * p[13] + g2 * p[15] + g3 * p[11]) * k3;
+        c[39] = (g0 * p[23] + g1 * p[22] + g2 * p[24] + g3 * p[20]) * k4;
+        c[50] = (g0 * p[32] + g1 * p[31] + g2 * p[33] + g3 * p[29]) * k5;
+        c[61] = (g0 * p[41] + g1 * p[40] + g2 * p[42] + g3 * p[38]) * k6;
+        c[72] = (g0 * p[50] + g1 * p[49] + g2 * p[51] + g3 * p[47]) * k5;
+        c[83] = (g0 * p[59] + g1 * p[58] + g2 * p[60] + g3 * p[56]) * k4;
+        c[94] = (g0 * p[68] + g1 * p[67] + g2 * p[69] + g3 * p[65]) * k3;
+        c[105] = (g0 * p[77] + g1 * p[76] + g2 * p[78] + g3 * p[74]) * k2;
+        c[116] = k31 * epz5 + k32 * epp4 + k33 * epp6 + k33 * epn2;
     }
     {  // m = 2
         const T g0 = k19 * rzz;
@@ -720,17 +757,17 @@ SPHBASIS_FORCEINLINE void rotation_band_5(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k39 * rnz;
         const T g3 = k21 * rpz;
         const T g4 = k21 * rnz;
-        c[77] = k23 * enz6 + k24 * enp5 + k40 * enn3 + k25 * enp7 + k25 * enn1;
-        c[78] = (g0 * p[54] + g1 * p[45] + g2 * p[27] + g3 * p[63] + g4 * p[9]) * k2;
-        c[79] = (g0 * p[55] + g1 * p[46] + g2 * p[28] + g3 * p[64] + g4 * p[10]) * k3;
-        c[80] = (g0 * p[56] + g1 * p[47] + g2 * p[29] + g3 * p[65] + g4 * p[11]) * k4;
-        c[81] = (g0 * p[57] + g1 * p[48] + g2 * p[30] + g3 * p[66] + g4 * p[12]) * k5;
-        c[82] = (g0 * p[58] + g1 * p[49] + g2 * p[31] + g3 * p[67] + g4 * p[13]) * k6;
-        c[83] = (g0 * p[59] + g1 * p[50] + g2 * p[32] + g3 * p[68] + g4 * p[14]) * k5;
-        c[84] = (g0 * p[60] + g1 * p[51] + g2 * p[33] + g3 * p[69] + g4 * p[15]) * k4;
-        c[85] = (g0 * p[61] + g1 * p[52] + g2 * p[34] + g3 * p[70] + g4 * p[16]) * k3;
-        c[86] = (g0 * p[62] + g1 * p[53] + g2 * p[35] + g3 * p[71] + g4 * p[17]) * k2;
-        c[87] = k23 * epz6 + k24 * epp5 + k40 * epn3 + k25 * epp7 + k25 * epn1;
+        c[7] = k23 * enz6 + k24 * enp5 + k40 * enn3 + k25 * enp7 + k25 * enn1;
+        c[18] = (g0 * p[6] + g1 * p[5] + g2 * p[3] + g3 * p[7] + g4 * p[1]) * k2;
+        c[29] = (g0 * p[15] + g1 * p[14] + g2 * p[12] + g3 * p[16] + g4 * p[10]) * k3;
+        c[40] = (g0 * p[24] + g1 * p[23] + g2 * p[21] + g3 * p[25] + g4 * p[19]) * k4;
+        c[51] = (g0 * p[33] + g1 * p[32] + g2 * p[30] + g3 * p[34] + g4 * p[28]) * k5;
+        c[62] = (g0 * p[42] + g1 * p[41] + g2 * p[39] + g3 * p[43] + g4 * p[37]) * k6;
+        c[73] = (g0 * p[51] + g1 * p[50] + g2 * p[48] + g3 * p[52] + g4 * p[46]) * k5;
+        c[84] = (g0 * p[60] + g1 * p[59] + g2 * p[57] + g3 * p[61] + g4 * p[55]) * k4;
+        c[95] = (g0 * p[69] + g1 * p[68] + g2 * p[66] + g3 * p[70] + g4 * p[64]) * k3;
+        c[106] = (g0 * p[78] + g1 * p[77] + g2 * p[75] + g3 * p[79] + g4 * p[73]) * k2;
+        c[117] = k23 * epz6 + k24 * epp5 + k40 * epn3 + k25 * epp7 + k25 * epn1;
     }
     {  // m = 3
         const T g0 = k11 * rzz;
@@ -738,57 +775,57 @@ SPHBASIS_FORCEINLINE void rotation_band_5(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k41 * rnz;
         const T g3 = k13 * rpz;
         const T g4 = k13 * rnz;
-        c[88] = k15 * enz7 + k16 * enp6 + k42 * enn2 + k17 * enp8 + k17 * enn0;
-        c[89] = (g0 * p[63] + g1 * p[54] + g2 * p[18] + g3 * p[72] + g4 * p[0]) * k2;
-        c[90] = (g0 * p[64] + g1 * p[55] + g2 * p[19] + g3 * p[73] + g4 * p[1]) * k3;
-        c[91] = (g0 * p[65] + g1 * p[56] + g2 * p[20] + g3 * p[74] + g4 * p[2]) * k4;
-        c[92] = (g0 * p[66] + g1 * p[57] + g2 * p[21] + g3 * p[75] + g4 * p[3]) * k5;
-        c[93] = (g0 * p[67] + g1 * p[58] + g2 * p[22] + g3 * p[76] + g4 * p[4]) * k6;
-        c[94] = (g0 * p[68] + g1 * p[59] + g2 * p[23] + g3 * p[77] + g4 * p[5]) * k5;
-        c[95] = (g0 * p[69] + g1 * p[60] + g2 * p[24] + g3 * p[78] + g4 * p[6]) * k4;
-        c[96] = (g0 * p[70] + g1 * p[61] + g2 * p[25] + g3 * p[79] + g4 * p[7]) * k3;
-        c[97] = (g0 * p[71] + g1 * p[62] + g2 * p[26] + g3 * p[80] + g4 * p[8]) * k2;
-        c[98] = k15 * epz7 + k16 * epp6 + k42 * epn2 + k17 * epp8 + k17 * epn0;
+        c[8] = k15 * enz7 + k16 * enp6 + k42 * enn2 + k17 * enp8 + k17 * enn0;
+        c[19] = (g0 * p[7] + g1 * p[6] + g2 * p[2] + g3 * p[8] + g4 * p[0]) * k2;
+        c[30] = (g0 * p[16] + g1 * p[15] + g2 * p[11] + g3 * p[17] + g4 * p[9]) * k3;
+        c[41] = (g0 * p[25] + g1 * p[24] + g2 * p[20] + g3 * p[26] + g4 * p[18]) * k4;
+        c[52] = (g0 * p[34] + g1 * p[33] + g2 * p[29] + g3 * p[35] + g4 * p[27]) * k5;
+        c[63] = (g0 * p[43] + g1 * p[42] + g2 * p[38] + g3 * p[44] + g4 * p[36]) * k6;
+        c[74] = (g0 * p[52] + g1 * p[51] + g2 * p[47] + g3 * p[53] + g4 * p[45]) * k5;
+        c[85] = (g0 * p[61] + g1 * p[60] + g2 * p[56] + g3 * p[62] + g4 * p[54]) * k4;
+        c[96] = (g0 * p[70] + g1 * p[69] + g2 * p[65] + g3 * p[71] + g4 * p[63]) * k3;
+        c[107] = (g0 * p[79] + g1 * p[78] + g2 * p[74] + g3 * p[80] + g4 * p[72]) * k2;
+        c[118] = k15 * epz7 + k16 * epp6 + k42 * epn2 + k17 * epp8 + k17 * epn0;
     }
     {  // m = 4
         const T g0 = k7 * rzz;
         const T g1 = k8 * rpz;
         const T g2 = k43 * rnz;
-        c[99] = k9 * enz8 + k10 * enp7 + k44 * enn1;
-        c[100] = (g0 * p[72] + g1 * p[63] + g2 * p[9]) * k2;
-        c[101] = (g0 * p[73] + g1 * p[64] + g2 * p[10]) * k3;
-        c[102] = (g0 * p[74] + g1 * p[65] + g2 * p[11]) * k4;
-        c[103] = (g0 * p[75] + g1 * p[66] + g2 * p[12]) * k5;
-        c[104] = (g0 * p[76] + g1 * p[67] + g2 * p[13]) * k6;
-        c[105] = (g0 * p[77] + g1 * p[68] + g2 * p[14]) * k5;
-        c[106] = (g0 * p[78] + g1 * p[69] + g2 * p[15]) * k4;
-        c[107] = (g0 * p[79] + g1 * p[70] + g2 * p[16]) * k3;
-        c[108] = (g0 * p[80] + g1 * p[71] + g2 * p[17]) * k2;
-        c[109] = k9 * epz8 + k10 * epp7 + k44 * epn1;
+        c[9] = k9 * enz8 + k10 * enp7 + k44 * enn1;
+        c[20] = (g0 * p[8] + g1 * p[7] + g2 * p[1]) * k2;
+        c[31] = (g0 * p[17] + g1 * p[16] + g2 * p[10]) * k3;
+        c[42] = (g0 * p[26] + g1 * p[25] + g2 * p[19]) * k4;
+        c[53] = (g0 * p[35] + g1 * p[34] + g2 * p[28]) * k5;
+        c[64] = (g0 * p[44] + g1 * p[43] + g2 * p[37]) * k6;
+        c[75] = (g0 * p[53] + g1 * p[52] + g2 * p[46]) * k5;
+        c[86] = (g0 * p[62] + g1 * p[61] + g2 * p[55]) * k4;
+        c[97] = (g0 * p[71] + g1 * p[70] + g2 * p[64]) * k3;
+        c[108] = (g0 * p[80] + g1 * p[79] + g2 * p[73]) * k2;
+        c[119] = k9 * epz8 + k10 * epp7 + k44 * epn1;
     }
     {  // m = 5
         const T g0 = k0 * rpz;
         const T g1 = k45 * rnz;
-        c[110] = k1 * enp8 + k46 * enn0;
-        c[111] = (g0 * p[72] + g1 * p[0]) * k2;
-        c[112] = (g0 * p[73] + g1 * p[1]) * k3;
-        c[113] = (g0 * p[74] + g1 * p[2]) * k4;
-        c[114] = (g0 * p[75] + g1 * p[3]) * k5;
-        c[115] = (g0 * p[76] + g1 * p[4]) * k6;
-        c[116] = (g0 * p[77] + g1 * p[5]) * k5;
-        c[117] = (g0 * p[78] + g1 * p[6]) * k4;
-        c[118] = (g0 * p[79] + g1 * p[7]) * k3;
-        c[119] = (g0 * p[80] + g1 * p[8]) * k2;
+        c[10] = k1 * enp8 + k46 * enn0;
+        c[21] = (g0 * p[8] + g1 * p[0]) * k2;
+        c[32] = (g0 * p[17] + g1 * p[9]) * k3;
+        c[43] = (g0 * p[26] + g1 * p[18]) * k4;
+        c[54] = (g0 * p[35] + g1 * p[27]) * k5;
+        c[65] = (g0 * p[44] + g1 * p[36]) * k6;
+        c[76] = (g0 * p[53] + g1 * p[45]) * k5;
+        c[87] = (g0 * p[62] + g1 * p[54]) * k4;
+        c[98] = (g0 * p[71] + g1 * p[63]) * k3;
+        c[109] = (g0 * p[80] + g1 * p[72]) * k2;
         c[120] = k1 * epp8 + k46 * epn0;
     }
 }
 
-/// Band 6 of D(R) (13x13, row-major) from band 5 in p and band 1 in r1.
+/// Band 6 of D(R) (13x13, column-major) from band 5 in p and band 1 in r1.
 template <class T>
 SPHBASIS_FORCEINLINE void rotation_band_6(const T* SPHBASIS_RESTRICT r1, const T* SPHBASIS_RESTRICT p, T* SPHBASIS_RESTRICT c) noexcept {
-    const T rnn = r1[0], rnz = r1[1], rnp = r1[2];
-    const T rzn = r1[3], rzz = r1[4], rzp = r1[5];
-    const T rpn = r1[6], rpz = r1[7], rpp = r1[8];
+    const T rnn = r1[0], rnz = r1[3], rnp = r1[6];
+    const T rzn = r1[1], rzz = r1[4], rzp = r1[7];
+    const T rpn = r1[2], rpz = r1[5], rpp = r1[8];
     (void)rnn; (void)rnz; (void)rnp; (void)rzn; (void)rzz; (void)rzp; (void)rpn; (void)rpz; (void)rpp;
     const T k0 = T(5.7445626465380286);  // sqrt(33)
     const T k1 = T(0.5);  // 1/2
@@ -848,106 +885,106 @@ SPHBASIS_FORCEINLINE void rotation_band_6(const T* SPHBASIS_RESTRICT r1, const T
     const T k55 = T(-0.45643546458763845);  // -sqrt(30)/12
     const T k56 = T(-5.7445626465380286);  // -sqrt(33)
     const T k57 = T(-0.5);  // -1/2
-    const T enn0 = rnp * p[0] + rnn * p[10];
-    const T enn1 = rnp * p[11] + rnn * p[21];
-    const T enn10 = rnp * p[110] + rnn * p[120];
-    const T enn2 = rnp * p[22] + rnn * p[32];
-    const T enn3 = rnp * p[33] + rnn * p[43];
-    const T enn4 = rnp * p[44] + rnn * p[54];
-    const T enn5 = rnp * p[55] + rnn * p[65];
-    const T enn6 = rnp * p[66] + rnn * p[76];
-    const T enn7 = rnp * p[77] + rnn * p[87];
-    const T enn8 = rnp * p[88] + rnn * p[98];
-    const T enn9 = rnp * p[99] + rnn * p[109];
-    const T enp0 = rpp * p[0] + rpn * p[10];
-    const T enp1 = rpp * p[11] + rpn * p[21];
-    const T enp10 = rpp * p[110] + rpn * p[120];
-    const T enp2 = rpp * p[22] + rpn * p[32];
-    const T enp3 = rpp * p[33] + rpn * p[43];
-    const T enp4 = rpp * p[44] + rpn * p[54];
-    const T enp5 = rpp * p[55] + rpn * p[65];
-    const T enp6 = rpp * p[66] + rpn * p[76];
-    const T enp7 = rpp * p[77] + rpn * p[87];
-    const T enp8 = rpp * p[88] + rpn * p[98];
-    const T enp9 = rpp * p[99] + rpn * p[109];
-    const T enz0 = rzp * p[0] + rzn * p[10];
-    const T enz1 = rzp * p[11] + rzn * p[21];
-    const T enz10 = rzp * p[110] + rzn * p[120];
-    const T enz2 = rzp * p[22] + rzn * p[32];
-    const T enz3 = rzp * p[33] + rzn * p[43];
-    const T enz4 = rzp * p[44] + rzn * p[54];
-    const T enz5 = rzp * p[55] + rzn * p[65];
-    const T enz6 = rzp * p[66] + rzn * p[76];
-    const T enz7 = rzp * p[77] + rzn * p[87];
-    const T enz8 = rzp * p[88] + rzn * p[98];
-    const T enz9 = rzp * p[99] + rzn * p[109];
-    const T epn0 = rnp * p[10] - rnn * p[0];
-    const T epn1 = rnp * p[21] - rnn * p[11];
-    const T epn10 = rnp * p[120] - rnn * p[110];
-    const T epn2 = rnp * p[32] - rnn * p[22];
-    const T epn3 = rnp * p[43] - rnn * p[33];
-    const T epn4 = rnp * p[54] - rnn * p[44];
-    const T epn5 = rnp * p[65] - rnn * p[55];
-    const T epn6 = rnp * p[76] - rnn * p[66];
-    const T epn7 = rnp * p[87] - rnn * p[77];
-    const T epn8 = rnp * p[98] - rnn * p[88];
-    const T epn9 = rnp * p[109] - rnn * p[99];
-    const T epp0 = rpp * p[10] - rpn * p[0];
-    const T epp1 = rpp * p[21] - rpn * p[11];
-    const T epp10 = rpp * p[120] - rpn * p[110];
-    const T epp2 = rpp * p[32] - rpn * p[22];
-    const T epp3 = rpp * p[43] - rpn * p[33];
-    const T epp4 = rpp * p[54] - rpn * p[44];
-    const T epp5 = rpp * p[65] - rpn * p[55];
-    const T epp6 = rpp * p[76] - rpn * p[66];
-    const T epp7 = rpp * p[87] - rpn * p[77];
-    const T epp8 = rpp * p[98] - rpn * p[88];
-    const T epp9 = rpp * p[109] - rpn * p[99];
-    const T epz0 = rzp * p[10] - rzn * p[0];
-    const T epz1 = rzp * p[21] - rzn * p[11];
-    const T epz10 = rzp * p[120] - rzn * p[110];
-    const T epz2 = rzp * p[32] - rzn * p[22];
-    const T epz3 = rzp * p[43] - rzn * p[33];
-    const T epz4 = rzp * p[54] - rzn * p[44];
-    const T epz5 = rzp * p[65] - rzn * p[55];
-    const T epz6 = rzp * p[76] - rzn * p[66];
-    const T epz7 = rzp * p[87] - rzn * p[77];
-    const T epz8 = rzp * p[98] - rzn * p[88];
-    const T epz9 = rzp * p[109] - rzn * p[99];
+    const T enn0 = rnp * p[0] + rnn * p[110];
+    const T enn1 = rnp * p[1] + rnn * p[111];
+    const T enn10 = rnp * p[10] + rnn * p[120];
+    const T enn2 = rnp * p[2] + rnn * p[112];
+    const T enn3 = rnp * p[3] + rnn * p[113];
+    const T enn4 = rnp * p[4] + rnn * p[114];
+    const T enn5 = rnp * p[5] + rnn * p[115];
+    const T enn6 = rnp * p[6] + rnn * p[116];
+    const T enn7 = rnp * p[7] + rnn * p[117];
+    const T enn8 = rnp * p[8] + rnn * p[118];
+    const T enn9 = rnp * p[9] + rnn * p[119];
+    const T enp0 = rpp * p[0] + rpn * p[110];
+    const T enp1 = rpp * p[1] + rpn * p[111];
+    const T enp10 = rpp * p[10] + rpn * p[120];
+    const T enp2 = rpp * p[2] + rpn * p[112];
+    const T enp3 = rpp * p[3] + rpn * p[113];
+    const T enp4 = rpp * p[4] + rpn * p[114];
+    const T enp5 = rpp * p[5] + rpn * p[115];
+    const T enp6 = rpp * p[6] + rpn * p[116];
+    const T enp7 = rpp * p[7] + rpn * p[117];
+    const T enp8 = rpp * p[8] + rpn * p[118];
+    const T enp9 = rpp * p[9] + rpn * p[119];
+    const T enz0 = rzp * p[0] + rzn * p[110];
+    const T enz1 = rzp * p[1] + rzn * p[111];
+    const T enz10 = rzp * p[10] + rzn * p[120];
+    const T enz2 = rzp * p[2] + rzn * p[112];
+    const T enz3 = rzp * p[3] + rzn * p[113];
+    const T enz4 = rzp * p[4] + rzn * p[114];
+    const T enz5 = rzp * p[5] + rzn * p[115];
+    const T enz6 = rzp * p[6] + rzn * p[116];
+    const T enz7 = rzp * p[7] + rzn * p[117];
+    const T enz8 = rzp * p[8] + rzn * p[118];
+    const T enz9 = rzp * p[9] + rzn * p[119];
+    const T epn0 = rnp * p[110] - rnn * p[0];
+    const T epn1 = rnp * p[111] - rnn * p[1];
+    const T epn10 = rnp * p[120] - rnn * p[10];
+    const T epn2 = rnp * p[112] - rnn * p[2];
+    const T epn3 = rnp * p[113] - rnn * p[3];
+    const T epn4 = rnp * p[114] - rnn * p[4];
+    const T epn5 = rnp * p[115] - rnn * p[5];
+    const T epn6 = rnp * p[116] - rnn * p[6];
+    const T epn7 = rnp * p[117] - rnn * p[7];
+    const T epn8 = rnp * p[118] - rnn * p[8];
+    const T epn9 = rnp * p[119] - rnn * p[9];
+    const T epp0 = rpp * p[110] - rpn * p[0];
+    const T epp1 = rpp * p[111] - rpn * p[1];
+    const T epp10 = rpp * p[120] - rpn * p[10];
+    const T epp2 = rpp * p[112] - rpn * p[2];
+    const T epp3 = rpp * p[113] - rpn * p[3];
+    const T epp4 = rpp * p[114] - rpn * p[4];
+    const T epp5 = rpp * p[115] - rpn * p[5];
+    const T epp6 = rpp * p[116] - rpn * p[6];
+    const T epp7 = rpp * p[117] - rpn * p[7];
+    const T epp8 = rpp * p[118] - rpn * p[8];
+    const T epp9 = rpp * p[119] - rpn * p[9];
+    const T epz0 = rzp * p[110] - rzn * p[0];
+    const T epz1 = rzp * p[111] - rzn * p[1];
+    const T epz10 = rzp * p[120] - rzn * p[10];
+    const T epz2 = rzp * p[112] - rzn * p[2];
+    const T epz3 = rzp * p[113] - rzn * p[3];
+    const T epz4 = rzp * p[114] - rzn * p[4];
+    const T epz5 = rzp * p[115] - rzn * p[5];
+    const T epz6 = rzp * p[116] - rzn * p[6];
+    const T epz7 = rzp * p[117] - rzn * p[7];
+    const T epz8 = rzp * p[118] - rzn * p[8];
+    const T epz9 = rzp * p[119] - rzn * p[9];
     {  // m = -6
         const T g0 = k0 * rpz;
         const T g1 = k0 * rnz;
         c[0] = k1 * enp0 + k1 * enn10;
-        c[1] = (g0 * p[0] + g1 * p[110]) * k2;
-        c[2] = (g0 * p[1] + g1 * p[111]) * k3;
-        c[3] = (g0 * p[2] + g1 * p[112]) * k4;
-        c[4] = (g0 * p[3] + g1 * p[113]) * k5;
-        c[5] = (g0 * p[4] + g1 * p[114]) * k6;
-        c[6] = (g0 * p[5] + g1 * p[115]) * k7;
-        c[7] = (g0 * p[6] + g1 * p[116]) * k6;
-        c[8] = (g0 * p[7] + g1 * p[117]) * k5;
-        c[9] = (g0 * p[8] + g1 * p[118]) * k4;
-        c[10] = (g0 * p[9] + g1 * p[119]) * k3;
-        c[11] = (g0 * p[10] + g1 * p[120]) * k2;
-        c[12] = k1 * epp0 + k1 * epn10;
+        c[13] = (g0 * p[0] + g1 * p[10]) * k2;
+        c[26] = (g0 * p[11] + g1 * p[21]) * k3;
+        c[39] = (g0 * p[22] + g1 * p[32]) * k4;
+        c[52] = (g0 * p[33] + g1 * p[43]) * k5;
+        c[65] = (g0 * p[44] + g1 * p[54]) * k6;
+        c[78] = (g0 * p[55] + g1 * p[65]) * k7;
+        c[91] = (g0 * p[66] + g1 * p[76]) * k6;
+        c[104] = (g0 * p[77] + g1 * p[87]) * k5;
+        c[117] = (g0 * p[88] + g1 * p[98]) * k4;
+        c[130] = (g0 * p[99] + g1 * p[109]) * k3;
+        c[143] = (g0 * p[110] + g1 * p[120]) * k2;
+        c[156] = k1 * epp0 + k1 * epn10;
     }
     {  // m = -5
         const T g0 = k8 * rzz;
         const T g1 = k9 * rpz;
         const T g2 = k9 * rnz;
-        c[13] = k10 * enz0 + k11 * enp1 + k11 * enn9;
-        c[14] = (g0 * p[0] + g1 * p[11] + g2 * p[99]) * k2;
-        c[15] = (g0 * p[1] + g1 * p[12] + g2 * p[100]) * k3;
-        c[16] = (g0 * p[2] + g1 * p[13] + g2 * p[101]) * k4;
-        c[17] = (g0 * p[3] + g1 * p[14] + g2 * p[102]) * k5;
-        c[18] = (g0 * p[4] + g1 * p[15] + g2 * p[103]) * k6;
-        c[19] = (g0 * p[5] + g1 * p[16] + g2 * p[104]) * k7;
-        c[20] = (g0 * p[6] + g1 * p[17] + g2 * p[105]) * k6;
-        c[21] = (g0 * p[7] + g1 * p[18] + g2 * p[106]) * k5;
-        c[22] = (g0 * p[8] + g1 * p[19] + g2 * p[107]) * k4;
-        c[23] = (g0 * p[9] + g1 * p[20] + g2 * p[108]) * k3;
-        c[24] = (g0 * p[10] + g1 * p[21] + g2 * p[109]) * k2;
-        c[25] = k10 * epz0 + k11 * epp1 + k11 * epn9;
+        c[1] = k10 * enz0 + k11 * enp1 + k11 * enn9;
+        c[14] = (g0 * p[0] + g1 * p[1] + g2 * p[9]) * k2;
+        c[27] = (g0 * p[11] + g1 * p[12] + g2 * p[20]) * k3;
+        c[40] = (g0 * p[22] + g1 * p[23] + g2 * p[31]) * k4;
+        c[53] = (g0 * p[33] + g1 * p[34] + g2 * p[42]) * k5;
+        c[66] = (g0 * p[44] + g1 * p[45] + g2 * p[53]) * k6;
+        c[79] = (g0 * p[55] + g1 * p[56] + g2 * p[64]) * k7;
+        c[92] = (g0 * p[66] + g1 * p[67] + g2 * p[75]) * k6;
+        c[105] = (g0 * p[77] + g1 * p[78] + g2 * p[86]) * k5;
+        c[118] = (g0 * p[88] + g1 * p[89] + g2 * p[97]) * k4;
+        c[131] = (g0 * p[99] + g1 * p[100] + g2 * p[108]) * k3;
+        c[144] = (g0 * p[110] + g1 * p[111] + g2 * p[119]) * k2;
+        c[157] = k10 * epz0 + k11 * epp1 + k11 * epn9;
     }
     {  // m = -4
         const T g0 = k12 * rzz;
@@ -955,19 +992,19 @@ SPHBASIS_FORCEINLINE void rotation_band_6(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k13 * rnz;
         const T g3 = k14 * rpz;
         const T g4 = k15 * rnz;
-        c[26] = k16 * enz1 + k17 * enp2 + k17 * enn8 + k18 * enp0 + k19 * enn10;
-        c[27] = (g0 * p[11] + g1 * p[22] + g2 * p[88] + g3 * p[0] + g4 * p[110]) * k2;
-        c[28] = (g0 * p[12] + g1 * p[23] + g2 * p[89] + g3 * p[1] + g4 * p[111]) * k3;
-        c[29] = (g0 * p[13] + g1 * p[24] + g2 * p[90] + g3 * p[2] + g4 * p[112]) * k4;
-        c[30] = (g0 * p[14] + g1 * p[25] + g2 * p[91] + g3 * p[3] + g4 * p[113]) * k5;
-        c[31] = (g0 * p[15] + g1 * p[26] + g2 * p[92] + g3 * p[4] + g4 * p[114]) * k6;
-        c[32] = (g0 * p[16] + g1 * p[27] + g2 * p[93] + g3 * p[5] + g4 * p[115]) * k7;
-        c[33] = (g0 * p[17] + g1 * p[28] + g2 * p[94] + g3 * p[6] + g4 * p[116]) * k6;
-        c[34] = (g0 * p[18] + g1 * p[29] + g2 * p[95] + g3 * p[7] + g4 * p[117]) * k5;
-        c[35] = (g0 * p[19] + g1 * p[30] + g2 * p[96] + g3 * p[8] + g4 * p[118]) * k4;
-        c[36] = (g0 * p[20] + g1 * p[31] + g2 * p[97] + g3 * p[9] + g4 * p[119]) * k3;
-        c[37] = (g0 * p[21] + g1 * p[32] + g2 * p[98] + g3 * p[10] + g4 * p[120]) * k2;
-        c[38] = k16 * epz1 + k17 * epp2 + k17 * epn8 + k18 * epp0 + k19 * epn10;
+        c[2] = k16 * enz1 + k17 * enp2 + k17 * enn8 + k18 * enp0 + k19 * enn10;
+        c[15] = (g0 * p[1] + g1 * p[2] + g2 * p[8] + g3 * p[0] + g4 * p[10]) * k2;
+        c[28] = (g0 * p[12] + g1 * p[13] + g2 * p[19] + g3 * p[11] + g4 * p[21]) * k3;
+        c[41] = (g0 * p[23] + g1 * p[24] + g2 * p[30] + g3 * p[22] + g4 * p[32]) * k4;
+        c[54] = (g0 * p[34] + g1 * p[35] + g2 * p[41] + g3 * p[33] + g4 * p[43]) * k5;
+        c[67] = (g0 * p[45] + g1 * p[46] + g2 * p[52] + g3 * p[44] + g4 * p[54]) * k6;
+        c[80] = (g0 * p[56] + g1 * p[57] + g2 * p[63] + g3 * p[55] + g4 * p[65]) * k7;
+        c[93] = (g0 * p[67] + g1 * p[68] + g2 * p[74] + g3 * p[66] + g4 * p[76]) * k6;
+        c[106] = (g0 * p[78] + g1 * p[79] + g2 * p[85] + g3 * p[77] + g4 * p[87]) * k5;
+        c[119] = (g0 * p[89] + g1 * p[90] + g2 * p[96] + g3 * p[88] + g4 * p[98]) * k4;
+        c[132] = (g0 * p[100] + g1 * p[101] + g2 * p[107] + g3 * p[99] + g4 * p[109]) * k3;
+        c[145] = (g0 * p[111] + g1 * p[112] + g2 * p[118] + g3 * p[110] + g4 * p[120]) * k2;
+        c[158] = k16 * epz1 + k17 * epp2 + k17 * epn8 + k18 * epp0 + k19 * epn10;
     }
     {  // m = -3
         const T g0 = k20 * rzz;
@@ -975,19 +1012,19 @@ SPHBASIS_FORCEINLINE void rotation_band_6(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k21 * rnz;
         const T g3 = k22 * rpz;
         const T g4 = k23 * rnz;
-        c[39] = k24 * enz2 + k25 * enp3 + k25 * enn7 + k26 * enp1 + k27 * enn9;
-        c[40] = (g0 * p[22] + g1 * p[33] + g2 * p[77] + g3 * p[11] + g4 * p[99]) * k2;
-        c[41] = (g0 * p[23] + g1 * p[34] + g2 * p[78] + g3 * p[12] + g4 * p[100]) * k3;
-        c[42] = (g0 * p[24] + g1 * p[35] + g2 * p[79] + g3 * p[13] + g4 * p[101]) * k4;
-        c[43] = (g0 * p[25] + g1 * p[36] + g2 * p[80] + g3 * p[14] + g4 * p[102]) * k5;
-        c[44] = (g0 * p[26] + g1 * p[37] + g2 * p[81] + g3 * p[15] + g4 * p[103]) * k6;
-        c[45] = (g0 * p[27] + g1 * p[38] + g2 * p[82] + g3 * p[16] + g4 * p[104]) * k7;
-        c[46] = (g0 * p[28] + g1 * p[39] + g2 * p[83] + g3 * p[17] + g4 * p[105]) * k6;
-        c[47] = (g0 * p[29] + g1 * p[40] + g2 * p[84] + g3 * p[18] + g4 * p[106]) * k5;
-        c[48] = (g0 * p[30] + g1 * p[41] + g2 * p[85] + g3 * p[19] + g4 * p[107]) * k4;
-        c[49] = (g0 * p[31] + g1 * p[42] + g2 * p[86] + g3 * p[20] + g4 * p[108]) * k3;
-        c[50] = (g0 * p[32] + g1 * p[43] + g2 * p[87] + g3 * p[21] + g4 * p[109]) * k2;
-        c[51] = k24 * epz2 + k25 * epp3 + k25 * epn7 + k26 * epp1 + k27 * epn9;
+        c[3] = k24 * enz2 + k25 * enp3 + k25 * enn7 + k26 * enp1 + k27 * enn9;
+        c[16] = (g0 * p[2] + g1 * p[3] + g2 * p[7] + g3 * p[1] + g4 * p[9]) * k2;
+        c[29] = (g0 * p[13] + g1 * p[14] + g2 * p[18] + g3 * p[12] + g4 * p[20]) * k3;
+        c[42] = (g0 * p[24] + g1 * p[25] + g2 * p[29] + g3 * p[23] + g4 * p[31]) * k4;
+        c[55] = (g0 * p[35] + g1 * p[36] + g2 * p[40] + g3 * p[34] + g4 * p[42]) * k5;
+        c[68] = (g0 * p[46] + g1 * p[47] + g2 * p[51] + g3 * p[45] + g4 * p[53]) * k6;
+        c[81] = (g0 * p[57] + g1 * p[58] + g2 * p[62] + g3 * p[56] + g4 * p[64]) * k7;
+        c[94] = (g0 * p[68] + g1 * p[69] + g2 * p[73] + g3 * p[67] + g4 * p[75]) * k6;
+        c[107] = (g0 * p[79] + g1 * p[80] + g2 * p[84] + g3 * p[78] + g4 * p[86]) * k5;
+        c[120] = (g0 * p[90] + g1 * p[91] + g2 * p[95] + g3 * p[89] + g4 * p[97]) * k4;
+        c[133] = (g0 * p[101] + g1 * p[102] + g2 * p[106] + g3 * p[100] + g4 * p[108]) * k3;
+        c[146] = (g0 * p[112] + g1 * p[113] + g2 * p[117] + g3 * p[111] + g4 * p[119]) * k2;
+        c[159] = k24 * epz2 + k25 * epp3 + k25 * epn7 + k26 * epp1 + k27 * epn9;
     }
     {  // m = -2
         const T g0 = k28 * rzz;
@@ -995,75 +1032,75 @@ SPHBASIS_FORCEINLINE void rotation_band_6(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k29 * rnz;
         const T g3 = k30 * rpz;
         const T g4 = k31 * rnz;
-        c[52] = k32 * enz3 + k33 * enp4 + k33 * enn6 + k34 * enp2 + k35 * enn8;
-        c[53] = (g0 * p[33] + g1 * p[44] + g2 * p[66] + g3 * p[22] + g4 * p[88]) * k2;
-        c[54] = (g0 * p[34] + g1 * p[45] + g2 * p[67] + g3 * p[23] + g4 * p[89]) * k3;
-        c[55] = (g0 * p[35] + g1 * p[46] + g2 * p[68] + g3 * p[24] + g4 * p[90]) * k4;
-        c[56] = (g0 * p[36] + g1 * p[47] + g2 * p[69] + g3 * p[25] + g4 * p[91]) * k5;
-        c[57] = (g0 * p[37] + g1 * p[48] + g2 * p[70] + g3 * p[26] + g4 * p[92]) * k6;
-        c[58] = (g0 * p[38] + g1 * p[49] + g2 * p[71] + g3 * p[27] + g4 * p[93]) * k7;
-        c[59] = (g0 * p[39] + g1 * p[50] + g2 * p[72] + g3 * p[28] + g4 * p[94]) * k6;
-        c[60] = (g0 * p[40] + g1 * p[51] + g2 * p[73] + g3 * p[29] + g4 * p[95]) * k5;
-        c[61] = (g0 * p[41] + g1 * p[52] + g2 * p[74] + g3 * p[30] + g4 * p[96]) * k4;
-        c[62] = (g0 * p[42] + g1 * p[53] + g2 * p[75] + g3 * p[31] + g4 * p[97]) * k3;
-        c[63] = (g0 * p[43] + g1 * p[54] + g2 * p[76] + g3 * p[32] + g4 * p[98]) * k2;
-        c[64] = k32 * epz3 + k33 * epp4 + k33 * epn6 + k34 * epp2 + k35 * epn8;
+        c[4] = k32 * enz3 + k33 * enp4 + k33 * enn6 + k34 * enp2 + k35 * enn8;
+        c[17] = (g0 * p[3] + g1 * p[4] + g2 * p[6] + g3 * p[2] + g4 * p[8]) * k2;
+        c[30] = (g0 * p[14] + g1 * p[15] + g2 * p[17] + g3 * p[13] + g4 * p[19]) * k3;
+        c[43] = (g0 * p[25] + g1 * p[26] + g2 * p[28] + g3 * p[24] + g4 * p[30]) * k4;
+        c[56] = (g0 * p[36] + g1 * p[37] + g2 * p[39] + g3 * p[35] + g4 * p[41]) * k5;
+        c[69] = (g0 * p[47] + g1 * p[48] + g2 * p[50] + g3 * p[46] + g4 * p[52]) * k6;
+        c[82] = (g0 * p[58] + g1 * p[59] + g2 * p[61] + g3 * p[57] + g4 * p[63]) * k7;
+        c[95] = (g0 * p[69] + g1 * p[70] + g2 * p[72] + g3 * p[68] + g4 * p[74]) * k6;
+        c[108] = (g0 * p[80] + g1 * p[81] + g2 * p[83] + g3 * p[79] + g4 * p[85]) * k5;
+        c[121] = (g0 * p[91] + g1 * p[92] + g2 * p[94] + g3 * p[90] + g4 * p[96]) * k4;
+        c[134] = (g0 * p[102] + g1 * p[103] + g2 * p[105] + g3 * p[101] + g4 * p[107]) * k3;
+        c[147] = (g0 * p[113] + g1 * p[114] + g2 * p[116] + g3 * p[112] + g4 * p[118]) * k2;
+        c[160] = k32 * epz3 + k33 * epp4 + k33 * epn6 + k34 * epp2 + k35 * epn8;
     }
     {  // m = -1
         const T g0 = k36 * rzz;
         const T g1 = k37 * rnz;
         const T g2 = k38 * rpz;
         const T g3 = k39 * rnz;
-        c[65] = k40 * enz4 + k41 * enn5 + k42 * enp3 + k43 * enn7;
-        c[66] = (g0 * p[44] + g1 * p[55] + g2 * p[33] + g3 * p[77]) * k2;
-        c[67] = (g0 * p[45] + g1 * p[56] + g2 * p[34] + g3 * p[78]) * k3;
-        c[68] = (g0 * p[46] + g1 * p[57] + g2 * p[35] + g3 * p[79]) * k4;
-        c[69] = (g0 * p[47] + g1 * p[58] + g2 * p[36] + g3 * p[80]) * k5;
-        c[70] = (g0 * p[48] + g1 * p[59] + g2 * p[37] + g3 * p[81]) * k6;
-        c[71] = (g0 * p[49] + g1 * p[60] + g2 * p[38] + g3 * p[82]) * k7;
-        c[72] = (g0 * p[50] + g1 * p[61] + g2 * p[39] + g3 * p[83]) * k6;
-        c[73] = (g0 * p[51] + g1 * p[62] + g2 * p[40] + g3 * p[84]) * k5;
-        c[74] = (g0 * p[52] + g1 * p[63] + g2 * p[41] + g3 * p[85]) * k4;
-        c[75] = (g0 * p[53] + g1 * p[64] + g2 * p[42] + g3 * p[86]) * k3;
-        c[76] = (g0 * p[54] + g1 * p[65] + g2 * p[43] + g3 * p[87]) * k2;
-        c[77] = k40 * epz4 + k41 * epn5 + k42 * epp3 + k43 * epn7;
+        c[5] = k40 * enz4 + k41 * enn5 + k42 * enp3 + k43 * enn7;
+        c[18] = (g0 * p[4] + g1 * p[5] + g2 * p[3] + g3 * p[7]) * k2;
+        c[31] = (g0 * p[15] + g1 * p[16] + g2 * p[14] + g3 * p[18]) * k3;
+        c[44] = (g0 * p[26] + g1 * p[27] + g2 * p[25] + g3 * p[29]) * k4;
+        c[57] = (g0 * p[37] + g1 * p[38] + g2 * p[36] + g3 * p[40]) * k5;
+        c[70] = (g0 * p[48] + g1 * p[49] + g2 * p[47] + g3 * p[51]) * k6;
+        c[83] = (g0 * p[59] + g1 * p[60] + g2 * p[58] + g3 * p[62]) * k7;
+        c[96] = (g0 * p[70] + g1 * p[71] + g2 * p[69] + g3 * p[73]) * k6;
+        c[109] = (g0 * p[81] + g1 * p[82] + g2 * p[80] + g3 * p[84]) * k5;
+        c[122] = (g0 * p[92] + g1 * p[93] + g2 * p[91] + g3 * p[95]) * k4;
+        c[135] = (g0 * p[103] + g1 * p[104] + g2 * p[102] + g3 * p[106]) * k3;
+        c[148] = (g0 * p[114] + g1 * p[115] + g2 * p[113] + g3 * p[117]) * k2;
+        c[161] = k40 * epz4 + k41 * epn5 + k42 * epp3 + k43 * epn7;
     }
     {  // m = 0
         const T g0 = k44 * rzz;
         const T g1 = k45 * rpz;
         const T g2 = k45 * rnz;
-        c[78] = k46 * enz5 + k47 * enp6 + k47 * enn4;
-        c[79] = (g0 * p[55] + g1 * p[66] + g2 * p[44]) * k2;
-        c[80] = (g0 * p[56] + g1 * p[67] + g2 * p[45]) * k3;
-        c[81] = (g0 * p[57] + g1 * p[68] + g2 * p[46]) * k4;
-        c[82] = (g0 * p[58] + g1 * p[69] + g2 * p[47]) * k5;
-        c[83] = (g0 * p[59] + g1 * p[70] + g2 * p[48]) * k6;
-        c[84] = (g0 * p[60] + g1 * p[71] + g2 * p[49]) * k7;
-        c[85] = (g0 * p[61] + g1 * p[72] + g2 * p[50]) * k6;
-        c[86] = (g0 * p[62] + g1 * p[73] + g2 * p[51]) * k5;
-        c[87] = (g0 * p[63] + g1 * p[74] + g2 * p[52]) * k4;
-        c[88] = (g0 * p[64] + g1 * p[75] + g2 * p[53]) * k3;
-        c[89] = (g0 * p[65] + g1 * p[76] + g2 * p[54]) * k2;
-        c[90] = k46 * epz5 + k47 * epp6 + k47 * epn4;
+        c[6] = k46 * enz5 + k47 * enp6 + k47 * enn4;
+        c[19] = (g0 * p[5] + g1 * p[6] + g2 * p[4]) * k2;
+        c[32] = (g0 * p[16] + g1 * p[17] + g2 * p[15]) * k3;
+        c[45] = (g0 * p[27] + g1 * p[28] + g2 * p[26]) * k4;
+        c[58] = (g0 * p[38] + g1 * p[39] + g2 * p[37]) * k5;
+        c[71] = (g0 * p[49] + g1 * p[50] + g2 * p[48]) * k6;
+        c[84] = (g0 * p[60] + g1 * p[61] + g2 * p[59]) * k7;
+        c[97] = (g0 * p[71] + g1 * p[72] + g2 * p[70]) * k6;
+        c[110] = (g0 * p[82] + g1 * p[83] + g2 * p[81]) * k5;
+        c[123] = (g0 * p[93] + g1 * p[94] + g2 * p[92]) * k4;
+        c[136] = (g0 * p[104] + g1 * p[105] + g2 * p[103]) * k3;
+        c[149] = (g0 * p[115] + g1 * p[116] + g2 * p[114]) * k2;
+        c[162] = k46 * epz5 + k47 * epp6 + k47 * epn4;
     }
     {  // m = 1
         const T g0 = k36 * rzz;
         const T g1 = k37 * rpz;
         const T g2 = k38 * rpz;
         const T g3 = k38 * rnz;
-        c[91] = k40 * enz6 + k41 * enp5 + k42 * enp7 + k42 * enn3;
-        c[92] = (g0 * p[66] + g1 * p[55] + g2 * p[77] + g3 * p[33]) * k2;
-        c[93] = (g0 * p[67] + g1 * p[56] + g2 * p[78] + g3 * p[34]) * k3;
-        c[94] = (g0 * p[68] + g1 * p[57] + g2 * p[79] + g3 * p[35]) * k4;
-        c[95] = (g0 * p[69] + g1 * p[58] + g2 * p[80] + g3 * p[36]) * k5;
-        c[96] = (g0 * p[70] + g1 * p[59] + g2 * p[81] + g3 * p[37]) * k6;
-        c[97] = (g0 * p[71] + g1 * p[60] + g2 * p[82] + g3 * p[38]) * k7;
-        c[98] = (g0 * p[72] + g1 * p[61] + g2 * p[83] + g3 * p[39]) * k6;
-        c[99] = (g0 * p[73] + g1 * p[62] + g2 * p[84] + g3 * p[40]) * k5;
-        c[100] = (g0 * p[74] + g1 * p[63] + g2 * p[85] + g3 * p[41]) * k4;
-        c[101] = (g0 * p[75] + g1 * p[64] + g2 * p[86] + g3 * p[42]) * k3;
-        c[102] = (g0 * p[76] + g1 * p[65] + g2 * p[87] + g3 * p[43]) * k2;
-        c[103] = k40 * epz6 + k41 * epp5 + k42 * epp7 + k42 * epn3;
+        c[7] = k40 * enz6 + k41 * enp5 + k42 * enp7 + k42 * enn3;
+        c[20] = (g0 * p[6] + g1 * p[5] + g2 * p[7] + g3 * p[3]) * k2;
+        c[33] = (g0 * p[17] + g1 * p[16] + g2 * p[18] + g3 * p[14]) * k3;
+        c[46] = (g0 * p[28] + g1 * p[27] + g2 * p[29] + g3 * p[25]) * k4;
+        c[59] = (g0 * p[39] + g1 * p[38] + g2 * p[40] + g3 * p[36]) * k5;
+        c[72] = (g0 * p[50] + g1 * p[49] + g2 * p[51] + g3 * p[47]) * k6;
+        c[85] = (g0 * p[61] + g1 * p[60] + g2 * p[62] + g3 * p[58]) * k7;
+        c[98] = (g0 * p[72] + g1 * p[71] + g2 * p[73] + g3 * p[69]) * k6;
+        c[111] = (g0 * p[83] + g1 * p[82] + g2 * p[84] + g3 * p[80]) * k5;
+        c[124] = (g0 * p[94] + g1 * p[93] + g2 * p[95] + g3 * p[91]) * k4;
+        c[137] = (g0 * p[105] + g1 * p[104] + g2 * p[106] + g3 * p[102]) * k3;
+        c[150] = (g0 * p[116] + g1 * p[115] + g2 * p[117] + g3 * p[113]) * k2;
+        c[163] = k40 * epz6 + k41 * epp5 + k42 * epp7 + k42 * epn3;
     }
     {  // m = 2
         const T g0 = k28 * rzz;
@@ -1071,19 +1108,19 @@ SPHBASIS_FORCEINLINE void rotation_band_6(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k48 * rnz;
         const T g3 = k30 * rpz;
         const T g4 = k30 * rnz;
-        c[104] = k32 * enz7 + k33 * enp6 + k49 * enn4 + k34 * enp8 + k34 * enn2;
-        c[105] = (g0 * p[77] + g1 * p[66] + g2 * p[44] + g3 * p[88] + g4 * p[22]) * k2;
-        c[106] = (g0 * p[78] + g1 * p[67] + g2 * p[45] + g3 * p[89] + g4 * p[23]) * k3;
-        c[107] = (g0 * p[79] + g1 * p[68] + g2 * p[46] + g3 * p[90] + g4 * p[24]) * k4;
-        c[108] = (g0 * p[80] + g1 * p[69] + g2 * p[47] + g3 * p[91] + g4 * p[25]) * k5;
-        c[109] = (g0 * p[81] + g1 * p[70] + g2 * p[48] + g3 * p[92] + g4 * p[26]) * k6;
-        c[110] = (g0 * p[82] + g1 * p[71] + g2 * p[49] + g3 * p[93] + g4 * p[27]) * k7;
-        c[111] = (g0 * p[83] + g1 * p[72] + g2 * p[50] + g3 * p[94] + g4 * p[28]) * k6;
-        c[112] = (g0 * p[84] + g1 * p[73] + g2 * p[51] + g3 * p[95] + g4 * p[29]) * k5;
-        c[113] = (g0 * p[85] + g1 * p[74] + g2 * p[52] + g3 * p[96] + g4 * p[30]) * k4;
-        c[114] = (g0 * p[86] + g1 * p[75] + g2 * p[53] + g3 * p[97] + g4 * p[31]) * k3;
-        c[115] = (g0 * p[87] + g1 * p[76] + g2 * p[54] + g3 * p[98] + g4 * p[32]) * k2;
-        c[116] = k32 * epz7 + k33 * epp6 + k49 * epn4 + k34 * epp8 + k34 * epn2;
+        c[8] = k32 * enz7 + k33 * enp6 + k49 * enn4 + k34 * enp8 + k34 * enn2;
+        c[21] = (g0 * p[7] + g1 * p[6] + g2 * p[4] + g3 * p[8] + g4 * p[2]) * k2;
+        c[34] = (g0 * p[18] + g1 * p[17] + g2 * p[15] + g3 * p[19] + g4 * p[13]) * k3;
+        c[47] = (g0 * p[29] + g1 * p[28] + g2 * p[26] + g3 * p[30] + g4 * p[24]) * k4;
+        c[60] = (g0 * p[40] + g1 * p[39] + g2 * p[37] + g3 * p[41] + g4 * p[35]) * k5;
+        c[73] = (g0 * p[51] + g1 * p[50] + g2 * p[48] + g3 * p[52] + g4 * p[46]) * k6;
+        c[86] = (g0 * p[62] + g1 * p[61] + g2 * p[59] + g3 * p[63] + g4 * p[57]) * k7;
+        c[99] = (g0 * p[73] + g1 * p[72] + g2 * p[70] + g3 * p[74] + g4 * p[68]) * k6;
+        c[112] = (g0 * p[84] + g1 * p[83] + g2 * p[81] + g3 * p[85] + g4 * p[79]) * k5;
+        c[125] = (g0 * p[95] + g1 * p[94] + g2 * p[92] + g3 * p[96] + g4 * p[90]) * k4;
+        c[138] = (g0 * p[106] + g1 * p[105] + g2 * p[103] + g3 * p[107] + g4 * p[101]) * k3;
+        c[151] = (g0 * p[117] + g1 * p[116] + g2 * p[114] + g3 * p[118] + g4 * p[112]) * k2;
+        c[164] = k32 * epz7 + k33 * epp6 + k49 * epn4 + k34 * epp8 + k34 * epn2;
     }
     {  // m = 3
         const T g0 = k20 * rzz;
@@ -1091,19 +1128,19 @@ SPHBASIS_FORCEINLINE void rotation_band_6(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k50 * rnz;
         const T g3 = k22 * rpz;
         const T g4 = k22 * rnz;
-        c[117] = k24 * enz8 + k25 * enp7 + k51 * enn3 + k26 * enp9 + k26 * enn1;
-        c[118] = (g0 * p[88] + g1 * p[77] + g2 * p[33] + g3 * p[99] + g4 * p[11]) * k2;
-        c[119] = (g0 * p[89] + g1 * p[78] + g2 * p[34] + g3 * p[100] + g4 * p[12]) * k3;
-        c[120] = (g0 * p[90] + g1 * p[79] + g2 * p[35] + g3 * p[101] + g4 * p[13]) * k4;
-        c[121] = (g0 * p[91] + g1 * p[80] + g2 * p[36] + g3 * p[102] + g4 * p[14]) * k5;
-        c[122] = (g0 * p[92] + g1 * p[81] + g2 * p[37] + g3 * p[103] + g4 * p[15]) * k6;
-        c[123] = (g0 * p[93] + g1 * p[82] + g2 * p[38] + g3 * p[104] + g4 * p[16]) * k7;
-        c[124] = (g0 * p[94] + g1 * p[83] + g2 * p[39] + g3 * p[105] + g4 * p[17]) * k6;
-        c[125] = (g0 * p[95] + g1 * p[84] + g2 * p[40] + g3 * p[106] + g4 * p[18]) * k5;
-        c[126] = (g0 * p[96] + g1 * p[85] + g2 * p[41] + g3 * p[107] + g4 * p[19]) * k4;
-        c[127] = (g0 * p[97] + g1 * p[86] + g2 * p[42] + g3 * p[108] + g4 * p[20]) * k3;
-        c[128] = (g0 * p[98] + g1 * p[87] + g2 * p[43] + g3 * p[109] + g4 * p[21]) * k2;
-        c[129] = k24 * epz8 + k25 * epp7 + k51 * epn3 + k26 * epp9 + k26 * epn1;
+        c[9] = k24 * enz8 + k25 * enp7 + k51 * enn3 + k26 * enp9 + k26 * enn1;
+        c[22] = (g0 * p[8] + g1 * p[7] + g2 * p[3] + g3 * p[9] + g4 * p[1]) * k2;
+        c[35] = (g0 * p[19] + g1 * p[18] + g2 * p[14] + g3 * p[20] + g4 * p[12]) * k3;
+        c[48] = (g0 * p[30] + g1 * p[29] + g2 * p[25] + g3 * p[31] + g4 * p[23]) * k4;
+        c[61] = (g0 * p[41] + g1 * p[40] + g2 * p[36] + g3 * p[42] + g4 * p[34]) * k5;
+        c[74] = (g0 * p[52] + g1 * p[51] + g2 * p[47] + g3 * p[53] + g4 * p[45]) * k6;
+        c[87] = (g0 * p[63] + g1 * p[62] + g2 * p[58] + g3 * p[64] + g4 * p[56]) * k7;
+        c[100] = (g0 * p[74] + g1 * p[73] + g2 * p[69] + g3 * p[75] + g4 * p[67]) * k6;
+        c[113] = (g0 * p[85] + g1 * p[84] + g2 * p[80] + g3 * p[86] + g4 * p[78]) * k5;
+        c[126] = (g0 * p[96] + g1 * p[95] + g2 * p[91] + g3 * p[97] + g4 * p[89]) * k4;
+        c[139] = (g0 * p[107] + g1 * p[106] + g2 * p[102] + g3 * p[108] + g4 * p[100]) * k3;
+        c[152] = (g0 * p[118] + g1 * p[117] + g2 * p[113] + g3 * p[119] + g4 * p[111]) * k2;
+        c[165] = k24 * epz8 + k25 * epp7 + k51 * epn3 + k26 * epp9 + k26 * epn1;
     }
     {  // m = 4
         const T g0 = k12 * rzz;
@@ -1111,63 +1148,63 @@ SPHBASIS_FORCEINLINE void rotation_band_6(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k52 * rnz;
         const T g3 = k14 * rpz;
         const T g4 = k14 * rnz;
-        c[130] = k16 * enz9 + k17 * enp8 + k53 * enn2 + k18 * enp10 + k18 * enn0;
-        c[131] = (g0 * p[99] + g1 * p[88] + g2 * p[22] + g3 * p[110] + g4 * p[0]) * k2;
-        c[132] = (g0 * p[100] + g1 * p[89] + g2 * p[23] + g3 * p[111] + g4 * p[1]) * k3;
-        c[133] = (g0 * p[101] + g1 * p[90] + g2 * p[24] + g3 * p[112] + g4 * p[2]) * k4;
-        c[134] = (g0 * p[102] + g1 * p[91] + g2 * p[25] + g3 * p[113] + g4 * p[3]) * k5;
-        c[135] = (g0 * p[103] + g1 * p[92] + g2 * p[26] + g3 * p[114] + g4 * p[4]) * k6;
-        c[136] = (g0 * p[104] + g1 * p[93] + g2 * p[27] + g3 * p[115] + g4 * p[5]) * k7;
-        c[137] = (g0 * p[105] + g1 * p[94] + g2 * p[28] + g3 * p[116] + g4 * p[6]) * k6;
-        c[138] = (g0 * p[106] + g1 * p[95] + g2 * p[29] + g3 * p[117] + g4 * p[7]) * k5;
-        c[139] = (g0 * p[107] + g1 * p[96] + g2 * p[30] + g3 * p[118] + g4 * p[8]) * k4;
-        c[140] = (g0 * p[108] + g1 * p[97] + g2 * p[31] + g3 * p[119] + g4 * p[9]) * k3;
-        c[141] = (g0 * p[109] + g1 * p[98] + g2 * p[32] + g3 * p[120] + g4 * p[10]) * k2;
-        c[142] = k16 * epz9 + k17 * epp8 + k53 * epn2 + k18 * epp10 + k18 * epn0;
+        c[10] = k16 * enz9 + k17 * enp8 + k53 * enn2 + k18 * enp10 + k18 * enn0;
+        c[23] = (g0 * p[9] + g1 * p[8] + g2 * p[2] + g3 * p[10] + g4 * p[0]) * k2;
+        c[36] = (g0 * p[20] + g1 * p[19] + g2 * p[13] + g3 * p[21] + g4 * p[11]) * k3;
+        c[49] = (g0 * p[31] + g1 * p[30] + g2 * p[24] + g3 * p[32] + g4 * p[22]) * k4;
+        c[62] = (g0 * p[42] + g1 * p[41] + g2 * p[35] + g3 * p[43] + g4 * p[33]) * k5;
+        c[75] = (g0 * p[53] + g1 * p[52] + g2 * p[46] + g3 * p[54] + g4 * p[44]) * k6;
+        c[88] = (g0 * p[64] + g1 * p[63] + g2 * p[57] + g3 * p[65] + g4 * p[55]) * k7;
+        c[101] = (g0 * p[75] + g1 * p[74] + g2 * p[68] + g3 * p[76] + g4 * p[66]) * k6;
+        c[114] = (g0 * p[86] + g1 * p[85] + g2 * p[79] + g3 * p[87] + g4 * p[77]) * k5;
+        c[127] = (g0 * p[97] + g1 * p[96] + g2 * p[90] + g3 * p[98] + g4 * p[88]) * k4;
+        c[140] = (g0 * p[108] + g1 * p[107] + g2 * p[101] + g3 * p[109] + g4 * p[99]) * k3;
+        c[153] = (g0 * p[119] + g1 * p[118] + g2 * p[112] + g3 * p[120] + g4 * p[110]) * k2;
+        c[166] = k16 * epz9 + k17 * epp8 + k53 * epn2 + k18 * epp10 + k18 * epn0;
     }
     {  // m = 5
         const T g0 = k8 * rzz;
         const T g1 = k9 * rpz;
         const T g2 = k54 * rnz;
-        c[143] = k10 * enz10 + k11 * enp9 + k55 * enn1;
-        c[144] = (g0 * p[110] + g1 * p[99] + g2 * p[11]) * k2;
-        c[145] = (g0 * p[111] + g1 * p[100] + g2 * p[12]) * k3;
-        c[146] = (g0 * p[112] + g1 * p[101] + g2 * p[13]) * k4;
-        c[147] = (g0 * p[113] + g1 * p[102] + g2 * p[14]) * k5;
-        c[148] = (g0 * p[114] + g1 * p[103] + g2 * p[15]) * k6;
-        c[149] = (g0 * p[115] + g1 * p[104] + g2 * p[16]) * k7;
-        c[150] = (g0 * p[116] + g1 * p[105] + g2 * p[17]) * k6;
-        c[151] = (g0 * p[117] + g1 * p[106] + g2 * p[18]) * k5;
-        c[152] = (g0 * p[118] + g1 * p[107] + g2 * p[19]) * k4;
-        c[153] = (g0 * p[119] + g1 * p[108] + g2 * p[20]) * k3;
-        c[154] = (g0 * p[120] + g1 * p[109] + g2 * p[21]) * k2;
-        c[155] = k10 * epz10 + k11 * epp9 + k55 * epn1;
+        c[11] = k10 * enz10 + k11 * enp9 + k55 * enn1;
+        c[24] = (g0 * p[10] + g1 * p[9] + g2 * p[1]) * k2;
+        c[37] = (g0 * p[21] + g1 * p[20] + g2 * p[12]) * k3;
+        c[50] = (g0 * p[32] + g1 * p[31] + g2 * p[23]) * k4;
+        c[63] = (g0 * p[43] + g1 * p[42] + g2 * p[34]) * k5;
+        c[76] = (g0 * p[54] + g1 * p[53] + g2 * p[45]) * k6;
+        c[89] = (g0 * p[65] + g1 * p[64] + g2 * p[56]) * k7;
+        c[102] = (g0 * p[76] + g1 * p[75] + g2 * p[67]) * k6;
+        c[115] = (g0 * p[87] + g1 * p[86] + g2 * p[78]) * k5;
+        c[128] = (g0 * p[98] + g1 * p[97] + g2 * p[89]) * k4;
+        c[141] = (g0 * p[109] + g1 * p[108] + g2 * p[100]) * k3;
+        c[154] = (g0 * p[120] + g1 * p[119] + g2 * p[111]) * k2;
+        c[167] = k10 * epz10 + k11 * epp9 + k55 * epn1;
     }
     {  // m = 6
         const T g0 = k0 * rpz;
         const T g1 = k56 * rnz;
-        c[156] = k1 * enp10 + k57 * enn0;
-        c[157] = (g0 * p[110] + g1 * p[0]) * k2;
-        c[158] = (g0 * p[111] + g1 * p[1]) * k3;
-        c[159] = (g0 * p[112] + g1 * p[2]) * k4;
-        c[160] = (g0 * p[113] + g1 * p[3]) * k5;
-        c[161] = (g0 * p[114] + g1 * p[4]) * k6;
-        c[162] = (g0 * p[115] + g1 * p[5]) * k7;
-        c[163] = (g0 * p[116] + g1 * p[6]) * k6;
-        c[164] = (g0 * p[117] + g1 * p[7]) * k5;
-        c[165] = (g0 * p[118] + g1 * p[8]) * k4;
-        c[166] = (g0 * p[119] + g1 * p[9]) * k3;
-        c[167] = (g0 * p[120] + g1 * p[10]) * k2;
+        c[12] = k1 * enp10 + k57 * enn0;
+        c[25] = (g0 * p[10] + g1 * p[0]) * k2;
+        c[38] = (g0 * p[21] + g1 * p[11]) * k3;
+        c[51] = (g0 * p[32] + g1 * p[22]) * k4;
+        c[64] = (g0 * p[43] + g1 * p[33]) * k5;
+        c[77] = (g0 * p[54] + g1 * p[44]) * k6;
+        c[90] = (g0 * p[65] + g1 * p[55]) * k7;
+        c[103] = (g0 * p[76] + g1 * p[66]) * k6;
+        c[116] = (g0 * p[87] + g1 * p[77]) * k5;
+        c[129] = (g0 * p[98] + g1 * p[88]) * k4;
+        c[142] = (g0 * p[109] + g1 * p[99]) * k3;
+        c[155] = (g0 * p[120] + g1 * p[110]) * k2;
         c[168] = k1 * epp10 + k57 * epn0;
     }
 }
 
-/// Band 7 of D(R) (15x15, row-major) from band 6 in p and band 1 in r1.
+/// Band 7 of D(R) (15x15, column-major) from band 6 in p and band 1 in r1.
 template <class T>
 SPHBASIS_FORCEINLINE void rotation_band_7(const T* SPHBASIS_RESTRICT r1, const T* SPHBASIS_RESTRICT p, T* SPHBASIS_RESTRICT c) noexcept {
-    const T rnn = r1[0], rnz = r1[1], rnp = r1[2];
-    const T rzn = r1[3], rzz = r1[4], rzp = r1[5];
-    const T rpn = r1[6], rpz = r1[7], rpp = r1[8];
+    const T rnn = r1[0], rnz = r1[3], rnp = r1[6];
+    const T rzn = r1[1], rzz = r1[4], rzp = r1[7];
+    const T rpn = r1[2], rpz = r1[5], rpp = r1[8];
     (void)rnn; (void)rnz; (void)rnp; (void)rzn; (void)rzz; (void)rzp; (void)rpn; (void)rpz; (void)rpp;
     const T k0 = T(6.7453687816160208);  // sqrt(182)/2
     const T k1 = T(0.5);  // 1/2
@@ -1236,122 +1273,122 @@ SPHBASIS_FORCEINLINE void rotation_band_7(const T* SPHBASIS_RESTRICT r1, const T
     const T k64 = T(-0.46291004988627571);  // -sqrt(42)/14
     const T k65 = T(-6.7453687816160208);  // -sqrt(182)/2
     const T k66 = T(-0.5);  // -1/2
-    const T enn0 = rnp * p[0] + rnn * p[12];
-    const T enn1 = rnp * p[13] + rnn * p[25];
-    const T enn10 = rnp * p[130] + rnn * p[142];
-    const T enn11 = rnp * p[143] + rnn * p[155];
-    const T enn12 = rnp * p[156] + rnn * p[168];
-    const T enn2 = rnp * p[26] + rnn * p[38];
-    const T enn3 = rnp * p[39] + rnn * p[51];
-    const T enn4 = rnp * p[52] + rnn * p[64];
-    const T enn5 = rnp * p[65] + rnn * p[77];
-    const T enn6 = rnp * p[78] + rnn * p[90];
-    const T enn7 = rnp * p[91] + rnn * p[103];
-    const T enn8 = rnp * p[104] + rnn * p[116];
-    const T enn9 = rnp * p[117] + rnn * p[129];
-    const T enp0 = rpp * p[0] + rpn * p[12];
-    const T enp1 = rpp * p[13] + rpn * p[25];
-    const T enp10 = rpp * p[130] + rpn * p[142];
-    const T enp11 = rpp * p[143] + rpn * p[155];
-    const T enp12 = rpp * p[156] + rpn * p[168];
-    const T enp2 = rpp * p[26] + rpn * p[38];
-    const T enp3 = rpp * p[39] + rpn * p[51];
-    const T enp4 = rpp * p[52] + rpn * p[64];
-    const T enp5 = rpp * p[65] + rpn * p[77];
-    const T enp6 = rpp * p[78] + rpn * p[90];
-    const T enp7 = rpp * p[91] + rpn * p[103];
-    const T enp8 = rpp * p[104] + rpn * p[116];
-    const T enp9 = rpp * p[117] + rpn * p[129];
-    const T enz0 = rzp * p[0] + rzn * p[12];
-    const T enz1 = rzp * p[13] + rzn * p[25];
-    const T enz10 = rzp * p[130] + rzn * p[142];
-    const T enz11 = rzp * p[143] + rzn * p[155];
-    const T enz12 = rzp * p[156] + rzn * p[168];
-    const T enz2 = rzp * p[26] + rzn * p[38];
-    const T enz3 = rzp * p[39] + rzn * p[51];
-    const T enz4 = rzp * p[52] + rzn * p[64];
-    const T enz5 = rzp * p[65] + rzn * p[77];
-    const T enz6 = rzp * p[78] + rzn * p[90];
-    const T enz7 = rzp * p[91] + rzn * p[103];
-    const T enz8 = rzp * p[104] + rzn * p[116];
-    const T enz9 = rzp * p[117] + rzn * p[129];
-    const T epn0 = rnp * p[12] - rnn * p[0];
-    const T epn1 = rnp * p[25] - rnn * p[13];
-    const T epn10 = rnp * p[142] - rnn * p[130];
-    const T epn11 = rnp * p[155] - rnn * p[143];
-    const T epn12 = rnp * p[168] - rnn * p[156];
-    const T epn2 = rnp * p[38] - rnn * p[26];
-    const T epn3 = rnp * p[51] - rnn * p[39];
-    const T epn4 = rnp * p[64] - rnn * p[52];
-    const T epn5 = rnp * p[77] - rnn * p[65];
-    const T epn6 = rnp * p[90] - rnn * p[78];
-    const T epn7 = rnp * p[103] - rnn * p[91];
-    const T epn8 = rnp * p[116] - rnn * p[104];
-    const T epn9 = rnp * p[129] - rnn * p[117];
-    const T epp0 = rpp * p[12] - rpn * p[0];
-    const T epp1 = rpp * p[25] - rpn * p[13];
-    const T epp10 = rpp * p[142] - rpn * p[130];
-    const T epp11 = rpp * p[155] - rpn * p[143];
-    const T epp12 = rpp * p[168] - rpn * p[156];
-    const T epp2 = rpp * p[38] - rpn * p[26];
-    const T epp3 = rpp * p[51] - rpn * p[39];
-    const T epp4 = rpp * p[64] - rpn * p[52];
-    const T epp5 = rpp * p[77] - rpn * p[65];
-    const T epp6 = rpp * p[90] - rpn * p[78];
-    const T epp7 = rpp * p[103] - rpn * p[91];
-    const T epp8 = rpp * p[116] - rpn * p[104];
-    const T epp9 = rpp * p[129] - rpn * p[117];
-    const T epz0 = rzp * p[12] - rzn * p[0];
-    const T epz1 = rzp * p[25] - rzn * p[13];
-    const T epz10 = rzp * p[142] - rzn * p[130];
-    const T epz11 = rzp * p[155] - rzn * p[143];
-    const T epz12 = rzp * p[168] - rzn * p[156];
-    const T epz2 = rzp * p[38] - rzn * p[26];
-    const T epz3 = rzp * p[51] - rzn * p[39];
-    const T epz4 = rzp * p[64] - rzn * p[52];
-    const T epz5 = rzp * p[77] - rzn * p[65];
-    const T epz6 = rzp * p[90] - rzn * p[78];
-    const T epz7 = rzp * p[103] - rzn * p[91];
-    const T epz8 = rzp * p[116] - rzn * p[104];
-    const T epz9 = rzp * p[129] - rzn * p[117];
+    const T enn0 = rnp * p[0] + rnn * p[156];
+    const T enn1 = rnp * p[1] + rnn * p[157];
+    const T enn10 = rnp * p[10] + rnn * p[166];
+    const T enn11 = rnp * p[11] + rnn * p[167];
+    const T enn12 = rnp * p[12] + rnn * p[168];
+    const T enn2 = rnp * p[2] + rnn * p[158];
+    const T enn3 = rnp * p[3] + rnn * p[159];
+    const T enn4 = rnp * p[4] + rnn * p[160];
+    const T enn5 = rnp * p[5] + rnn * p[161];
+    const T enn6 = rnp * p[6] + rnn * p[162];
+    const T enn7 = rnp * p[7] + rnn * p[163];
+    const T enn8 = rnp * p[8] + rnn * p[164];
+    const T enn9 = rnp * p[9] + rnn * p[165];
+    const T enp0 = rpp * p[0] + rpn * p[156];
+    const T enp1 = rpp * p[1] + rpn * p[157];
+    const T enp10 = rpp * p[10] + rpn * p[166];
+    const T enp11 = rpp * p[11] + rpn * p[167];
+    const T enp12 = rpp * p[12] + rpn * p[168];
+    const T enp2 = rpp * p[2] + rpn * p[158];
+    const T enp3 = rpp * p[3] + rpn * p[159];
+    const T enp4 = rpp * p[4] + rpn * p[160];
+    const T enp5 = rpp * p[5] + rpn * p[161];
+    const T enp6 = rpp * p[6] + rpn * p[162];
+    const T enp7 = rpp * p[7] + rpn * p[163];
+    const T enp8 = rpp * p[8] + rpn * p[164];
+    const T enp9 = rpp * p[9] + rpn * p[165];
+    const T enz0 = rzp * p[0] + rzn * p[156];
+    const T enz1 = rzp * p[1] + rzn * p[157];
+    const T enz10 = rzp * p[10] + rzn * p[166];
+    const T enz11 = rzp * p[11] + rzn * p[167];
+    const T enz12 = rzp * p[12] + rzn * p[168];
+    const T enz2 = rzp * p[2] + rzn * p[158];
+    const T enz3 = rzp * p[3] + rzn * p[159];
+    const T enz4 = rzp * p[4] + rzn * p[160];
+    const T enz5 = rzp * p[5] + rzn * p[161];
+    const T enz6 = rzp * p[6] + rzn * p[162];
+    const T enz7 = rzp * p[7] + rzn * p[163];
+    const T enz8 = rzp * p[8] + rzn * p[164];
+    const T enz9 = rzp * p[9] + rzn * p[165];
+    const T epn0 = rnp * p[156] - rnn * p[0];
+    const T epn1 = rnp * p[157] - rnn * p[1];
+    const T epn10 = rnp * p[166] - rnn * p[10];
+    const T epn11 = rnp * p[167] - rnn * p[11];
+    const T epn12 = rnp * p[168] - rnn * p[12];
+    const T epn2 = rnp * p[158] - rnn * p[2];
+    const T epn3 = rnp * p[159] - rnn * p[3];
+    const T epn4 = rnp * p[160] - rnn * p[4];
+    const T epn5 = rnp * p[161] - rnn * p[5];
+    const T epn6 = rnp * p[162] - rnn * p[6];
+    const T epn7 = rnp * p[163] - rnn * p[7];
+    const T epn8 = rnp * p[164] - rnn * p[8];
+    const T epn9 = rnp * p[165] - rnn * p[9];
+    const T epp0 = rpp * p[156] - rpn * p[0];
+    const T epp1 = rpp * p[157] - rpn * p[1];
+    const T epp10 = rpp * p[166] - rpn * p[10];
+    const T epp11 = rpp * p[167] - rpn * p[11];
+    const T epp12 = rpp * p[168] - rpn * p[12];
+    const T epp2 = rpp * p[158] - rpn * p[2];
+    const T epp3 = rpp * p[159] - rpn * p[3];
+    const T epp4 = rpp * p[160] - rpn * p[4];
+    const T epp5 = rpp * p[161] - rpn * p[5];
+    const T epp6 = rpp * p[162] - rpn * p[6];
+    const T epp7 = rpp * p[163] - rpn * p[7];
+    const T epp8 = rpp * p[164] - rpn * p[8];
+    const T epp9 = rpp * p[165] - rpn * p[9];
+    const T epz0 = rzp * p[156] - rzn * p[0];
+    const T epz1 = rzp * p[157] - rzn * p[1];
+    const T epz10 = rzp * p[166] - rzn * p[10];
+    const T epz11 = rzp * p[167] - rzn * p[11];
+    const T epz12 = rzp * p[168] - rzn * p[12];
+    const T epz2 = rzp * p[158] - rzn * p[2];
+    const T epz3 = rzp * p[159] - rzn * p[3];
+    const T epz4 = rzp * p[160] - rzn * p[4];
+    const T epz5 = rzp * p[161] - rzn * p[5];
+    const T epz6 = rzp * p[162] - rzn * p[6];
+    const T epz7 = rzp * p[163] - rzn * p[7];
+    const T epz8 = rzp * p[164] - rzn * p[8];
+    const T epz9 = rzp * p[165] - rzn * p[9];
     {  // m = -7
         const T g0 = k0 * rpz;
         const T g1 = k0 * rnz;
         c[0] = k1 * enp0 + k1 * enn12;
-        c[1] = (g0 * p[0] + g1 * p[156]) * k2;
-        c[2] = (g0 * p[1] + g1 * p[157]) * k3;
-        c[3] = (g0 * p[2] + g1 * p[158]) * k4;
-        c[4] = (g0 * p[3] + g1 * p[159]) * k5;
-        c[5] = (g0 * p[4] + g1 * p[160]) * k6;
-        c[6] = (g0 * p[5] + g1 * p[161]) * k7;
-        c[7] = (g0 * p[6] + g1 * p[162]) * k8;
-        c[8] = (g0 * p[7] + g1 * p[163]) * k7;
-        c[9] = (g0 * p[8] + g1 * p[164]) * k6;
-        c[10] = (g0 * p[9] + g1 * p[165]) * k5;
-        c[11] = (g0 * p[10] + g1 * p[166]) * k4;
-        c[12] = (g0 * p[11] + g1 * p[167]) * k3;
-        c[13] = (g0 * p[12] + g1 * p[168]) * k2;
-        c[14] = k1 * epp0 + k1 * epn12;
+        c[15] = (g0 * p[0] + g1 * p[12]) * k2;
+        c[30] = (g0 * p[13] + g1 * p[25]) * k3;
+        c[45] = (g0 * p[26] + g1 * p[38]) * k4;
+        c[60] = (g0 * p[39] + g1 * p[51]) * k5;
+        c[75] = (g0 * p[52] + g1 * p[64]) * k6;
+        c[90] = (g0 * p[65] + g1 * p[77]) * k7;
+        c[105] = (g0 * p[78] + g1 * p[90]) * k8;
+        c[120] = (g0 * p[91] + g1 * p[103]) * k7;
+        c[135] = (g0 * p[104] + g1 * p[116]) * k6;
+        c[150] = (g0 * p[117] + g1 * p[129]) * k5;
+        c[165] = (g0 * p[130] + g1 * p[142]) * k4;
+        c[180] = (g0 * p[143] + g1 * p[155]) * k3;
+        c[195] = (g0 * p[156] + g1 * p[168]) * k2;
+        c[210] = k1 * epp0 + k1 * epn12;
     }
     {  // m = -6
         const T g0 = k9 * rzz;
         const T g1 = k10 * rpz;
         const T g2 = k10 * rnz;
-        c[15] = k11 * enz0 + k12 * enp1 + k12 * enn11;
-        c[16] = (g0 * p[0] + g1 * p[13] + g2 * p[143]) * k2;
-        c[17] = (g0 * p[1] + g1 * p[14] + g2 * p[144]) * k3;
-        c[18] = (g0 * p[2] + g1 * p[15] + g2 * p[145]) * k4;
-        c[19] = (g0 * p[3] + g1 * p[16] + g2 * p[146]) * k5;
-        c[20] = (g0 * p[4] + g1 * p[17] + g2 * p[147]) * k6;
-        c[21] = (g0 * p[5] + g1 * p[18] + g2 * p[148]) * k7;
-        c[22] = (g0 * p[6] + g1 * p[19] + g2 * p[149]) * k8;
-        c[23] = (g0 * p[7] + g1 * p[20] + g2 * p[150]) * k7;
-        c[24] = (g0 * p[8] + g1 * p[21] + g2 * p[151]) * k6;
-        c[25] = (g0 * p[9] + g1 * p[22] + g2 * p[152]) * k5;
-        c[26] = (g0 * p[10] + g1 * p[23] + g2 * p[153]) * k4;
-        c[27] = (g0 * p[11] + g1 * p[24] + g2 * p[154]) * k3;
-        c[28] = (g0 * p[12] + g1 * p[25] + g2 * p[155]) * k2;
-        c[29] = k11 * epz0 + k12 * epp1 + k12 * epn11;
+        c[1] = k11 * enz0 + k12 * enp1 + k12 * enn11;
+        c[16] = (g0 * p[0] + g1 * p[1] + g2 * p[11]) * k2;
+        c[31] = (g0 * p[13] + g1 * p[14] + g2 * p[24]) * k3;
+        c[46] = (g0 * p[26] + g1 * p[27] + g2 * p[37]) * k4;
+        c[61] = (g0 * p[39] + g1 * p[40] + g2 * p[50]) * k5;
+        c[76] = (g0 * p[52] + g1 * p[53] + g2 * p[63]) * k6;
+        c[91] = (g0 * p[65] + g1 * p[66] + g2 * p[76]) * k7;
+        c[106] = (g0 * p[78] + g1 * p[79] + g2 * p[89]) * k8;
+        c[121] = (g0 * p[91] + g1 * p[92] + g2 * p[102]) * k7;
+        c[136] = (g0 * p[104] + g1 * p[105] + g2 * p[115]) * k6;
+        c[151] = (g0 * p[117] + g1 * p[118] + g2 * p[128]) * k5;
+        c[166] = (g0 * p[130] + g1 * p[131] + g2 * p[141]) * k4;
+        c[181] = (g0 * p[143] + g1 * p[144] + g2 * p[154]) * k3;
+        c[196] = (g0 * p[156] + g1 * p[157] + g2 * p[167]) * k2;
+        c[211] = k11 * epz0 + k12 * epp1 + k12 * epn11;
     }
     {  // m = -5
         const T g0 = k13 * rzz;
@@ -1359,21 +1396,21 @@ SPHBASIS_FORCEINLINE void rotation_band_7(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k14 * rnz;
         const T g3 = k15 * rpz;
         const T g4 = k16 * rnz;
-        c[30] = k17 * enz1 + k18 * enp2 + k18 * enn10 + k19 * enp0 + k20 * enn12;
-        c[31] = (g0 * p[13] + g1 * p[26] + g2 * p[130] + g3 * p[0] + g4 * p[156]) * k2;
-        c[32] = (g0 * p[14] + g1 * p[27] + g2 * p[131] + g3 * p[1] + g4 * p[157]) * k3;
-        c[33] = (g0 * p[15] + g1 * p[28] + g2 * p[132] + g3 * p[2] + g4 * p[158]) * k4;
-        c[34] = (g0 * p[16] + g1 * p[29] + g2 * p[133] + g3 * p[3] + g4 * p[159]) * k5;
-        c[35] = (g0 * p[17] + g1 * p[30] + g2 * p[134] + g3 * p[4] + g4 * p[160]) * k6;
-        c[36] = (g0 * p[18] + g1 * p[31] + g2 * p[135] + g3 * p[5] + g4 * p[161]) * k7;
-        c[37] = (g0 * p[19] + g1 * p[32] + g2 * p[136] + g3 * p[6] + g4 * p[162]) * k8;
-        c[38] = (g0 * p[20] + g1 * p[33] + g2 * p[137] + g3 * p[7] + g4 * p[163]) * k7;
-        c[39] = (g0 * p[21] + g1 * p[34] + g2 * p[138] + g3 * p[8] + g4 * p[164]) * k6;
-        c[40] = (g0 * p[22] + g1 * p[35] + g2 * p[139] + g3 * p[9] + g4 * p[165]) * k5;
-        c[41] = (g0 * p[23] + g1 * p[36] + g2 * p[140] + g3 * p[10] + g4 * p[166]) * k4;
-        c[42] = (g0 * p[24] + g1 * p[37] + g2 * p[141] + g3 * p[11] + g4 * p[167]) * k3;
-        c[43] = (g0 * p[25] + g1 * p[38] + g2 * p[142] + g3 * p[12] + g4 * p[168]) * k2;
-        c[44] = k17 * epz1 + k18 * epp2 + k18 * epn10 + k19 * epp0 + k20 * epn12;
+        c[2] = k17 * enz1 + k18 * enp2 + k18 * enn10 + k19 * enp0 + k20 * enn12;
+        c[17] = (g0 * p[1] + g1 * p[2] + g2 * p[10] + g3 * p[0] + g4 * p[12]) * k2;
+        c[32] = (g0 * p[14] + g1 * p[15] + g2 * p[23] + g3 * p[13] + g4 * p[25]) * k3;
+        c[47] = (g0 * p[27] + g1 * p[28] + g2 * p[36] + g3 * p[26] + g4 * p[38]) * k4;
+        c[62] = (g0 * p[40] + g1 * p[41] + g2 * p[49] + g3 * p[39] + g4 * p[51]) * k5;
+        c[77] = (g0 * p[53] + g1 * p[54] + g2 * p[62] + g3 * p[52] + g4 * p[64]) * k6;
+        c[92] = (g0 * p[66] + g1 * p[67] + g2 * p[75] + g3 * p[65] + g4 * p[77]) * k7;
+        c[107] = (g0 * p[79] + g1 * p[80] + g2 * p[88] + g3 * p[78] + g4 * p[90]) * k8;
+        c[122] = (g0 * p[92] + g1 * p[93] + g2 * p[101] + g3 * p[91] + g4 * p[103]) * k7;
+        c[137] = (g0 * p[105] + g1 * p[106] + g2 * p[114] + g3 * p[104] + g4 * p[116]) * k6;
+        c[152] = (g0 * p[118] + g1 * p[119] + g2 * p[127] + g3 * p[117] + g4 * p[129]) * k5;
+        c[167] = (g0 * p[131] + g1 * p[132] + g2 * p[140] + g3 * p[130] + g4 * p[142]) * k4;
+        c[182] = (g0 * p[144] + g1 * p[145] + g2 * p[153] + g3 * p[143] + g4 * p[155]) * k3;
+        c[197] = (g0 * p[157] + g1 * p[158] + g2 * p[166] + g3 * p[156] + g4 * p[168]) * k2;
+        c[212] = k17 * epz1 + k18 * epp2 + k18 * epn10 + k19 * epp0 + k20 * epn12;
     }
     {  // m = -4
         const T g0 = k14 * rzz;
@@ -1381,21 +1418,21 @@ SPHBASIS_FORCEINLINE void rotation_band_7(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k21 * rnz;
         const T g3 = k22 * rpz;
         const T g4 = k23 * rnz;
-        c[45] = k18 * enz2 + k24 * enp3 + k24 * enn9 + k25 * enp1 + k26 * enn11;
-        c[46] = (g0 * p[26] + g1 * p[39] + g2 * p[117] + g3 * p[13] + g4 * p[143]) * k2;
-        c[47] = (g0 * p[27] + g1 * p[40] + g2 * p[118] + g3 * p[14] + g4 * p[144]) * k3;
-        c[48] = (g0 * p[28] + g1 * p[41] + g2 * p[119] + g3 * p[15] + g4 * p[145]) * k4;
-        c[49] = (g0 * p[29] + g1 * p[42] + g2 * p[120] + g3 * p[16] + g4 * p[146]) * k5;
-        c[50] = (g0 * p[30] + g1 * p[43] + g2 * p[121] + g3 * p[17] + g4 * p[147]) * k6;
-        c[51] = (g0 * p[31] + g1 * p[44] + g2 * p[122] + g3 * p[18] + g4 * p[148]) * k7;
-        c[52] = (g0 * p[32] + g1 * p[45] + g2 * p[123] + g3 * p[19] + g4 * p[149]) * k8;
-        c[53] = (g0 * p[33] + g1 * p[46] + g2 * p[124] + g3 * p[20] + g4 * p[150]) * k7;
-        c[54] = (g0 * p[34] + g1 * p[47] + g2 * p[125] + g3 * p[21] + g4 * p[151]) * k6;
-        c[55] = (g0 * p[35] + g1 * p[48] + g2 * p[126] + g3 * p[22] + g4 * p[152]) * k5;
-        c[56] = (g0 * p[36] + g1 * p[49] + g2 * p[127] + g3 * p[23] + g4 * p[153]) * k4;
-        c[57] = (g0 * p[37] + g1 * p[50] + g2 * p[128] + g3 * p[24] + g4 * p[154]) * k3;
-        c[58] = (g0 * p[38] + g1 * p[51] + g2 * p[129] + g3 * p[25] + g4 * p[155]) * k2;
-        c[59] = k18 * epz2 + k24 * epp3 + k24 * epn9 + k25 * epp1 + k26 * epn11;
+        c[3] = k18 * enz2 + k24 * enp3 + k24 * enn9 + k25 * enp1 + k26 * enn11;
+        c[18] = (g0 * p[2] + g1 * p[3] + g2 * p[9] + g3 * p[1] + g4 * p[11]) * k2;
+        c[33] = (g0 * p[15] + g1 * p[16] + g2 * p[22] + g3 * p[14] + g4 * p[24]) * k3;
+        c[48] = (g0 * p[28] + g1 * p[29] + g2 * p[35] + g3 * p[27] + g4 * p[37]) * k4;
+        c[63] = (g0 * p[41] + g1 * p[42] + g2 * p[48] + g3 * p[40] + g4 * p[50]) * k5;
+        c[78] = (g0 * p[54] + g1 * p[55] + g2 * p[61] + g3 * p[53] + g4 * p[63]) * k6;
+        c[93] = (g0 * p[67] + g1 * p[68] + g2 * p[74] + g3 * p[66] + g4 * p[76]) * k7;
+        c[108] = (g0 * p[80] + g1 * p[81] + g2 * p[87] + g3 * p[79] + g4 * p[89]) * k8;
+        c[123] = (g0 * p[93] + g1 * p[94] + g2 * p[100] + g3 * p[92] + g4 * p[102]) * k7;
+        c[138] = (g0 * p[106] + g1 * p[107] + g2 * p[113] + g3 * p[105] + g4 * p[115]) * k6;
+        c[153] = (g0 * p[119] + g1 * p[120] + g2 * p[126] + g3 * p[118] + g4 * p[128]) * k5;
+        c[168] = (g0 * p[132] + g1 * p[133] + g2 * p[139] + g3 * p[131] + g4 * p[141]) * k4;
+        c[183] = (g0 * p[145] + g1 * p[146] + g2 * p[152] + g3 * p[144] + g4 * p[154]) * k3;
+        c[198] = (g0 * p[158] + g1 * p[159] + g2 * p[165] + g3 * p[157] + g4 * p[167]) * k2;
+        c[213] = k18 * epz2 + k24 * epp3 + k24 * epn9 + k25 * epp1 + k26 * epn11;
     }
     {  // m = -3
         const T g0 = k27 * rzz;
@@ -1403,21 +1440,21 @@ SPHBASIS_FORCEINLINE void rotation_band_7(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k28 * rnz;
         const T g3 = k29 * rpz;
         const T g4 = k30 * rnz;
-        c[60] = k31 * enz3 + k32 * enp4 + k32 * enn8 + k33 * enp2 + k34 * enn10;
-        c[61] = (g0 * p[39] + g1 * p[52] + g2 * p[104] + g3 * p[26] + g4 * p[130]) * k2;
-        c[62] = (g0 * p[40] + g1 * p[53] + g2 * p[105] + g3 * p[27] + g4 * p[131]) * k3;
-        c[63] = (g0 * p[41] + g1 * p[54] + g2 * p[106] + g3 * p[28] + g4 * p[132]) * k4;
-        c[64] = (g0 * p[42] + g1 * p[55] + g2 * p[107] + g3 * p[29] + g4 * p[133]) * k5;
-        c[65] = (g0 * p[43] + g1 * p[56] + g2 * p[108] + g3 * p[30] + g4 * p[134]) * k6;
-        c[66] = (g0 * p[44] + g1 * p[57] + g2 * p[109] + g3 * p[31] + g4 * p[135]) * k7;
-        c[67] = (g0 * p[45] + g1 * p[58] + g2 * p[110] + g3 * p[32] + g4 * p[136]) * k8;
-        c[68] = (g0 * p[46] + g1 * p[59] + g2 * p[111] + g3 * p[33] + g4 * p[137]) * k7;
-        c[69] = (g0 * p[47] + g1 * p[60] + g2 * p[112] + g3 * p[34] + g4 * p[138]) * k6;
-        c[70] = (g0 * p[48] + g1 * p[61] + g2 * p[113] + g3 * p[35] + g4 * p[139]) * k5;
-        c[71] = (g0 * p[49] + g1 * p[62] + g2 * p[114] + g3 * p[36] + g4 * p[140]) * k4;
-        c[72] = (g0 * p[50] + g1 * p[63] + g2 * p[115] + g3 * p[37] + g4 * p[141]) * k3;
-        c[73] = (g0 * p[51] + g1 * p[64] + g2 * p[116] + g3 * p[38] + g4 * p[142]) * k2;
-        c[74] = k31 * epz3 + k32 * epp4 + k32 * epn8 + k33 * epp2 + k34 * epn10;
+        c[4] = k31 * enz3 + k32 * enp4 + k32 * enn8 + k33 * enp2 + k34 * enn10;
+        c[19] = (g0 * p[3] + g1 * p[4] + g2 * p[8] + g3 * p[2] + g4 * p[10]) * k2;
+        c[34] = (g0 * p[16] + g1 * p[17] + g2 * p[21] + g3 * p[15] + g4 * p[23]) * k3;
+        c[49] = (g0 * p[29] + g1 * p[30] + g2 * p[34] + g3 * p[28] + g4 * p[36]) * k4;
+        c[64] = (g0 * p[42] + g1 * p[43] + g2 * p[47] + g3 * p[41] + g4 * p[49]) * k5;
+        c[79] = (g0 * p[55] + g1 * p[56] + g2 * p[60] + g3 * p[54] + g4 * p[62]) * k6;
+        c[94] = (g0 * p[68] + g1 * p[69] + g2 * p[73] + g3 * p[67] + g4 * p[75]) * k7;
+        c[109] = (g0 * p[81] + g1 * p[82] + g2 * p[86] + g3 * p[80] + g4 * p[88]) * k8;
+        c[124] = (g0 * p[94] + g1 * p[95] + g2 * p[99] + g3 * p[93] + g4 * p[101]) * k7;
+        c[139] = (g0 * p[107] + g1 * p[108] + g2 * p[112] + g3 * p[106] + g4 * p[114]) * k6;
+        c[154] = (g0 * p[120] + g1 * p[121] + g2 * p[125] + g3 * p[119] + g4 * p[127]) * k5;
+        c[169] = (g0 * p[133] + g1 * p[134] + g2 * p[138] + g3 * p[132] + g4 * p[140]) * k4;
+        c[184] = (g0 * p[146] + g1 * p[147] + g2 * p[151] + g3 * p[145] + g4 * p[153]) * k3;
+        c[199] = (g0 * p[159] + g1 * p[160] + g2 * p[164] + g3 * p[158] + g4 * p[166]) * k2;
+        c[214] = k31 * epz3 + k32 * epp4 + k32 * epn8 + k33 * epp2 + k34 * epn10;
     }
     {  // m = -2
         const T g0 = k35 * rzz;
@@ -1425,83 +1462,83 @@ SPHBASIS_FORCEINLINE void rotation_band_7(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k36 * rnz;
         const T g3 = k37 * rpz;
         const T g4 = k38 * rnz;
-        c[75] = k39 * enz4 + k40 * enp5 + k40 * enn7 + k41 * enp3 + k42 * enn9;
-        c[76] = (g0 * p[52] + g1 * p[65] + g2 * p[91] + g3 * p[39] + g4 * p[117]) * k2;
-        c[77] = (g0 * p[53] + g1 * p[66] + g2 * p[92] + g3 * p[40] + g4 * p[118]) * k3;
-        c[78] = (g0 * p[54] + g1 * p[67] + g2 * p[93] + g3 * p[41] + g4 * p[119]) * k4;
-        c[79] = (g0 * p[55] + g1 * p[68] + g2 * p[94] + g3 * p[42] + g4 * p[120]) * k5;
-        c[80] = (g0 * p[56] + g1 * p[69] + g2 * p[95] + g3 * p[43] + g4 * p[121]) * k6;
-        c[81] = (g0 * p[57] + g1 * p[70] + g2 * p[96] + g3 * p[44] + g4 * p[122]) * k7;
-        c[82] = (g0 * p[58] + g1 * p[71] + g2 * p[97] + g3 * p[45] + g4 * p[123]) * k8;
-        c[83] = (g0 * p[59] + g1 * p[72] + g2 * p[98] + g3 * p[46] + g4 * p[124]) * k7;
-        c[84] = (g0 * p[60] + g1 * p[73] + g2 * p[99] + g3 * p[47] + g4 * p[125]) * k6;
-        c[85] = (g0 * p[61] + g1 * p[74] + g2 * p[100] + g3 * p[48] + g4 * p[126]) * k5;
-        c[86] = (g0 * p[62] + g1 * p[75] + g2 * p[101] + g3 * p[49] + g4 * p[127]) * k4;
-        c[87] = (g0 * p[63] + g1 * p[76] + g2 * p[102] + g3 * p[50] + g4 * p[128]) * k3;
-        c[88] = (g0 * p[64] + g1 * p[77] + g2 * p[103] + g3 * p[51] + g4 * p[129]) * k2;
-        c[89] = k39 * epz4 + k40 * epp5 + k40 * epn7 + k41 * epp3 + k42 * epn9;
+        c[5] = k39 * enz4 + k40 * enp5 + k40 * enn7 + k41 * enp3 + k42 * enn9;
+        c[20] = (g0 * p[4] + g1 * p[5] + g2 * p[7] + g3 * p[3] + g4 * p[9]) * k2;
+        c[35] = (g0 * p[17] + g1 * p[18] + g2 * p[20] + g3 * p[16] + g4 * p[22]) * k3;
+        c[50] = (g0 * p[30] + g1 * p[31] + g2 * p[33] + g3 * p[29] + g4 * p[35]) * k4;
+        c[65] = (g0 * p[43] + g1 * p[44] + g2 * p[46] + g3 * p[42] + g4 * p[48]) * k5;
+        c[80] = (g0 * p[56] + g1 * p[57] + g2 * p[59] + g3 * p[55] + g4 * p[61]) * k6;
+        c[95] = (g0 * p[69] + g1 * p[70] + g2 * p[72] + g3 * p[68] + g4 * p[74]) * k7;
+        c[110] = (g0 * p[82] + g1 * p[83] + g2 * p[85] + g3 * p[81] + g4 * p[87]) * k8;
+        c[125] = (g0 * p[95] + g1 * p[96] + g2 * p[98] + g3 * p[94] + g4 * p[100]) * k7;
+        c[140] = (g0 * p[108] + g1 * p[109] + g2 * p[111] + g3 * p[107] + g4 * p[113]) * k6;
+        c[155] = (g0 * p[121] + g1 * p[122] + g2 * p[124] + g3 * p[120] + g4 * p[126]) * k5;
+        c[170] = (g0 * p[134] + g1 * p[135] + g2 * p[137] + g3 * p[133] + g4 * p[139]) * k4;
+        c[185] = (g0 * p[147] + g1 * p[148] + g2 * p[150] + g3 * p[146] + g4 * p[152]) * k3;
+        c[200] = (g0 * p[160] + g1 * p[161] + g2 * p[163] + g3 * p[159] + g4 * p[165]) * k2;
+        c[215] = k39 * epz4 + k40 * epp5 + k40 * epn7 + k41 * epp3 + k42 * epn9;
     }
     {  // m = -1
         const T g0 = k43 * rzz;
         const T g1 = k44 * rnz;
         const T g2 = k45 * rpz;
         const T g3 = k46 * rnz;
-        c[90] = k47 * enz5 + k48 * enn6 + k49 * enp4 + k50 * enn8;
-        c[91] = (g0 * p[65] + g1 * p[78] + g2 * p[52] + g3 * p[104]) * k2;
-        c[92] = (g0 * p[66] + g1 * p[79] + g2 * p[53] + g3 * p[105]) * k3;
-        c[93] = (g0 * p[67] + g1 * p[80] + g2 * p[54] + g3 * p[106]) * k4;
-        c[94] = (g0 * p[68] + g1 * p[81] + g2 * p[55] + g3 * p[107]) * k5;
-        c[95] = (g0 * p[69] + g1 * p[82] + g2 * p[56] + g3 * p[108]) * k6;
-        c[96] = (g0 * p[70] + g1 * p[83] + g2 * p[57] + g3 * p[109]) * k7;
-        c[97] = (g0 * p[71] + g1 * p[84] + g2 * p[58] + g3 * p[110]) * k8;
-        c[98] = (g0 * p[72] + g1 * p[85] + g2 * p[59] + g3 * p[111]) * k7;
-        c[99] = (g0 * p[73] + g1 * p[86] + g2 * p[60] + g3 * p[112]) * k6;
-        c[100] = (g0 * p[74] + g1 * p[87] + g2 * p[61] + g3 * p[113]) * k5;
-        c[101] = (g0 * p[75] + g1 * p[88] + g2 * p[62] + g3 * p[114]) * k4;
-        c[102] = (g0 * p[76] + g1 * p[89] + g2 * p[63] + g3 * p[115]) * k3;
-        c[103] = (g0 * p[77] + g1 * p[90] + g2 * p[64] + g3 * p[116]) * k2;
-        c[104] = k47 * epz5 + k48 * epn6 + k49 * epp4 + k50 * epn8;
+        c[6] = k47 * enz5 + k48 * enn6 + k49 * enp4 + k50 * enn8;
+        c[21] = (g0 * p[5] + g1 * p[6] + g2 * p[4] + g3 * p[8]) * k2;
+        c[36] = (g0 * p[18] + g1 * p[19] + g2 * p[17] + g3 * p[21]) * k3;
+        c[51] = (g0 * p[31] + g1 * p[32] + g2 * p[30] + g3 * p[34]) * k4;
+        c[66] = (g0 * p[44] + g1 * p[45] + g2 * p[43] + g3 * p[47]) * k5;
+        c[81] = (g0 * p[57] + g1 * p[58] + g2 * p[56] + g3 * p[60]) * k6;
+        c[96] = (g0 * p[70] + g1 * p[71] + g2 * p[69] + g3 * p[73]) * k7;
+        c[111] = (g0 * p[83] + g1 * p[84] + g2 * p[82] + g3 * p[86]) * k8;
+        c[126] = (g0 * p[96] + g1 * p[97] + g2 * p[95] + g3 * p[99]) * k7;
+        c[141] = (g0 * p[109] + g1 * p[110] + g2 * p[108] + g3 * p[112]) * k6;
+        c[156] = (g0 * p[122] + g1 * p[123] + g2 * p[121] + g3 * p[125]) * k5;
+        c[171] = (g0 * p[135] + g1 * p[136] + g2 * p[134] + g3 * p[138]) * k4;
+        c[186] = (g0 * p[148] + g1 * p[149] + g2 * p[147] + g3 * p[151]) * k3;
+        c[201] = (g0 * p[161] + g1 * p[162] + g2 * p[160] + g3 * p[164]) * k2;
+        c[216] = k47 * epz5 + k48 * epn6 + k49 * epp4 + k50 * epn8;
     }
     {  // m = 0
         const T g0 = k51 * rzz;
         const T g1 = k52 * rpz;
         const T g2 = k52 * rnz;
-        c[105] = k53 * enz6 + k54 * enp7 + k54 * enn5;
-        c[106] = (g0 * p[78] + g1 * p[91] + g2 * p[65]) * k2;
-        c[107] = (g0 * p[79] + g1 * p[92] + g2 * p[66]) * k3;
-        c[108] = (g0 * p[80] + g1 * p[93] + g2 * p[67]) * k4;
-        c[109] = (g0 * p[81] + g1 * p[94] + g2 * p[68]) * k5;
-        c[110] = (g0 * p[82] + g1 * p[95] + g2 * p[69]) * k6;
-        c[111] = (g0 * p[83] + g1 * p[96] + g2 * p[70]) * k7;
-        c[112] = (g0 * p[84] + g1 * p[97] + g2 * p[71]) * k8;
-        c[113] = (g0 * p[85] + g1 * p[98] + g2 * p[72]) * k7;
-        c[114] = (g0 * p[86] + g1 * p[99] + g2 * p[73]) * k6;
-        c[115] = (g0 * p[87] + g1 * p[100] + g2 * p[74]) * k5;
-        c[116] = (g0 * p[88] + g1 * p[101] + g2 * p[75]) * k4;
-        c[117] = (g0 * p[89] + g1 * p[102] + g2 * p[76]) * k3;
-        c[118] = (g0 * p[90] + g1 * p[103] + g2 * p[77]) * k2;
-        c[119] = k53 * epz6 + k54 * epp7 + k54 * epn5;
+        c[7] = k53 * enz6 + k54 * enp7 + k54 * enn5;
+        c[22] = (g0 * p[6] + g1 * p[7] + g2 * p[5]) * k2;
+        c[37] = (g0 * p[19] + g1 * p[20] + g2 * p[18]) * k3;
+        c[52] = (g0 * p[32] + g1 * p[33] + g2 * p[31]) * k4;
+        c[67] = (g0 * p[45] + g1 * p[46] + g2 * p[44]) * k5;
+        c[82] = (g0 * p[58] + g1 * p[59] + g2 * p[57]) * k6;
+        c[97] = (g0 * p[71] + g1 * p[72] + g2 * p[70]) * k7;
+        c[112] = (g0 * p[84] + g1 * p[85] + g2 * p[83]) * k8;
+        c[127] = (g0 * p[97] + g1 * p[98] + g2 * p[96]) * k7;
+        c[142] = (g0 * p[110] + g1 * p[111] + g2 * p[109]) * k6;
+        c[157] = (g0 * p[123] + g1 * p[124] + g2 * p[122]) * k5;
+        c[172] = (g0 * p[136] + g1 * p[137] + g2 * p[135]) * k4;
+        c[187] = (g0 * p[149] + g1 * p[150] + g2 * p[148]) * k3;
+        c[202] = (g0 * p[162] + g1 * p[163] + g2 * p[161]) * k2;
+        c[217] = k53 * epz6 + k54 * epp7 + k54 * epn5;
     }
     {  // m = 1
         const T g0 = k43 * rzz;
         const T g1 = k44 * rpz;
         const T g2 = k45 * rpz;
         const T g3 = k45 * rnz;
-        c[120] = k47 * enz7 + k48 * enp6 + k49 * enp8 + k49 * enn4;
-        c[121] = (g0 * p[91] + g1 * p[78] + g2 * p[104] + g3 * p[52]) * k2;
-        c[122] = (g0 * p[92] + g1 * p[79] + g2 * p[105] + g3 * p[53]) * k3;
-        c[123] = (g0 * p[93] + g1 * p[80] + g2 * p[106] + g3 * p[54]) * k4;
-        c[124] = (g0 * p[94] + g1 * p[81] + g2 * p[107] + g3 * p[55]) * k5;
-        c[125] = (g0 * p[95] + g1 * p[82] + g2 * p[108] + g3 * p[56]) * k6;
-        c[126] = (g0 * p[96] + g1 * p[83] + g2 * p[109] + g3 * p[57]) * k7;
-        c[127] = (g0 * p[97] + g1 * p[84] + g2 * p[110] + g3 * p[58]) * k8;
-        c[128] = (g0 * p[98] + g1 * p[85] + g2 * p[111] + g3 * p[59]) * k7;
-        c[129] = (g0 * p[99] + g1 * p[86] + g2 * p[112] + g3 * p[60]) * k6;
-        c[130] = (g0 * p[100] + g1 * p[87] + g2 * p[113] + g3 * p[61]) * k5;
-        c[131] = (g0 * p[101] + g1 * p[88] + g2 * p[114] + g3 * p[62]) * k4;
-        c[132] = (g0 * p[102] + g1 * p[89] + g2 * p[115] + g3 * p[63]) * k3;
-        c[133] = (g0 * p[103] + g1 * p[90] + g2 * p[116] + g3 * p[64]) * k2;
-        c[134] = k47 * epz7 + k48 * epp6 + k49 * epp8 + k49 * epn4;
+        c[8] = k47 * enz7 + k48 * enp6 + k49 * enp8 + k49 * enn4;
+        c[23] = (g0 * p[7] + g1 * p[6] + g2 * p[8] + g3 * p[4]) * k2;
+        c[38] = (g0 * p[20] + g1 * p[19] + g2 * p[21] + g3 * p[17]) * k3;
+        c[53] = (g0 * p[33] + g1 * p[32] + g2 * p[34] + g3 * p[30]) * k4;
+        c[68] = (g0 * p[46] + g1 * p[45] + g2 * p[47] + g3 * p[43]) * k5;
+        c[83] = (g0 * p[59] + g1 * p[58] + g2 * p[60] + g3 * p[56]) * k6;
+        c[98] = (g0 * p[72] + g1 * p[71] + g2 * p[73] + g3 * p[69]) * k7;
+        c[113] = (g0 * p[85] + g1 * p[84] + g2 * p[86] + g3 * p[82]) * k8;
+        c[128] = (g0 * p[98] + g1 * p[97] + g2 * p[99] + g3 * p[95]) * k7;
+        c[143] = (g0 * p[111] + g1 * p[110] + g2 * p[112] + g3 * p[108]) * k6;
+        c[158] = (g0 * p[124] + g1 * p[123] + g2 * p[125] + g3 * p[121]) * k5;
+        c[173] = (g0 * p[137] + g1 * p[136] + g2 * p[138] + g3 * p[134]) * k4;
+        c[188] = (g0 * p[150] + g1 * p[149] + g2 * p[151] + g3 * p[147]) * k3;
+        c[203] = (g0 * p[163] + g1 * p[162] + g2 * p[164] + g3 * p[160]) * k2;
+        c[218] = k47 * epz7 + k48 * epp6 + k49 * epp8 + k49 * epn4;
     }
     {  // m = 2
         const T g0 = k35 * rzz;
@@ -1509,21 +1546,21 @@ SPHBASIS_FORCEINLINE void rotation_band_7(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k55 * rnz;
         const T g3 = k37 * rpz;
         const T g4 = k37 * rnz;
-        c[135] = k39 * enz8 + k40 * enp7 + k56 * enn5 + k41 * enp9 + k41 * enn3;
-        c[136] = (g0 * p[104] + g1 * p[91] + g2 * p[65] + g3 * p[117] + g4 * p[39]) * k2;
-        c[137] = (g0 * p[105] + g1 * p[92] + g2 * p[66] + g3 * p[118] + g4 * p[40]) * k3;
-        c[138] = (g0 * p[106] + g1 * p[93] + g2 * p[67] + g3 * p[119] + g4 * p[41]) * k4;
-        c[139] = (g0 * p[107] + g1 * p[94] + g2 * p[68] + g3 * p[120] + g4 * p[42]) * k5;
-        c[140] = (g0 * p[108] + g1 * p[95] + g2 * p[69] + g3 * p[121] + g4 * p[43]) * k6;
-        c[141] = (g0 * p[109] + g1 * p[96] + g2 * p[70] + g3 * p[122] + g4 * p[44]) * k7;
-        c[142] = (g0 * p[110] + g1 * p[97] + g2 * p[71] + g3 * p[123] + g4 * p[45]) * k8;
-        c[143] = (g0 * p[111] + g1 * p[98] + g2 * p[72] + g3 * p[124] + g4 * p[46]) * k7;
-        c[144] = (g0 * p[112] + g1 * p[99] + g2 * p[73] + g3 * p[125] + g4 * p[47]) * k6;
-        c[145] = (g0 * p[113] + g1 * p[100] + g2 * p[74] + g3 * p[126] + g4 * p[48]) * k5;
-        c[146] = (g0 * p[114] + g1 * p[101] + g2 * p[75] + g3 * p[127] + g4 * p[49]) * k4;
-        c[147] = (g0 * p[115] + g1 * p[102] + g2 * p[76] + g3 * p[128] + g4 * p[50]) * k3;
-        c[148] = (g0 * p[116] + g1 * p[103] + g2 * p[77] + g3 * p[129] + g4 * p[51]) * k2;
-        c[149] = k39 * epz8 + k40 * epp7 + k56 * epn5 + k41 * epp9 + k41 * epn3;
+        c[9] = k39 * enz8 + k40 * enp7 + k56 * enn5 + k41 * enp9 + k41 * enn3;
+        c[24] = (g0 * p[8] + g1 * p[7] + g2 * p[5] + g3 * p[9] + g4 * p[3]) * k2;
+        c[39] = (g0 * p[21] + g1 * p[20] + g2 * p[18] + g3 * p[22] + g4 * p[16]) * k3;
+        c[54] = (g0 * p[34] + g1 * p[33] + g2 * p[31] + g3 * p[35] + g4 * p[29]) * k4;
+        c[69] = (g0 * p[47] + g1 * p[46] + g2 * p[44] + g3 * p[48] + g4 * p[42]) * k5;
+        c[84] = (g0 * p[60] + g1 * p[59] + g2 * p[57] + g3 * p[61] + g4 * p[55]) * k6;
+        c[99] = (g0 * p[73] + g1 * p[72] + g2 * p[70] + g3 * p[74] + g4 * p[68]) * k7;
+        c[114] = (g0 * p[86] + g1 * p[85] + g2 * p[83] + g3 * p[87] + g4 * p[81]) * k8;
+        c[129] = (g0 * p[99] + g1 * p[98] + g2 * p[96] + g3 * p[100] + g4 * p[94]) * k7;
+        c[144] = (g0 * p[112] + g1 * p[111] + g2 * p[109] + g3 * p[113] + g4 * p[107]) * k6;
+        c[159] = (g0 * p[125] + g1 * p[124] + g2 * p[122] + g3 * p[126] + g4 * p[120]) * k5;
+        c[174] = (g0 * p[138] + g1 * p[137] + g2 * p[135] + g3 * p[139] + g4 * p[133]) * k4;
+        c[189] = (g0 * p[151] + g1 * p[150] + g2 * p[148] + g3 * p[152] + g4 * p[146]) * k3;
+        c[204] = (g0 * p[164] + g1 * p[163] + g2 * p[161] + g3 * p[165] + g4 * p[159]) * k2;
+        c[219] = k39 * epz8 + k40 * epp7 + k56 * epn5 + k41 * epp9 + k41 * epn3;
     }
     {  // m = 3
         const T g0 = k27 * rzz;
@@ -1531,21 +1568,21 @@ SPHBASIS_FORCEINLINE void rotation_band_7(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k57 * rnz;
         const T g3 = k29 * rpz;
         const T g4 = k29 * rnz;
-        c[150] = k31 * enz9 + k32 * enp8 + k58 * enn4 + k33 * enp10 + k33 * enn2;
-        c[151] = (g0 * p[117] + g1 * p[104] + g2 * p[52] + g3 * p[130] + g4 * p[26]) * k2;
-        c[152] = (g0 * p[118] + g1 * p[105] + g2 * p[53] + g3 * p[131] + g4 * p[27]) * k3;
-        c[153] = (g0 * p[119] + g1 * p[106] + g2 * p[54] + g3 * p[132] + g4 * p[28]) * k4;
-        c[154] = (g0 * p[120] + g1 * p[107] + g2 * p[55] + g3 * p[133] + g4 * p[29]) * k5;
-        c[155] = (g0 * p[121] + g1 * p[108] + g2 * p[56] + g3 * p[134] + g4 * p[30]) * k6;
-        c[156] = (g0 * p[122] + g1 * p[109] + g2 * p[57] + g3 * p[135] + g4 * p[31]) * k7;
-        c[157] = (g0 * p[123] + g1 * p[110] + g2 * p[58] + g3 * p[136] + g4 * p[32]) * k8;
-        c[158] = (g0 * p[124] + g1 * p[111] + g2 * p[59] + g3 * p[137] + g4 * p[33]) * k7;
-        c[159] = (g0 * p[125] + g1 * p[112] + g2 * p[60] + g3 * p[138] + g4 * p[34]) * k6;
-        c[160] = (g0 * p[126] + g1 * p[113] + g2 * p[61] + g3 * p[139] + g4 * p[35]) * k5;
-        c[161] = (g0 * p[127] + g1 * p[114] + g2 * p[62] + g3 * p[140] + g4 * p[36]) * k4;
-        c[162] = (g0 * p[128] + g1 * p[115] + g2 * p[63] + g3 * p[141] + g4 * p[37]) * k3;
-        c[163] = (g0 * p[129] + g1 * p[116] + g2 * p[64] + g3 * p[142] + g4 * p[38]) * k2;
-        c[164] = k31 * epz9 + k32 * epp8 + k58 * epn4 + k33 * epp10 + k33 * epn2;
+        c[10] = k31 * enz9 + k32 * enp8 + k58 * enn4 + k33 * enp10 + k33 * enn2;
+        c[25] = (g0 * p[9] + g1 * p[8] + g2 * p[4] + g3 * p[10] + g4 * p[2]) * k2;
+        c[40] = (g0 * p[22] + g1 * p[21] + g2 * p[17] + g3 * p[23] + g4 * p[15]) * k3;
+        c[55] = (g0 * p[35] + g1 * p[34] + g2 * p[30] + g3 * p[36] + g4 * p[28]) * k4;
+        c[70] = (g0 * p[48] + g1 * p[47] + g2 * p[43] + g3 * p[49] + g4 * p[41]) * k5;
+        c[85] = (g0 * p[61] + g1 * p[60] + g2 * p[56] + g3 * p[62] + g4 * p[54]) * k6;
+        c[100] = (g0 * p[74] + g1 * p[73] + g2 * p[69] + g3 * p[75] + g4 * p[67]) * k7;
+        c[115] = (g0 * p[87] + g1 * p[86] + g2 * p[82] + g3 * p[88] + g4 * p[80]) * k8;
+        c[130] = (g0 * p[100] + g1 * p[99] + g2 * p[95] + g3 * p[101] + g4 * p[93]) * k7;
+        c[145] = (g0 * p[113] + g1 * p[112] + g2 * p[108] + g3 * p[114] + g4 * p[106]) * k6;
+        c[160] = (g0 * p[126] + g1 * p[125] + g2 * p[121] + g3 * p[127] + g4 * p[119]) * k5;
+        c[175] = (g0 * p[139] + g1 * p[138] + g2 * p[134] + g3 * p[140] + g4 * p[132]) * k4;
+        c[190] = (g0 * p[152] + g1 * p[151] + g2 * p[147] + g3 * p[153] + g4 * p[145]) * k3;
+        c[205] = (g0 * p[165] + g1 * p[164] + g2 * p[160] + g3 * p[166] + g4 * p[158]) * k2;
+        c[220] = k31 * epz9 + k32 * epp8 + k58 * epn4 + k33 * epp10 + k33 * epn2;
     }
     {  // m = 4
         const T g0 = k14 * rzz;
@@ -1553,21 +1590,21 @@ SPHBASIS_FORCEINLINE void rotation_band_7(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k59 * rnz;
         const T g3 = k22 * rpz;
         const T g4 = k22 * rnz;
-        c[165] = k18 * enz10 + k24 * enp9 + k60 * enn3 + k25 * enp11 + k25 * enn1;
-        c[166] = (g0 * p[130] + g1 * p[117] + g2 * p[39] + g3 * p[143] + g4 * p[13]) * k2;
-        c[167] = (g0 * p[131] + g1 * p[118] + g2 * p[40] + g3 * p[144] + g4 * p[14]) * k3;
-        c[168] = (g0 * p[132] + g1 * p[119] + g2 * p[41] + g3 * p[145] + g4 * p[15]) * k4;
-        c[169] = (g0 * p[133] + g1 * p[120] + g2 * p[42] + g3 * p[146] + g4 * p[16]) * k5;
-        c[170] = (g0 * p[134] + g1 * p[121] + g2 * p[43] + g3 * p[147] + g4 * p[17]) * k6;
-        c[171] = (g0 * p[135] + g1 * p[122] + g2 * p[44] + g3 * p[148] + g4 * p[18]) * k7;
-        c[172] = (g0 * p[136] + g1 * p[123] + g2 * p[45] + g3 * p[149] + g4 * p[19]) * k8;
-        c[173] = (g0 * p[137] + g1 * p[124] + g2 * p[46] + g3 * p[150] + g4 * p[20]) * k7;
-        c[174] = (g0 * p[138] + g1 * p[125] + g2 * p[47] + g3 * p[151] + g4 * p[21]) * k6;
-        c[175] = (g0 * p[139] + g1 * p[126] + g2 * p[48] + g3 * p[152] + g4 * p[22]) * k5;
-        c[176] = (g0 * p[140] + g1 * p[127] + g2 * p[49] + g3 * p[153] + g4 * p[23]) * k4;
-        c[177] = (g0 * p[141] + g1 * p[128] + g2 * p[50] + g3 * p[154] + g4 * p[24]) * k3;
-        c[178] = (g0 * p[142] + g1 * p[129] + g2 * p[51] + g3 * p[155] + g4 * p[25]) * k2;
-        c[179] = k18 * epz10 + k24 * epp9 + k60 * epn3 + k25 * epp11 + k25 * epn1;
+        c[11] = k18 * enz10 + k24 * enp9 + k60 * enn3 + k25 * enp11 + k25 * enn1;
+        c[26] = (g0 * p[10] + g1 * p[9] + g2 * p[3] + g3 * p[11] + g4 * p[1]) * k2;
+        c[41] = (g0 * p[23] + g1 * p[22] + g2 * p[16] + g3 * p[24] + g4 * p[14]) * k3;
+        c[56] = (g0 * p[36] + g1 * p[35] + g2 * p[29] + g3 * p[37] + g4 * p[27]) * k4;
+        c[71] = (g0 * p[49] + g1 * p[48] + g2 * p[42] + g3 * p[50] + g4 * p[40]) * k5;
+        c[86] = (g0 * p[62] + g1 * p[61] + g2 * p[55] + g3 * p[63] + g4 * p[53]) * k6;
+        c[101] = (g0 * p[75] + g1 * p[74] + g2 * p[68] + g3 * p[76] + g4 * p[66]) * k7;
+        c[116] = (g0 * p[88] + g1 * p[87] + g2 * p[81] + g3 * p[89] + g4 * p[79]) * k8;
+        c[131] = (g0 * p[101] + g1 * p[100] + g2 * p[94] + g3 * p[102] + g4 * p[92]) * k7;
+        c[146] = (g0 * p[114] + g1 * p[113] + g2 * p[107] + g3 * p[115] + g4 * p[105]) * k6;
+        c[161] = (g0 * p[127] + g1 * p[126] + g2 * p[120] + g3 * p[128] + g4 * p[118]) * k5;
+        c[176] = (g0 * p[140] + g1 * p[139] + g2 * p[133] + g3 * p[141] + g4 * p[131]) * k4;
+        c[191] = (g0 * p[153] + g1 * p[152] + g2 * p[146] + g3 * p[154] + g4 * p[144]) * k3;
+        c[206] = (g0 * p[166] + g1 * p[165] + g2 * p[159] + g3 * p[167] + g4 * p[157]) * k2;
+        c[221] = k18 * epz10 + k24 * epp9 + k60 * epn3 + k25 * epp11 + k25 * epn1;
     }
     {  // m = 5
         const T g0 = k13 * rzz;
@@ -1575,62 +1612,952 @@ SPHBASIS_FORCEINLINE void rotation_band_7(const T* SPHBASIS_RESTRICT r1, const T
         const T g2 = k61 * rnz;
         const T g3 = k15 * rpz;
         const T g4 = k15 * rnz;
-        c[180] = k17 * enz11 + k18 * enp10 + k62 * enn2 + k19 * enp12 + k19 * enn0;
-        c[181] = (g0 * p[143] + g1 * p[130] + g2 * p[26] + g3 * p[156] + g4 * p[0]) * k2;
-        c[182] = (g0 * p[144] + g1 * p[131] + g2 * p[27] + g3 * p[157] + g4 * p[1]) * k3;
-        c[183] = (g0 * p[145] + g1 * p[132] + g2 * p[28] + g3 * p[158] + g4 * p[2]) * k4;
-        c[184] = (g0 * p[146] + g1 * p[133] + g2 * p[29] + g3 * p[159] + g4 * p[3]) * k5;
-        c[185] = (g0 * p[147] + g1 * p[134] + g2 * p[30] + g3 * p[160] + g4 * p[4]) * k6;
-        c[186] = (g0 * p[148] + g1 * p[135] + g2 * p[31] + g3 * p[161] + g4 * p[5]) * k7;
-        c[187] = (g0 * p[149] + g1 * p[136] + g2 * p[32] + g3 * p[162] + g4 * p[6]) * k8;
-        c[188] = (g0 * p[150] + g1 * p[137] + g2 * p[33] + g3 * p[163] + g4 * p[7]) * k7;
-        c[189] = (g0 * p[151] + g1 * p[138] + g2 * p[34] + g3 * p[164] + g4 * p[8]) * k6;
-        c[190] = (g0 * p[152] + g1 * p[139] + g2 * p[35] + g3 * p[165] + g4 * p[9]) * k5;
-        c[191] = (g0 * p[153] + g1 * p[140] + g2 * p[36] + g3 * p[166] + g4 * p[10]) * k4;
-        c[192] = (g0 * p[154] + g1 * p[141] + g2 * p[37] + g3 * p[167] + g4 * p[11]) * k3;
-        c[193] = (g0 * p[155] + g1 * p[142] + g2 * p[38] + g3 * p[168] + g4 * p[12]) * k2;
-        c[194] = k17 * epz11 + k18 * epp10 + k62 * epn2 + k19 * epp12 + k19 * epn0;
+        c[12] = k17 * enz11 + k18 * enp10 + k62 * enn2 + k19 * enp12 + k19 * enn0;
+        c[27] = (g0 * p[11] + g1 * p[10] + g2 * p[2] + g3 * p[12] + g4 * p[0]) * k2;
+        c[42] = (g0 * p[24] + g1 * p[23] + g2 * p[15] + g3 * p[25] + g4 * p[13]) * k3;
+        c[57] = (g0 * p[37] + g1 * p[36] + g2 * p[28] + g3 * p[38] + g4 * p[26]) * k4;
+        c[72] = (g0 * p[50] + g1 * p[49] + g2 * p[41] + g3 * p[51] + g4 * p[39]) * k5;
+        c[87] = (g0 * p[63] + g1 * p[62] + g2 * p[54] + g3 * p[64] + g4 * p[52]) * k6;
+        c[102] = (g0 * p[76] + g1 * p[75] + g2 * p[67] + g3 * p[77] + g4 * p[65]) * k7;
+        c[117] = (g0 * p[89] + g1 * p[88] + g2 * p[80] + g3 * p[90] + g4 * p[78]) * k8;
+        c[132] = (g0 * p[102] + g1 * p[101] + g2 * p[93] + g3 * p[103] + g4 * p[91]) * k7;
+        c[147] = (g0 * p[115] + g1 * p[114] + g2 * p[106] + g3 * p[116] + g4 * p[104]) * k6;
+        c[162] = (g0 * p[128] + g1 * p[127] + g2 * p[119] + g3 * p[129] + g4 * p[117]) * k5;
+        c[177] = (g0 * p[141] + g1 * p[140] + g2 * p[132] + g3 * p[142] + g4 * p[130]) * k4;
+        c[192] = (g0 * p[154] + g1 * p[153] + g2 * p[145] + g3 * p[155] + g4 * p[143]) * k3;
+        c[207] = (g0 * p[167] + g1 * p[166] + g2 * p[158] + g3 * p[168] + g4 * p[156]) * k2;
+        c[222] = k17 * epz11 + k18 * epp10 + k62 * epn2 + k19 * epp12 + k19 * epn0;
     }
     {  // m = 6
         const T g0 = k9 * rzz;
         const T g1 = k10 * rpz;
         const T g2 = k63 * rnz;
-        c[195] = k11 * enz12 + k12 * enp11 + k64 * enn1;
-        c[196] = (g0 * p[156] + g1 * p[143] + g2 * p[13]) * k2;
-        c[197] = (g0 * p[157] + g1 * p[144] + g2 * p[14]) * k3;
-        c[198] = (g0 * p[158] + g1 * p[145] + g2 * p[15]) * k4;
-        c[199] = (g0 * p[159] + g1 * p[146] + g2 * p[16]) * k5;
-        c[200] = (g0 * p[160] + g1 * p[147] + g2 * p[17]) * k6;
-        c[201] = (g0 * p[161] + g1 * p[148] + g2 * p[18]) * k7;
-        c[202] = (g0 * p[162] + g1 * p[149] + g2 * p[19]) * k8;
-        c[203] = (g0 * p[163] + g1 * p[150] + g2 * p[20]) * k7;
-        c[204] = (g0 * p[164] + g1 * p[151] + g2 * p[21]) * k6;
-        c[205] = (g0 * p[165] + g1 * p[152] + g2 * p[22]) * k5;
-        c[206] = (g0 * p[166] + g1 * p[153] + g2 * p[23]) * k4;
-        c[207] = (g0 * p[167] + g1 * p[154] + g2 * p[24]) * k3;
-        c[208] = (g0 * p[168] + g1 * p[155] + g2 * p[25]) * k2;
-        c[209] = k11 * epz12 + k12 * epp11 + k64 * epn1;
+        c[13] = k11 * enz12 + k12 * enp11 + k64 * enn1;
+        c[28] = (g0 * p[12] + g1 * p[11] + g2 * p[1]) * k2;
+        c[43] = (g0 * p[25] + g1 * p[24] + g2 * p[14]) * k3;
+        c[58] = (g0 * p[38] + g1 * p[37] + g2 * p[27]) * k4;
+        c[73] = (g0 * p[51] + g1 * p[50] + g2 * p[40]) * k5;
+        c[88] = (g0 * p[64] + g1 * p[63] + g2 * p[53]) * k6;
+        c[103] = (g0 * p[77] + g1 * p[76] + g2 * p[66]) * k7;
+        c[118] = (g0 * p[90] + g1 * p[89] + g2 * p[79]) * k8;
+        c[133] = (g0 * p[103] + g1 * p[102] + g2 * p[92]) * k7;
+        c[148] = (g0 * p[116] + g1 * p[115] + g2 * p[105]) * k6;
+        c[163] = (g0 * p[129] + g1 * p[128] + g2 * p[118]) * k5;
+        c[178] = (g0 * p[142] + g1 * p[141] + g2 * p[131]) * k4;
+        c[193] = (g0 * p[155] + g1 * p[154] + g2 * p[144]) * k3;
+        c[208] = (g0 * p[168] + g1 * p[167] + g2 * p[157]) * k2;
+        c[223] = k11 * epz12 + k12 * epp11 + k64 * epn1;
     }
     {  // m = 7
         const T g0 = k0 * rpz;
         const T g1 = k65 * rnz;
-        c[210] = k1 * enp12 + k66 * enn0;
-        c[211] = (g0 * p[156] + g1 * p[0]) * k2;
-        c[212] = (g0 * p[157] + g1 * p[1]) * k3;
-        c[213] = (g0 * p[158] + g1 * p[2]) * k4;
-        c[214] = (g0 * p[159] + g1 * p[3]) * k5;
-        c[215] = (g0 * p[160] + g1 * p[4]) * k6;
-        c[216] = (g0 * p[161] + g1 * p[5]) * k7;
-        c[217] = (g0 * p[162] + g1 * p[6]) * k8;
-        c[218] = (g0 * p[163] + g1 * p[7]) * k7;
-        c[219] = (g0 * p[164] + g1 * p[8]) * k6;
-        c[220] = (g0 * p[165] + g1 * p[9]) * k5;
-        c[221] = (g0 * p[166] + g1 * p[10]) * k4;
-        c[222] = (g0 * p[167] + g1 * p[11]) * k3;
-        c[223] = (g0 * p[168] + g1 * p[12]) * k2;
+        c[14] = k1 * enp12 + k66 * enn0;
+        c[29] = (g0 * p[12] + g1 * p[0]) * k2;
+        c[44] = (g0 * p[25] + g1 * p[13]) * k3;
+        c[59] = (g0 * p[38] + g1 * p[26]) * k4;
+        c[74] = (g0 * p[51] + g1 * p[39]) * k5;
+        c[89] = (g0 * p[64] + g1 * p[52]) * k6;
+        c[104] = (g0 * p[77] + g1 * p[65]) * k7;
+        c[119] = (g0 * p[90] + g1 * p[78]) * k8;
+        c[134] = (g0 * p[103] + g1 * p[91]) * k7;
+        c[149] = (g0 * p[116] + g1 * p[104]) * k6;
+        c[164] = (g0 * p[129] + g1 * p[117]) * k5;
+        c[179] = (g0 * p[142] + g1 * p[130]) * k4;
+        c[194] = (g0 * p[155] + g1 * p[143]) * k3;
+        c[209] = (g0 * p[168] + g1 * p[156]) * k2;
         c[224] = k1 * epp12 + k66 * epn0;
     }
 }
+
+/// Band 3 of out = Z(alpha) X Z(beta) X^T Z(gamma) in; c<a>[m-1], s<a>[m-1] = cos, sin of m a.
+template <class T, class C>
+SPHBASIS_FORCEINLINE void rotate_zyz_band_3(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const C* in, C* out) noexcept {
+    const T x0 = T(0.79056941504209488);  // sqrt(10)/4
+    const T x1 = T(-0.61237243569579447);  // -sqrt(6)/4
+    const T x2 = T(-1.0);  // -1
+    const T x3 = T(0.61237243569579447);  // sqrt(6)/4
+    const T x4 = T(-0.79056941504209488);  // -sqrt(10)/4
+    const T x5 = T(-0.25);  // -1/4
+    const T x6 = T(-0.96824583655185426);  // -sqrt(15)/4
+    const T x7 = T(0.25);  // 1/4
+    const C i0 = in[0], i1 = in[1], i2 = in[2], i3 = in[3], i4 = in[4], i5 = in[5], i6 = in[6];
+    const C a3 = i3;
+    const C a4 = i4 * cg[0] + i2 * (-sg[0]);
+    const C a2 = i2 * cg[0] + i4 * sg[0];
+    const C a5 = i5 * cg[1] + i1 * (-sg[1]);
+    const C a1 = i1 * cg[1] + i5 * sg[1];
+    const C a6 = i6 * cg[2] + i0 * (-sg[2]);
+    const C a0 = i0 * cg[2] + i6 * sg[2];
+    const C b0 = a3 * x0 + a5 * x1;
+    const C b1 = a1 * x2;
+    const C b2 = a3 * x3 + a5 * x0;
+    const C b3 = a0 * x4 + a2 * x1;
+    const C b4 = a4 * x5 + a6 * x6;
+    const C b5 = a0 * x3 + a2 * x4;
+    const C b6 = a4 * x6 + a6 * x7;
+    const C e3 = b3;
+    const C e4 = b4 * cb[0] + b2 * (-sb[0]);
+    const C e2 = b2 * cb[0] + b4 * sb[0];
+    const C e5 = b5 * cb[1] + b1 * (-sb[1]);
+    const C e1 = b1 * cb[1] + b5 * sb[1];
+    const C e6 = b6 * cb[2] + b0 * (-sb[2]);
+    const C e0 = b0 * cb[2] + b6 * sb[2];
+    const C f0 = e3 * x4 + e5 * x3;
+    const C f1 = e1 * x2;
+    const C f2 = e3 * x1 + e5 * x4;
+    const C f3 = e0 * x0 + e2 * x3;
+    const C f4 = e4 * x5 + e6 * x6;
+    const C f5 = e0 * x1 + e2 * x0;
+    const C f6 = e4 * x6 + e6 * x7;
+    const C h3 = f3;
+    const C h4 = f4 * ca[0] + f2 * (-sa[0]);
+    const C h2 = f2 * ca[0] + f4 * sa[0];
+    const C h5 = f5 * ca[1] + f1 * (-sa[1]);
+    const C h1 = f1 * ca[1] + f5 * sa[1];
+    const C h6 = f6 * ca[2] + f0 * (-sa[2]);
+    const C h0 = f0 * ca[2] + f6 * sa[2];
+    out[0] = h0; out[1] = h1; out[2] = h2; out[3] = h3; out[4] = h4; out[5] = h5; out[6] = h6;
+}
+
+/// Band 4 of out = Z(alpha) X Z(beta) X^T Z(gamma) in; c<a>[m-1], s<a>[m-1] = cos, sin of m a.
+template <class T, class C>
+SPHBASIS_FORCEINLINE void rotate_zyz_band_4(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const C* in, C* out) noexcept {
+    const T x0 = T(0.93541434669348533);  // sqrt(14)/4
+    const T x1 = T(-0.35355339059327379);  // -sqrt(2)/4
+    const T x2 = T(-0.75);  // -3/4
+    const T x3 = T(0.66143782776614768);  // sqrt(7)/4
+    const T x4 = T(0.35355339059327379);  // sqrt(2)/4
+    const T x5 = T(0.75);  // 3/4
+    const T x6 = T(0.375);  // 3/8
+    const T x7 = T(0.55901699437494745);  // sqrt(5)/4
+    const T x8 = T(0.73950997288745202);  // sqrt(35)/8
+    const T x9 = T(-0.93541434669348533);  // -sqrt(14)/4
+    const T x10 = T(0.5);  // 1/2
+    const T x11 = T(-0.66143782776614768);  // -sqrt(7)/4
+    const T x12 = T(0.125);  // 1/8
+    const C i0 = in[0], i1 = in[1], i2 = in[2], i3 = in[3], i4 = in[4], i5 = in[5], i6 = in[6], i7 = in[7], i8 = in[8];
+    const C a4 = i4;
+    const C a5 = i5 * cg[0] + i3 * (-sg[0]);
+    const C a3 = i3 * cg[0] + i5 * sg[0];
+    const C a6 = i6 * cg[1] + i2 * (-sg[1]);
+    const C a2 = i2 * cg[1] + i6 * sg[1];
+    const C a7 = i7 * cg[2] + i1 * (-sg[2]);
+    const C a1 = i1 * cg[2] + i7 * sg[2];
+    const C a8 = i8 * cg[3] + i0 * (-sg[3]);
+    const C a0 = i0 * cg[3] + i8 * sg[3];
+    const C b0 = a5 * x0 + a7 * x1;
+    const C b1 = a1 * x2 + a3 * x3;
+    const C b2 = a5 * x4 + a7 * x0;
+    const C b3 = a1 * x3 + a3 * x5;
+    const C b4 = a4 * x6 + a6 * x7 + a8 * x8;
+    const C b5 = a0 * x9 + a2 * x1;
+    const C b6 = a4 * x7 + a6 * x10 + a8 * x11;
+    const C b7 = a0 * x4 + a2 * x9;
+    const C b8 = a4 * x8 + a6 * x11 + a8 * x12;
+    const C e4 = b4;
+    const C e5 = b5 * cb[0] + b3 * (-sb[0]);
+    const C e3 = b3 * cb[0] + b5 * sb[0];
+    const C e6 = b6 * cb[1] + b2 * (-sb[1]);
+    const C e2 = b2 * cb[1] + b6 * sb[1];
+    const C e7 = b7 * cb[2] + b1 * (-sb[2]);
+    const C e1 = b1 * cb[2] + b7 * sb[2];
+    const C e8 = b8 * cb[3] + b0 * (-sb[3]);
+    const C e0 = b0 * cb[3] + b8 * sb[3];
+    const C f0 = e5 * x9 + e7 * x4;
+    const C f1 = e1 * x2 + e3 * x3;
+    const C f2 = e5 * x1 + e7 * x9;
+    const C f3 = e1 * x3 + e3 * x5;
+    const C f4 = e4 * x6 + e6 * x7 + e8 * x8;
+    const C f5 = e0 * x0 + e2 * x4;
+    const C f6 = e4 * x7 + e6 * x10 + e8 * x11;
+    const C f7 = e0 * x1 + e2 * x0;
+    const C f8 = e4 * x8 + e6 * x11 + e8 * x12;
+    const C h4 = f4;
+    const C h5 = f5 * ca[0] + f3 * (-sa[0]);
+    const C h3 = f3 * ca[0] + f5 * sa[0];
+    const C h6 = f6 * ca[1] + f2 * (-sa[1]);
+    const C h2 = f2 * ca[1] + f6 * sa[1];
+    const C h7 = f7 * ca[2] + f1 * (-sa[2]);
+    const C h1 = f1 * ca[2] + f7 * sa[2];
+    const C h8 = f8 * ca[3] + f0 * (-sa[3]);
+    const C h0 = f0 * ca[3] + f8 * sa[3];
+    out[0] = h0; out[1] = h1; out[2] = h2; out[3] = h3; out[4] = h4; out[5] = h5; out[6] = h6; out[7] = h7; out[8] = h8;
+}
+
+/// Band 5 of out = Z(alpha) X Z(beta) X^T Z(gamma) in; c<a>[m-1], s<a>[m-1] = cos, sin of m a.
+template <class T, class C>
+SPHBASIS_FORCEINLINE void rotate_zyz_band_5(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const C* in, C* out) noexcept {
+    const T x0 = T(-0.70156076002011403);  // -3*sqrt(14)/16
+    const T x1 = T(0.68465319688145765);  // sqrt(30)/8
+    const T x2 = T(-0.19764235376052372);  // -sqrt(10)/16
+    const T x3 = T(-0.5);  // -1/2
+    const T x4 = T(0.8660254037844386);  // sqrt(3)/2
+    const T x5 = T(-0.52291251658379723);  // -sqrt(70)/16
+    const T x6 = T(-0.30618621784789724);  // -sqrt(6)/8
+    const T x7 = T(0.79549512883486595);  // 9*sqrt(2)/16
+    const T x8 = T(0.5);  // 1/2
+    const T x9 = T(-0.48412291827592713);  // -sqrt(15)/8
+    const T x10 = T(-0.66143782776614768);  // -sqrt(7)/4
+    const T x11 = T(-0.57282196186947998);  // -sqrt(21)/8
+    const T x12 = T(0.70156076002011403);  // 3*sqrt(14)/16
+    const T x13 = T(0.52291251658379723);  // sqrt(70)/16
+    const T x14 = T(0.48412291827592713);  // sqrt(15)/8
+    const T x15 = T(0.125);  // 1/8
+    const T x16 = T(0.40504629365049127);  // sqrt(42)/16
+    const T x17 = T(0.90571104663683988);  // sqrt(210)/16
+    const T x18 = T(-0.68465319688145765);  // -sqrt(30)/8
+    const T x19 = T(0.30618621784789724);  // sqrt(6)/8
+    const T x20 = T(0.66143782776614768);  // sqrt(7)/4
+    const T x21 = T(0.8125);  // 13/16
+    const T x22 = T(-0.41926274578121059);  // -3*sqrt(5)/16
+    const T x23 = T(0.19764235376052372);  // sqrt(10)/16
+    const T x24 = T(-0.79549512883486595);  // -9*sqrt(2)/16
+    const T x25 = T(0.57282196186947998);  // sqrt(21)/8
+    const T x26 = T(0.0625);  // 1/16
+    const C i0 = in[0], i1 = in[1], i2 = in[2], i3 = in[3], i4 = in[4], i5 = in[5], i6 = in[6], i7 = in[7], i8 = in[8], i9 = in[9], i10 = in[10];
+    const C a5 = i5;
+    const C a6 = i6 * cg[0] + i4 * (-sg[0]);
+    const C a4 = i4 * cg[0] + i6 * sg[0];
+    const C a7 = i7 * cg[1] + i3 * (-sg[1]);
+    const C a3 = i3 * cg[1] + i7 * sg[1];
+    const C a8 = i8 * cg[2] + i2 * (-sg[2]);
+    const C a2 = i2 * cg[2] + i8 * sg[2];
+    const C a9 = i9 * cg[3] + i1 * (-sg[3]);
+    const C a1 = i1 * cg[3] + i9 * sg[3];
+    const C a10 = i10 * cg[4] + i0 * (-sg[4]);
+    const C a0 = i0 * cg[4] + i10 * sg[4];
+    const C b0 = a5 * x0 + a7 * x1 + a9 * x2;
+    const C b1 = a1 * x3 + a3 * x4;
+    const C b2 = a5 * x5 + a7 * x6 + a9 * x7;
+    const C b3 = a1 * x4 + a3 * x8;
+    const C b4 = a5 * x9 + a7 * x10 + a9 * x11;
+    const C b5 = a0 * x12 + a2 * x13 + a4 * x14;
+    const C b6 = a6 * x15 + a8 * x16 + a10 * x17;
+    const C b7 = a0 * x18 + a2 * x19 + a4 * x20;
+    const C b8 = a6 * x16 + a8 * x21 + a10 * x22;
+    const C b9 = a0 * x23 + a2 * x24 + a4 * x25;
+    const C b10 = a6 * x17 + a8 * x22 + a10 * x26;
+    const C e5 = b5;
+    const C e6 = b6 * cb[0] + b4 * (-sb[0]);
+    const C e4 = b4 * cb[0] + b6 * sb[0];
+    const C e7 = b7 * cb[1] + b3 * (-sb[1]);
+    const C e3 = b3 * cb[1] + b7 * sb[1];
+    const C e8 = b8 * cb[2] + b2 * (-sb[2]);
+    const C e2 = b2 * cb[2] + b8 * sb[2];
+    const C e9 = b9 * cb[3] + b1 * (-sb[3]);
+    const C e1 = b1 * cb[3] + b9 * sb[3];
+    const C e10 = b10 * cb[4] + b0 * (-sb[4]);
+    const C e0 = b0 * cb[4] + b10 * sb[4];
+    const C f0 = e5 * x12 + e7 * x18 + e9 * x23;
+    const C f1 = e1 * x3 + e3 * x4;
+    const C f2 = e5 * x13 + e7 * x19 + e9 * x24;
+    const C f3 = e1 * x4 + e3 * x8;
+    const C f4 = e5 * x14 + e7 * x20 + e9 * x25;
+    const C f5 = e0 * x0 + e2 * x5 + e4 * x9;
+    const C f6 = e6 * x15 + e8 * x16 + e10 * x17;
+    const C f7 = e0 * x1 + e2 * x6 + e4 * x10;
+    const C f8 = e6 * x16 + e8 * x21 + e10 * x22;
+    const C f9 = e0 * x2 + e2 * x7 + e4 * x11;
+    const C f10 = e6 * x17 + e8 * x22 + e10 * x26;
+    const C h5 = f5;
+    const C h6 = f6 * ca[0] + f4 * (-sa[0]);
+    const C h4 = f4 * ca[0] + f6 * sa[0];
+    const C h7 = f7 * ca[1] + f3 * (-sa[1]);
+    const C h3 = f3 * ca[1] + f7 * sa[1];
+    const C h8 = f8 * ca[2] + f2 * (-sa[2]);
+    const C h2 = f2 * ca[2] + f8 * sa[2];
+    const C h9 = f9 * ca[3] + f1 * (-sa[3]);
+    const C h1 = f1 * ca[3] + f9 * sa[3];
+    const C h10 = f10 * ca[4] + f0 * (-sa[4]);
+    const C h0 = f0 * ca[4] + f10 * sa[4];
+    out[0] = h0; out[1] = h1; out[2] = h2; out[3] = h3; out[4] = h4; out[5] = h5; out[6] = h6; out[7] = h7; out[8] = h8; out[9] = h9; out[10] = h10;
+}
+
+/// Band 6 of out = Z(alpha) X Z(beta) X^T Z(gamma) in; c<a>[m-1], s<a>[m-1] = cos, sin of m a.
+template <class T, class C>
+SPHBASIS_FORCEINLINE void rotate_zyz_band_6(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const C* in, C* out) noexcept {
+    const T x0 = T(-0.87945295496689302);  // -3*sqrt(22)/16
+    const T x1 = T(0.46351240544347894);  // sqrt(55)/16
+    const T x2 = T(-0.10825317547305482);  // -sqrt(3)/16
+    const T x3 = T(-0.3125);  // -5/16
+    const T x4 = T(0.80282703616657058);  // sqrt(165)/16
+    const T x5 = T(-0.50775240028974755);  // -sqrt(66)/16
+    const T x6 = T(-0.4330127018922193);  // -sqrt(3)/4
+    const T x7 = T(-0.68465319688145765);  // -sqrt(30)/8
+    const T x8 = T(0.58630196997792872);  // sqrt(22)/8
+    const T x9 = T(-0.0625);  // -1/16
+    const T x10 = T(-0.59292706128157113);  // -3*sqrt(10)/16
+    const T x11 = T(-0.19764235376052372);  // -sqrt(10)/16
+    const T x12 = T(-0.5625);  // -9/16
+    const T x13 = T(-0.80282703616657058);  // -sqrt(165)/16
+    const T x14 = T(-0.625);  // -5/8
+    const T x15 = T(-0.45285552331841994);  // -sqrt(210)/32
+    const T x16 = T(-0.49607837082461076);  // -3*sqrt(7)/16
+    const T x17 = T(-0.67169328938139616);  // -sqrt(462)/32
+    const T x18 = T(0.87945295496689302);  // 3*sqrt(22)/16
+    const T x19 = T(0.4330127018922193);  // sqrt(3)/4
+    const T x20 = T(0.19764235376052372);  // sqrt(10)/16
+    const T x21 = T(-0.53125);  // -17/32
+    const T x22 = T(-0.17116329922036441);  // -sqrt(30)/32
+    const T x23 = T(0.6952686081652184);  // 3*sqrt(55)/32
+    const T x24 = T(-0.46351240544347894);  // -sqrt(55)/16
+    const T x25 = T(0.68465319688145765);  // sqrt(30)/8
+    const T x26 = T(0.5625);  // 9/16
+    const T x27 = T(0.8125);  // 13/16
+    const T x28 = T(-0.25387620014487378);  // -sqrt(66)/32
+    const T x29 = T(0.10825317547305482);  // sqrt(3)/16
+    const T x30 = T(-0.58630196997792872);  // -sqrt(22)/8
+    const T x31 = T(0.03125);  // 1/32
+    const C i0 = in[0], i1 = in[1], i2 = in[2], i3 = in[3], i4 = in[4], i5 = in[5], i6 = in[6], i7 = in[7], i8 = in[8], i9 = in[9], i10 = in[10], i11 = in[11], i12 = in[12];
+    const C a6 = i6;
+    const C a7 = i7 * cg[0] + i5 * (-sg[0]);
+    const C a5 = i5 * cg[0] + i7 * sg[0];
+    const C a8 = i8 * cg[1] + i4 * (-sg[1]);
+    const C a4 = i4 * cg[1] + i8 * sg[1];
+    const C a9 = i9 * cg[2] + i3 * (-sg[2]);
+    const C a3 = i3 * cg[2] + i9 * sg[2];
+    const C a10 = i10 * cg[3] + i2 * (-sg[3]);
+    const C a2 = i2 * cg[3] + i10 * sg[3];
+    const C a11 = i11 * cg[4] + i1 * (-sg[4]);
+    const C a1 = i1 * cg[4] + i11 * sg[4];
+    const C a12 = i12 * cg[5] + i0 * (-sg[5]);
+    const C a0 = i0 * cg[5] + i12 * sg[5];
+    const C b0 = a7 * x0 + a9 * x1 + a11 * x2;
+    const C b1 = a1 * x3 + a3 * x4 + a5 * x5;
+    const C b2 = a7 * x6 + a9 * x7 + a11 * x8;
+    const C b3 = a1 * x4 + a3 * x9 + a5 * x10;
+    const C b4 = a7 * x11 + a9 * x12 + a11 * x13;
+    const C b5 = a1 * x5 + a3 * x10 + a5 * x14;
+    const C b6 = a6 * x3 + a8 * x15 + a10 * x16 + a12 * x17;
+    const C b7 = a0 * x18 + a2 * x19 + a4 * x20;
+    const C b8 = a6 * x15 + a8 * x21 + a10 * x22 + a12 * x23;
+    const C b9 = a0 * x24 + a2 * x25 + a4 * x26;
+    const C b10 = a6 * x16 + a8 * x22 + a10 * x27 + a12 * x28;
+    const C b11 = a0 * x29 + a2 * x30 + a4 * x4;
+    const C b12 = a6 * x17 + a8 * x23 + a10 * x28 + a12 * x31;
+    const C e6 = b6;
+    const C e7 = b7 * cb[0] + b5 * (-sb[0]);
+    const C e5 = b5 * cb[0] + b7 * sb[0];
+    const C e8 = b8 * cb[1] + b4 * (-sb[1]);
+    const C e4 = b4 * cb[1] + b8 * sb[1];
+    const C e9 = b9 * cb[2] + b3 * (-sb[2]);
+    const C e3 = b3 * cb[2] + b9 * sb[2];
+    const C e10 = b10 * cb[3] + b2 * (-sb[3]);
+    const C e2 = b2 * cb[3] + b10 * sb[3];
+    const C e11 = b11 * cb[4] + b1 * (-sb[4]);
+    const C e1 = b1 * cb[4] + b11 * sb[4];
+    const C e12 = b12 * cb[5] + b0 * (-sb[5]);
+    const C e0 = b0 * cb[5] + b12 * sb[5];
+    const C f0 = e7 * x18 + e9 * x24 + e11 * x29;
+    const C f1 = e1 * x3 + e3 * x4 + e5 * x5;
+    const C f2 = e7 * x19 + e9 * x25 + e11 * x30;
+    const C f3 = e1 * x4 + e3 * x9 + e5 * x10;
+    const C f4 = e7 * x20 + e9 * x26 + e11 * x4;
+    const C f5 = e1 * x5 + e3 * x10 + e5 * x14;
+    const C f6 = e6 * x3 + e8 * x15 + e10 * x16 + e12 * x17;
+    const C f7 = e0 * x0 + e2 * x6 + e4 * x11;
+    const C f8 = e6 * x15 + e8 * x21 + e10 * x22 + e12 * x23;
+    const C f9 = e0 * x1 + e2 * x7 + e4 * x12;
+    const C f10 = e6 * x16 + e8 * x22 + e10 * x27 + e12 * x28;
+    const C f11 = e0 * x2 + e2 * x8 + e4 * x13;
+    const C f12 = e6 * x17 + e8 * x23 + e10 * x28 + e12 * x31;
+    const C h6 = f6;
+    const C h7 = f7 * ca[0] + f5 * (-sa[0]);
+    const C h5 = f5 * ca[0] + f7 * sa[0];
+    const C h8 = f8 * ca[1] + f4 * (-sa[1]);
+    const C h4 = f4 * ca[1] + f8 * sa[1];
+    const C h9 = f9 * ca[2] + f3 * (-sa[2]);
+    const C h3 = f3 * ca[2] + f9 * sa[2];
+    const C h10 = f10 * ca[3] + f2 * (-sa[3]);
+    const C h2 = f2 * ca[3] + f10 * sa[3];
+    const C h11 = f11 * ca[4] + f1 * (-sa[4]);
+    const C h1 = f1 * ca[4] + f11 * sa[4];
+    const C h12 = f12 * ca[5] + f0 * (-sa[5]);
+    const C h0 = f0 * ca[5] + f12 * sa[5];
+    out[0] = h0; out[1] = h1; out[2] = h2; out[3] = h3; out[4] = h4; out[5] = h5; out[6] = h6; out[7] = h7; out[8] = h8; out[9] = h9; out[10] = h10; out[11] = h11; out[12] = h12;
+}
+
+/// Band 7 of out = Z(alpha) X Z(beta) X^T Z(gamma) in; c<a>[m-1], s<a>[m-1] = cos, sin of m a.
+template <class T, class C>
+SPHBASIS_FORCEINLINE void rotate_zyz_band_7(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const C* in, C* out) noexcept {
+    const T x0 = T(0.64725984928774938);  // sqrt(429)/32
+    const T x1 = T(-0.69912054128740919);  // -sqrt(2002)/64
+    const T x2 = T(0.2981060004427955);  // sqrt(91)/32
+    const T x3 = T(-0.058463396668342833);  // -sqrt(14)/64
+    const T x4 = T(-0.1875);  // -3/16
+    const T x5 = T(0.63737743919909806);  // sqrt(26)/8
+    const T x6 = T(-0.74739129644383739);  // -sqrt(143)/16
+    const T x7 = T(0.47495887979908324);  // sqrt(231)/32
+    const T x8 = T(0.07328774624724109);  // sqrt(22)/64
+    const T x9 = T(-0.78125);  // -25/32
+    const T x10 = T(0.39836089949943632);  // 5*sqrt(26)/64
+    const T x11 = T(-0.5);  // -1/2
+    const T x12 = T(-0.58630196997792872);  // -sqrt(22)/8
+    const T x13 = T(0.42961647140211001);  // 3*sqrt(21)/32
+    const T x14 = T(0.4198446513295126);  // 19*sqrt(2)/64
+    const T x15 = T(-0.10364452469860624);  // -sqrt(11)/32
+    const T x16 = T(-0.7927281808728639);  // -3*sqrt(286)/64
+    const T x17 = T(-0.3125);  // -5/16
+    const T x18 = T(0.41339864235384227);  // 5*sqrt(7)/32
+    const T x19 = T(0.57409915846480741);  // 15*sqrt(6)/64
+    const T x20 = T(0.53855274811294018);  // 3*sqrt(33)/32
+    const T x21 = T(0.45768182862115031);  // sqrt(858)/64
+    const T x22 = T(-0.64725984928774938);  // -sqrt(429)/32
+    const T x23 = T(-0.47495887979908324);  // -sqrt(231)/32
+    const T x24 = T(-0.42961647140211001);  // -3*sqrt(21)/32
+    const T x25 = T(-0.41339864235384227);  // -5*sqrt(7)/32
+    const T x26 = T(-0.078125);  // -5/64
+    const T x27 = T(-0.24356964481437338);  // -9*sqrt(3)/64
+    const T x28 = T(-0.44879395676078349);  // -5*sqrt(33)/64
+    const T x29 = T(-0.85624429742626607);  // -sqrt(3003)/64
+    const T x30 = T(0.69912054128740919);  // sqrt(2002)/64
+    const T x31 = T(-0.07328774624724109);  // -sqrt(22)/64
+    const T x32 = T(-0.4198446513295126);  // -19*sqrt(2)/64
+    const T x33 = T(-0.57409915846480741);  // -15*sqrt(6)/64
+    const T x34 = T(-0.609375);  // -39/64
+    const T x35 = T(-0.57004488584233437);  // -11*sqrt(11)/64
+    const T x36 = T(0.49435287561113672);  // sqrt(1001)/64
+    const T x37 = T(-0.2981060004427955);  // -sqrt(91)/32
+    const T x38 = T(0.78125);  // 25/32
+    const T x39 = T(0.10364452469860624);  // sqrt(11)/32
+    const T x40 = T(-0.53855274811294018);  // -3*sqrt(33)/32
+    const T x41 = T(0.671875);  // 43/64
+    const T x42 = T(-0.14905300022139775);  // -sqrt(91)/64
+    const T x43 = T(0.058463396668342833);  // sqrt(14)/64
+    const T x44 = T(-0.39836089949943632);  // -5*sqrt(26)/64
+    const T x45 = T(0.7927281808728639);  // 3*sqrt(286)/64
+    const T x46 = T(-0.45768182862115031);  // -sqrt(858)/64
+    const T x47 = T(0.015625);  // 1/64
+    const C i0 = in[0], i1 = in[1], i2 = in[2], i3 = in[3], i4 = in[4], i5 = in[5], i6 = in[6], i7 = in[7], i8 = in[8], i9 = in[9], i10 = in[10], i11 = in[11], i12 = in[12], i13 = in[13], i14 = in[14];
+    const C a7 = i7;
+    const C a8 = i8 * cg[0] + i6 * (-sg[0]);
+    const C a6 = i6 * cg[0] + i8 * sg[0];
+    const C a9 = i9 * cg[1] + i5 * (-sg[1]);
+    const C a5 = i5 * cg[1] + i9 * sg[1];
+    const C a10 = i10 * cg[2] + i4 * (-sg[2]);
+    const C a4 = i4 * cg[2] + i10 * sg[2];
+    const C a11 = i11 * cg[3] + i3 * (-sg[3]);
+    const C a3 = i3 * cg[3] + i11 * sg[3];
+    const C a12 = i12 * cg[4] + i2 * (-sg[4]);
+    const C a2 = i2 * cg[4] + i12 * sg[4];
+    const C a13 = i13 * cg[5] + i1 * (-sg[5]);
+    const C a1 = i1 * cg[5] + i13 * sg[5];
+    const C a14 = i14 * cg[6] + i0 * (-sg[6]);
+    const C a0 = i0 * cg[6] + i14 * sg[6];
+    const C b0 = a7 * x0 + a9 * x1 + a11 * x2 + a13 * x3;
+    const C b1 = a1 * x4 + a3 * x5 + a5 * x6;
+    const C b2 = a7 * x7 + a9 * x8 + a11 * x9 + a13 * x10;
+    const C b3 = a1 * x5 + a3 * x11 + a5 * x12;
+    const C b4 = a7 * x13 + a9 * x14 + a11 * x15 + a13 * x16;
+    const C b5 = a1 * x6 + a3 * x12 + a5 * x17;
+    const C b6 = a7 * x18 + a9 * x19 + a11 * x20 + a13 * x21;
+    const C b7 = a0 * x22 + a2 * x23 + a4 * x24 + a6 * x25;
+    const C b8 = a8 * x26 + a10 * x27 + a12 * x28 + a14 * x29;
+    const C b9 = a0 * x30 + a2 * x31 + a4 * x32 + a6 * x33;
+    const C b10 = a8 * x27 + a10 * x34 + a12 * x35 + a14 * x36;
+    const C b11 = a0 * x37 + a2 * x38 + a4 * x39 + a6 * x40;
+    const C b12 = a8 * x28 + a10 * x35 + a12 * x41 + a14 * x42;
+    const C b13 = a0 * x43 + a2 * x44 + a4 * x45 + a6 * x46;
+    const C b14 = a8 * x29 + a10 * x36 + a12 * x42 + a14 * x47;
+    const C e7 = b7;
+    const C e8 = b8 * cb[0] + b6 * (-sb[0]);
+    const C e6 = b6 * cb[0] + b8 * sb[0];
+    const C e9 = b9 * cb[1] + b5 * (-sb[1]);
+    const C e5 = b5 * cb[1] + b9 * sb[1];
+    const C e10 = b10 * cb[2] + b4 * (-sb[2]);
+    const C e4 = b4 * cb[2] + b10 * sb[2];
+    const C e11 = b11 * cb[3] + b3 * (-sb[3]);
+    const C e3 = b3 * cb[3] + b11 * sb[3];
+    const C e12 = b12 * cb[4] + b2 * (-sb[4]);
+    const C e2 = b2 * cb[4] + b12 * sb[4];
+    const C e13 = b13 * cb[5] + b1 * (-sb[5]);
+    const C e1 = b1 * cb[5] + b13 * sb[5];
+    const C e14 = b14 * cb[6] + b0 * (-sb[6]);
+    const C e0 = b0 * cb[6] + b14 * sb[6];
+    const C f0 = e7 * x22 + e9 * x30 + e11 * x37 + e13 * x43;
+    const C f1 = e1 * x4 + e3 * x5 + e5 * x6;
+    const C f2 = e7 * x23 + e9 * x31 + e11 * x38 + e13 * x44;
+    const C f3 = e1 * x5 + e3 * x11 + e5 * x12;
+    const C f4 = e7 * x24 + e9 * x32 + e11 * x39 + e13 * x45;
+    const C f5 = e1 * x6 + e3 * x12 + e5 * x17;
+    const C f6 = e7 * x25 + e9 * x33 + e11 * x40 + e13 * x46;
+    const C f7 = e0 * x0 + e2 * x7 + e4 * x13 + e6 * x18;
+    const C f8 = e8 * x26 + e10 * x27 + e12 * x28 + e14 * x29;
+    const C f9 = e0 * x1 + e2 * x8 + e4 * x14 + e6 * x19;
+    const C f10 = e8 * x27 + e10 * x34 + e12 * x35 + e14 * x36;
+    const C f11 = e0 * x2 + e2 * x9 + e4 * x15 + e6 * x20;
+    const C f12 = e8 * x28 + e10 * x35 + e12 * x41 + e14 * x42;
+    const C f13 = e0 * x3 + e2 * x10 + e4 * x16 + e6 * x21;
+    const C f14 = e8 * x29 + e10 * x36 + e12 * x42 + e14 * x47;
+    const C h7 = f7;
+    const C h8 = f8 * ca[0] + f6 * (-sa[0]);
+    const C h6 = f6 * ca[0] + f8 * sa[0];
+    const C h9 = f9 * ca[1] + f5 * (-sa[1]);
+    const C h5 = f5 * ca[1] + f9 * sa[1];
+    const C h10 = f10 * ca[2] + f4 * (-sa[2]);
+    const C h4 = f4 * ca[2] + f10 * sa[2];
+    const C h11 = f11 * ca[3] + f3 * (-sa[3]);
+    const C h3 = f3 * ca[3] + f11 * sa[3];
+    const C h12 = f12 * ca[4] + f2 * (-sa[4]);
+    const C h2 = f2 * ca[4] + f12 * sa[4];
+    const C h13 = f13 * ca[5] + f1 * (-sa[5]);
+    const C h1 = f1 * ca[5] + f13 * sa[5];
+    const C h14 = f14 * ca[6] + f0 * (-sa[6]);
+    const C h0 = f0 * ca[6] + f14 * sa[6];
+    out[0] = h0; out[1] = h1; out[2] = h2; out[3] = h3; out[4] = h4; out[5] = h5; out[6] = h6; out[7] = h7; out[8] = h8; out[9] = h9; out[10] = h10; out[11] = h11; out[12] = h12; out[13] = h13; out[14] = h14;
+}
+
+#if SPHBASIS_SH_ROTATION_VECTOR
+/// Bands 3..3 of out = D(R) in, 4 bands, in 16-lane vectors (see rotate_direct_vec).
+template <class T>
+SPHBASIS_FORCEINLINE void rotate_zyz_vec_4(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const T* in, T* out) noexcept {
+    using V = typename rot_vec<T>::v16;
+    using V8 = typename rot_vec<T>::v8;
+    V in0;
+    std::memcpy(&in0, in + 0, sizeof(V));
+    const V u0_0 = __builtin_shufflevector(in0, in0, 0, 13, 10, 15, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V v0_0 = __builtin_shufflevector(in0, in0, 12, 11, 14, 9, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V8 ca8 = {T(1), ca[0], ca[1], ca[2], T(0), T(0), T(0), T(0)};
+    const V8 sa8 = {T(0), sa[0], sa[1], sa[2], T(0), T(0), T(0), T(0)};
+    const V8 na8 = -sa8;
+    const V ca0 = __builtin_shufflevector(ca8, ca8, 0, 1, 2, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V sua0 = __builtin_shufflevector(sa8, na8, 0, 9, 2, 11, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V sva0 = __builtin_shufflevector(sa8, na8, 8, 1, 10, 3, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8);
+    const V8 cb8 = {T(1), cb[0], cb[1], cb[2], T(0), T(0), T(0), T(0)};
+    const V8 sb8 = {T(0), sb[0], sb[1], sb[2], T(0), T(0), T(0), T(0)};
+    const V8 nb8 = -sb8;
+    const V cb0 = __builtin_shufflevector(cb8, cb8, 0, 1, 2, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V sub0 = __builtin_shufflevector(sb8, nb8, 0, 9, 2, 11, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V svb0 = __builtin_shufflevector(sb8, nb8, 8, 1, 10, 3, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8);
+    const V8 cg8 = {T(1), cg[0], cg[1], cg[2], T(0), T(0), T(0), T(0)};
+    const V8 sg8 = {T(0), sg[0], sg[1], sg[2], T(0), T(0), T(0), T(0)};
+    const V8 ng8 = -sg8;
+    const V cg0 = __builtin_shufflevector(cg8, cg8, 0, 1, 2, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V sug0 = __builtin_shufflevector(sg8, ng8, 0, 9, 2, 11, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V svg0 = __builtin_shufflevector(sg8, ng8, 8, 1, 10, 3, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8);
+    const V u0_1 = u0_0 * cg0 + v0_0 * sug0;
+    const V v0_1 = v0_0 * cg0 + u0_0 * svg0;
+    const V k1 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p1 = __builtin_shufflevector(u0_1, u0_1, 0, 1, 2, 1, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k2 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p2 = __builtin_shufflevector(u0_1, u0_1, 0, 3, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V u0_2 = p1 * k1 + p2 * k2;
+    const V k3 = {T(-0.61237243569579447), T(0.61237243569579447), T(-0.79056941504209488), T(0.79056941504209488), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p3 = __builtin_shufflevector(v0_1, v0_1, 1, 0, 1, 0, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k4 = {T(-0.79056941504209488), T(0.79056941504209488), T(0.61237243569579447), T(-0.61237243569579447), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p4 = __builtin_shufflevector(v0_1, v0_1, 3, 2, 3, 2, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V v0_2 = p3 * k3 + p4 * k4;
+    const V u0_3 = u0_2 * cb0 + v0_2 * sub0;
+    const V v0_3 = v0_2 * cb0 + u0_2 * svb0;
+    const V k5 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p5 = __builtin_shufflevector(u0_3, u0_3, 0, 1, 2, 1, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k6 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p6 = __builtin_shufflevector(u0_3, u0_3, 0, 3, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V u0_4 = p5 * k5 + p6 * k6;
+    const V k7 = {T(0.61237243569579447), T(-0.61237243569579447), T(0.79056941504209488), T(-0.79056941504209488), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p7 = __builtin_shufflevector(v0_3, v0_3, 1, 0, 1, 0, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k8 = {T(0.79056941504209488), T(-0.79056941504209488), T(-0.61237243569579447), T(0.61237243569579447), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p8 = __builtin_shufflevector(v0_3, v0_3, 3, 2, 3, 2, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V v0_4 = p7 * k7 + p8 * k8;
+    const V u0_5 = u0_4 * ca0 + v0_4 * sua0;
+    const V v0_5 = v0_4 * ca0 + u0_4 * sva0;
+    const V o0 = __builtin_shufflevector(u0_5, v0_5, 0, 0, 0, 0, 0, 0, 0, 0, 0, 19, 2, 17, 16, 1, 18, 3);
+    std::memcpy(out + 0, &o0, sizeof(V));
+}
+
+/// Bands 3..4 of out = D(R) in, 5 bands, in 16-lane vectors (see rotate_direct_vec).
+template <class T>
+SPHBASIS_FORCEINLINE void rotate_zyz_vec_5(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const T* in, T* out) noexcept {
+    using V = typename rot_vec<T>::v16;
+    using V8 = typename rot_vec<T>::v8;
+    V in0;
+    std::memcpy(&in0, in + 9, sizeof(V));
+    const V u0_0 = __builtin_shufflevector(in0, in0, 0, 4, 1, 6, 0, 12, 9, 14, 7, 0, 0, 0, 0, 0, 0, 0);
+    const V v0_0 = __builtin_shufflevector(in0, in0, 3, 2, 5, 0, 11, 10, 13, 8, 15, 0, 0, 0, 0, 0, 0, 0);
+    const V8 ca8 = {T(1), ca[0], ca[1], ca[2], ca[3], T(0), T(0), T(0)};
+    const V8 sa8 = {T(0), sa[0], sa[1], sa[2], sa[3], T(0), T(0), T(0)};
+    const V8 na8 = -sa8;
+    const V ca0 = __builtin_shufflevector(ca8, ca8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 0, 0, 0, 0, 0, 0);
+    const V sua0 = __builtin_shufflevector(sa8, na8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 0, 0, 0, 0, 0, 0);
+    const V sva0 = __builtin_shufflevector(sa8, na8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 8, 8, 8, 8, 8, 8);
+    const V8 cb8 = {T(1), cb[0], cb[1], cb[2], cb[3], T(0), T(0), T(0)};
+    const V8 sb8 = {T(0), sb[0], sb[1], sb[2], sb[3], T(0), T(0), T(0)};
+    const V8 nb8 = -sb8;
+    const V cb0 = __builtin_shufflevector(cb8, cb8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 0, 0, 0, 0, 0, 0);
+    const V sub0 = __builtin_shufflevector(sb8, nb8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 0, 0, 0, 0, 0, 0);
+    const V svb0 = __builtin_shufflevector(sb8, nb8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 8, 8, 8, 8, 8, 8);
+    const V8 cg8 = {T(1), cg[0], cg[1], cg[2], cg[3], T(0), T(0), T(0)};
+    const V8 sg8 = {T(0), sg[0], sg[1], sg[2], sg[3], T(0), T(0), T(0)};
+    const V8 ng8 = -sg8;
+    const V cg0 = __builtin_shufflevector(cg8, cg8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 0, 0, 0, 0, 0, 0);
+    const V sug0 = __builtin_shufflevector(sg8, ng8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 0, 0, 0, 0, 0, 0);
+    const V svg0 = __builtin_shufflevector(sg8, ng8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 8, 8, 8, 8, 8, 8);
+    const V u0_1 = u0_0 * cg0 + v0_0 * sug0;
+    const V v0_1 = v0_0 * cg0 + u0_0 * svg0;
+    const V k1 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(-0.35355339059327379), T(0.35355339059327379), T(-0.93541434669348533), T(0.93541434669348533), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p1 = __builtin_shufflevector(u0_1, u0_1, 0, 1, 2, 1, 4, 6, 5, 6, 5, 9, 10, 11, 12, 13, 14, 15);
+    const V k2 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(-0.93541434669348533), T(0.93541434669348533), T(0.35355339059327379), T(-0.35355339059327379), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p2 = __builtin_shufflevector(u0_1, u0_1, 0, 3, 2, 3, 4, 8, 7, 8, 7, 9, 10, 11, 12, 13, 14, 15);
+    const V u0_2 = p1 * k1 + p2 * k2;
+    const V k3 = {T(-0.61237243569579447), T(0.61237243569579447), T(-0.79056941504209488), T(0.79056941504209488), T(0.375), T(0.75), T(0.55901699437494745), T(0.66143782776614768), T(0.73950997288745202), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p3 = __builtin_shufflevector(v0_1, v0_1, 1, 0, 1, 0, 4, 5, 4, 5, 4, 9, 10, 11, 12, 13, 14, 15);
+    const V k4 = {T(-0.79056941504209488), T(0.79056941504209488), T(0.61237243569579447), T(-0.61237243569579447), T(0.55901699437494745), T(0.66143782776614768), T(0.5), T(-0.75), T(-0.66143782776614768), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p4 = __builtin_shufflevector(v0_1, v0_1, 3, 2, 3, 2, 6, 7, 6, 7, 6, 9, 10, 11, 12, 13, 14, 15);
+    const V k5 = {T(0), T(0), T(0), T(0), T(0.73950997288745202), T(0), T(-0.66143782776614768), T(0), T(0.125), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p5 = __builtin_shufflevector(v0_1, v0_1, 0, 1, 2, 3, 8, 5, 8, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V v0_2 = p3 * k3 + p4 * k4 + p5 * k5;
+    const V u0_3 = u0_2 * cb0 + v0_2 * sub0;
+    const V v0_3 = v0_2 * cb0 + u0_2 * svb0;
+    const V k6 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(0.35355339059327379), T(-0.35355339059327379), T(0.93541434669348533), T(-0.93541434669348533), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p6 = __builtin_shufflevector(u0_3, u0_3, 0, 1, 2, 1, 4, 6, 5, 6, 5, 9, 10, 11, 12, 13, 14, 15);
+    const V k7 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(0.93541434669348533), T(-0.93541434669348533), T(-0.35355339059327379), T(0.35355339059327379), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p7 = __builtin_shufflevector(u0_3, u0_3, 0, 3, 2, 3, 4, 8, 7, 8, 7, 9, 10, 11, 12, 13, 14, 15);
+    const V u0_4 = p6 * k6 + p7 * k7;
+    const V k8 = {T(0.61237243569579447), T(-0.61237243569579447), T(0.79056941504209488), T(-0.79056941504209488), T(0.375), T(0.75), T(0.55901699437494745), T(0.66143782776614768), T(0.73950997288745202), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p8 = __builtin_shufflevector(v0_3, v0_3, 1, 0, 1, 0, 4, 5, 4, 5, 4, 9, 10, 11, 12, 13, 14, 15);
+    const V k9 = {T(0.79056941504209488), T(-0.79056941504209488), T(-0.61237243569579447), T(0.61237243569579447), T(0.55901699437494745), T(0.66143782776614768), T(0.5), T(-0.75), T(-0.66143782776614768), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p9 = __builtin_shufflevector(v0_3, v0_3, 3, 2, 3, 2, 6, 7, 6, 7, 6, 9, 10, 11, 12, 13, 14, 15);
+    const V k10 = {T(0), T(0), T(0), T(0), T(0.73950997288745202), T(0), T(-0.66143782776614768), T(0), T(0.125), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p10 = __builtin_shufflevector(v0_3, v0_3, 0, 1, 2, 3, 8, 5, 8, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V v0_4 = p8 * k8 + p9 * k9 + p10 * k10;
+    const V u0_5 = u0_4 * ca0 + v0_4 * sua0;
+    const V v0_5 = v0_4 * ca0 + u0_4 * sva0;
+    const V o0 = __builtin_shufflevector(u0_5, v0_5, 19, 2, 17, 16, 1, 18, 3, 8, 23, 6, 21, 20, 5, 22, 7, 24);
+    std::memcpy(out + 9, &o0, sizeof(V));
+}
+
+/// Bands 3..5 of out = D(R) in, 6 bands, in 16-lane vectors (see rotate_direct_vec).
+template <class T>
+SPHBASIS_FORCEINLINE void rotate_zyz_vec_6(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const T* in, T* out) noexcept {
+    using V = typename rot_vec<T>::v16;
+    using V8 = typename rot_vec<T>::v8;
+    V in0;
+    std::memcpy(&in0, in + 9, sizeof(V));
+    V in1;
+    std::memcpy(&in1, in + 20, sizeof(V));
+    const V u0_0 = __builtin_shufflevector(in0, in1, 0, 4, 1, 6, 0, 12, 9, 14, 7, 0, 27, 24, 29, 22, 31, 0);
+    const V v0_0 = __builtin_shufflevector(in0, in1, 3, 2, 5, 0, 11, 10, 13, 8, 15, 26, 25, 28, 23, 30, 21, 0);
+    const V8 ca8 = {T(1), ca[0], ca[1], ca[2], ca[3], ca[4], T(0), T(0)};
+    const V8 sa8 = {T(0), sa[0], sa[1], sa[2], sa[3], sa[4], T(0), T(0)};
+    const V8 na8 = -sa8;
+    const V ca0 = __builtin_shufflevector(ca8, ca8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sua0 = __builtin_shufflevector(sa8, na8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V sva0 = __builtin_shufflevector(sa8, na8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V8 cb8 = {T(1), cb[0], cb[1], cb[2], cb[3], cb[4], T(0), T(0)};
+    const V8 sb8 = {T(0), sb[0], sb[1], sb[2], sb[3], sb[4], T(0), T(0)};
+    const V8 nb8 = -sb8;
+    const V cb0 = __builtin_shufflevector(cb8, cb8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sub0 = __builtin_shufflevector(sb8, nb8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V svb0 = __builtin_shufflevector(sb8, nb8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V8 cg8 = {T(1), cg[0], cg[1], cg[2], cg[3], cg[4], T(0), T(0)};
+    const V8 sg8 = {T(0), sg[0], sg[1], sg[2], sg[3], sg[4], T(0), T(0)};
+    const V8 ng8 = -sg8;
+    const V cg0 = __builtin_shufflevector(cg8, cg8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sug0 = __builtin_shufflevector(sg8, ng8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V svg0 = __builtin_shufflevector(sg8, ng8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V u0_1 = u0_0 * cg0 + v0_0 * sug0;
+    const V v0_1 = v0_0 * cg0 + u0_0 * svg0;
+    const V k1 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(-0.35355339059327379), T(0.35355339059327379), T(-0.93541434669348533), T(0.93541434669348533), T(0), T(0.125), T(0.5), T(0.40504629365049127), T(0.8660254037844386), T(0.90571104663683988), T(0)};
+    const V p1 = __builtin_shufflevector(u0_1, u0_1, 0, 1, 2, 1, 4, 6, 5, 6, 5, 9, 10, 11, 10, 11, 10, 15);
+    const V k2 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(-0.93541434669348533), T(0.93541434669348533), T(0.35355339059327379), T(-0.35355339059327379), T(0), T(0.40504629365049127), T(0.8660254037844386), T(0.8125), T(-0.5), T(-0.41926274578121059), T(0)};
+    const V p2 = __builtin_shufflevector(u0_1, u0_1, 0, 3, 2, 3, 4, 8, 7, 8, 7, 9, 12, 13, 12, 13, 12, 15);
+    const V k3 = {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0.90571104663683988), T(0), T(-0.41926274578121059), T(0), T(0.0625), T(0)};
+    const V p3 = __builtin_shufflevector(u0_1, u0_1, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 14, 11, 14, 13, 14, 15);
+    const V u0_2 = p1 * k1 + p2 * k2 + p3 * k3;
+    const V k4 = {T(-0.61237243569579447), T(0.61237243569579447), T(-0.79056941504209488), T(0.79056941504209488), T(0.375), T(0.75), T(0.55901699437494745), T(0.66143782776614768), T(0.73950997288745202), T(0.48412291827592713), T(-0.48412291827592713), T(0.66143782776614768), T(-0.52291251658379723), T(0.57282196186947998), T(-0.70156076002011403), T(0)};
+    const V p4 = __builtin_shufflevector(v0_1, v0_1, 1, 0, 1, 0, 4, 5, 4, 5, 4, 10, 9, 10, 9, 10, 9, 15);
+    const V k5 = {T(-0.79056941504209488), T(0.79056941504209488), T(0.61237243569579447), T(-0.61237243569579447), T(0.55901699437494745), T(0.66143782776614768), T(0.5), T(-0.75), T(-0.66143782776614768), T(0.52291251658379723), T(-0.66143782776614768), T(0.30618621784789724), T(-0.30618621784789724), T(-0.79549512883486595), T(0.68465319688145765), T(0)};
+    const V p5 = __builtin_shufflevector(v0_1, v0_1, 3, 2, 3, 2, 6, 7, 6, 7, 6, 12, 11, 12, 11, 12, 11, 15);
+    const V k6 = {T(0), T(0), T(0), T(0), T(0.73950997288745202), T(0), T(-0.66143782776614768), T(0), T(0.125), T(0.70156076002011403), T(-0.57282196186947998), T(-0.68465319688145765), T(0.79549512883486595), T(0.19764235376052372), T(-0.19764235376052372), T(0)};
+    const V p6 = __builtin_shufflevector(v0_1, v0_1, 0, 1, 2, 3, 8, 5, 8, 7, 8, 14, 13, 14, 13, 14, 13, 15);
+    const V v0_2 = p4 * k4 + p5 * k5 + p6 * k6;
+    const V u0_3 = u0_2 * cb0 + v0_2 * sub0;
+    const V v0_3 = v0_2 * cb0 + u0_2 * svb0;
+    const V k7 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(0.35355339059327379), T(-0.35355339059327379), T(0.93541434669348533), T(-0.93541434669348533), T(0), T(0.125), T(0.5), T(0.40504629365049127), T(0.8660254037844386), T(0.90571104663683988), T(0)};
+    const V p7 = __builtin_shufflevector(u0_3, u0_3, 0, 1, 2, 1, 4, 6, 5, 6, 5, 9, 10, 11, 10, 11, 10, 15);
+    const V k8 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(0.93541434669348533), T(-0.93541434669348533), T(-0.35355339059327379), T(0.35355339059327379), T(0), T(0.40504629365049127), T(0.8660254037844386), T(0.8125), T(-0.5), T(-0.41926274578121059), T(0)};
+    const V p8 = __builtin_shufflevector(u0_3, u0_3, 0, 3, 2, 3, 4, 8, 7, 8, 7, 9, 12, 13, 12, 13, 12, 15);
+    const V k9 = {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0.90571104663683988), T(0), T(-0.41926274578121059), T(0), T(0.0625), T(0)};
+    const V p9 = __builtin_shufflevector(u0_3, u0_3, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 14, 11, 14, 13, 14, 15);
+    const V u0_4 = p7 * k7 + p8 * k8 + p9 * k9;
+    const V k10 = {T(0.61237243569579447), T(-0.61237243569579447), T(0.79056941504209488), T(-0.79056941504209488), T(0.375), T(0.75), T(0.55901699437494745), T(0.66143782776614768), T(0.73950997288745202), T(-0.48412291827592713), T(0.48412291827592713), T(-0.66143782776614768), T(0.52291251658379723), T(-0.57282196186947998), T(0.70156076002011403), T(0)};
+    const V p10 = __builtin_shufflevector(v0_3, v0_3, 1, 0, 1, 0, 4, 5, 4, 5, 4, 10, 9, 10, 9, 10, 9, 15);
+    const V k11 = {T(0.79056941504209488), T(-0.79056941504209488), T(-0.61237243569579447), T(0.61237243569579447), T(0.55901699437494745), T(0.66143782776614768), T(0.5), T(-0.75), T(-0.66143782776614768), T(-0.52291251658379723), T(0.66143782776614768), T(-0.30618621784789724), T(0.30618621784789724), T(0.79549512883486595), T(-0.68465319688145765), T(0)};
+    const V p11 = __builtin_shufflevector(v0_3, v0_3, 3, 2, 3, 2, 6, 7, 6, 7, 6, 12, 11, 12, 11, 12, 11, 15);
+    const V k12 = {T(0), T(0), T(0), T(0), T(0.73950997288745202), T(0), T(-0.66143782776614768), T(0), T(0.125), T(-0.70156076002011403), T(0.57282196186947998), T(0.68465319688145765), T(-0.79549512883486595), T(-0.19764235376052372), T(0.19764235376052372), T(0)};
+    const V p12 = __builtin_shufflevector(v0_3, v0_3, 0, 1, 2, 3, 8, 5, 8, 7, 8, 14, 13, 14, 13, 14, 13, 15);
+    const V v0_4 = p10 * k10 + p11 * k11 + p12 * k12;
+    const V u0_5 = u0_4 * ca0 + v0_4 * sua0;
+    const V v0_5 = v0_4 * ca0 + u0_4 * sva0;
+    const V o0 = __builtin_shufflevector(u0_5, v0_5, 19, 2, 17, 16, 1, 18, 3, 8, 23, 6, 21, 20, 5, 22, 7, 24);
+    const V o1 = __builtin_shufflevector(u0_5, v0_5, 20, 5, 22, 7, 24, 30, 13, 28, 11, 26, 25, 10, 27, 12, 29, 14);
+    std::memcpy(out + 9, &o0, sizeof(V));
+    std::memcpy(out + 20, &o1, sizeof(V));
+}
+
+/// Bands 3..6 of out = D(R) in, 7 bands, in 16-lane vectors (see rotate_direct_vec).
+template <class T>
+SPHBASIS_FORCEINLINE void rotate_zyz_vec_7(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const T* in, T* out) noexcept {
+    using V = typename rot_vec<T>::v16;
+    using V8 = typename rot_vec<T>::v8;
+    V in0;
+    std::memcpy(&in0, in + 9, sizeof(V));
+    V in1;
+    std::memcpy(&in1, in + 25, sizeof(V));
+    V in2;
+    std::memcpy(&in2, in + 33, sizeof(V));
+    const V u0_0 = __builtin_shufflevector(in0, in1, 0, 4, 1, 6, 0, 12, 9, 14, 7, 0, 22, 19, 24, 17, 26, 0);
+    const V v0_0 = __builtin_shufflevector(in0, in1, 3, 2, 5, 0, 11, 10, 13, 8, 15, 21, 20, 23, 18, 25, 16, 0);
+    const V u1_0 = __builtin_shufflevector(in1, in2, 0, 26, 15, 28, 13, 30, 11, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V v1_0 = __builtin_shufflevector(in1, in2, 25, 24, 27, 14, 29, 12, 31, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V8 ca8 = {T(1), ca[0], ca[1], ca[2], ca[3], ca[4], ca[5], T(0)};
+    const V8 sa8 = {T(0), sa[0], sa[1], sa[2], sa[3], sa[4], sa[5], T(0)};
+    const V8 na8 = -sa8;
+    const V ca0 = __builtin_shufflevector(ca8, ca8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sua0 = __builtin_shufflevector(sa8, na8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V sva0 = __builtin_shufflevector(sa8, na8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V ca1 = __builtin_shufflevector(ca8, ca8, 0, 1, 2, 3, 4, 5, 6, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V sua1 = __builtin_shufflevector(sa8, na8, 0, 9, 2, 11, 4, 13, 6, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V sva1 = __builtin_shufflevector(sa8, na8, 8, 1, 10, 3, 12, 5, 14, 8, 8, 8, 8, 8, 8, 8, 8, 8);
+    const V8 cb8 = {T(1), cb[0], cb[1], cb[2], cb[3], cb[4], cb[5], T(0)};
+    const V8 sb8 = {T(0), sb[0], sb[1], sb[2], sb[3], sb[4], sb[5], T(0)};
+    const V8 nb8 = -sb8;
+    const V cb0 = __builtin_shufflevector(cb8, cb8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sub0 = __builtin_shufflevector(sb8, nb8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V svb0 = __builtin_shufflevector(sb8, nb8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V cb1 = __builtin_shufflevector(cb8, cb8, 0, 1, 2, 3, 4, 5, 6, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V sub1 = __builtin_shufflevector(sb8, nb8, 0, 9, 2, 11, 4, 13, 6, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V svb1 = __builtin_shufflevector(sb8, nb8, 8, 1, 10, 3, 12, 5, 14, 8, 8, 8, 8, 8, 8, 8, 8, 8);
+    const V8 cg8 = {T(1), cg[0], cg[1], cg[2], cg[3], cg[4], cg[5], T(0)};
+    const V8 sg8 = {T(0), sg[0], sg[1], sg[2], sg[3], sg[4], sg[5], T(0)};
+    const V8 ng8 = -sg8;
+    const V cg0 = __builtin_shufflevector(cg8, cg8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sug0 = __builtin_shufflevector(sg8, ng8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V svg0 = __builtin_shufflevector(sg8, ng8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V cg1 = __builtin_shufflevector(cg8, cg8, 0, 1, 2, 3, 4, 5, 6, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V sug1 = __builtin_shufflevector(sg8, ng8, 0, 9, 2, 11, 4, 13, 6, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V svg1 = __builtin_shufflevector(sg8, ng8, 8, 1, 10, 3, 12, 5, 14, 8, 8, 8, 8, 8, 8, 8, 8, 8);
+    const V u0_1 = u0_0 * cg0 + v0_0 * sug0;
+    const V v0_1 = v0_0 * cg0 + u0_0 * svg0;
+    const V k1 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(-0.35355339059327379), T(0.35355339059327379), T(-0.93541434669348533), T(0.93541434669348533), T(0), T(0.125), T(0.5), T(0.40504629365049127), T(0.8660254037844386), T(0.90571104663683988), T(0)};
+    const V p1 = __builtin_shufflevector(u0_1, u0_1, 0, 1, 2, 1, 4, 6, 5, 6, 5, 9, 10, 11, 10, 11, 10, 15);
+    const V k2 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(-0.93541434669348533), T(0.93541434669348533), T(0.35355339059327379), T(-0.35355339059327379), T(0), T(0.40504629365049127), T(0.8660254037844386), T(0.8125), T(-0.5), T(-0.41926274578121059), T(0)};
+    const V p2 = __builtin_shufflevector(u0_1, u0_1, 0, 3, 2, 3, 4, 8, 7, 8, 7, 9, 12, 13, 12, 13, 12, 15);
+    const V k3 = {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0.90571104663683988), T(0), T(-0.41926274578121059), T(0), T(0.0625), T(0)};
+    const V p3 = __builtin_shufflevector(u0_1, u0_1, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 14, 11, 14, 13, 14, 15);
+    const V u0_2 = p1 * k1 + p2 * k2 + p3 * k3;
+    const V k4 = {T(-0.61237243569579447), T(0.61237243569579447), T(-0.79056941504209488), T(0.79056941504209488), T(0.375), T(0.75), T(0.55901699437494745), T(0.66143782776614768), T(0.73950997288745202), T(0.48412291827592713), T(-0.48412291827592713), T(0.66143782776614768), T(-0.52291251658379723), T(0.57282196186947998), T(-0.70156076002011403), T(0)};
+    const V p4 = __builtin_shufflevector(v0_1, v0_1, 1, 0, 1, 0, 4, 5, 4, 5, 4, 10, 9, 10, 9, 10, 9, 15);
+    const V k5 = {T(-0.79056941504209488), T(0.79056941504209488), T(0.61237243569579447), T(-0.61237243569579447), T(0.55901699437494745), T(0.66143782776614768), T(0.5), T(-0.75), T(-0.66143782776614768), T(0.52291251658379723), T(-0.66143782776614768), T(0.30618621784789724), T(-0.30618621784789724), T(-0.79549512883486595), T(0.68465319688145765), T(0)};
+    const V p5 = __builtin_shufflevector(v0_1, v0_1, 3, 2, 3, 2, 6, 7, 6, 7, 6, 12, 11, 12, 11, 12, 11, 15);
+    const V k6 = {T(0), T(0), T(0), T(0), T(0.73950997288745202), T(0), T(-0.66143782776614768), T(0), T(0.125), T(0.70156076002011403), T(-0.57282196186947998), T(-0.68465319688145765), T(0.79549512883486595), T(0.19764235376052372), T(-0.19764235376052372), T(0)};
+    const V p6 = __builtin_shufflevector(v0_1, v0_1, 0, 1, 2, 3, 8, 5, 8, 7, 8, 14, 13, 14, 13, 14, 13, 15);
+    const V v0_2 = p4 * k4 + p5 * k5 + p6 * k6;
+    const V u0_3 = u0_2 * cb0 + v0_2 * sub0;
+    const V v0_3 = v0_2 * cb0 + u0_2 * svb0;
+    const V k7 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(0.35355339059327379), T(-0.35355339059327379), T(0.93541434669348533), T(-0.93541434669348533), T(0), T(0.125), T(0.5), T(0.40504629365049127), T(0.8660254037844386), T(0.90571104663683988), T(0)};
+    const V p7 = __builtin_shufflevector(u0_3, u0_3, 0, 1, 2, 1, 4, 6, 5, 6, 5, 9, 10, 11, 10, 11, 10, 15);
+    const V k8 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(0.93541434669348533), T(-0.93541434669348533), T(-0.35355339059327379), T(0.35355339059327379), T(0), T(0.40504629365049127), T(0.8660254037844386), T(0.8125), T(-0.5), T(-0.41926274578121059), T(0)};
+    const V p8 = __builtin_shufflevector(u0_3, u0_3, 0, 3, 2, 3, 4, 8, 7, 8, 7, 9, 12, 13, 12, 13, 12, 15);
+    const V k9 = {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0.90571104663683988), T(0), T(-0.41926274578121059), T(0), T(0.0625), T(0)};
+    const V p9 = __builtin_shufflevector(u0_3, u0_3, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 14, 11, 14, 13, 14, 15);
+    const V u0_4 = p7 * k7 + p8 * k8 + p9 * k9;
+    const V k10 = {T(0.61237243569579447), T(-0.61237243569579447), T(0.79056941504209488), T(-0.79056941504209488), T(0.375), T(0.75), T(0.55901699437494745), T(0.66143782776614768), T(0.73950997288745202), T(-0.48412291827592713), T(0.48412291827592713), T(-0.66143782776614768), T(0.52291251658379723), T(-0.57282196186947998), T(0.70156076002011403), T(0)};
+    const V p10 = __builtin_shufflevector(v0_3, v0_3, 1, 0, 1, 0, 4, 5, 4, 5, 4, 10, 9, 10, 9, 10, 9, 15);
+    const V k11 = {T(0.79056941504209488), T(-0.79056941504209488), T(-0.61237243569579447), T(0.61237243569579447), T(0.55901699437494745), T(0.66143782776614768), T(0.5), T(-0.75), T(-0.66143782776614768), T(-0.52291251658379723), T(0.66143782776614768), T(-0.30618621784789724), T(0.30618621784789724), T(0.79549512883486595), T(-0.68465319688145765), T(0)};
+    const V p11 = __builtin_shufflevector(v0_3, v0_3, 3, 2, 3, 2, 6, 7, 6, 7, 6, 12, 11, 12, 11, 12, 11, 15);
+    const V k12 = {T(0), T(0), T(0), T(0), T(0.73950997288745202), T(0), T(-0.66143782776614768), T(0), T(0.125), T(-0.70156076002011403), T(0.57282196186947998), T(0.68465319688145765), T(-0.79549512883486595), T(-0.19764235376052372), T(0.19764235376052372), T(0)};
+    const V p12 = __builtin_shufflevector(v0_3, v0_3, 0, 1, 2, 3, 8, 5, 8, 7, 8, 14, 13, 14, 13, 14, 13, 15);
+    const V v0_4 = p10 * k10 + p11 * k11 + p12 * k12;
+    const V u0_5 = u0_4 * ca0 + v0_4 * sua0;
+    const V v0_5 = v0_4 * ca0 + u0_4 * sva0;
+    const V u1_1 = u1_0 * cg1 + v1_0 * sug1;
+    const V v1_1 = v1_0 * cg1 + u1_0 * svg1;
+    const V k13 = {T(0), T(0.19764235376052372), T(-0.19764235376052372), T(0.5625), T(-0.4330127018922193), T(0.80282703616657058), T(-0.87945295496689302), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p13 = __builtin_shufflevector(u1_1, u1_1, 0, 2, 1, 2, 1, 2, 1, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k14 = {T(0), T(0.4330127018922193), T(-0.5625), T(0.68465319688145765), T(-0.68465319688145765), T(-0.58630196997792872), T(0.46351240544347894), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p14 = __builtin_shufflevector(u1_1, u1_1, 0, 4, 3, 4, 3, 4, 3, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k15 = {T(0), T(0.87945295496689302), T(-0.80282703616657058), T(-0.46351240544347894), T(0.58630196997792872), T(0.10825317547305482), T(-0.10825317547305482), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p15 = __builtin_shufflevector(u1_1, u1_1, 0, 6, 5, 6, 5, 6, 5, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V u1_2 = p13 * k13 + p14 * k14 + p15 * k15;
+    const V k16 = {T(-0.3125), T(-0.625), T(-0.45285552331841994), T(-0.59292706128157113), T(-0.49607837082461076), T(-0.50775240028974755), T(-0.67169328938139616), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p16 = __builtin_shufflevector(v1_1, v1_1, 0, 1, 0, 1, 0, 1, 0, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k17 = {T(-0.45285552331841994), T(-0.59292706128157113), T(-0.53125), T(-0.0625), T(-0.17116329922036441), T(0.80282703616657058), T(0.6952686081652184), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p17 = __builtin_shufflevector(v1_1, v1_1, 2, 3, 2, 3, 2, 3, 2, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k18 = {T(-0.49607837082461076), T(-0.50775240028974755), T(-0.17116329922036441), T(0.80282703616657058), T(0.8125), T(-0.3125), T(-0.25387620014487378), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p18 = __builtin_shufflevector(v1_1, v1_1, 4, 5, 4, 5, 4, 5, 4, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k19 = {T(-0.67169328938139616), T(0), T(0.6952686081652184), T(0), T(-0.25387620014487378), T(0), T(0.03125), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p19 = __builtin_shufflevector(v1_1, v1_1, 6, 1, 6, 3, 6, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V v1_2 = p16 * k16 + p17 * k17 + p18 * k18 + p19 * k19;
+    const V u1_3 = u1_2 * cb1 + v1_2 * sub1;
+    const V v1_3 = v1_2 * cb1 + u1_2 * svb1;
+    const V k20 = {T(0), T(-0.19764235376052372), T(0.19764235376052372), T(-0.5625), T(0.4330127018922193), T(-0.80282703616657058), T(0.87945295496689302), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p20 = __builtin_shufflevector(u1_3, u1_3, 0, 2, 1, 2, 1, 2, 1, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k21 = {T(0), T(-0.4330127018922193), T(0.5625), T(-0.68465319688145765), T(0.68465319688145765), T(0.58630196997792872), T(-0.46351240544347894), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p21 = __builtin_shufflevector(u1_3, u1_3, 0, 4, 3, 4, 3, 4, 3, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k22 = {T(0), T(-0.87945295496689302), T(0.80282703616657058), T(0.46351240544347894), T(-0.58630196997792872), T(-0.10825317547305482), T(0.10825317547305482), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p22 = __builtin_shufflevector(u1_3, u1_3, 0, 6, 5, 6, 5, 6, 5, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V u1_4 = p20 * k20 + p21 * k21 + p22 * k22;
+    const V k23 = {T(-0.3125), T(-0.625), T(-0.45285552331841994), T(-0.59292706128157113), T(-0.49607837082461076), T(-0.50775240028974755), T(-0.67169328938139616), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p23 = __builtin_shufflevector(v1_3, v1_3, 0, 1, 0, 1, 0, 1, 0, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k24 = {T(-0.45285552331841994), T(-0.59292706128157113), T(-0.53125), T(-0.0625), T(-0.17116329922036441), T(0.80282703616657058), T(0.6952686081652184), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p24 = __builtin_shufflevector(v1_3, v1_3, 2, 3, 2, 3, 2, 3, 2, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k25 = {T(-0.49607837082461076), T(-0.50775240028974755), T(-0.17116329922036441), T(0.80282703616657058), T(0.8125), T(-0.3125), T(-0.25387620014487378), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p25 = __builtin_shufflevector(v1_3, v1_3, 4, 5, 4, 5, 4, 5, 4, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V k26 = {T(-0.67169328938139616), T(0), T(0.6952686081652184), T(0), T(-0.25387620014487378), T(0), T(0.03125), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)};
+    const V p26 = __builtin_shufflevector(v1_3, v1_3, 6, 1, 6, 3, 6, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const V v1_4 = p23 * k23 + p24 * k24 + p25 * k25 + p26 * k26;
+    const V u1_5 = u1_4 * ca1 + v1_4 * sua1;
+    const V v1_5 = v1_4 * ca1 + u1_4 * sva1;
+    const V o0 = __builtin_shufflevector(u0_5, v0_5, 19, 2, 17, 16, 1, 18, 3, 8, 23, 6, 21, 20, 5, 22, 7, 24);
+    const V o1_a = __builtin_shufflevector(u0_5, v0_5, 30, 13, 28, 11, 26, 25, 10, 27, 12, 29, 14, 0, 0, 0, 0, 0);
+    const V o1_b = __builtin_shufflevector(u1_5, v1_5, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 6, 21, 4, 19, 2);
+    const V o1 = __builtin_shufflevector(o1_a, o1_b, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 27, 28, 29, 30, 31);
+    const V o2_a = __builtin_shufflevector(u0_5, v0_5, 12, 29, 14, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V o2_b = __builtin_shufflevector(u1_5, v1_5, 0, 0, 0, 6, 21, 4, 19, 2, 17, 16, 1, 18, 3, 20, 5, 22);
+    const V o2 = __builtin_shufflevector(o2_a, o2_b, 0, 1, 2, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31);
+    std::memcpy(out + 9, &o0, sizeof(V));
+    std::memcpy(out + 25, &o1, sizeof(V));
+    std::memcpy(out + 33, &o2, sizeof(V));
+}
+
+/// Bands 3..7 of out = D(R) in, 8 bands, in 16-lane vectors (see rotate_direct_vec).
+template <class T>
+SPHBASIS_FORCEINLINE void rotate_zyz_vec_8(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const T* in, T* out) noexcept {
+    using V = typename rot_vec<T>::v16;
+    using V8 = typename rot_vec<T>::v8;
+    V in0;
+    std::memcpy(&in0, in + 9, sizeof(V));
+    V in1;
+    std::memcpy(&in1, in + 25, sizeof(V));
+    V in2;
+    std::memcpy(&in2, in + 41, sizeof(V));
+    V in3;
+    std::memcpy(&in3, in + 48, sizeof(V));
+    const V u0_0 = __builtin_shufflevector(in0, in1, 0, 4, 1, 6, 0, 12, 9, 14, 7, 0, 22, 19, 24, 17, 26, 0);
+    const V v0_0 = __builtin_shufflevector(in0, in1, 3, 2, 5, 0, 11, 10, 13, 8, 15, 21, 20, 23, 18, 25, 16, 0);
+    const V u1_0_a = __builtin_shufflevector(in1, in1, 0, 0, 15, 0, 13, 0, 11, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V u1_0_b = __builtin_shufflevector(in2, in3, 0, 2, 0, 4, 0, 6, 0, 0, 25, 13, 27, 11, 29, 9, 31, 0);
+    const V u1_0 = __builtin_shufflevector(u1_0_a, u1_0_b, 0, 17, 2, 19, 4, 21, 6, 0, 24, 25, 26, 27, 28, 29, 30, 0);
+    const V v1_0_a = __builtin_shufflevector(in1, in1, 0, 0, 0, 14, 0, 12, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    const V v1_0_b = __builtin_shufflevector(in2, in3, 1, 0, 3, 0, 5, 0, 7, 15, 14, 26, 12, 28, 10, 30, 8, 0);
+    const V v1_0 = __builtin_shufflevector(v1_0_a, v1_0_b, 16, 17, 18, 3, 20, 5, 22, 23, 24, 25, 26, 27, 28, 29, 30, 0);
+    const V8 ca8 = {T(1), ca[0], ca[1], ca[2], ca[3], ca[4], ca[5], ca[6]};
+    const V8 sa8 = {T(0), sa[0], sa[1], sa[2], sa[3], sa[4], sa[5], sa[6]};
+    const V8 na8 = -sa8;
+    const V ca0 = __builtin_shufflevector(ca8, ca8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sua0 = __builtin_shufflevector(sa8, na8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V sva0 = __builtin_shufflevector(sa8, na8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V ca1 = __builtin_shufflevector(ca8, ca8, 0, 1, 2, 3, 4, 5, 6, 0, 1, 2, 3, 4, 5, 6, 7, 0);
+    const V sua1 = __builtin_shufflevector(sa8, na8, 0, 9, 2, 11, 4, 13, 6, 0, 9, 2, 11, 4, 13, 6, 15, 0);
+    const V sva1 = __builtin_shufflevector(sa8, na8, 8, 1, 10, 3, 12, 5, 14, 8, 1, 10, 3, 12, 5, 14, 7, 8);
+    const V8 cb8 = {T(1), cb[0], cb[1], cb[2], cb[3], cb[4], cb[5], cb[6]};
+    const V8 sb8 = {T(0), sb[0], sb[1], sb[2], sb[3], sb[4], sb[5], sb[6]};
+    const V8 nb8 = -sb8;
+    const V cb0 = __builtin_shufflevector(cb8, cb8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sub0 = __builtin_shufflevector(sb8, nb8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V svb0 = __builtin_shufflevector(sb8, nb8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V cb1 = __builtin_shufflevector(cb8, cb8, 0, 1, 2, 3, 4, 5, 6, 0, 1, 2, 3, 4, 5, 6, 7, 0);
+    const V sub1 = __builtin_shufflevector(sb8, nb8, 0, 9, 2, 11, 4, 13, 6, 0, 9, 2, 11, 4, 13, 6, 15, 0);
+    const V svb1 = __builtin_shufflevector(sb8, nb8, 8, 1, 10, 3, 12, 5, 14, 8, 1, 10, 3, 12, 5, 14, 7, 8);
+    const V8 cg8 = {T(1), cg[0], cg[1], cg[2], cg[3], cg[4], cg[5], cg[6]};
+    const V8 sg8 = {T(0), sg[0], sg[1], sg[2], sg[3], sg[4], sg[5], sg[6]};
+    const V8 ng8 = -sg8;
+    const V cg0 = __builtin_shufflevector(cg8, cg8, 0, 1, 2, 3, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 5, 0);
+    const V sug0 = __builtin_shufflevector(sg8, ng8, 0, 9, 2, 11, 0, 9, 2, 11, 4, 0, 9, 2, 11, 4, 13, 0);
+    const V svg0 = __builtin_shufflevector(sg8, ng8, 8, 1, 10, 3, 8, 1, 10, 3, 12, 8, 1, 10, 3, 12, 5, 8);
+    const V cg1 = __builtin_shufflevector(cg8, cg8, 0, 1, 2, 3, 4, 5, 6, 0, 1, 2, 3, 4, 5, 6, 7, 0);
+    const V sug1 = __builtin_shufflevector(sg8, ng8, 0, 9, 2, 11, 4, 13, 6, 0, 9, 2, 11, 4, 13, 6, 15, 0);
+    const V svg1 = __builtin_shufflevector(sg8, ng8, 8, 1, 10, 3, 12, 5, 14, 8, 1, 10, 3, 12, 5, 14, 7, 8);
+    const V u0_1 = u0_0 * cg0 + v0_0 * sug0;
+    const V v0_1 = v0_0 * cg0 + u0_0 * svg0;
+    const V k1 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(-0.35355339059327379), T(0.35355339059327379), T(-0.93541434669348533), T(0.93541434669348533), T(0), T(0.125), T(0.5), T(0.40504629365049127), T(0.8660254037844386), T(0.90571104663683988), T(0)};
+    const V p1 = __builtin_shufflevector(u0_1, u0_1, 0, 1, 2, 1, 4, 6, 5, 6, 5, 9, 10, 11, 10, 11, 10, 15);
+    const V k2 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(-0.93541434669348533), T(0.93541434669348533), T(0.35355339059327379), T(-0.35355339059327379), T(0), T(0.40504629365049127), T(0.8660254037844386), T(0.8125), T(-0.5), T(-0.41926274578121059), T(0)};
+    const V p2 = __builtin_shufflevector(u0_1, u0_1, 0, 3, 2, 3, 4, 8, 7, 8, 7, 9, 12, 13, 12, 13, 12, 15);
+    const V k3 = {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0.90571104663683988), T(0), T(-0.41926274578121059), T(0), T(0.0625), T(0)};
+    const V p3 = __builtin_shufflevector(u0_1, u0_1, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 14, 11, 14, 13, 14, 15);
+    const V u0_2 = p1 * k1 + p2 * k2 + p3 * k3;
+    const V k4 = {T(-0.61237243569579447), T(0.61237243569579447), T(-0.79056941504209488), T(0.79056941504209488), T(0.375), T(0.75), T(0.55901699437494745), T(0.66143782776614768), T(0.73950997288745202), T(0.48412291827592713), T(-0.48412291827592713), T(0.66143782776614768), T(-0.52291251658379723), T(0.57282196186947998), T(-0.70156076002011403), T(0)};
+    const V p4 = __builtin_shufflevector(v0_1, v0_1, 1, 0, 1, 0, 4, 5, 4, 5, 4, 10, 9, 10, 9, 10, 9, 15);
+    const V k5 = {T(-0.79056941504209488), T(0.79056941504209488), T(0.61237243569579447), T(-0.61237243569579447), T(0.55901699437494745), T(0.66143782776614768), T(0.5), T(-0.75), T(-0.66143782776614768), T(0.52291251658379723), T(-0.66143782776614768), T(0.30618621784789724), T(-0.30618621784789724), T(-0.79549512883486595), T(0.68465319688145765), T(0)};
+    const V p5 = __builtin_shufflevector(v0_1, v0_1, 3, 2, 3, 2, 6, 7, 6, 7, 6, 12, 11, 12, 11, 12, 11, 15);
+    const V k6 = {T(0), T(0), T(0), T(0), T(0.73950997288745202), T(0), T(-0.66143782776614768), T(0), T(0.125), T(0.70156076002011403), T(-0.57282196186947998), T(-0.68465319688145765), T(0.79549512883486595), T(0.19764235376052372), T(-0.19764235376052372), T(0)};
+    const V p6 = __builtin_shufflevector(v0_1, v0_1, 0, 1, 2, 3, 8, 5, 8, 7, 8, 14, 13, 14, 13, 14, 13, 15);
+    const V v0_2 = p4 * k4 + p5 * k5 + p6 * k6;
+    const V u0_3 = u0_2 * cb0 + v0_2 * sub0;
+    const V v0_3 = v0_2 * cb0 + u0_2 * svb0;
+    const V k7 = {T(0), T(-0.25), T(-1.0), T(-0.96824583655185426), T(0), T(0.35355339059327379), T(-0.35355339059327379), T(0.93541434669348533), T(-0.93541434669348533), T(0), T(0.125), T(0.5), T(0.40504629365049127), T(0.8660254037844386), T(0.90571104663683988), T(0)};
+    const V p7 = __builtin_shufflevector(u0_3, u0_3, 0, 1, 2, 1, 4, 6, 5, 6, 5, 9, 10, 11, 10, 11, 10, 15);
+    const V k8 = {T(0), T(-0.96824583655185426), T(0), T(0.25), T(0), T(0.93541434669348533), T(-0.93541434669348533), T(-0.35355339059327379), T(0.35355339059327379), T(0), T(0.40504629365049127), T(0.8660254037844386), T(0.8125), T(-0.5), T(-0.41926274578121059), T(0)};
+    const V p8 = __builtin_shufflevector(u0_3, u0_3, 0, 3, 2, 3, 4, 8, 7, 8, 7, 9, 12, 13, 12, 13, 12, 15);
+    const V k9 = {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0.90571104663683988), T(0), T(-0.41926274578121059), T(0), T(0.0625), T(0)};
+    const V p9 = __builtin_shufflevector(u0_3, u0_3, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 14, 11, 14, 13, 14, 15);
+    const V u0_4 = p7 * k7 + p8 * k8 + p9 * k9;
+    const V k10 = {T(0.61237243569579447), T(-0.61237243569579447), T(0.79056941504209488), T(-0.79056941504209488), T(0.375), T(0.75), T(0.55901699437494745), T(0.66143782776614768), T(0.73950997288745202), T(-0.48412291827592713), T(0.48412291827592713), T(-0.66143782776614768), T(0.52291251658379723), T(-0.57282196186947998), T(0.70156076002011403), T(0)};
+    const V p10 = __builtin_shufflevector(v0_3, v0_3, 1, 0, 1, 0, 4, 5, 4, 5, 4, 10, 9, 10, 9, 10, 9, 15);
+    const V k11 = {T(0.79056941504209488), T(-0.79056941504209488), T(-0.61237243569579447), T(0.61237243569579447), T(0.55901699437494745), T(0.66143782776614768), T(0.5), T(-0.75), T(-0.66143782776614768), T(-0.52291251658379723), T(0.66143782776614768), T(-0.30618621784789724), T(0.30618621784789724), T(0.79549512883486595), T(-0.68465319688145765), T(0)};
+    const V p11 = __builtin_shufflevector(v0_3, v0_3, 3, 2, 3, 2, 6, 7, 6, 7, 6, 12, 11, 12, 11, 12, 11, 15);
+    const V k12 = {T(0), T(0), T(0), T(0), T(0.73950997288745202), T(0), T(-0.66143782776614768), T(0), T(0.125), T(-0.70156076002011403), T(0.57282196186947998), T(0.68465319688145765), T(-0.79549512883486595), T(-0.19764235376052372), T(0.19764235376052372), T(0)};
+    const V p12 = __builtin_shufflevector(v0_3, v0_3, 0, 1, 2, 3, 8, 5, 8, 7, 8, 14, 13, 14, 13, 14, 13, 15);
+    const V v0_4 = p10 * k10 + p11 * k11 + p12 * k12;
+    const V u0_5 = u0_4 * ca0 + v0_4 * sua0;
+    const V v0_5 = v0_4 * ca0 + u0_4 * sva0;
+    const V u1_1 = u1_0 * cg1 + v1_0 * sug1;
+    const V v1_1 = v1_0 * cg1 + u1_0 * svg1;
+    const V k13 = {T(0), T(0.19764235376052372), T(-0.19764235376052372), T(0.5625), T(-0.4330127018922193), T(0.80282703616657058), T(-0.87945295496689302), T(0), T(-0.078125), T(-0.3125), T(-0.24356964481437338), T(-0.58630196997792872), T(-0.44879395676078349), T(-0.74739129644383739), T(-0.85624429742626607), T(0)};
+    const V p13 = __builtin_shufflevector(u1_1, u1_1, 0, 2, 1, 2, 1, 2, 1, 7, 8, 9, 8, 9, 8, 9, 8, 15);
+    const V k14 = {T(0), T(0.4330127018922193), T(-0.5625), T(0.68465319688145765), T(-0.68465319688145765), T(-0.58630196997792872), T(0.46351240544347894), T(0), T(-0.24356964481437338), T(-0.58630196997792872), T(-0.609375), T(-0.5), T(-0.57004488584233437), T(0.63737743919909806), T(0.49435287561113672), T(0)};
+    const V p14 = __builtin_shufflevector(u1_1, u1_1, 0, 4, 3, 4, 3, 4, 3, 7, 10, 11, 10, 11, 10, 11, 10, 15);
+    const V k15 = {T(0), T(0.87945295496689302), T(-0.80282703616657058), T(-0.46351240544347894), T(0.58630196997792872), T(0.10825317547305482), T(-0.10825317547305482), T(0), T(-0.44879395676078349), T(-0.74739129644383739), T(-0.57004488584233437), T(0.63737743919909806), T(0.671875), T(-0.1875), T(-0.14905300022139775), T(0)};
+    const V p15 = __builtin_shufflevector(u1_1, u1_1, 0, 6, 5, 6, 5, 6, 5, 7, 12, 13, 12, 13, 12, 13, 12, 15);
+    const V k16 = {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(-0.85624429742626607), T(0), T(0.49435287561113672), T(0), T(-0.14905300022139775), T(0), T(0.015625), T(0)};
+    const V p16 = __builtin_shufflevector(u1_1, u1_1, 0, 1, 2, 3, 4, 5, 6, 7, 14, 9, 14, 11, 14, 13, 14, 15);
+    const V u1_2 = p13 * k13 + p14 * k14 + p15 * k15 + p16 * k16;
+    const V k17 = {T(-0.3125), T(-0.625), T(-0.45285552331841994), T(-0.59292706128157113), T(-0.49607837082461076), T(-0.50775240028974755), T(-0.67169328938139616), T(-0.41339864235384227), T(0.41339864235384227), T(-0.57409915846480741), T(0.42961647140211001), T(-0.53855274811294018), T(0.47495887979908324), T(-0.45768182862115031), T(0.64725984928774938), T(0)};
+    const V p17 = __builtin_shufflevector(v1_1, v1_1, 0, 1, 0, 1, 0, 1, 0, 8, 7, 8, 7, 8, 7, 8, 7, 15);
+    const V k18 = {T(-0.45285552331841994), T(-0.59292706128157113), T(-0.53125), T(-0.0625), T(-0.17116329922036441), T(0.80282703616657058), T(0.6952686081652184), T(-0.42961647140211001), T(0.57409915846480741), T(-0.4198446513295126), T(0.4198446513295126), T(0.10364452469860624), T(0.07328774624724109), T(0.7927281808728639), T(-0.69912054128740919), T(0)};
+    const V p18 = __builtin_shufflevector(v1_1, v1_1, 2, 3, 2, 3, 2, 3, 2, 10, 9, 10, 9, 10, 9, 10, 9, 15);
+    const V k19 = {T(-0.49607837082461076), T(-0.50775240028974755), T(-0.17116329922036441), T(0.80282703616657058), T(0.8125), T(-0.3125), T(-0.25387620014487378), T(-0.47495887979908324), T(0.53855274811294018), T(-0.07328774624724109), T(-0.10364452469860624), T(0.78125), T(-0.78125), T(-0.39836089949943632), T(0.2981060004427955), T(0)};
+    const V p19 = __builtin_shufflevector(v1_1, v1_1, 4, 5, 4, 5, 4, 5, 4, 12, 11, 12, 11, 12, 11, 12, 11, 15);
+    const V k20 = {T(-0.67169328938139616), T(0), T(0.6952686081652184), T(0), T(-0.25387620014487378), T(0), T(0.03125), T(-0.64725984928774938), T(0.45768182862115031), T(0.69912054128740919), T(-0.7927281808728639), T(-0.2981060004427955), T(0.39836089949943632), T(0.058463396668342833), T(-0.058463396668342833), T(0)};
+    const V p20 = __builtin_shufflevector(v1_1, v1_1, 6, 1, 6, 3, 6, 5, 6, 14, 13, 14, 13, 14, 13, 14, 13, 15);
+    const V v1_2 = p17 * k17 + p18 * k18 + p19 * k19 + p20 * k20;
+    const V u1_3 = u1_2 * cb1 + v1_2 * sub1;
+    const V v1_3 = v1_2 * cb1 + u1_2 * svb1;
+    const V k21 = {T(0), T(-0.19764235376052372), T(0.19764235376052372), T(-0.5625), T(0.4330127018922193), T(-0.80282703616657058), T(0.87945295496689302), T(0), T(-0.078125), T(-0.3125), T(-0.24356964481437338), T(-0.58630196997792872), T(-0.44879395676078349), T(-0.74739129644383739), T(-0.85624429742626607), T(0)};
+    const V p21 = __builtin_shufflevector(u1_3, u1_3, 0, 2, 1, 2, 1, 2, 1, 7, 8, 9, 8, 9, 8, 9, 8, 15);
+    const V k22 = {T(0), T(-0.4330127018922193), T(0.5625), T(-0.68465319688145765), T(0.68465319688145765), T(0.58630196997792872), T(-0.46351240544347894), T(0), T(-0.24356964481437338), T(-0.58630196997792872), T(-0.609375), T(-0.5), T(-0.57004488584233437), T(0.63737743919909806), T(0.49435287561113672), T(0)};
+    const V p22 = __builtin_shufflevector(u1_3, u1_3, 0, 4, 3, 4, 3, 4, 3, 7, 10, 11, 10, 11, 10, 11, 10, 15);
+    const V k23 = {T(0), T(-0.87945295496689302), T(0.80282703616657058), T(0.46351240544347894), T(-0.58630196997792872), T(-0.10825317547305482), T(0.10825317547305482), T(0), T(-0.44879395676078349), T(-0.74739129644383739), T(-0.57004488584233437), T(0.63737743919909806), T(0.671875), T(-0.1875), T(-0.14905300022139775), T(0)};
+    const V p23 = __builtin_shufflevector(u1_3, u1_3, 0, 6, 5, 6, 5, 6, 5, 7, 12, 13, 12, 13, 12, 13, 12, 15);
+    const V k24 = {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(-0.85624429742626607), T(0), T(0.49435287561113672), T(0), T(-0.14905300022139775), T(0), T(0.015625), T(0)};
+    const V p24 = __builtin_shufflevector(u1_3, u1_3, 0, 1, 2, 3, 4, 5, 6, 7, 14, 9, 14, 11, 14, 13, 14, 15);
+    const V u1_4 = p21 * k21 + p22 * k22 + p23 * k23 + p24 * k24;
+    const V k25 = {T(-0.3125), T(-0.625), T(-0.45285552331841994), T(-0.59292706128157113), T(-0.49607837082461076), T(-0.50775240028974755), T(-0.67169328938139616), T(0.41339864235384227), T(-0.41339864235384227), T(0.57409915846480741), T(-0.42961647140211001), T(0.53855274811294018), T(-0.47495887979908324), T(0.45768182862115031), T(-0.64725984928774938), T(0)};
+    const V p25 = __builtin_shufflevector(v1_3, v1_3, 0, 1, 0, 1, 0, 1, 0, 8, 7, 8, 7, 8, 7, 8, 7, 15);
+    const V k26 = {T(-0.45285552331841994), T(-0.59292706128157113), T(-0.53125), T(-0.0625), T(-0.17116329922036441), T(0.80282703616657058), T(0.6952686081652184), T(0.42961647140211001), T(-0.57409915846480741), T(0.4198446513295126), T(-0.4198446513295126), T(-0.10364452469860624), T(-0.07328774624724109), T(-0.7927281808728639), T(0.69912054128740919), T(0)};
+    const V p26 = __builtin_shufflevector(v1_3, v1_3, 2, 3, 2, 3, 2, 3, 2, 10, 9, 10, 9, 10, 9, 10, 9, 15);
+    const V k27 = {T(-0.49607837082461076), T(-0.50775240028974755), T(-0.17116329922036441), T(0.80282703616657058), T(0.8125), T(-0.3125), T(-0.25387620014487378), T(0.47495887979908324), T(-0.53855274811294018), T(0.07328774624724109), T(0.10364452469860624), T(-0.78125), T(0.78125), T(0.39836089949943632), T(-0.2981060004427955), T(0)};
+    const V p27 = __builtin_shufflevector(v1_3, v1_3, 4, 5, 4, 5, 4, 5, 4, 12, 11, 12, 11, 12, 11, 12, 11, 15);
+    const V k28 = {T(-0.67169328938139616), T(0), T(0.6952686081652184), T(0), T(-0.25387620014487378), T(0), T(0.03125), T(0.64725984928774938), T(-0.45768182862115031), T(-0.69912054128740919), T(0.7927281808728639), T(0.2981060004427955), T(-0.39836089949943632), T(-0.058463396668342833), T(0.058463396668342833), T(0)};
+    const V p28 = __builtin_shufflevector(v1_3, v1_3, 6, 1, 6, 3, 6, 5, 6, 14, 13, 14, 13, 14, 13, 14, 13, 15);
+    const V v1_4 = p25 * k25 + p26 * k26 + p27 * k27 + p28 * k28;
+    const V u1_5 = u1_4 * ca1 + v1_4 * sua1;
+    const V v1_5 = v1_4 * ca1 + u1_4 * sva1;
+    const V o0 = __builtin_shufflevector(u0_5, v0_5, 19, 2, 17, 16, 1, 18, 3, 8, 23, 6, 21, 20, 5, 22, 7, 24);
+    const V o1_a = __builtin_shufflevector(u0_5, v0_5, 30, 13, 28, 11, 26, 25, 10, 27, 12, 29, 14, 0, 0, 0, 0, 0);
+    const V o1_b = __builtin_shufflevector(u1_5, v1_5, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 6, 21, 4, 19, 2);
+    const V o1 = __builtin_shufflevector(o1_a, o1_b, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 27, 28, 29, 30, 31);
+    const V o2 = __builtin_shufflevector(u1_5, v1_5, 17, 16, 1, 18, 3, 20, 5, 22, 30, 13, 28, 11, 26, 9, 24, 23);
+    const V o3 = __builtin_shufflevector(u1_5, v1_5, 22, 30, 13, 28, 11, 26, 9, 24, 23, 8, 25, 10, 27, 12, 29, 14);
+    std::memcpy(out + 9, &o0, sizeof(V));
+    std::memcpy(out + 25, &o1, sizeof(V));
+    std::memcpy(out + 41, &o2, sizeof(V));
+    std::memcpy(out + 48, &o3, sizeof(V));
+}
+
+#endif
 
 // clang-format on
 
@@ -1644,11 +2571,11 @@ template <int L, class T>
 SPHBASIS_FORCEINLINE void rotation_fixed_bands(const T* SPHBASIS_RESTRICT r, T* SPHBASIS_RESTRICT d) noexcept {
     d[0] = T(1);
     if constexpr (L >= 2) {
-        // band 1: D1[i][j] = R[p(i)][p(j)], p = (y, z, x)
+        // band 1: D1[i][j] = R[p(i)][p(j)], p = (y, z, x), column-major (D1[i][j] at 3 j + i)
         T* b1 = d + 1;
-        b1[0] = r[4], b1[1] = r[5], b1[2] = r[3];
-        b1[3] = r[7], b1[4] = r[8], b1[5] = r[6];
-        b1[6] = r[1], b1[7] = r[2], b1[8] = r[0];
+        b1[0] = r[4], b1[1] = r[7], b1[2] = r[1];
+        b1[3] = r[5], b1[4] = r[8], b1[5] = r[2];
+        b1[6] = r[3], b1[7] = r[6], b1[8] = r[0];
     }
     if constexpr (L >= 3) rotation_band_2(d + 1, d + 1, d + fixed_rotation_size(2));
     if constexpr (L >= 4) rotation_band_3(d + 1, d + fixed_rotation_size(2), d + fixed_rotation_size(3));
@@ -1676,14 +2603,248 @@ SPHBASIS_FORCEINLINE void rotation_fixed_apply(const T* SPHBASIS_RESTRICT d, con
     }
 }
 
+/// cos(m t), sin(m t) for m = 1..L into cm[m - 1], sm[m - 1], from c = cos t, s = sin t, by the
+/// Chebyshev recurrence x_{m+1} = 2 c x_m - x_{m-1} (error O(m^2 eps), a few ulp for m <= 7).
+template <int L, class T>
+SPHBASIS_FORCEINLINE void rotation_multiples(T c, T s, T* SPHBASIS_RESTRICT cm, T* SPHBASIS_RESTRICT sm) noexcept {
+    cm[0] = c;
+    sm[0] = s;
+    const T c2 = c + c;
+    if constexpr (L >= 2) {
+        cm[1] = c2 * c - T(1);
+        sm[1] = c2 * s;
+    }
+    for (int m = 2; m < L; ++m) {
+        cm[m] = c2 * cm[m - 1] - cm[m - 2];
+        sm[m] = c2 * sm[m - 1] - sm[m - 2];
+    }
+}
+
+/// Bands 0..min(L, 3) - 1 of D(R) in into lo (in read before anything is written).
+template <int L, class T, class C>
+SPHBASIS_FORCEINLINE void rotate_low_bands(const T* SPHBASIS_RESTRICT r, const C* in, C* lo) noexcept {
+    lo[0] = in[0];
+    if constexpr (L >= 2) {
+        const C y = in[1], z = in[2], x = in[3];
+        lo[1] = y * r[4] + z * r[5] + x * r[3];
+        lo[2] = y * r[7] + z * r[8] + x * r[6];
+        lo[3] = y * r[1] + z * r[2] + x * r[0];
+    }
+    if constexpr (L >= 3) {
+        const T a = T(0.57735026918962576);  // 1/sqrt(3)
+        const C c0 = in[6], c2 = in[8];
+        const C qxy = in[4], qyz = in[5], qxz = in[7];
+        const C qzz = c0 * (a + a);
+        const C qxx = c2 + c0 * (-a), qyy = c2 * T(-1) + c0 * (-a);
+        const C t00 = qxx * r[0] + qxy * r[1] + qxz * r[2];
+        const C t01 = qxy * r[0] + qyy * r[1] + qyz * r[2];
+        const C t02 = qxz * r[0] + qyz * r[1] + qzz * r[2];
+        const C t10 = qxx * r[3] + qxy * r[4] + qxz * r[5];
+        const C t11 = qxy * r[3] + qyy * r[4] + qyz * r[5];
+        const C t12 = qxz * r[3] + qyz * r[4] + qzz * r[5];
+        const C t20 = qxx * r[6] + qxy * r[7] + qxz * r[8];
+        const C t21 = qxy * r[6] + qyy * r[7] + qyz * r[8];
+        const C t22 = qxz * r[6] + qyz * r[7] + qzz * r[8];
+        const T k = T(0.86602540378443865);  // sqrt(3)/2
+        const T h = T(0.5);
+        lo[4] = t00 * r[3] + t01 * r[4] + t02 * r[5];
+        lo[5] = t10 * r[6] + t11 * r[7] + t12 * r[8];
+        lo[6] = t20 * (k * r[6]) + t21 * (k * r[7]) + t22 * (k * r[8]);
+        lo[7] = t00 * r[6] + t01 * r[7] + t02 * r[8];
+        lo[8] = t00 * (h * r[0]) + t01 * (h * r[1]) + t02 * (h * r[2]) + t10 * (-h * r[3]) + t11 * (-h * r[4]) +
+                t12 * (-h * r[5]);
+    }
+}
+
+/// cos, sin of m alpha, m beta, m gamma (m = 1..L-1) of the Euler factorisation of s R, s the
+/// sign of det R; returns true for det R < 0.
+template <int L, class T>
+SPHBASIS_FORCEINLINE bool zyz_multiples(const T* SPHBASIS_RESTRICT r, T* ca, T* sa, T* cb, T* sb, T* cg, T* sg) noexcept {
+    const T det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
+                  r[2] * (r[3] * r[7] - r[4] * r[6]);
+    const T s = det < T(0) ? T(-1) : T(1);
+    const T m00 = s * r[0], m01 = s * r[1], m02 = s * r[2];
+    const T m10 = s * r[3], m11 = s * r[4], m12 = s * r[5], m22 = s * r[8];
+    const T h2 = m02 * m02 + m12 * m12;
+    T ca1 = T(1), sa1 = T(0), sb1 = T(0);
+    if (h2 >= std::numeric_limits<T>::min()) {
+        const T inv = T(1) / std::sqrt(h2);
+        ca1 = m02 * inv;
+        sa1 = m12 * inv;
+        sb1 = h2 * inv;
+    }
+    rotation_multiples<L - 1>(ca1, sa1, ca, sa);
+    rotation_multiples<L - 1>(m22, sb1, cb, sb);
+    rotation_multiples<L - 1>(ca1 * m11 - sa1 * m01, ca1 * m10 - sa1 * m00, cg, sg);
+    return det < T(0);
+}
+
+/// Odd bands >= 3 of out negated (improper R).
+template <int L, class T, class C>
+SPHBASIS_FORCEINLINE void negate_odd_high_bands(C* out) noexcept {
+    for (int l = 3; l < L; l += 2)
+        for (int k = l * l; k < (l + 1) * (l + 1); ++k) out[k] = out[k] * T(-1);
+}
+
+/// out = D(R) in, scalar straight-line code for any coefficient type C (see rotate_direct).
+template <int L, class T, class C>
+SPHBASIS_FORCEINLINE void rotate_direct_scalar(const T* SPHBASIS_RESTRICT r, const C* in, C* out) noexcept {
+    C lo[9];
+    rotate_low_bands<L>(r, in, lo);
+    if constexpr (L >= 4) {
+        T ca[L - 1], sa[L - 1], cb[L - 1], sb[L - 1], cg[L - 1], sg[L - 1];
+        const bool improper = zyz_multiples<L>(r, ca, sa, cb, sb, cg, sg);
+        rotate_zyz_band_3(ca, sa, cb, sb, cg, sg, in + 9, out + 9);
+        if constexpr (L >= 5) rotate_zyz_band_4(ca, sa, cb, sb, cg, sg, in + 16, out + 16);
+        if constexpr (L >= 6) rotate_zyz_band_5(ca, sa, cb, sb, cg, sg, in + 25, out + 25);
+        if constexpr (L >= 7) rotate_zyz_band_6(ca, sa, cb, sb, cg, sg, in + 36, out + 36);
+        if constexpr (L >= 8) rotate_zyz_band_7(ca, sa, cb, sb, cg, sg, in + 49, out + 49);
+        if (improper) negate_odd_high_bands<L, T>(out);
+    }
+    for (int k = 0; k < (L < 3 ? L * L : 9); ++k) out[k] = lo[k];
+}
+
+#if SPHBASIS_SH_ROTATION_VECTOR
+/// out = D(R) in for C = T (float or double): bands 0..2 as in rotate_direct_scalar, bands >= 3
+/// in 16-lane GNU vectors (rotate_zyz_vec_L). Reads in[0..L^2) and writes out[0..L^2) only,
+/// all reads before the first write.
+template <int L, class T>
+SPHBASIS_FORCEINLINE void rotate_direct_vec(const T* SPHBASIS_RESTRICT r, const T* in, T* out) noexcept {
+    static_assert(L >= 4, "rotate_direct_vec: L >= 4");
+    T lo[9];
+    rotate_low_bands<L>(r, in, lo);
+    T ca[L - 1], sa[L - 1], cb[L - 1], sb[L - 1], cg[L - 1], sg[L - 1];
+    const bool improper = zyz_multiples<L>(r, ca, sa, cb, sb, cg, sg);
+    if constexpr (L == 4) rotate_zyz_vec_4(ca, sa, cb, sb, cg, sg, in, out);
+    if constexpr (L == 5) rotate_zyz_vec_5(ca, sa, cb, sb, cg, sg, in, out);
+    if constexpr (L == 6) rotate_zyz_vec_6(ca, sa, cb, sb, cg, sg, in, out);
+    if constexpr (L == 7) rotate_zyz_vec_7(ca, sa, cb, sb, cg, sg, in, out);
+    if constexpr (L == 8) rotate_zyz_vec_8(ca, sa, cb, sb, cg, sg, in, out);
+    if (improper) negate_odd_high_bands<L, T>(out);
+    for (int k = 0; k < 9; ++k) out[k] = lo[k];
+}
+#endif
+
+/// out = D(R) in for L bands of the row-major matrix r, D never formed:
+///   * band 1: D^1 = R permuted to (y, z, x);
+///   * band 2: the coefficients are a traceless symmetric Q with f(w) = w^T Q w on the sphere
+///     (scaled by 2 / sqrt(15 / (4 pi)): Q_xy = c_-2, Q_yz = c_-1, Q_xz = c_1,
+///     Q_xx = c_2 - c_0 / sqrt3, Q_yy = -c_2 - c_0 / sqrt3, Q_zz = 2 c_0 / sqrt3); the rotated
+///     function is w^T (R Q R^T) w, 45 multiply-adds;
+///   * bands l >= 3: R = Rz(alpha) Ry(beta) Rz(gamma) with Ry(beta) = X Rz(beta) X^T, X the
+///     quarter turn about x taking z to y, so D^l = Z(alpha) D^l(X) Z(beta) D^l(X)^T Z(gamma):
+///     three z rotations (cos, sin of m times each angle on the pairs (m, -m)) and two sparse
+///     constant matrices (generated with exact constants, zeros skipped). The angles are never
+///     formed: cos beta = R_22, sin beta = |(R_02, R_12)|, (cos alpha, sin alpha) = (R_02,
+///     R_12) / sin beta, and (cos gamma, sin gamma) is read from the middle row of
+///     Rz(-alpha) R = Ry(beta) Rz(gamma): cos gamma = ca R_11 - sa R_01, sin gamma = ca R_10 -
+///     sa R_00. Any unit (ca, sa) makes that row exact, so at and near beta = 0 or pi (sin^2
+///     beta below the smallest normal: alpha = 0) the factorisation still reproduces R to
+///     rounding: gamma absorbs the error of alpha.
+///   * improper R (det < 0): bands >= 3 use -R and negate the odd bands ((-1)^l D(-R), as the
+///     recurrence gives); bands 1 and 2 are homogeneous in R and need nothing.
+/// For C = T with AVX-512 the bands >= 3 run in 16-lane vectors (rotate_direct_vec; the lanes
+/// pair m with -m so that a z rotation is lane-wise and the quarter turn is a few lane
+/// permutations times constants); otherwise straight-line scalar code (rotate_direct_scalar).
+/// in == out is allowed: every input is read before the first write.
+template <int L, class T, class C>
+SPHBASIS_FORCEINLINE void rotate_direct(const T* SPHBASIS_RESTRICT r, const C* in, C* out) noexcept {
+#if SPHBASIS_SH_ROTATION_VECTOR && defined(__AVX512F__)
+    if constexpr (L >= 4 && std::is_same_v<C, T>) {
+        rotate_direct_vec<L>(r, in, out);
+        return;
+    }
+#endif
+    rotate_direct_scalar<L>(r, in, out);
+}
+
+#if SPHBASIS_SH_ROTATION_VECTOR
+/// Band l of out = M x in 16 lanes (lanes >= 2l + 1 are garbage): cols holds the block
+/// column-major (column j at cols + j (2l + 1)), read 16 values at a time.
+template <int l, class T>
+SPHBASIS_FORCEINLINE void apply_block_vec(const T* SPHBASIS_RESTRICT cols, const T* x, typename rot_vec<T>::v16& res) noexcept {
+    using V = typename rot_vec<T>::v16;
+    constexpr int w = 2 * l + 1;
+    V c, acc0, acc1;
+    std::memcpy(&c, cols, sizeof(V));
+    acc0 = c * x[0];
+    acc1 = c * T(0);
+    for (int j = 1; j < w; ++j) {
+        std::memcpy(&c, cols + j * w, sizeof(V));
+        if (j % 2) acc1 += c * x[j];
+        else acc0 += c * x[j];
+    }
+    res = acc0 + acc1;
+}
+
+/// The first n lanes of v into out (an AVX-512 masked store where available).
+template <int n, class T>
+SPHBASIS_FORCEINLINE void store_lanes(T* out, const typename rot_vec<T>::v16& v) noexcept {
+#if defined(__AVX512F__)
+    if constexpr (std::is_same_v<T, float>) {
+        __m512 x;
+        std::memcpy(&x, &v, sizeof(x));
+        _mm512_mask_storeu_ps(out, static_cast<__mmask16>((1u << n) - 1u), x);
+        return;
+    } else {
+        __m512d lo, hi;
+        std::memcpy(&lo, &v, sizeof(lo));
+        std::memcpy(&hi, reinterpret_cast<const char*>(&v) + sizeof(lo), sizeof(hi));
+        _mm512_mask_storeu_pd(out, static_cast<__mmask8>(n >= 8 ? 0xffu : (1u << n) - 1u), lo);
+        if constexpr (n > 8) _mm512_mask_storeu_pd(out + 8, static_cast<__mmask8>((1u << (n - 8)) - 1u), hi);
+        return;
+    }
+#else
+    T tmp[16];
+    std::memcpy(tmp, &v, sizeof(tmp));
+    for (int k = 0; k < n; ++k) out[k] = tmp[k];
+#endif
+}
+
+/// vs[l'] = band l' of the product for l' = l..L-1 (16 lanes each).
+template <int l, int L, class T>
+SPHBASIS_FORCEINLINE void apply_bands_vec(const T* SPHBASIS_RESTRICT cols, const T* in, typename rot_vec<T>::v16* vs) noexcept {
+    if constexpr (l < L) {
+        apply_block_vec<l>(cols + fixed_rotation_size(l), in + l * l, vs[l]);
+        apply_bands_vec<l + 1, L>(cols, in, vs);
+    }
+}
+
+/// Bands l..L-1 from vs into out + l^2, in ascending order: 16 lanes where that stays inside
+/// the L^2 outputs (the garbage lanes are overwritten by the later bands), else 2l + 1 lanes.
+template <int l, int L, class T>
+SPHBASIS_FORCEINLINE void store_bands_vec(const typename rot_vec<T>::v16* vs, T* out) noexcept {
+    if constexpr (l < L) {
+        if constexpr (l * l + 16 <= L * L) std::memcpy(out + l * l, &vs[l], sizeof(vs[l]));
+        else store_lanes<2 * l + 1>(out + l * l, vs[l]);
+        store_bands_vec<l + 1, L>(vs, out);
+    }
+}
+
+/// out = M in for the block-diagonal M whose blocks are stored column-major in cols (padded by
+/// 16 values): per band, 2l + 1 column vectors times broadcast inputs. Every input is read
+/// before the first store, so in == out is allowed.
+template <int L, class T>
+SPHBASIS_FORCEINLINE void rotation_fixed_apply_vec(const T* SPHBASIS_RESTRICT cols, const T* in, T* out) noexcept {
+    typename rot_vec<T>::v16 vs[L];
+    const T x0 = in[0] * cols[0];
+    apply_bands_vec<1, L>(cols, in, vs);
+    out[0] = x0;
+    store_bands_vec<1, L>(vs, out);
+}
+#endif
+
 }  // namespace sphbasis::sh::detail
 
 namespace sphbasis::sh {
 
 /// D(R) for a compile-time band count N (1..8), stored in a std::array: block l is
-/// (2l+1)x(2l+1), row-major, entry (m, n) at offset(l) + (m+l)(2l+1) + n+l, the layout of the
-/// run-time sh::Rotation<T>. Built by straight-line code (no allocation, no table, no check in
-/// the unchecked constructor); the apply is the block-diagonal product, unrolled.
+/// (2l+1)x(2l+1), column-major, entry (m, n) at offset(l) + (n+l)(2l+1) + m+l (the transpose
+/// of the run-time sh::Rotation<T>'s row-major blocks: apply reads whole columns). Built by
+/// straight-line code (no allocation, no table, no check in the unchecked constructor); the
+/// apply is the block-diagonal product: for C = T (GCC, clang) per band 2l+1 column vectors of
+/// 16 lanes times broadcast inputs, otherwise unrolled scalar code. Build once, apply many: to
+/// rotate one vector, sh::rotate<N> is faster than building D.
 template <int N, class T>
 class FixedRotation {
     static_assert(N >= 1 && N <= 8, "sphbasis::sh::FixedRotation: N is a band count in 1..8 (use sh::Rotation<T> above).");
@@ -1703,6 +2864,7 @@ class FixedRotation {
     FixedRotation() noexcept : d_{} {
         for (int l = 0; l < N; ++l)
             for (int i = 0; i < 2 * l + 1; ++i) d_[offset(l) + static_cast<std::size_t>(i * (2 * l + 2))] = T(1);
+        finish();
     }
 
     /// D(R) of an orthogonal row-major matrix, unchecked (SPHBASIS_ASSERT in debug builds: max
@@ -1711,6 +2873,7 @@ class FixedRotation {
     explicit FixedRotation(const Mat3<T>& r) noexcept {
         SPHBASIS_ASSERT(detail::fixed_rotation_orthonormal(r));
         detail::rotation_fixed_bands<N>(r.data(), d_.data());
+        finish();
     }
 
     /// D(R) of a matrix type (row-major std::array<T, 9> or std::array<S, 9>, glm::mat3 / dmat3,
@@ -1735,12 +2898,12 @@ class FixedRotation {
     }
 
     const T* data() const noexcept { return d_.data(); }
-    /// Block l, (2l+1)^2 values row-major.
+    /// Block l, (2l+1)^2 values column-major (entry (m, n) at (n+l)(2l+1) + m+l).
     const T* block(int l) const noexcept { return d_.data() + offset(l); }
     /// Entry (m, n) of band l: d y_lm(Rw) / d y_ln(w).
     T operator()(int l, int m, int n) const noexcept {
         SPHBASIS_ASSERT(l >= 0 && l < N && m >= -l && m <= l && n >= -l && n <= l);
-        return d_[offset(l) + static_cast<std::size_t>((m + l) * (2 * l + 1) + n + l)];
+        return d_[offset(l) + static_cast<std::size_t>((n + l) * (2 * l + 1) + m + l)];
     }
 
     /// out = D in, N^2 coefficients each; C is any type with C + C and C * T (float, double,
@@ -1748,13 +2911,19 @@ class FixedRotation {
     template <class C>
     SPHBASIS_FORCEINLINE void apply(const C* in, C* out) const noexcept {
         SPHBASIS_ASSERT(in && out);
-        detail::rotation_fixed_apply<N, false>(d_.data(), in, out);
+#if SPHBASIS_SH_ROTATION_VECTOR
+        if constexpr (std::is_same_v<C, T>) {
+            detail::rotation_fixed_apply_vec<N>(d_.data(), in, out);
+            return;
+        }
+#endif
+        detail::rotation_fixed_apply<N, true>(d_.data(), in, out);  // column-major: D in
     }
     /// out = D^T in: the inverse rotation.
     template <class C>
     SPHBASIS_FORCEINLINE void apply_transposed(const C* in, C* out) const noexcept {
         SPHBASIS_ASSERT(in && out);
-        detail::rotation_fixed_apply<N, true>(d_.data(), in, out);
+        detail::rotation_fixed_apply<N, false>(d_.data(), in, out);  // column-major: D^T in
     }
     /// apply() by value.
     template <class C>
@@ -1765,19 +2934,31 @@ class FixedRotation {
     }
 
   private:
-    std::array<T, size_v> d_;
+#if SPHBASIS_SH_ROTATION_VECTOR
+    static constexpr std::size_t pad_v = 16;  // 16-lane reads past the last block stay inside
+#else
+    static constexpr std::size_t pad_v = 0;
+#endif
+    void finish() noexcept {
+        for (std::size_t k = size_v; k < size_v + pad_v; ++k) d_[k] = T(0);
+    }
+    std::array<T, size_v + pad_v> d_;  // D, block after block, column-major (size_v values, then padding)
 };
 
-/// out = D(R) in for N bands without keeping D (D is built on the stack by the straight-line
-/// code of FixedRotation, then applied). R is a row-major Mat3<T>, unchecked (SPHBASIS_ASSERT
-/// in debug builds); in == out is allowed. C is any type with C + C and C * T.
+/// out = D(R) in for N bands without forming D: band 1 is R itself, band 2 the quadratic form
+/// R Q R^T, bands 3.. the Euler factorisation R = Rz(alpha) X Rz(beta) X^T Rz(gamma) applied
+/// as generated straight-line code (see detail::rotate_direct). The result equals
+/// FixedRotation<N, T>(r).apply(in, out) and the run-time sh::rotate to rounding, for proper
+/// and improper matrices. R is a row-major Mat3<T>, unchecked (SPHBASIS_ASSERT in debug
+/// builds); in == out is allowed. C is any type with C + C and C * T. To rotate many vectors by
+/// the same R, build a FixedRotation once and apply it.
 template <int N, class T, class C>
 SPHBASIS_FORCEINLINE void rotate(const Mat3<T>& r, const C* in, C* out) noexcept {
     static_assert(N >= 1 && N <= 8, "sphbasis::sh::rotate<N>: N is a band count in 1..8.");
+    static_assert(std::is_floating_point_v<T>, "sphbasis::sh::rotate<N>: T is float or double.");
     SPHBASIS_ASSERT(detail::fixed_rotation_orthonormal(r));
-    T d[detail::fixed_rotation_size(N)];
-    detail::rotation_fixed_bands<N>(r.data(), d);
-    detail::rotation_fixed_apply<N, false>(d, in, out);
+    SPHBASIS_ASSERT(in && out);
+    detail::rotate_direct<N>(r.data(), in, out);
 }
 
 }  // namespace sphbasis::sh
