@@ -133,7 +133,8 @@ void fixed_rotation_build_apply(benchmark::State& st) {
 template <int N, class C>
 void fixed_rotate_of(benchmark::State& st, const C& fill) {
     std::vector<sh::Mat3<float>> m;
-    for (const auto& v : quaternions()) m.push_back(sh::matrix_from_quaternion(v[0], v[1], v[2], v[3]));
+    for (const auto& v : quaternions())
+        m.push_back(sh::matrix_from_quaternion(v[0], v[1], v[2], v[3]));
     std::vector<C> in(N * N, fill), out(N * N);
     for (auto _ : st) {
         for (const auto& r : m) {

@@ -24,7 +24,8 @@ sh::Mat3<T> random_rotation(std::mt19937& rng, bool improper) {
     const double w = nd(rng), x = nd(rng), y = nd(rng), z = nd(rng);
     sh::Mat3<double> r = sh::matrix_from_quaternion(w, x, y, z);
     if (improper)
-        for (int k = 6; k < 9; ++k) r[static_cast<std::size_t>(k)] = -r[static_cast<std::size_t>(k)];
+        for (int k = 6; k < 9; ++k)
+            r[static_cast<std::size_t>(k)] = -r[static_cast<std::size_t>(k)];
     sh::Mat3<T> out;
     for (std::size_t k = 0; k < 9; ++k) out[k] = T(r[k]);
     return out;
@@ -54,9 +55,11 @@ void check_against_runtime(std::mt19937& rng) {
             for (int m = -l; m <= l; ++m)
                 for (int n = -l; n <= l; ++n) {
                     const std::size_t w = static_cast<std::size_t>(2 * l + 1);
-                    const T v = d.data()[f.offset(l) + static_cast<std::size_t>(m + l) * w + static_cast<std::size_t>(n + l)];
+                    const T v = d.data()[f.offset(l) + static_cast<std::size_t>(m + l) * w +
+                                         static_cast<std::size_t>(n + l)];
                     // f's blocks are column-major, the run-time ones row-major
-                    CHECK(f.block(l)[static_cast<std::size_t>(n + l) * w + static_cast<std::size_t>(m + l)] == f(l, m, n));
+                    CHECK(f.block(l)[static_cast<std::size_t>(n + l) * w +
+                                     static_cast<std::size_t>(m + l)] == f(l, m, n));
                     worst = std::max(worst, std::fabs(double(f(l, m, n)) - double(v)));
                 }
         CHECK(worst <= tol<T>());
@@ -80,7 +83,7 @@ void check_against_runtime(std::mt19937& rng) {
             CHECK(std::fabs(e1 - e0) <= 8 * tol<T>() * (1 + e0));
         }
         // in place; the inverse.
-        std::array<T, N * N> ip = in;
+        std::array<T, N* N> ip = in;
         f.apply(ip.data(), ip.data());
         for (std::size_t k = 0; k < std::size_t(N * N); ++k) CHECK(ip[k] == a[k]);
         f.apply_transposed(a.data(), b.data());
@@ -106,7 +109,8 @@ TEST_CASE("FixedRotation: identity, quaternion, composition, matrix types", "[op
     std::mt19937 rng(3);
     const sh::FixedRotation<5, double> id;
     const sh::FixedRotation<5, double> fid(sh::Mat3<double>{1, 0, 0, 0, 1, 0, 0, 0, 1});
-    for (std::size_t k = 0; k < id.size(); ++k) CHECK(id.data()[k] == Approx(fid.data()[k]).margin(1e-15));
+    for (std::size_t k = 0; k < id.size(); ++k)
+        CHECK(id.data()[k] == Approx(fid.data()[k]).margin(1e-15));
     // quaternion == matrix of the quaternion
     const auto q = sh::FixedRotation<6, double>::from_quaternion(0.3, -0.2, 0.9, 0.4);
     const auto qm = sh::FixedRotation<6, double>(sh::matrix_from_quaternion(0.3, -0.2, 0.9, 0.4));
@@ -138,17 +142,18 @@ TEST_CASE("FixedRotation: identity, quaternion, composition, matrix types", "[op
     sh::Mat3<double> bad = r1;
     bad[0] *= 1.01;
     using F3 = sh::FixedRotation<3, double>;
-    CHECK_THROWS_WITH(F3::from_matrix(bad),
-                      Catch::Contains("sh::FixedRotation::from_matrix"));
+    CHECK_THROWS_WITH(F3::from_matrix(bad), Catch::Contains("sh::FixedRotation::from_matrix"));
 }
 
-TEST_CASE("FixedRotation rotates RGB coefficients in one pass like each channel", "[ops][rotation]") {
+TEST_CASE("FixedRotation rotates RGB coefficients in one pass like each channel",
+          "[ops][rotation]") {
     std::mt19937 rng(5);
     const auto r = random_rotation<double>(rng, false);
     const sh::FixedRotation<4, double> d(r);
     std::array<RGB, 16> in{}, out{};
     std::array<double, 16> ch{}, cho{};
-    for (int k = 0; k < 16; ++k) in[static_cast<std::size_t>(k)] = {k * 0.1, std::cos(k), -k * 0.03};
+    for (int k = 0; k < 16; ++k)
+        in[static_cast<std::size_t>(k)] = {k * 0.1, std::cos(k), -k * 0.03};
     d.apply(in.data(), out.data());
     for (int c = 0; c < 3; ++c) {
         for (int k = 0; k < 16; ++k) {
@@ -169,8 +174,8 @@ TEST_CASE("FixedRotation rotates RGB coefficients in one pass like each channel"
 namespace {
 
 sh::Mat3<double> zyz_matrix(double a, double b, double c) {
-    const double ca = std::cos(a), sa = std::sin(a), cb = std::cos(b), sb = std::sin(b), cc = std::cos(c),
-                 sc = std::sin(c);
+    const double ca = std::cos(a), sa = std::sin(a), cb = std::cos(b), sb = std::sin(b),
+                 cc = std::cos(c), sc = std::sin(c);
     const sh::Mat3<double> rza{ca, -sa, 0, sa, ca, 0, 0, 0, 1}, ry{cb, 0, sb, 0, 1, 0, -sb, 0, cb},
         rzc{cc, -sc, 0, sc, cc, 0, 0, 0, 1};
     return sh::multiply(rza, sh::multiply(ry, rzc));
@@ -188,7 +193,7 @@ double rotate_direct_error(const sh::Mat3<double>& rd, bool improper, std::mt199
     for (auto& v : in) v = T(u(rng));
     sh::rotate<N>(r, in.data(), a.data());
     sh::rotate(N, r, in.data(), b.data());
-    std::array<T, N * N> ip = in;
+    std::array<T, N* N> ip = in;
     sh::rotate<N>(r, ip.data(), ip.data());
     // both implementations, whichever rotate<N> picks on this target
     std::array<T, N * N> s{}, v = in;
@@ -199,7 +204,8 @@ double rotate_direct_error(const sh::Mat3<double>& rd, bool improper, std::mt199
     if constexpr (N < 4) v = s;
     double worst = 0;
     for (std::size_t k = 0; k < std::size_t(N * N); ++k) {
-        worst = std::max({worst, std::fabs(double(a[k]) - double(b[k])), std::fabs(double(s[k]) - double(b[k])),
+        worst = std::max({worst, std::fabs(double(a[k]) - double(b[k])),
+                          std::fabs(double(s[k]) - double(b[k])),
                           std::fabs(double(v[k]) - double(b[k]))});
         if (ip[k] != a[k]) worst = 1e300;
     }
@@ -210,12 +216,14 @@ template <class T, int... Ns>
 void rotate_direct_cases(std::mt19937& rng) {
     const double eps = std::is_same_v<T, float> ? 1e-5 : 3e-14;
     const double pi = 3.14159265358979323846;
-    const double betas[] = {0.0, 1e-8, -1e-8, 1e-12, 3e-5, pi, pi - 1e-8, pi + 1e-8, pi - 1e-12, 0.5 * pi, 1.3};
+    const double betas[] = {0.0,       1e-8,      -1e-8,      1e-12,    3e-5, pi,
+                            pi - 1e-8, pi + 1e-8, pi - 1e-12, 0.5 * pi, 1.3};
     std::uniform_real_distribution<double> ang(-pi, pi);
     double worst = 0;
     for (double beta : betas)
         for (int trial = 0; trial < 6; ++trial) {
-            const auto rd = zyz_matrix(trial == 0 ? 0.0 : ang(rng), beta, trial == 1 ? 0.0 : ang(rng));
+            const auto rd =
+                zyz_matrix(trial == 0 ? 0.0 : ang(rng), beta, trial == 1 ? 0.0 : ang(rng));
             for (bool improper : {false, true})
                 worst = std::max({worst, rotate_direct_error<Ns, T>(rd, improper, rng)...});
         }
@@ -229,9 +237,10 @@ void rotate_direct_cases(std::mt19937& rng) {
 
 }  // namespace
 
-TEMPLATE_TEST_CASE("rotate<N> (factored, D never formed) equals the run-time sh::rotate for N = 1..8, near "
-                   "the Euler singularity and for improper matrices",
-                   "[ops][rotation]", float, double) {
+TEMPLATE_TEST_CASE(
+    "rotate<N> (factored, D never formed) equals the run-time sh::rotate for N = 1..8, near "
+    "the Euler singularity and for improper matrices",
+    "[ops][rotation]", float, double) {
     std::mt19937 rng(141);
     rotate_direct_cases<TestType, 1, 2, 3, 4, 5, 6, 7, 8>(rng);
 }
