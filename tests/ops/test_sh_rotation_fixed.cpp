@@ -182,8 +182,7 @@ sh::Mat3<double> zyz_matrix(double a, double b, double c) {
 }
 
 /// rotate<N>(r), its scalar and its vector implementation (the latter in place) against the
-/// run-time sh::rotate: max |difference| over the coefficients (rotate<N> in place must be
-/// bit-identical to out of place).
+/// run-time sh::rotate: max |difference| over the coefficients (rotate<N> in place included).
 template <int N, class T>
 double rotate_direct_error(const sh::Mat3<double>& rd, bool improper, std::mt19937& rng) {
     sh::Mat3<T> r;
@@ -204,10 +203,11 @@ double rotate_direct_error(const sh::Mat3<double>& rd, bool improper, std::mt199
     if constexpr (N < 4) v = s;
     double worst = 0;
     for (std::size_t k = 0; k < std::size_t(N * N); ++k) {
-        worst = std::max({worst, std::fabs(double(a[k]) - double(b[k])),
-                          std::fabs(double(s[k]) - double(b[k])),
-                          std::fabs(double(v[k]) - double(b[k]))});
-        if (ip[k] != a[k]) worst = 1e300;
+        // In place agrees with out of place to rounding (not bit for bit: the compiler may
+        // contract a*b+c into an FMA differently in the two inlined copies).
+        worst = std::max(
+            {worst, std::fabs(double(a[k]) - double(b[k])), std::fabs(double(s[k]) - double(b[k])),
+             std::fabs(double(v[k]) - double(b[k])), std::fabs(double(ip[k]) - double(a[k]))});
     }
     return worst;
 }
