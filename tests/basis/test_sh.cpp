@@ -53,26 +53,34 @@ TEST_CASE("sh: band 0-2 values and signs pin the convention (no Condon-Shortley 
     CHECK(sh::count(4) == 16);
 }
 
-TEST_CASE("sh: Gram matrix is the identity by exact quadrature", "[sh]") {
-    for (int bands : {1, 3, 8, 9, 20, 40}) {
-        const auto rule = sphere_rule(2 * (bands - 1));
-        const int n = bands * bands;
-        std::vector<double> g(static_cast<std::size_t>(n * n), 0.0), y(static_cast<std::size_t>(n));
-        for (std::size_t i = 0; i < rule.size(); ++i) {
-            sh::eval_unit(bands, rule.x[i], rule.y[i], rule.z[i], y.data());
-            for (int a = 0; a < n; ++a)
-                for (int b = 0; b <= a; ++b)
-                    g[static_cast<std::size_t>(a * n + b)] +=
-                        rule.w[i] * y[static_cast<std::size_t>(a)] * y[static_cast<std::size_t>(b)];
-        }
-        double worst = 0;
+namespace {
+void check_sh_gram(int bands) {
+    const auto rule = sphere_rule(2 * (bands - 1));
+    const int n = bands * bands;
+    std::vector<double> g(static_cast<std::size_t>(n * n), 0.0), y(static_cast<std::size_t>(n));
+    for (std::size_t i = 0; i < rule.size(); ++i) {
+        sh::eval_unit(bands, rule.x[i], rule.y[i], rule.z[i], y.data());
         for (int a = 0; a < n; ++a)
             for (int b = 0; b <= a; ++b)
-                worst =
-                    std::max(worst, std::fabs(g[static_cast<std::size_t>(a * n + b)] - (a == b)));
-        INFO("bands " << bands);
-        CHECK(worst < 1e-12);
+                g[static_cast<std::size_t>(a * n + b)] +=
+                    rule.w[i] * y[static_cast<std::size_t>(a)] * y[static_cast<std::size_t>(b)];
     }
+    double worst = 0;
+    for (int a = 0; a < n; ++a)
+        for (int b = 0; b <= a; ++b)
+            worst = std::max(worst, std::fabs(g[static_cast<std::size_t>(a * n + b)] - (a == b)));
+    INFO("bands " << bands);
+    CHECK(worst < 1e-12);
+}
+}  // namespace
+
+TEST_CASE("sh: Gram matrix is the identity by exact quadrature", "[sh]") {
+    for (int bands : {1, 3, 8, 9, 20}) check_sh_gram(bands);
+}
+
+// 40 bands: 1.3 M products a point on 3160 points (79 s under the -O0 sanitizer build).
+TEST_CASE("sh: Gram matrix is the identity by exact quadrature, 40 bands", "[sh][slow]") {
+    check_sh_gram(40);
 }
 
 TEST_CASE("sh: addition theorem sum_m y_lm^2 = (2l+1)/(4 pi) to 100 bands", "[sh]") {
