@@ -373,8 +373,6 @@ class Baker {
     void derive_plan() {
         const bool force = settings_.force_all_passes;
         const bool occl = scene_.can_occlude();
-        const bool surface_q = wants(Quantity::ao | Quantity::bent | Quantity::transfer |
-                                     Quantity::visibility | Quantity::irradiance);
         stats_[build].planned = true;
         stats_[build].reason = "Embree scene of " + std::to_string(scene_.triangle_count()) +
                                " triangles (" + std::to_string(scene_.degenerate_triangles()) +
@@ -405,7 +403,6 @@ class Baker {
             stats_[shadow].planned = true;
             stats_[shadow].reason = "directional lights: one shadow ray per point and light";
         }
-        (void)surface_q;
         // Bounces.
         const bool bounce_q = wants(Quantity::transfer | Quantity::irradiance | Quantity::radiance);
         const double rho = scene_.max_albedo();

@@ -35,23 +35,14 @@ inline double sphere_light_distance(const Light& l, const V3& o, const V3& w) no
 inline void add_light_radiance(const std::vector<Light>& lights, const V3& o, const V3& w,
                                double tmax, bool escaped, RGB& out) noexcept {
     for (const Light& l : lights) {
-        const RGB* c = nullptr;
-        switch (l.type) {
-            case Light::Type::directional:
-                break;
-            case Light::Type::cone:
-                if (escaped && dot(w, l.direction) >= std::cos(l.angle_deg * constants::pi / 180))
-                    c = &l.color;
-                break;
-            case Light::Type::hemisphere:
-                if (escaped) c = dot(w, l.direction) >= 0 ? &l.color : &l.ground;
-                break;
-            case Light::Type::sphere:
-                if (sphere_light_distance(l, o, w) < tmax) c = &l.color;
-                break;
+        RGB c{0, 0, 0};
+        if (l.type == Light::Type::sphere) {
+            // A local light: it counts where the ray meets it before its first scene hit.
+            if (sphere_light_distance(l, o, w) < tmax) c = l.color;
+        } else if (escaped) {
+            c = light_radiance(l, w);  // cone and hemisphere (directional: 0, a delta)
         }
-        if (c)
-            for (std::size_t k = 0; k < 3; ++k) out[k] += (*c)[k];
+        for (std::size_t k = 0; k < 3; ++k) out[k] += c[k];
     }
 }
 
