@@ -99,3 +99,53 @@ TEST_CASE("render::Scene: bad input and degenerate triangles", "[render]") {
     auto big = sphbasis_test::quad_grid(1e4, 1e4 + 2, 0, 2, 0, 1);
     CHECK(Scene({big.view()}).epsilon() > 100 * s.epsilon());
 }
+
+TEST_CASE("render::Scene: UVs, tangent frames and normal maps at hits", "[render]") {
+    // A quad in the xy plane, u along +x and v along +y: tangent +x, bitangent +y, sign +1.
+    Mesh q = shapes::quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1);
+    // A 1x1 normal map tilting the normal 45 degrees toward the tangent: (1, 0, 1)/sqrt 2.
+    const float s2 = static_cast<float>(0.5 + 0.5 / std::sqrt(2.0));
+    std::vector<float> tex{s2, 0.5f, s2};
+    q.normal_map = {tex.data(), 1, 1, 3};
+    q.shininess = 32;
+    q.specular = {0.1f, 0.2f, 0.3f};
+    for (bool with_tangents : {true, false}) {
+        Mesh m = q;
+        if (!with_tangents) m.tangents.clear();
+        Scene s({m.view()});
+        const Hit h = s.intersect({0.5, -0.5, 1}, {0, 0, -1});
+        REQUIRE(h.valid);
+        REQUIRE(h.has_uv);
+        CHECK(h.uv[0] == Approx(0.75).margin(1e-6));  // u = (x + 1) / 2
+        CHECK(h.uv[1] == Approx(0.25).margin(1e-6));  // v = (y + 1) / 2
+        CHECK(h.tangent.x == Approx(1).margin(1e-9));
+        CHECK(h.bitangent_sign == 1);
+        CHECK(h.shininess == 32);
+        CHECK(h.specular[2] == Approx(0.3));
+        REQUIRE(h.normal_map != nullptr);
+        const auto n = Scene::normal_mapped(h);
+        CHECK(n.x == Approx(std::sqrt(0.5)).margin(1e-6));
+        CHECK(n.y == Approx(0).margin(1e-6));
+        CHECK(n.z == Approx(std::sqrt(0.5)).margin(1e-6));
+        const Hit v = s.intersect({0.5, -0.5, 1}, {0, 0, -1});
+        CHECK(v.vertices[0] < m.vertex_count());
+    }
+    // A mirrored UV layout (u along -x) flips the handedness derived from the UVs.
+    Mesh r = q;
+    r.tangents.clear();
+    for (std::size_t i = 0; i < r.vertex_count(); ++i) r.uvs[2 * i] = 1 - r.uvs[2 * i];
+    Scene sr({r.view()});
+    const Hit hr = sr.intersect({0.5, -0.5, 1}, {0, 0, -1});
+    CHECK(hr.tangent.x == Approx(-1).margin(1e-9));
+    CHECK(hr.bitangent_sign == -1);
+    // Bad materials are errors.
+    Mesh bad = q;
+    bad.shininess = -1;
+    CHECK_THROWS_WITH(Scene({bad.view()}), Catch::Contains("shininess"));
+    bad = q;
+    bad.normal_map.channels = 2;
+    CHECK_THROWS_WITH(Scene({bad.view()}), Catch::Contains("normal map"));
+    bad = q;
+    tex[0] = std::numeric_limits<float>::quiet_NaN();
+    CHECK_THROWS_WITH(Scene({bad.view()}), Catch::Contains("normal map texels"));
+}

@@ -40,6 +40,15 @@ struct MeshView {
     /// Diffuse albedo in [0, 1] per channel; multiplied by albedo_map where one is given.
     std::array<float, 3> albedo{0.5f, 0.5f, 0.5f};
     TextureView albedo_map{};
+    /// Tangent-space normal map (needs UVs): channel c in [0, 1] encodes the tangent-frame
+    /// component 2c - 1 of the normal (x along the tangent, y along the bitangent, z along the
+    /// shading normal), read as stored (no sRGB). Used by the renderer, ignored by the bake.
+    TextureView normal_map{};
+    /// Blinn-Phong specular: exponent s > 0 enables it (0: the material is purely diffuse);
+    /// `specular` is the RGB reflectance k_s in [0, 1] of the energy-normalised lobe
+    /// k_s (s + 8) / (8 pi) (n.h)^s (render/path_tracer.hpp). The bake ignores both.
+    float shininess = 0;
+    std::array<float, 3> specular{0.04f, 0.04f, 0.04f};
 };
 
 /// An owning mesh: what the tool's loaders and render::shapes produce. view() borrows it.
@@ -49,6 +58,10 @@ struct Mesh {
     std::array<float, 3> albedo{0.5f, 0.5f, 0.5f};
     std::shared_ptr<const std::vector<float>> albedo_texels;  // owns albedo_map's texels
     TextureView albedo_map{};
+    std::shared_ptr<const std::vector<float>> normal_texels;  // owns normal_map's texels
+    TextureView normal_map{};
+    float shininess = 0;
+    std::array<float, 3> specular{0.04f, 0.04f, 0.04f};
 
     std::size_t vertex_count() const noexcept { return positions.size() / 3; }
     std::size_t triangle_count() const noexcept { return indices.size() / 3; }
@@ -63,6 +76,9 @@ struct Mesh {
         v.tangents = tangents.empty() ? nullptr : tangents.data();
         v.albedo = albedo;
         v.albedo_map = albedo_map;
+        v.normal_map = normal_map;
+        v.shininess = shininess;
+        v.specular = specular;
         return v;
     }
 };

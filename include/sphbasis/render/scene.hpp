@@ -49,6 +49,7 @@
 #include <vector>
 
 #include "../core/error.hpp"
+#include "../core/frame.hpp"
 #include "../core/vec.hpp"
 #include "detail/rt_math.hpp"
 #include "mesh.hpp"
@@ -72,6 +73,22 @@ struct Hit {
     bool back_face = false;
     /// Mesh albedo times the albedo map at the interpolated UV (bilinear, wrapping), per channel.
     std::array<double, 3> albedo{0, 0, 0};
+    /// The triangle's vertex indices in the mesh (for per-vertex data: weights 1 - u - v, u, v).
+    std::array<std::uint32_t, 3> vertices{0, 0, 0};
+    /// Interpolated UV (has_uv: the mesh has UVs; otherwise {0, 0}).
+    bool has_uv = false;
+    std::array<double, 2> uv{0, 0};
+    /// Unit tangent orthogonal to shading_normal and the bitangent's handedness: bitangent =
+    /// bitangent_sign * cross(shading_normal, tangent). From the mesh's tangents (interpolated),
+    /// else from the triangle's UV derivative dp/du, else coordinate_system() (core/frame.hpp) of
+    /// the normal. On a back face the normal is flipped and the tangent kept, so the sign flips.
+    vec3<double> tangent{1, 0, 0};
+    double bitangent_sign = 1;
+    /// The mesh's material (mesh.hpp): normal map (null: none), Blinn-Phong exponent (0: none)
+    /// and specular reflectance.
+    const TextureView* normal_map = nullptr;
+    double shininess = 0;
+    std::array<double, 3> specular{0, 0, 0};
 };
 
 class Scene {
@@ -242,15 +259,67 @@ class Scene {
         } else {
             h.shading_normal = ng;
         }
+        h.vertices = {tri[0], tri[1], tri[2]};
         h.albedo = {m.albedo[0], m.albedo[1], m.albedo[2]};
-        if (m.map.texels && !m.uvs.empty()) {
-            const std::size_t a = tri[0], b = tri[1], c = tri[2];
-            const double tu = m.uvs[2 * a] * w0 + m.uvs[2 * b] * w1 + m.uvs[2 * c] * w2;
-            const double tv = m.uvs[2 * a + 1] * w0 + m.uvs[2 * b + 1] * w1 + m.uvs[2 * c + 1] * w2;
-            const auto t = texture(m.map, tu, tv);
-            for (int k = 0; k < 3; ++k) h.albedo[std::size_t(k)] *= t[std::size_t(k)];
+        h.shininess = m.shininess;
+        h.specular = m.specular;
+        h.normal_map = m.normal_map.texels ? &m.normal_map : nullptr;
+        const std::size_t a = tri[0], b = tri[1], c = tri[2];
+        V3 dpdu{0, 0, 0};
+        if (!m.uvs.empty()) {
+            h.has_uv = true;
+            h.uv = {m.uvs[2 * a] * w0 + m.uvs[2 * b] * w1 + m.uvs[2 * c] * w2,
+                    m.uvs[2 * a + 1] * w0 + m.uvs[2 * b + 1] * w1 + m.uvs[2 * c + 1] * w2};
+            if (m.map.texels) {
+                const auto t = texture(m.map, h.uv[0], h.uv[1]);
+                for (int k = 0; k < 3; ++k) h.albedo[std::size_t(k)] *= t[std::size_t(k)];
+            }
+            if (m.tangents.empty()) {  // dp/du of the triangle from its UVs
+                const double du1 = m.uvs[2 * b] - m.uvs[2 * a],
+                             dv1 = m.uvs[2 * b + 1] - m.uvs[2 * a + 1];
+                const double du2 = m.uvs[2 * c] - m.uvs[2 * a],
+                             dv2 = m.uvs[2 * c + 1] - m.uvs[2 * a + 1];
+                const double det = du1 * dv2 - du2 * dv1;
+                if (det != 0 && std::isfinite(det)) {
+                    dpdu = ((p1 - p0) * dv2 - (p2 - p0) * dv1) * (1 / det);
+                    // The bitangent dp/dv decides the handedness.
+                    const V3 dpdv = ((p2 - p0) * du1 - (p1 - p0) * du2) * (1 / det);
+                    const V3 nc = normalized(cross(p1 - p0, p2 - p0));
+                    h.bitangent_sign = dot(cross(nc, dpdu), dpdv) < 0 ? -1 : 1;
+                }
+            }
         }
+        if (!m.tangents.empty()) {
+            dpdu = m.tan(tri[0]) * w0 + m.tan(tri[1]) * w1 + m.tan(tri[2]) * w2;
+            h.bitangent_sign = m.tangents[4 * a + 3] < 0 ? -1 : 1;
+        }
+        const V3 n = h.shading_normal;
+        V3 t = dpdu - n * dot(n, dpdu);
+        const double tl = length(t);
+        if (tl > 1e-12 * (length(dpdu) + 1e-300) && std::isfinite(tl)) {
+            h.tangent = t * (1 / tl);
+        } else {
+            const Frame<double> f(n);
+            h.tangent = f.s;
+            h.bitangent_sign = 1;
+        }
+        if (h.back_face) h.bitangent_sign = -h.bitangent_sign;
         return h;
+    }
+
+    /// The normal-mapped shading normal at a hit: the normal map (bilinear, wrapping) decoded
+    /// as 2c - 1 in the hit's tangent frame (tangent, bitangent, shading_normal), normalised.
+    /// Without a normal map or UVs, or when the decoded vector is zero or not finite, the
+    /// shading normal. The result may face away from the geometric normal on a steep map; the
+    /// caller decides (the renderer clamps cosines).
+    static vec3<double> normal_mapped(const Hit& h) noexcept {
+        if (!h.normal_map || !h.has_uv) return h.shading_normal;
+        using namespace detail::rt;
+        const auto c = texture(*h.normal_map, h.uv[0], h.uv[1]);
+        const V3 n = h.shading_normal, t = h.tangent;
+        const V3 bt = cross(n, t) * h.bitangent_sign;
+        const V3 p = t * (2 * c[0] - 1) + bt * (2 * c[1] - 1) + n * (2 * c[2] - 1);
+        return normalized(p, n);
     }
 
     /// Bilinear lookup of a texture at uv, wrapping (texel (0, 0) at uv (0, 1): mesh.hpp).
@@ -284,11 +353,17 @@ class Scene {
     static constexpr std::size_t chunk = 1024;
 
     struct MeshData {
-        std::vector<float> positions, normals, uvs;
+        std::vector<float> positions, normals, uvs, tangents;
         std::vector<std::uint32_t> indices;  // kept (non-degenerate) triangles
         std::vector<std::uint32_t> prim;     // kept triangle -> original triangle
         std::array<double, 3> albedo{0, 0, 0};
-        TextureView map{};
+        TextureView map{}, normal_map{};
+        double shininess = 0;
+        std::array<double, 3> specular{0, 0, 0};
+        detail::rt::V3 tan(std::uint32_t i) const noexcept {
+            return {tangents[4 * std::size_t(i)], tangents[4 * std::size_t(i) + 1],
+                    tangents[4 * std::size_t(i) + 2]};
+        }
         detail::rt::V3 pos(std::uint32_t i) const noexcept {
             return {positions[3 * std::size_t(i)], positions[3 * std::size_t(i) + 1],
                     positions[3 * std::size_t(i) + 2]};
@@ -329,6 +404,33 @@ class Scene {
             d.uvs.assign(v.uvs, v.uvs + 2 * nv);
             if (!all_finite(d.uvs.data(), d.uvs.size()))
                 bad(m, "finite UVs, got a NaN or an infinity");
+        }
+        if (v.tangents && nv) {
+            d.tangents.assign(v.tangents, v.tangents + 4 * nv);
+            if (!all_finite(d.tangents.data(), d.tangents.size()))
+                bad(m, "finite tangents, got a NaN or an infinity");
+        }
+        if (!(v.shininess >= 0 && std::isfinite(v.shininess)))
+            bad(m, "a finite shininess >= 0, got " + std::to_string(v.shininess));
+        d.shininess = v.shininess;
+        for (std::size_t k = 0; k < 3; ++k) {
+            const double s = v.specular[k];
+            if (!(s >= 0 && s <= 1)) bad(m, "specular in [0, 1], got " + std::to_string(s));
+            d.specular[k] = s;
+        }
+        const TextureView& nm = v.normal_map;
+        if (nm.texels || nm.width || nm.height) {
+            if (!nm.texels || nm.width <= 0 || nm.height <= 0 ||
+                !(nm.channels == 3 || nm.channels == 4))
+                bad(m, "a normal map with texels, width, height > 0 and 3 or 4 channels, got " +
+                           std::to_string(nm.width) + "x" + std::to_string(nm.height) + "x" +
+                           std::to_string(nm.channels) + (nm.texels ? "" : " without texels"));
+            if (!v.uvs) bad(m, "UVs with a normal map, got none");
+            const std::size_t n =
+                std::size_t(nm.width) * std::size_t(nm.height) * std::size_t(nm.channels);
+            if (!all_finite(nm.texels, n))
+                bad(m, "finite normal map texels, got a NaN or an infinity");
+            d.normal_map = nm;
         }
         for (std::size_t k = 0; k < 3; ++k) {
             const double a = v.albedo[k];
