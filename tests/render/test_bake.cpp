@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -391,6 +392,50 @@ TEST_CASE("render::Baker: deterministic for any thread count and point order", "
     s.seed = 8;
     const auto r4 = Baker(d, s).bake(pts);
     CHECK(r4[3].transfer[0] != r1[3].transfer[0]);
+}
+
+TEST_CASE("render::Baker: pass seconds are exclusive and add up to the thread time", "[render]") {
+    // Shadow rays run inside the bounce passes (next-event estimation at path vertices); with
+    // one thread the passes' seconds must add up to at most the wall time of bake(), which
+    // fails if the nested shadow time is counted twice.
+    Furnace fu;
+    SceneDesc d = fu.desc();
+    d.meshes[0].albedo = {0.8f, 0.8f, 0.8f};
+    for (int k = 0; k < 8; ++k) {
+        Light l;
+        l.type = Light::Type::directional;
+        l.direction = {0.1 * k - 0.35, 0.2, 1};
+        l.color = {1, 1, 1};
+        d.lights.push_back(l);
+    }
+    BakeSettings s;
+    s.quantities = Quantity::irradiance;
+    s.rays = 64;
+    s.bounces = 3;
+    s.target_error = 0;
+    std::vector<BakePoint> pts;
+    for (std::uint64_t i = 0; i < 24; ++i) {
+        BakePoint p;
+        p.p = {-0.9 + 0.075 * double(i), 0.1, 0};
+        p.n = {0, 0, 1};
+        p.id = i;
+        pts.push_back(p);
+    }
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+    Baker b(d, s);
+    const auto t0 = std::chrono::steady_clock::now();
+    b.bake(pts);
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    double sum = 0, shadow = 0;
+    for (const Pass& p : b.plan())
+        if (p.name != "build") {
+            sum += p.seconds;
+            if (p.name == "shadow") shadow = p.seconds;
+        }
+    CHECK(shadow > 0);
+    CHECK(sum <= wall * 1.001 + 1e-4);
+    CHECK(sum >= 0.25 * wall);  // the timers cover most of the work
 }
 
 TEST_CASE("render::Baker: radiance at free points, lights and inside flags", "[render]") {

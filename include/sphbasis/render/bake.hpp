@@ -60,7 +60,9 @@
 // rho_max^k f_x > target_error, f_x the fraction of the point's own rays that hit geometry
 // (its paths; paths end when they escape). target_error is relative to unit radiance.
 // force_all_passes runs the ray passes for every point and all `bounces`. Pass::seconds is thread
-// time (summed over threads); Pass::rays is exact.
+// time (summed over threads), exclusive: work of one pass nested in another (the shadow rays at
+// a bounce's vertices) counts for the inner pass only, so the passes add up to the thread time;
+// Pass::rays is exact.
 #pragma once
 
 #include <tbb/blocked_range.h>
@@ -261,10 +263,14 @@ class Baker {
         bool planned = false;
         std::string reason;
     };
+    using Clock = std::chrono::steady_clock;
+    static constexpr std::size_t no_pass = std::size_t(-1);
     struct Local {
         explicit Local(std::size_t n) : rays(n, 0), points(n, 0), seconds(n, 0) {}
         std::vector<std::uint64_t> rays, points;
         std::vector<double> seconds;
+        std::size_t timing = no_pass;  // the pass whose Timer is innermost
+        Clock::time_point since{};     // when that pass last started or resumed
         // scratch
         std::vector<RTCRay> ray;
         std::vector<RTCRayHit> rayhit;
@@ -275,12 +281,27 @@ class Baker {
         std::vector<detail::rt::V3> dirs, local;
         std::vector<char> va, vt;
     };
-    using Clock = std::chrono::steady_clock;
+    /// Exclusive pass timing: a Timer started inside another pauses the outer one, so nested
+    /// work (the shadow rays of a bounce) counts for the inner pass only and the passes'
+    /// seconds add up to the thread time.
     struct Timer {
         Local& l;
-        std::size_t pass;
-        Clock::time_point t0 = Clock::now();
-        ~Timer() { l.seconds[pass] += std::chrono::duration<double>(Clock::now() - t0).count(); }
+        std::size_t outer;
+        Timer(Local& local, std::size_t pass) : l(local), outer(local.timing) {
+            const Clock::time_point now = Clock::now();
+            if (outer != no_pass)
+                l.seconds[outer] += std::chrono::duration<double>(now - l.since).count();
+            l.timing = pass;
+            l.since = now;
+        }
+        Timer(const Timer&) = delete;
+        Timer& operator=(const Timer&) = delete;
+        ~Timer() {
+            const Clock::time_point now = Clock::now();
+            l.seconds[l.timing] += std::chrono::duration<double>(now - l.since).count();
+            l.timing = outer;
+            l.since = now;
+        }
     };
 
     std::size_t stat_count() const noexcept {
