@@ -273,6 +273,18 @@ struct Furnace {
         }
         return pts;
     }
+    /// n points on the floor along x from -0.9 in steps of dx, facing up, ids from id0.
+    static std::vector<BakePoint> floor_row(std::uint64_t n, double dx, std::uint64_t id0) {
+        std::vector<BakePoint> pts;
+        for (std::uint64_t i = 0; i < n; ++i) {
+            BakePoint p;
+            p.p = {-0.9 + dx * double(i), 0.1, 0};
+            p.n = {0, 0, 1};
+            p.id = id0 + i;
+            pts.push_back(p);
+        }
+        return pts;
+    }
 };
 }  // namespace
 
@@ -355,14 +367,7 @@ TEST_CASE("render::Baker: deterministic for any thread count and point order", "
     s.rays = 32;
     s.bounces = 2;
     s.seed = 7;
-    std::vector<BakePoint> pts;
-    for (std::uint64_t i = 0; i < 16; ++i) {
-        BakePoint p;
-        p.p = {-0.9 + 0.11 * double(i), 0.1, 0};
-        p.n = {0, 0, 1};
-        p.id = 1000 + i;
-        pts.push_back(p);
-    }
+    const std::vector<BakePoint> pts = Furnace::floor_row(16, 0.11, 1000);
     std::vector<PointResult> r1, r2, r3;
     {
         tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
@@ -413,14 +418,7 @@ TEST_CASE("render::Baker: pass seconds are exclusive and add up to the thread ti
     s.rays = 64;
     s.bounces = 3;
     s.target_error = 0;
-    std::vector<BakePoint> pts;
-    for (std::uint64_t i = 0; i < 24; ++i) {
-        BakePoint p;
-        p.p = {-0.9 + 0.075 * double(i), 0.1, 0};
-        p.n = {0, 0, 1};
-        p.id = i;
-        pts.push_back(p);
-    }
+    const std::vector<BakePoint> pts = Furnace::floor_row(24, 0.075, 0);
     tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
     Baker b(d, s);
     const auto t0 = std::chrono::steady_clock::now();

@@ -147,6 +147,11 @@ class Scene {
     double max_albedo() const noexcept { return max_albedo_; }
     /// Whether some albedo channel differs between meshes' channels (RGB transfer needed).
     bool albedo_chromatic() const noexcept { return chromatic_; }
+    /// Mesh m's normal map (null: none) and Blinn-Phong exponent (0: none); m < mesh_count().
+    const TextureView* mesh_normal_map(std::size_t m) const noexcept {
+        return meshes_[m].normal_map.texels ? &meshes_[m].normal_map : nullptr;
+    }
+    double mesh_shininess(std::size_t m) const noexcept { return meshes_[m].shininess; }
 
     /// Whether the scene can occlude points on its own surface (header comment).
     bool can_occlude() const noexcept { return can_occlude_; }
