@@ -340,6 +340,8 @@ class PathTracer {
                         const CameraRay cr = cam.ray(px, py);
                         Scene::set_ray(rays[k], cr.origin, cr.direction);
                     }
+                    if (log_)
+                        for (std::size_t k = 0; k < n; ++k) record(rays[k], 0);
                     scene_.intersect(rays.data(), n);
                     c.camera_rays += n;
                     for (std::size_t k = 0; k < n; ++k) {
@@ -423,6 +425,7 @@ class PathTracer {
         TraceCounters c;
         RTCRayHit r;
         Scene::set_ray(r, origin, detail::rt::normalized(direction));
+        if (log_) record(r, 0);
         scene_.intersect(&r, 1);
         ++c.camera_rays;
         const RGB L = shade(r, pixel, sample, c, nullptr);
@@ -433,6 +436,19 @@ class PathTracer {
     /// Everything this tracer did so far (render() and radiance() calls, summed).
     const TraceCounters& counters() const noexcept { return counters_; }
     const EnvironmentSampler& environment_sampler() const noexcept { return sampler_; }
+
+    /// A traced ray as recorded for benchmarks: kind 0 camera (traced in tile streams by
+    /// Scene::intersect), 1 bounce (one Scene::intersect), 2 shadow (one Scene::occluded; only
+    /// `ray.ray` is meaningful), 3 the last vertex's BRDF ray that only looks for emitters (one
+    /// Scene::intersect, counted as a shadow ray).
+    struct RayRecord {
+        RTCRayHit ray;
+        int kind = 0;
+    };
+    /// While `log` is non-null, every ray render() and radiance() trace is appended to it as it
+    /// was before tracing (a lock per ray: for benchmarks that replay the same rays through a
+    /// bare Embree loop, not for production). Null stops recording.
+    void record_rays(std::vector<RayRecord>* log) noexcept { log_ = log; }
 
   private:
     using V3 = detail::rt::V3;
@@ -556,6 +572,7 @@ class PathTracer {
             for (std::size_t i = 0; i < 3; ++i) w[i] *= beta[i];
             RTCRayHit r;
             Scene::set_ray(r, scene_.offset_origin(x, ng, wi), wi);
+            if (log_) record(r, more ? 1 : 3);
             scene_.intersect(&r, 1);
             if (more)
                 ++c.bounce_rays;
@@ -598,11 +615,21 @@ class PathTracer {
         return L;
     }
 
+    void record(const RTCRayHit& r, int kind) const {
+        std::lock_guard<std::mutex> lock(*mutex_);
+        log_->push_back(RayRecord{r, kind});
+    }
+
     /// Traces a shadow ray from x (offset along ng) toward w up to distance tmax.
     bool visible(const V3& x, const V3& ng, const V3& w, double tmax, TraceCounters& c) const {
         RTCRay r;
         const V3 o = scene_.offset_origin(x, ng, w);
         Scene::set_ray(r, o, w, 0, tmax);
+        if (log_) {
+            RTCRayHit rh;
+            rh.ray = r;
+            record(rh, 2);
+        }
         scene_.occluded(&r, 1);
         ++c.shadow_rays;
         return !Scene::is_occluded(r);
@@ -617,6 +644,7 @@ class PathTracer {
     bool env_nee_ = false, env_any_ = false, nondelta_ = false, emitters_ = false;
     std::unique_ptr<std::mutex> mutex_;
     mutable TraceCounters counters_;
+    std::vector<RayRecord>* log_ = nullptr;
 };
 
 }  // namespace sphbasis::render
