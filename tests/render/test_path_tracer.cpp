@@ -486,3 +486,45 @@ TEST_CASE("PathTracer: progressive passes stop at the target noise; bad settings
     c.fov_deg = 0;
     CHECK_THROWS_AS(t.render(c), std::invalid_argument);
 }
+
+TEST_CASE("PathTracer: furnace and convergence at scale", "[render][path_tracer][slow]") {
+    // The white furnace as an image: every pixel 1 within 5 of its own standard errors.
+    Mesh box = sphbasis_test::box(-1, -1, -1, 1, 1, 1, true);
+    box.albedo = {1, 1, 1};
+    const auto scene = make_scene({box});
+    TraceSettings s;
+    s.bounces = -1;
+    s.spp_min = 64;
+    s.spp_max = 256;
+    s.target_noise = 0;
+    PathTracer t(*scene, constant_sky(1), {}, s);
+    const auto r = t.render(camera_at({0.3, -0.4, 4}, {0, 0, -0.5}, 32, 32, 45));
+    for (std::size_t i = 0; i < r.color.data.size(); ++i)
+        CHECK(std::fabs(r.color.data[i] - 1) <= 5 * r.stderr_.data[i] + 1e-4);
+
+    // Convergence: 64 x 64 pixels, 16 against 64 samples, reference 4096.
+    Mesh ball = render::shapes::sphere({0, 0, 0.6}, 0.6, 16, 32);
+    Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);
+    const auto scene2 = make_scene({ball, plane});
+    auto render_spp = [&](int spp, std::uint64_t seed) {
+        TraceSettings q;
+        q.bounces = 2;
+        q.spp_min = q.spp_max = spp;
+        q.target_noise = 0;
+        q.seed = seed;
+        PathTracer tt(*scene2, constant_sky(1), {sun(unit({0.5, 0.3, 1}), 2)}, q);
+        return tt.render(camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, 32, 32, 35)).color;
+    };
+    const auto ref = render_spp(4096, 99);
+    auto rmse = [&](const render::Image& a) {
+        double e = 0;
+        for (std::size_t i = 0; i < a.data.size(); ++i)
+            e += (double(a.data[i]) - ref.data[i]) * (double(a.data[i]) - ref.data[i]);
+        return std::sqrt(e / double(a.data.size()));
+    };
+    const double e16 = rmse(render_spp(16, 1)), e64 = rmse(render_spp(64, 2)),
+                 e256 = rmse(render_spp(256, 3));
+    CHECK(e16 / e64 == Approx(2).epsilon(0.15));
+    CHECK(e64 / e256 == Approx(std::sqrt((1 / 64.0 + 1 / 4096.0) / (1 / 256.0 + 1 / 4096.0)))
+                            .epsilon(0.15));
+}
