@@ -329,6 +329,49 @@ TEST_CASE("PathTracer: MIS irradiance of a lat-long map equals quadrature",
     }
 }
 
+TEST_CASE("PathTracer: Blinn-Phong under a lat-long map (MIS with lobe sampling) equals quadrature",
+          "[render][path_tracer]") {
+    const int W = 16, H = 8;
+    std::vector<float> tex(std::size_t(W * H * 3));
+    for (int j = 0; j < H; ++j)
+        for (int i = 0; i < W; ++i) {
+            float* p = &tex[3 * std::size_t(j * W + i)];
+            p[0] = p[1] = p[2] = 0.2f + 0.1f * float(i % 3);
+            if (j == 1 && i == 9) p[0] = p[1] = p[2] = 30;
+        }
+    Environment env;
+    env.kind = Environment::Kind::latlong;
+    env.texels = tex.data();
+    env.width = W;
+    env.height = H;
+    Mesh q = sphbasis_test::quad_grid(-50, 50, -50, 50, 0, 1);
+    q.albedo = {0.2f, 0.2f, 0.2f};
+    q.shininess = 8;
+    q.specular = {0.6f, 0.6f, 0.6f};
+    const auto scene = make_scene({q});
+    TraceSettings s;
+    s.bounces = 0;
+    PathTracer t(*scene, env, {}, s);
+    const vec3<double> o{0.8, -0.6, 0.5};
+    const vec3<double> d = unit({-o.x, -o.y, -o.z});
+    const Estimate e = estimate(t, o, d, 4000);
+    const vec3<double> wo{-d.x, -d.y, -d.z};
+    double ref = 0;
+    const int nt = 256, np = 512;
+    for (int a = 0; a < nt; ++a)
+        for (int b = 0; b < np; ++b) {
+            const double z = (a + 0.5) / nt, phi = 2 * constants::pi * (b + 0.5) / np;
+            const double rr = std::sqrt(1 - z * z);
+            const vec3<double> w{rr * std::cos(phi), rr * std::sin(phi), z};
+            const vec3<double> h = unit({wo.x + w.x, wo.y + w.y, wo.z + w.z});
+            const double f = 0.2 / constants::pi + 0.6 * 16 / (8 * constants::pi) * std::pow(h.z, 8);
+            ref += f * env.radiance(w)[0] * z;
+        }
+    ref *= 2 * constants::pi / (double(nt) * np);
+    CHECK(std::fabs(e.mean - ref) < 4 * e.se + 2e-3 * ref);
+    CHECK(t.counters().specular_evaluations > 0);
+}
+
 TEST_CASE("PathTracer: error halves when samples quadruple", "[render][path_tracer]") {
     Mesh ball = render::shapes::sphere({0, 0, 0.6}, 0.6, 16, 32);
     Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);

@@ -31,7 +31,7 @@
 //            (Probulator's sMAPE), eps' = floor.
 // error_image() gives the per-pixel relative error |t - r|_2 / (|r|_2 + floor) (NaN-free; an
 // unjudged pixel gets -1), false_colour() maps it to 8-bit RGB on a fixed logarithmic scale
-// (1e-3 .. 1, a perceptual blue -> yellow ramp), unjudged pixels in mid grey.
+// (1e-3 .. 1, a perceptual blue -> yellow ramp: viridis), unjudged pixels in mid grey.
 #pragma once
 
 #include <tbb/blocked_range2d.h>

@@ -300,7 +300,9 @@ class PathTracer {
     const std::vector<std::string>& effects() const noexcept { return effects_; }
 
     /// Renders the camera's image progressively. progress(done, total) (optional) is called
-    /// with the finished sample passes' pixel-samples, from any thread.
+    /// with the finished sample passes' pixel-samples, from any thread (after each tile of a
+    /// pass; total = pixels * spp_max, which an early stop at the target noise ends below).
+    /// Throws std::invalid_argument for a camera that validate(Camera) rejects.
     TraceResult render(
         const Camera& camera,
         const std::function<void(std::uint64_t, std::uint64_t)>& progress = {}) const {
