@@ -114,7 +114,7 @@ struct TraceCounters {
 
 struct TraceResult {
     Image color;                     // mean radiance per pixel
-    Image stderr_;                   // its standard error per channel
+    Image stderr_;                   // its standard error per channel (+inf with one sample)
     Image normal, albedo, position;  // first-hit AOVs when requested (background: 0)
     Image coverage;  // 1 channel, always: the fraction of a pixel's camera rays that hit geometry
     int spp = 0;
