@@ -262,3 +262,118 @@ BENCHMARK(transfer6)->Apply(args);
 }  // namespace
 
 BENCHMARK_MAIN();
+
+// ---------------------------------------------------------------------------------------------
+// The path tracer (render/path_tracer.hpp) against a bare Embree loop of the same rays.
+//   trace/<threads>:     PathTracer::render of the procedural scene (constant sky and a sun,
+//                        2 bounces, 96 x 96 pixels, 8 samples per pixel, fixed), items = every
+//                        ray it traced (camera, bounce and shadow rays: TraceCounters::rays()).
+//   trace_bare/<threads>: the rays of one such render, recorded by PathTracer::record_rays and
+//                        replayed the way the tracer traces them (camera rays as streams of the
+//                        tile's 256, the others one at a time: intersect for bounce rays,
+//                        occluded for shadow rays), tbb::parallel_for over blocks of 1024.
+// The ratio of the two items_per_second is the tracer's efficiency (the goal is >= 70%).
+#include <sphbasis/render/path_tracer.hpp>
+
+namespace {
+
+struct TraceBench {
+    std::unique_ptr<Scene> scene;
+    Camera camera;
+    TraceSettings settings;
+    Environment env;
+    std::vector<Light> lights;
+};
+
+const TraceBench& trace_bench() {
+    static const TraceBench t = [] {
+        TraceBench b;
+        std::vector<MeshView> views;
+        for (const auto& m : procedural().meshes) views.push_back(m.view());
+        b.scene = std::make_unique<Scene>(views);
+        b.camera.position = {0, -14, 8};
+        b.camera.look_at = {0, 0, 0};
+        b.camera.fov_deg = 50;
+        b.camera.width = b.camera.height = 96;
+        b.settings.bounces = 2;
+        b.settings.spp_min = b.settings.spp_max = 8;
+        b.settings.target_noise = 0;
+        b.env.kind = Environment::Kind::constant;
+        b.env.constant = {0.6, 0.7, 1.0};
+        Light sun;
+        sun.direction = {0.4, -0.3, 1};
+        sun.color = {3, 3, 3};
+        b.lights.push_back(sun);
+        return b;
+    }();
+    return t;
+}
+
+void trace(benchmark::State& state) {
+    const TraceBench& b = trace_bench();
+    tbb::global_control gc(tbb::global_control::max_allowed_parallelism,
+                           std::size_t(state.range(0)));
+    const PathTracer t(*b.scene, b.env, b.lights, b.settings);
+    std::uint64_t rays = 0;
+    for (auto _ : state) {
+        const TraceResult r = t.render(b.camera);
+        rays += r.counters.rays();
+        benchmark::DoNotOptimize(r.color.data.data());
+    }
+    state.SetItemsProcessed(std::int64_t(rays));
+    state.counters["rays_per_path"] =
+        double(rays) / (double(state.iterations()) * 96 * 96 * b.settings.spp_max);
+}
+
+void trace_bare(benchmark::State& state) {
+    const TraceBench& b = trace_bench();
+    static const std::vector<PathTracer::RayRecord> log = [&] {
+        std::vector<PathTracer::RayRecord> l;
+        PathTracer t(*b.scene, b.env, b.lights, b.settings);
+        t.record_rays(&l);
+        t.render(b.camera);
+        // Camera rays first (in tile order they were streamed in), then the rest.
+        std::stable_partition(l.begin(), l.end(),
+                              [](const PathTracer::RayRecord& r) { return r.kind == 0; });
+        return l;
+    }();
+    std::size_t cameras = 0;
+    while (cameras < log.size() && log[cameras].kind == 0) ++cameras;
+    tbb::global_control gc(tbb::global_control::max_allowed_parallelism,
+                           std::size_t(state.range(0)));
+    const Scene& rt = *b.scene;
+    std::vector<RTCRayHit> work(log.size());
+    std::uint64_t hits = 0;
+    for (auto _ : state) {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cameras, 256),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              for (std::size_t i = r.begin(); i != r.end(); ++i)
+                                  work[i] = log[i].ray;
+                              rt.intersect(&work[r.begin()], r.size());
+                          });
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(cameras, log.size(), 1024),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                                  work[i] = log[i].ray;
+                                  if (log[i].kind == 2)
+                                      rt.occluded(&work[i].ray, 1);
+                                  else
+                                      rt.intersect(&work[i], 1);
+                              }
+                          });
+        hits += std::size_t(work[0].hit.geomID != RTC_INVALID_GEOMETRY_ID);
+    }
+    benchmark::DoNotOptimize(hits);
+    state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(log.size()));
+}
+
+void trace_args(benchmark::internal::Benchmark* b) {
+    b->ArgNames({"threads"});
+    for (int threads : {1, 2}) b->Args({threads});
+    b->Unit(benchmark::kMillisecond)->UseRealTime();
+}
+
+BENCHMARK(trace_bare)->Apply(trace_args);
+BENCHMARK(trace)->Apply(trace_args);
+
+}  // namespace

@@ -31,7 +31,7 @@
 //            (Probulator's sMAPE), eps' = floor.
 // error_image() gives the per-pixel relative error |t - r|_2 / (|r|_2 + floor) (NaN-free; an
 // unjudged pixel gets -1), false_colour() maps it to 8-bit RGB on a fixed logarithmic scale
-// (1e-3 .. 1, a perceptual blue -> yellow ramp), unjudged pixels in mid grey.
+// (1e-3 .. 1, a perceptual blue -> yellow ramp: viridis), unjudged pixels in mid grey.
 #pragma once
 
 #include <tbb/blocked_range2d.h>
@@ -41,6 +41,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -92,20 +93,175 @@ inline double luminance(double r, double g, double b) noexcept {
     return 0.2126 * r + 0.7152 * g + 0.0722 * b;
 }
 
+namespace detail {
+
+/// RGB of pixel i: the first three channels, or grey for one channel.
+inline void pixel_rgb(const Image& im, std::size_t i, double out[3]) noexcept {
+    const float* p = im.data.data() + i * std::size_t(im.channels);
+    if (im.channels >= 3) {
+        out[0] = p[0];
+        out[1] = p[1];
+        out[2] = p[2];
+    } else {
+        out[0] = out[1] = out[2] = p[0];
+    }
+}
+inline double pixel_luminance(const Image& im, std::size_t i) noexcept {
+    double c[3];
+    pixel_rgb(im, i, c);
+    return luminance(c[0], c[1], c[2]);
+}
+inline void check_image(const char* fn, const char* what, const Image& im) {
+    const std::size_t n = std::size_t(im.width) * std::size_t(im.height);
+    if (im.width < 1 || im.height < 1 ||
+        !(im.channels == 1 || im.channels == 3 || im.channels == 4) ||
+        im.data.size() != n * std::size_t(std::max(im.channels, 0)))
+        sphbasis::detail::throw_invalid(
+            fn, std::string(*what ? std::string(what) + " " : std::string()) +
+                    "an image of 1, 3 or 4 channels with width * height * channels floats, got " +
+                    std::to_string(im.width) + "x" + std::to_string(im.height) + "x" +
+                    std::to_string(im.channels) + " with " + std::to_string(im.data.size()) +
+                    " floats");
+}
+inline void check_same_size(const char* fn, const char* what, const Image& a, const Image& b) {
+    if (a.width != b.width || a.height != b.height)
+        sphbasis::detail::throw_invalid(
+            fn, std::string(what) + " of the reference's size " + std::to_string(b.width) + "x" +
+                    std::to_string(b.height) + ", got " + std::to_string(a.width) + "x" +
+                    std::to_string(a.height));
+}
+
+/// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1].
+inline double srgb_encode(double x) noexcept {
+    return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1 / 2.4) - 0.055;
+}
+
+/// Operator 0 clamp, 1 reinhard, 2 aces, on x >= 0 finite.
+inline double tone_map(int op, double x) noexcept {
+    switch (op) {
+        case 1:
+            return x / (1 + x);
+        case 2: {
+            const double y = (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
+            return std::clamp(y, 0.0, 1.0);
+        }
+        default:
+            return std::min(x, 1.0);
+    }
+}
+
+/// The comparison's per-pixel state: judged flags and the floor (header comment).
+struct Judgement {
+    std::vector<char> judged;
+    std::size_t total = 0;
+    double floor = 0;
+};
+inline Judgement judge(const char* fn, const Image& test, const Image& reference,
+                       const Image* reference_stderr, double noise_limit, const Image* mask) {
+    check_image(fn, "as the test image", test);
+    check_image(fn, "as the reference image", reference);
+    check_same_size(fn, "a test image", test, reference);
+    if (reference_stderr) {
+        check_image(fn, "as the reference stderr image", *reference_stderr);
+        check_same_size(fn, "a reference stderr image", *reference_stderr, reference);
+    }
+    if (mask) {
+        check_image(fn, "as the mask", *mask);
+        check_same_size(fn, "a mask", *mask, reference);
+    }
+    if (!(noise_limit > 0) || !std::isfinite(noise_limit))
+        sphbasis::detail::throw_invalid(
+            fn, "a finite noise_limit > 0, got " + std::to_string(noise_limit));
+    const std::size_t n = std::size_t(reference.width) * std::size_t(reference.height);
+    Judgement j;
+    j.judged.assign(n, 0);
+    double sum = 0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (mask && !(mask->data[i * std::size_t(mask->channels)] != 0)) continue;
+        const double l = pixel_luminance(reference, i);
+        if (std::isfinite(l)) {
+            sum += l;
+            ++count;
+        }
+    }
+    const double mean = count ? sum / double(count) : 0;
+    // A black reference has no relative scale: an absolute floor of 1e-6 keeps the ratios finite.
+    j.floor = mean > 0 ? 1e-3 * mean : 1e-6;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (mask && !(mask->data[i * std::size_t(mask->channels)] != 0)) continue;
+        ++j.total;
+        if (!reference_stderr) {
+            j.judged[i] = 1;
+            continue;
+        }
+        const double s = pixel_luminance(*reference_stderr, i);
+        const double l = pixel_luminance(reference, i);
+        j.judged[i] = s <= noise_limit * std::max(l, j.floor) ? 1 : 0;
+    }
+    return j;
+}
+
+}  // namespace detail
+
 /// Tone-mapping operators by name: "clamp", "reinhard", "aces" (header comment).
-inline std::vector<std::string> tone_map_names() {
-    sphbasis::detail::throw_runtime("render::image", "an implementation, got the contract stub");
-}
-/// Exposure that maps the log-average luminance to 0.18 (header comment).
+inline std::vector<std::string> tone_map_names() { return {"clamp", "reinhard", "aces"}; }
+
+/// Exposure that maps the log-average luminance to 0.18 (header comment): 0.18 / exp(mean of
+/// log(luminance)) over finite pixels with luminance > 0; 1 without such a pixel. A 1-channel
+/// image is grey. Throws std::invalid_argument for an image of 2 channels or inconsistent size.
 inline double auto_exposure(const Image& image) {
-    sphbasis::detail::throw_runtime("render::image", "an implementation, got the contract stub");
+    detail::check_image("render::auto_exposure", "", image);
+    const std::size_t n = std::size_t(image.width) * std::size_t(image.height);
+    double sum = 0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double l = detail::pixel_luminance(image, i);
+        if (l > 0 && std::isfinite(l)) {
+            sum += std::log(l);
+            ++count;
+        }
+    }
+    if (count == 0) return 1;
+    return 0.18 / std::exp(sum / double(count));
 }
+
 /// 8-bit sRGB RGB (3 bytes per pixel, rows from the top). Throws std::invalid_argument for an
 /// unknown operator (the message lists the names), a non-finite or negative exposure, or an
 /// image with fewer than 3 channels (1 channel is expanded to grey).
 inline std::vector<std::uint8_t> to_srgb8(const Image& image, double exposure,
                                           const std::string& op) {
-    sphbasis::detail::throw_runtime("render::image", "an implementation, got the contract stub");
+    constexpr const char* fn = "render::to_srgb8";
+    const auto names = tone_map_names();
+    int k = -1;
+    for (std::size_t i = 0; i < names.size(); ++i)
+        if (names[i] == op) k = int(i);
+    if (k < 0)
+        sphbasis::detail::throw_invalid(
+            fn, "a tone-mapping operator clamp, reinhard or aces, got \"" + op + "\"");
+    if (!(exposure >= 0) || !std::isfinite(exposure))
+        sphbasis::detail::throw_invalid(fn,
+                                        "a finite exposure >= 0, got " + std::to_string(exposure));
+    detail::check_image(fn, "", image);
+    const std::size_t n = std::size_t(image.width) * std::size_t(image.height);
+    std::vector<std::uint8_t> out(3 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+        double c[3];
+        detail::pixel_rgb(image, i, c);
+        for (int ch = 0; ch < 3; ++ch) {
+            const double x = c[ch];
+            std::uint8_t b = 0;
+            if (x == std::numeric_limits<double>::infinity()) {
+                b = 255;
+            } else if (x > 0) {  // NaN and negatives stay 0
+                const double e = x * exposure;
+                const double y = detail::srgb_encode(std::clamp(detail::tone_map(k, e), 0.0, 1.0));
+                b = static_cast<std::uint8_t>(std::lround(255 * y));
+            }
+            out[3 * i + std::size_t(ch)] = b;
+        }
+    }
+    return out;
 }
 
 struct ImageError {
@@ -116,18 +272,91 @@ struct ImageError {
 /// pixel judged). Throws std::invalid_argument for mismatched sizes or noise_limit <= 0.
 /// `mask` (optional, 1 channel): pixels where it is 0 are left out (not judged, not counted
 /// in total), e.g. the background where every method shows the same environment.
+/// Images have 1 (grey), 3 or 4 channels; a black reference uses the floor 1e-6. With no judged
+/// pixel the three errors are 0 (judged = 0 says so).
 inline ImageError compare(const Image& test, const Image& reference, const Image* reference_stderr,
                           double noise_limit = 0.05, const Image* mask = nullptr) {
-    sphbasis::detail::throw_runtime("render::image", "an implementation, got the contract stub");
+    const detail::Judgement j =
+        detail::judge("render::compare", test, reference, reference_stderr, noise_limit, mask);
+    ImageError e;
+    e.total = j.total;
+    const double eps = j.floor * j.floor, eps1 = j.floor;
+    double se = 0, rel = 0, sm = 0;
+    for (std::size_t i = 0; i < j.judged.size(); ++i) {
+        if (!j.judged[i]) continue;
+        ++e.judged;
+        double t[3], r[3];
+        detail::pixel_rgb(test, i, t);
+        detail::pixel_rgb(reference, i, r);
+        double d2 = 0, r2 = 0, ad = 0, as = 0;
+        for (int c = 0; c < 3; ++c) {
+            const double d = t[c] - r[c];
+            d2 += d * d;
+            r2 += r[c] * r[c];
+            ad += std::fabs(d);
+            as += std::fabs(t[c]) + std::fabs(r[c]);
+        }
+        se += d2;
+        rel += d2 / (r2 + eps);
+        sm += ad / (as + eps1);
+    }
+    if (e.judged) {
+        const double m = double(e.judged);
+        e.rmse = std::sqrt(se / (3 * m));
+        e.rel_mse = rel / m;
+        e.smape = sm / m;
+    }
+    return e;
 }
-/// Per-pixel relative error (1 channel; -1 where not judged).
+/// Per-pixel relative error |t - r|_2 / (|r|_2 + floor) (1 channel; -1 where not judged or
+/// masked out). Throws as compare().
 inline Image error_image(const Image& test, const Image& reference, const Image* reference_stderr,
                          double noise_limit = 0.05, const Image* mask = nullptr) {
-    sphbasis::detail::throw_runtime("render::image", "an implementation, got the contract stub");
+    const detail::Judgement j =
+        detail::judge("render::error_image", test, reference, reference_stderr, noise_limit, mask);
+    Image out(reference.width, reference.height, 1);
+    for (std::size_t i = 0; i < j.judged.size(); ++i) {
+        if (!j.judged[i]) {
+            out.data[i] = -1;
+            continue;
+        }
+        double t[3], r[3];
+        detail::pixel_rgb(test, i, t);
+        detail::pixel_rgb(reference, i, r);
+        double d2 = 0, r2 = 0;
+        for (int c = 0; c < 3; ++c) {
+            d2 += (t[c] - r[c]) * (t[c] - r[c]);
+            r2 += r[c] * r[c];
+        }
+        const double e = std::sqrt(d2) / (std::sqrt(r2) + j.floor);
+        out.data[i] = std::isfinite(e) ? static_cast<float>(e) : std::numeric_limits<float>::max();
+    }
+    return out;
 }
-/// 8-bit RGB false colour of an error_image().
+/// 8-bit RGB false colour of an error_image(): log10 of the error mapped from [-3, 0] onto the
+/// viridis ramp (blue -> green -> yellow; errors below 1e-3 at the blue end, above 1 at the
+/// yellow end), negative (unjudged) or NaN pixels mid grey (128, 128, 128). Only channel 0 is
+/// read.
 inline std::vector<std::uint8_t> false_colour(const Image& error) {
-    sphbasis::detail::throw_runtime("render::image", "an implementation, got the contract stub");
+    detail::check_image("render::false_colour", "", error);
+    // Viridis at 0, 1/4, 1/2, 3/4, 1 (van der Walt and Smith, matplotlib, 2015).
+    static const double ramp[5][3] = {
+        {68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}};
+    const std::size_t n = std::size_t(error.width) * std::size_t(error.height);
+    std::vector<std::uint8_t> out(3 * n, 128);
+    for (std::size_t i = 0; i < n; ++i) {
+        const double e = error.data[i * std::size_t(error.channels)];
+        if (!(e >= 0)) continue;
+        const double s = e > 0 ? std::clamp((std::log10(e) + 3) / 3, 0.0, 1.0) : 0.0;
+        const double x = s * 4;
+        const int k = std::min(3, static_cast<int>(x));
+        const double f = x - k;
+        for (int c = 0; c < 3; ++c)
+            out[3 * i + std::size_t(c)] = static_cast<std::uint8_t>(
+                std::lround((1 - f) * ramp[k][c] + f * ramp[k + 1][c]));
+    }
+    return out;
 }
+
 
 }  // namespace sphbasis::render

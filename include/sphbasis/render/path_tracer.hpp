@@ -37,16 +37,47 @@
 // Counters (TraceCounters) are exact and let tests prove that no work the scene does not call
 // for was done (no shadow rays without lights or environment, no normal-map lookups without
 // normal maps, no specular evaluations without shiny materials, no bounce rays with bounces = 0).
+//
+// Implementation notes (what the tests and counters rely on):
+//   * Random numbers: the pixel position of sample i is point i of the R2 sequence
+//     (core/sampling.hpp) with a per-pixel Cranley-Patterson rotation hashed from (seed, pixel);
+//     every other dimension is rt::unit(hash(hash(hash(seed, pixel), sample), dimension)), so
+//     the progressive passes continue one sequence and nothing depends on threads or tiles.
+//   * Per path vertex: one environment sample (lat-long maps only), one sample per analytic
+//     light, then one BRDF sample. The BRDF-sampled ray continues the path (a bounce ray) while
+//     bounces remain; at the last vertex it is traced only when an emitter can be reached by it
+//     (the environment or a non-delta light) and is then counted as a shadow ray. A constant
+//     environment gets no environment sample: the BRDF sample alone estimates it (weight 1).
+//   * Unbounded paths (bounces < 0): Russian roulette at every vertex from the fourth on.
+//   * No emitter at all (no environment, no lights): surfaces are black and no secondary ray
+//     is traced.
 #pragma once
 
+#include <embree3/rtcore.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
 #include <atomic>
+#include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
+#include <memory>
+#include <mutex>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
+#include "../core/constants.hpp"
 #include "../core/error.hpp"
+#include "../core/frame.hpp"
+#include "../core/sampling.hpp"
 #include "camera.hpp"
+#include "detail/rt_math.hpp"
+#include "environment_sampler.hpp"
 #include "image.hpp"
 #include "lighting.hpp"
 #include "scene.hpp"
@@ -67,11 +98,23 @@ struct TraceCounters {
     std::uint64_t camera_rays = 0, shadow_rays = 0, bounce_rays = 0;
     std::uint64_t normal_map_lookups = 0, specular_evaluations = 0;
     std::uint64_t environment_samples = 0, light_samples = 0;
+    TraceCounters& operator+=(const TraceCounters& o) noexcept {
+        camera_rays += o.camera_rays;
+        shadow_rays += o.shadow_rays;
+        bounce_rays += o.bounce_rays;
+        normal_map_lookups += o.normal_map_lookups;
+        specular_evaluations += o.specular_evaluations;
+        environment_samples += o.environment_samples;
+        light_samples += o.light_samples;
+        return *this;
+    }
+    /// Every ray traced.
+    std::uint64_t rays() const noexcept { return camera_rays + shadow_rays + bounce_rays; }
 };
 
 struct TraceResult {
     Image color;                     // mean radiance per pixel
-    Image stderr_;                   // its standard error per channel
+    Image stderr_;                   // its standard error per channel (+inf with one sample)
     Image normal, albedo, position;  // first-hit AOVs when requested (background: 0)
     Image coverage;  // 1 channel, always: the fraction of a pixel's camera rays that hit geometry
     int spp = 0;
@@ -79,6 +122,126 @@ struct TraceResult {
     double seconds = 0;         // wall-clock
     TraceCounters counters;
 };
+
+/// Throws std::invalid_argument ("sphbasis::render::PathTracer(): expected ...") unless
+/// spp_min >= 1, spp_max >= spp_min, spp_max <= 2^24, target_noise finite and >= 0 and
+/// 1 <= tile <= 16384.
+inline void validate(const TraceSettings& s) {
+    constexpr const char* fn = "render::PathTracer";
+    sphbasis::detail::check_range(fn, "spp_min", s.spp_min, 1, 1 << 24);
+    sphbasis::detail::check_range(fn, "spp_max", s.spp_max, s.spp_min, 1 << 24);
+    if (!(s.target_noise >= 0) || !std::isfinite(s.target_noise))
+        sphbasis::detail::throw_invalid(
+            fn, "a finite target_noise >= 0, got " + std::to_string(s.target_noise));
+    sphbasis::detail::check_range(fn, "tile", s.tile, 1, 16384);
+}
+
+namespace detail::pt {
+
+using rt::V3;
+
+/// Scene material accessors, when render::Scene has them (mesh_normal_map, mesh_shininess).
+template <class S, class = void>
+struct has_materials : std::false_type {};
+template <class S>
+struct has_materials<S, std::void_t<decltype(std::declval<const S&>().mesh_normal_map(0)),
+                                    decltype(std::declval<const S&>().mesh_shininess(0))>>
+    : std::true_type {};
+/// Meshes with a normal map and with shininess > 0; -1 when the scene cannot say.
+template <class S>
+std::pair<int, int> count_materials(const S& scene) {
+    if constexpr (has_materials<S>::value) {
+        int nm = 0, sp = 0;
+        for (std::size_t m = 0; m < scene.mesh_count(); ++m) {
+            if (scene.mesh_normal_map(m)) ++nm;
+            if (scene.mesh_shininess(m) > 0) ++sp;
+        }
+        return {nm, sp};
+    } else {
+        (void)scene;
+        return {-1, -1};
+    }
+}
+
+/// Diffuse plus (shininess > 0 only) the energy-normalised Blinn-Phong lobe.
+struct Bsdf {
+    RGB albedo{0, 0, 0}, ks{0, 0, 0};
+    double s = 0, p_spec = 0;
+    bool spec = false;
+    V3 n{0, 0, 1};
+
+    static double lum(const RGB& c) noexcept { return luminance(c[0], c[1], c[2]); }
+    void init(const Hit& h, const V3& shading) noexcept {
+        albedo = h.albedo;
+        n = shading;
+        spec = h.shininess > 0;
+        if (spec) {
+            ks = h.specular;
+            s = h.shininess;
+            const double a = lum(albedo), b = lum(ks);
+            p_spec = a + b > 0 ? b / (a + b) : 0.5;
+        }
+    }
+    RGB eval(const V3& wo, const V3& wi, TraceCounters& c) const noexcept {
+        using namespace rt;
+        RGB f{albedo[0] * constants::inv_pi, albedo[1] * constants::inv_pi,
+              albedo[2] * constants::inv_pi};
+        if (spec) {
+            ++c.specular_evaluations;
+            const V3 h = normalized(wo + wi, n);
+            const double nh = dot(n, h);
+            if (nh > 0) {
+                const double k = (s + 8) / (8 * constants::pi) * std::pow(nh, s);
+                for (std::size_t i = 0; i < 3; ++i) f[i] += ks[i] * k;
+            }
+        }
+        return f;
+    }
+    double pdf(const V3& wo, const V3& wi, TraceCounters& c) const noexcept {
+        using namespace rt;
+        const double cs = dot(n, wi);
+        const double pd = cs > 0 ? cs * constants::inv_pi : 0;
+        if (!spec) return pd;
+        ++c.specular_evaluations;
+        const V3 h = normalized(wo + wi, n);
+        const double nh = dot(n, h), oh = std::fabs(dot(wo, h));
+        double ps = 0;
+        if (nh > 0 && oh > 0)
+            ps = (s + 1) * constants::inv_two_pi * std::pow(nh, s) / (4 * oh);
+        return (1 - p_spec) * pd + p_spec * ps;
+    }
+    /// A direction from three uniform numbers (u0 picks the lobe).
+    V3 sample(const V3& wo, double u0, double u1, double u2) const noexcept {
+        using namespace rt;
+        const Frame<double> f(n);
+        if (spec && u0 < p_spec) {
+            const double ct = std::pow(u1, 1 / (s + 1));
+            const double st = std::sqrt(std::max(0.0, (1 - ct) * (1 + ct)));
+            const double phi = constants::two_pi * u2;
+            const V3 h = f.to_world(V3{st * std::cos(phi), st * std::sin(phi), ct});
+            return normalized(h * (2 * dot(wo, h)) - wo, n);
+        }
+        return normalized(f.to_world(square_to_cosine_hemisphere(u1, u2)), n);
+    }
+};
+
+inline RGB mul(const RGB& a, const RGB& b) noexcept {
+    return {a[0] * b[0], a[1] * b[1], a[2] * b[2]};
+}
+inline bool is_zero(const RGB& a) noexcept { return a[0] == 0 && a[1] == 0 && a[2] == 0; }
+
+/// The distance along x + t w (unit w) to the near side of a ball; 0 inside, infinity on a miss.
+inline double ball_distance(const V3& x, const V3& w, const V3& c, double r) noexcept {
+    using namespace rt;
+    const V3 d = c - x;
+    const double c2 = dot(d, d) - r * r;
+    if (c2 <= 0) return 0;
+    const double b = dot(d, w), disc = b * b - c2;
+    if (b <= 0) return std::numeric_limits<double>::infinity();
+    return disc > 0 ? b - std::sqrt(disc) : b;
+}
+
+}  // namespace detail::pt
 
 /// The effects the tracer simulates for a scene, in order (the plan a report prints): e.g.
 /// "environment: importance-sampled (512x256 lat-long), MIS with the BRDF",
@@ -91,38 +254,399 @@ class PathTracer {
     /// settings or lighting (render::validate).
     PathTracer(const Scene& scene, const Environment& environment, const std::vector<Light>& lights,
                const TraceSettings& settings)
-        : scene_(scene), env_(environment), lights_(lights), settings_(settings) {
-        sphbasis::detail::throw_runtime("render::PathTracer",
-                                        "an implementation, got the contract stub");
+        : scene_(scene),
+          env_(environment),
+          lights_(lights),
+          settings_(settings),
+          sampler_(environment),
+          mutex_(std::make_unique<std::mutex>()) {
+        validate(settings);
+        for (const Light& l : lights_) validate(l);
+        env_nee_ = sampler_.emits() && !sampler_.is_constant();
+        env_any_ = sampler_.emits();
+        int directional = 0, other = 0;
+        for (const Light& l : lights_) {
+            if (l.type == Light::Type::directional)
+                ++directional;
+            else
+                ++other;
+        }
+        nondelta_ = other > 0;
+        emitters_ = env_any_ || !lights_.empty();
+        if (env_nee_)
+            effects_.push_back("environment: importance-sampled (" + std::to_string(env_.width) +
+                               "x" + std::to_string(env_.height) +
+                               " lat-long), MIS with the BRDF");
+        else if (env_any_)
+            effects_.push_back("environment: constant, sampled by the BRDF (cosine lobe)");
+        if (directional)
+            effects_.push_back("directional lights: " + std::to_string(directional) +
+                               ", shadow rays");
+        if (other)
+            effects_.push_back("cone, sphere and hemisphere lights: " + std::to_string(other) +
+                               ", light sampling with MIS, shadow rays");
+        if (emitters_ && settings_.bounces > 0)
+            effects_.push_back("interreflection: " + std::to_string(settings_.bounces) +
+                               (settings_.bounces == 1 ? " bounce" : " bounces"));
+        if (emitters_ && settings_.bounces < 0)
+            effects_.push_back("interreflection: unbounded (Russian roulette from the 4th vertex)");
+        const auto [nm, sp] = detail::pt::count_materials(scene_);
+        if (nm > 0)
+            effects_.push_back("normal maps: " + std::to_string(nm) + (nm == 1 ? " mesh" : " meshes"));
+        if (sp > 0)
+            effects_.push_back("Blinn-Phong specular: " + std::to_string(sp) +
+                               (sp == 1 ? " mesh" : " meshes"));
     }
     const std::vector<std::string>& effects() const noexcept { return effects_; }
+
     /// Renders the camera's image progressively. progress(done, total) (optional) is called
-    /// with the finished sample passes' pixel-samples, from any thread.
+    /// with the finished sample passes' pixel-samples, from any thread (after each tile of a
+    /// pass; total = pixels * spp_max, which an early stop at the target noise ends below).
+    /// Throws std::invalid_argument for a camera that validate(Camera) rejects.
     TraceResult render(
         const Camera& camera,
         const std::function<void(std::uint64_t, std::uint64_t)>& progress = {}) const {
-        (void)camera;
-        (void)progress;
-        sphbasis::detail::throw_runtime("render::PathTracer",
-                                        "an implementation, got the contract stub");
+        const auto t0 = std::chrono::steady_clock::now();
+        const PinholeCamera cam(camera);
+        const int W = camera.width, H = camera.height;
+        const std::size_t N = std::size_t(W) * std::size_t(H);
+        std::vector<double> sum(3 * N, 0.0), sq(3 * N, 0.0), hits(N, 0.0);
+        std::vector<double> aov(settings_.aovs ? 9 * N : 0, 0.0);
+        TraceResult res;
+        std::mutex merge;
+        std::atomic<std::uint64_t> done{0};
+        const std::uint64_t total = std::uint64_t(N) * std::uint64_t(settings_.spp_max);
+        int spp = 0, target = settings_.spp_min;
+        double noise = std::numeric_limits<double>::infinity();
+        for (;;) {
+            const int a = spp, b = target;
+            for_each_tile(W, H, settings_.tile, [&](int x0, int y0, int x1, int y1) {
+                TraceCounters c;
+                const std::size_t tw = std::size_t(x1 - x0), n = tw * std::size_t(y1 - y0);
+                std::vector<RTCRayHit> rays(n);
+                std::vector<double> jitter(2 * n);
+                for (std::size_t k = 0; k < n; ++k) {
+                    const std::size_t px = std::size_t(x0) + k % tw, py = std::size_t(y0) + k / tw;
+                    const std::uint64_t key = pixel_key(py * std::size_t(W) + px);
+                    jitter[2 * k] = detail::rt::unit(detail::rt::hash(key, 0x6a09e667u));
+                    jitter[2 * k + 1] = detail::rt::unit(detail::rt::hash(key, 0xbb67ae85u));
+                }
+                for (int s = a; s < b; ++s) {
+                    double r2u, r2v;
+                    r2_sequence(std::uint64_t(s), r2u, r2v);
+                    for (std::size_t k = 0; k < n; ++k) {
+                        const double px = double(std::size_t(x0) + k % tw) +
+                                          detail::rt::rotate01(r2u, jitter[2 * k]);
+                        const double py = double(std::size_t(y0) + k / tw) +
+                                          detail::rt::rotate01(r2v, jitter[2 * k + 1]);
+                        const CameraRay cr = cam.ray(px, py);
+                        Scene::set_ray(rays[k], cr.origin, cr.direction);
+                    }
+                    if (log_)
+                        for (std::size_t k = 0; k < n; ++k) record(rays[k], 0);
+                    scene_.intersect(rays.data(), n);
+                    c.camera_rays += n;
+                    for (std::size_t k = 0; k < n; ++k) {
+                        const std::size_t p = (std::size_t(y0) + k / tw) * std::size_t(W) +
+                                              std::size_t(x0) + k % tw;
+                        First first;
+                        const RGB L = shade(rays[k], p, std::uint64_t(s), c,
+                                            settings_.aovs ? &first : nullptr);
+                        for (std::size_t ch = 0; ch < 3; ++ch) {
+                            sum[3 * p + ch] += L[ch];
+                            sq[3 * p + ch] += L[ch] * L[ch];
+                        }
+                        if (first.hit || rays[k].hit.geomID != RTC_INVALID_GEOMETRY_ID)
+                            hits[p] += 1;
+                        if (settings_.aovs && first.hit) {
+                            double* o = &aov[9 * p];
+                            const V3* v[3] = {&first.normal, &first.albedo, &first.position};
+                            for (int q = 0; q < 3; ++q) {
+                                o[3 * q] += v[q]->x;
+                                o[3 * q + 1] += v[q]->y;
+                                o[3 * q + 2] += v[q]->z;
+                            }
+                        }
+                    }
+                }
+                {
+                    std::lock_guard<std::mutex> lock(merge);
+                    res.counters += c;
+                }
+                const std::uint64_t d = done.fetch_add(std::uint64_t(n) * std::uint64_t(b - a)) +
+                                        std::uint64_t(n) * std::uint64_t(b - a);
+                if (progress) progress(d, total);
+            });
+            spp = b;
+            noise = relative_noise(sum, sq, spp);
+            if ((settings_.target_noise > 0 && noise <= settings_.target_noise) ||
+                spp >= settings_.spp_max)
+                break;
+            target = std::min(settings_.spp_max, 2 * spp);
+        }
+        // Images.
+        res.color = Image(W, H, 3);
+        res.stderr_ = Image(W, H, 3);
+        res.coverage = Image(W, H, 1);
+        if (settings_.aovs) {
+            res.normal = Image(W, H, 3);
+            res.albedo = Image(W, H, 3);
+            res.position = Image(W, H, 3);
+        }
+        const double inv = 1.0 / spp;
+        for (std::size_t p = 0; p < N; ++p) {
+            for (std::size_t ch = 0; ch < 3; ++ch) {
+                const double m = sum[3 * p + ch] * inv;
+                res.color.data[3 * p + ch] = static_cast<float>(m);
+                res.stderr_.data[3 * p + ch] =
+                    static_cast<float>(stderr_of(sum[3 * p + ch], sq[3 * p + ch], spp));
+            }
+            res.coverage.data[p] = static_cast<float>(hits[p] * inv);
+            if (settings_.aovs)
+                for (std::size_t ch = 0; ch < 3; ++ch) {
+                    res.normal.data[3 * p + ch] = static_cast<float>(aov[9 * p + ch] * inv);
+                    res.albedo.data[3 * p + ch] = static_cast<float>(aov[9 * p + 3 + ch] * inv);
+                    res.position.data[3 * p + ch] = static_cast<float>(aov[9 * p + 6 + ch] * inv);
+                }
+        }
+        res.spp = spp;
+        res.relative_noise = noise;
+        res.seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        {
+            std::lock_guard<std::mutex> lock(*mutex_);
+            counters_ += res.counters;
+        }
+        return res;
     }
+
     /// The radiance estimate along one ray with sample index `sample` (for tests: a furnace,
-    /// convergence), one path.
+    /// convergence), one path. The ray counts as a camera ray.
     RGB radiance(const vec3<double>& origin, const vec3<double>& direction, std::uint64_t pixel,
                  std::uint64_t sample) const {
-        (void)origin, (void)direction, (void)pixel, (void)sample;
-        sphbasis::detail::throw_runtime("render::PathTracer",
-                                        "an implementation, got the contract stub");
+        TraceCounters c;
+        RTCRayHit r;
+        Scene::set_ray(r, origin, detail::rt::normalized(direction));
+        if (log_) record(r, 0);
+        scene_.intersect(&r, 1);
+        ++c.camera_rays;
+        const RGB L = shade(r, pixel, sample, c, nullptr);
+        std::lock_guard<std::mutex> lock(*mutex_);
+        counters_ += c;
+        return L;
     }
+    /// Everything this tracer did so far (render() and radiance() calls, summed).
     const TraceCounters& counters() const noexcept { return counters_; }
+    const EnvironmentSampler& environment_sampler() const noexcept { return sampler_; }
+
+    /// A traced ray as recorded for benchmarks: kind 0 camera (traced in tile streams by
+    /// Scene::intersect), 1 bounce (one Scene::intersect), 2 shadow (one Scene::occluded; only
+    /// `ray.ray` is meaningful), 3 the last vertex's BRDF ray that only looks for emitters (one
+    /// Scene::intersect, counted as a shadow ray).
+    struct RayRecord {
+        RTCRayHit ray;
+        int kind = 0;
+    };
+    /// While `log` is non-null, every ray render() and radiance() trace is appended to it as it
+    /// was before tracing (a lock per ray: for benchmarks that replay the same rays through a
+    /// bare Embree loop, not for production). Null stops recording.
+    void record_rays(std::vector<RayRecord>* log) noexcept { log_ = log; }
 
   private:
+    using V3 = detail::rt::V3;
+    struct First {
+        bool hit = false;
+        V3 normal{0, 0, 0}, albedo{0, 0, 0}, position{0, 0, 0};
+    };
+
+    std::uint64_t pixel_key(std::uint64_t pixel) const noexcept {
+        return detail::rt::hash(settings_.seed, pixel);
+    }
+
+    static double stderr_of(double s, double q, int n) noexcept {
+        if (n < 2) return std::numeric_limits<double>::infinity();
+        const double m = s / n;
+        const double var = std::max(0.0, (q - s * m) / (n - 1));
+        return std::sqrt(var / n);
+    }
+
+    static double relative_noise(const std::vector<double>& sum, const std::vector<double>& sq,
+                                 int spp) {
+        const std::size_t N = sum.size() / 3;
+        if (N == 0) return 0;
+        double mean = 0;
+        for (std::size_t p = 0; p < N; ++p)
+            mean += luminance(sum[3 * p], sum[3 * p + 1], sum[3 * p + 2]) / spp;
+        mean /= double(N);
+        const double floor = 1e-3 * std::fabs(mean);
+        double acc = 0;
+        for (std::size_t p = 0; p < N; ++p) {
+            const double l = luminance(sum[3 * p], sum[3 * p + 1], sum[3 * p + 2]) / spp;
+            const double e = luminance(stderr_of(sum[3 * p], sq[3 * p], spp),
+                                       stderr_of(sum[3 * p + 1], sq[3 * p + 1], spp),
+                                       stderr_of(sum[3 * p + 2], sq[3 * p + 2], spp));
+            const double d = std::max(std::fabs(l), floor);
+            if (e == 0) continue;
+            if (!(d > 0)) return std::numeric_limits<double>::infinity();
+            acc += (e / d) * (e / d);
+        }
+        return std::sqrt(acc / double(N));
+    }
+
+    /// One path from a traced camera ray (pixel and sample index the random numbers).
+    RGB shade(const RTCRayHit& primary, std::uint64_t pixel, std::uint64_t sample,
+              TraceCounters& c, First* first) const {
+        using namespace detail::rt;
+        using detail::pt::mul;
+        const V3 dir0{primary.ray.dir_x, primary.ray.dir_y, primary.ray.dir_z};
+        Hit h = scene_.hit(primary);
+        if (!h.valid) return env_.radiance(normalized(dir0));
+        RGB L{0, 0, 0};
+        if (first) {
+            first->hit = true;
+            first->albedo = {h.albedo[0], h.albedo[1], h.albedo[2]};
+            first->position = h.position;
+        }
+        const std::uint64_t key = hash(pixel_key(pixel), sample);
+        auto rnd = [key](std::uint64_t dim) { return unit(hash(key, dim)); };
+        const std::uint64_t stride = 8 + 2 * lights_.size();
+        RGB beta{1, 1, 1};
+        V3 wo = -normalized(dir0);
+        detail::pt::Bsdf bsdf;
+        const int bounces = settings_.bounces;
+        for (int depth = 0;; ++depth) {
+            V3 ns = h.shading_normal;
+            if (h.normal_map) {
+                ++c.normal_map_lookups;
+                ns = Scene::normal_mapped(h);
+            }
+            if (first && depth == 0) first->normal = ns;
+            if (!emitters_) break;
+            const V3 ng = h.geometric_normal, x = h.position;
+            bsdf.init(h, ns);
+            const std::uint64_t d0 = 2 + stride * std::uint64_t(depth);
+            // Environment: importance sampled, balance heuristic against the BRDF.
+            if (env_nee_) {
+                ++c.environment_samples;
+                const auto es = sampler_.sample(rnd(d0), rnd(d0 + 1));
+                const double cs = dot(ns, es.w);
+                if (es.pdf > 0 && cs > 0 && dot(ng, es.w) > 0 && !detail::pt::is_zero(es.radiance)) {
+                    const RGB f = bsdf.eval(wo, es.w, c);
+                    const double pb = bsdf.pdf(wo, es.w, c);
+                    if (visible(x, ng, es.w, std::numeric_limits<double>::infinity(), c)) {
+                        const double k = cs / (es.pdf + pb);
+                        for (std::size_t i = 0; i < 3; ++i)
+                            L[i] += beta[i] * f[i] * es.radiance[i] * k;
+                    }
+                }
+            }
+            // Analytic lights.
+            for (std::size_t li = 0; li < lights_.size(); ++li) {
+                const Light& light = lights_[li];
+                ++c.light_samples;
+                const std::uint64_t dl = d0 + 8 + 2 * li;
+                const LightSample ls = sample_light(light, x, rnd(dl), rnd(dl + 1));
+                if (!(ls.pdf > 0) || !std::isfinite(ls.pdf) || detail::pt::is_zero(ls.radiance))
+                    continue;
+                const double cs = dot(ns, ls.w);
+                if (!(cs > 0) || !(dot(ng, ls.w) > 0)) continue;
+                const RGB f = bsdf.eval(wo, ls.w, c);
+                double k;
+                if (ls.delta) {
+                    k = cs;
+                } else {
+                    const double pb = bsdf.pdf(wo, ls.w, c);
+                    k = cs / (ls.pdf + pb);
+                }
+                if (ls.distance > 0 && !visible(x, ng, ls.w, ls.distance, c)) continue;
+                for (std::size_t i = 0; i < 3; ++i) L[i] += beta[i] * f[i] * ls.radiance[i] * k;
+            }
+            // BRDF sample: continues the path and/or reaches the emitters.
+            const bool more = bounces < 0 || depth < bounces;
+            if (!more && !env_any_ && !nondelta_) break;
+            const V3 wi = bsdf.sample(wo, rnd(d0 + 2), rnd(d0 + 3), rnd(d0 + 4));
+            const double cs = dot(ns, wi);
+            if (!(cs > 0) || !(dot(ng, wi) > 0)) break;
+            const double pb = bsdf.pdf(wo, wi, c);
+            if (!(pb > 0)) break;
+            const RGB f = bsdf.eval(wo, wi, c);
+            RGB w{f[0] * cs / pb, f[1] * cs / pb, f[2] * cs / pb};
+            for (std::size_t i = 0; i < 3; ++i) w[i] *= beta[i];
+            RTCRayHit r;
+            Scene::set_ray(r, scene_.offset_origin(x, ng, wi), wi);
+            if (log_) record(r, more ? 1 : 3);
+            scene_.intersect(&r, 1);
+            if (more)
+                ++c.bounce_rays;
+            else
+                ++c.shadow_rays;
+            const bool miss = r.hit.geomID == RTC_INVALID_GEOMETRY_ID;
+            const double t = miss ? std::numeric_limits<double>::infinity() : double(r.ray.tfar);
+            if (miss && env_any_) {
+                const RGB Le = env_.radiance(wi);
+                const double k = env_nee_ ? pb / (pb + sampler_.pdf(wi)) : 1.0;
+                for (std::size_t i = 0; i < 3; ++i) L[i] += w[i] * Le[i] * k;
+            }
+            if (nondelta_)
+                for (const Light& light : lights_) {
+                    if (light.type == Light::Type::directional) continue;
+                    const RGB Ll = light_radiance(light, wi, x);
+                    if (detail::pt::is_zero(Ll)) continue;
+                    if (light.type == Light::Type::sphere) {
+                        const double tb = detail::pt::ball_distance(x, wi, light.position,
+                                                                    std::fabs(light.radius));
+                        if (!(tb < t)) continue;
+                    } else if (!miss) {
+                        continue;
+                    }
+                    const double pl = sample_light_pdf(light, x, wi);
+                    const double k = pb / (pb + pl);
+                    for (std::size_t i = 0; i < 3; ++i) L[i] += w[i] * Ll[i] * k;
+                }
+            if (!more || miss) break;
+            beta = w;
+            if (bounces < 0 && depth >= 3) {
+                const double q = std::min(0.95, std::max({beta[0], beta[1], beta[2]}));
+                if (!(rnd(d0 + 5) < q)) break;
+                for (auto& v : beta) v /= q;
+            }
+            h = scene_.hit(r);
+            if (!h.valid) break;
+            wo = -wi;
+        }
+        return L;
+    }
+
+    void record(const RTCRayHit& r, int kind) const {
+        std::lock_guard<std::mutex> lock(*mutex_);
+        log_->push_back(RayRecord{r, kind});
+    }
+
+    /// Traces a shadow ray from x (offset along ng) toward w up to distance tmax.
+    bool visible(const V3& x, const V3& ng, const V3& w, double tmax, TraceCounters& c) const {
+        RTCRay r;
+        const V3 o = scene_.offset_origin(x, ng, w);
+        Scene::set_ray(r, o, w, 0, tmax);
+        if (log_) {
+            RTCRayHit rh;
+            rh.ray = r;
+            record(rh, 2);
+        }
+        scene_.occluded(&r, 1);
+        ++c.shadow_rays;
+        return !Scene::is_occluded(r);
+    }
+
     const Scene& scene_;
     Environment env_;
     std::vector<Light> lights_;
     TraceSettings settings_;
+    EnvironmentSampler sampler_;
     std::vector<std::string> effects_;
+    bool env_nee_ = false, env_any_ = false, nondelta_ = false, emitters_ = false;
+    std::unique_ptr<std::mutex> mutex_;
     mutable TraceCounters counters_;
+    std::vector<RayRecord>* log_ = nullptr;
 };
 
 }  // namespace sphbasis::render
