@@ -65,7 +65,7 @@ namespace sphbasis::render {
 
 /// The energy-normalised Blinn-Phong lobe (s + 8)/(8 pi) max(n.h, 0)^s (without k_s and n.l).
 /// Over light directions l with the view along n, (lobe) (n.l) integrates to
-/// 2 (s + 8) [2 (1 - 2^(-(s+4)/2))/(s + 4) - (1 - 2^(-(s+2)/2))/(s + 2)], about 1 but not
+/// (s + 8) [2 (1 - 2^(-(s+4)/2))/(s + 4) - (1 - 2^(-(s+2)/2))/(s + 2)], about 1 but not
 /// exactly: 1.024 at s = 1, 1.075 at s = 8, 1.027 at s = 64, 1.002 at s = 1000. The factor
 /// (s + 8)/(8 pi) is the usual approximation of the exact normalisation (Akenine-Moller, Haines
 /// and Hoffman, "Real-Time Rendering", 3rd ed., 2008, section 7.6), kept because the path
