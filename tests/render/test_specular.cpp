@@ -32,8 +32,8 @@ void put(std::vector<float>& tex, int w, int x, int y, const vec3<double>& n) {
 }
 
 /// A quad mesh (z = 0, [-h, h]^2, UVs scaled by `tiles`) with a normal map and a material.
-Mesh mapped_quad(double h, double tiles, std::vector<float> texels, int w, int hgt,
-                 float shininess, std::array<float, 3> ks) {
+Mesh mapped_quad(double h, double tiles, std::vector<float> texels, int w, int hgt, float shininess,
+                 std::array<float, 3> ks) {
     Mesh m = sphbasis_test::quad_grid(-h, h, -h, h, 0, 1);
     for (auto& uv : m.uvs) uv = float(uv * tiles);
     auto owned = std::make_shared<const std::vector<float>>(std::move(texels));
@@ -75,9 +75,8 @@ double rms(const Image& a) {
 
 /// Closed form of (lobe) (n.l) integrated over the lit hemisphere with the view along n.
 double lobe_energy(double s) {
-    return (s + 8) *
-           (2 * (1 - std::pow(2.0, -(s + 4) / 2)) / (s + 4) -
-            (1 - std::pow(2.0, -(s + 2) / 2)) / (s + 2));
+    return (s + 8) * (2 * (1 - std::pow(2.0, -(s + 4) / 2)) / (s + 4) -
+                      (1 - std::pow(2.0, -(s + 2) / 2)) / (s + 2));
 }
 
 struct Comparison {
@@ -109,7 +108,8 @@ Comparison toksvig_vs_aliased(int size, int ss, double distance, float shininess
     const Image tk = render_specular(desc, rt, cam, SpecularShading::Mode::toksvig);
     // The reference's own error: its change when ss doubles (only when asked: 4x the rays).
     double change = -1;
-    if (check_reference) change = rms_difference(ref, render_specular_reference(desc, rt, cam, 2 * ss));
+    if (check_reference)
+        change = rms_difference(ref, render_specular_reference(desc, rt, cam, 2 * ss));
     return {rms_difference(al, ref), rms_difference(tk, ref), rms(ref), change};
 }
 
@@ -190,7 +190,8 @@ TEST_CASE("render::NormalMipChain: constant and alternating normals", "[render]"
     }
     SECTION("a checkerboard of two normals averages to the analytic mean, |Na| < 1") {
         const double ang = 0.6;
-        const vec3<double> n1{std::sin(ang), 0, std::cos(ang)}, n2{0, -std::sin(ang), std::cos(ang)};
+        const vec3<double> n1{std::sin(ang), 0, std::cos(ang)},
+            n2{0, -std::sin(ang), std::cos(ang)};
         std::vector<float> tex(std::size_t(w * h * 3));
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) put(tex, w, x, y, (x + y) % 2 ? n1 : n2);
@@ -242,9 +243,10 @@ TEST_CASE("render::NormalMipChain: constant and alternating normals", "[render]"
     }
 }
 
-TEST_CASE("render::SpecularShading: a flat normal map gives the closed-form Blinn-Phong in all "
-          "three modes",
-          "[render]") {
+TEST_CASE(
+    "render::SpecularShading: a flat normal map gives the closed-form Blinn-Phong in all "
+    "three modes",
+    "[render]") {
     const float s = 32;
     const std::array<float, 3> ks{0.04f, 0.5f, 1.0f};
     Mesh quad = mapped_quad(1, 1, flat_normal_map(8, 8), 8, 8, s, ks);
@@ -338,8 +340,7 @@ TEST_CASE("render::SpecularShading: no normal map reads the shading normal; shin
         CHECK(z[0] == 0);
     }
     SECTION("shininess 0 with a normal map: black, and no mip chain is built") {
-        Mesh quad = mapped_quad(1, 1, bumpy_normal_map(16, 16, 2, 0.5, 1), 16, 16, 0,
-                                {1, 1, 1});
+        Mesh quad = mapped_quad(1, 1, bumpy_normal_map(16, 16, 2, 0.5, 1), 16, 16, 0, {1, 1, 1});
         SceneDesc desc;
         desc.meshes = {quad.view()};
         desc.lights = {directional({0, 0, 1}, {1, 1, 1})};
@@ -350,10 +351,9 @@ TEST_CASE("render::SpecularShading: no normal map reads the shading normal; shin
         cam.look_at = {0, 0, 0};
         cam.up = {0, 1, 0};
         cam.width = cam.height = 8;
-        for (const Image& img :
-             {render_specular(desc, rt, cam, SpecularShading::Mode::aliased),
-              render_specular(desc, rt, cam, SpecularShading::Mode::toksvig),
-              render_specular_reference(desc, rt, cam, 2)})
+        for (const Image& img : {render_specular(desc, rt, cam, SpecularShading::Mode::aliased),
+                                 render_specular(desc, rt, cam, SpecularShading::Mode::toksvig),
+                                 render_specular_reference(desc, rt, cam, 2)})
             for (float v : img.data) CHECK(v == 0);
     }
 }
@@ -429,8 +429,7 @@ TEST_CASE("render::bumpy_normal_map: unit normals, exact RMS slope, deterministi
                     std::invalid_argument);
 }
 
-TEST_CASE("render::SpecularShading: the level of detail follows the pixel footprint",
-          "[render]") {
+TEST_CASE("render::SpecularShading: the level of detail follows the pixel footprint", "[render]") {
     const int n = 64;
     Mesh quad = mapped_quad(2, 4, flat_normal_map(n, n), n, n, 16, {1, 1, 1});  // 1 tile/unit
     SceneDesc desc;
@@ -519,9 +518,10 @@ TEST_CASE("render::specular: bad input throws", "[render]") {
     CHECK_THROWS_AS(NormalMipChain(TextureView{t.data(), 0, 2, 3}), std::invalid_argument);
 }
 
-TEST_CASE("render::specular: Toksvig is closer to the supersampled reference than the aliased "
-          "shading on a bumpy normal map seen from far",
-          "[render]") {
+TEST_CASE(
+    "render::specular: Toksvig is closer to the supersampled reference than the aliased "
+    "shading on a bumpy normal map seen from far",
+    "[render]") {
     // 16 x 16 pixels at distance 6: each covers about 0.13 world units = 34 texels of the
     // 256^2 map (lod ~5) and 3 bump periods; 16 x 16 rays per pixel for the reference (its own
     // error, measured by the [slow] case as its change from ss 16 to 32, is 0.014 here);
@@ -534,9 +534,10 @@ TEST_CASE("render::specular: Toksvig is closer to the supersampled reference tha
     CHECK(c.toksvig < 0.2 * c.reference_rms);
 }
 
-TEST_CASE("render::specular: Toksvig against aliased over distances, shininess and light "
-          "directions",
-          "[render][slow]") {
+TEST_CASE(
+    "render::specular: Toksvig against aliased over distances, shininess and light "
+    "directions",
+    "[render][slow]") {
     // 32 x 32 pixels: distance 4 is about 11 texels (1 bump period) per pixel, 40 about 110
     // texels (10 periods), where 16 x 16 ordered rays no longer resolve the bumps.
     for (double distance : {4.0, 12.0, 40.0})

@@ -53,11 +53,11 @@ inline std::vector<float> bumpy_normal_map(int width, int height, double frequen
     sphbasis::detail::check_range(fn, "width", width, 1, 16384);
     sphbasis::detail::check_range(fn, "height", height, 1, 16384);
     if (!(frequency > 0 && frequency <= 1e4))
-        sphbasis::detail::throw_invalid(fn, "a frequency in (0, 1e4], got " +
-                                                std::to_string(frequency));
+        sphbasis::detail::throw_invalid(
+            fn, "a frequency in (0, 1e4], got " + std::to_string(frequency));
     if (!(amplitude >= 0 && amplitude <= 1e3))
-        sphbasis::detail::throw_invalid(fn, "an amplitude in [0, 1e3], got " +
-                                                std::to_string(amplitude));
+        sphbasis::detail::throw_invalid(
+            fn, "an amplitude in [0, 1e3], got " + std::to_string(amplitude));
     const double two_pi = 2 * sphbasis::constants::pi;
     std::uint64_t state = seed;
     auto next = [&state]() {  // SplitMix64 (Steele, Lea and Flood, OOPSLA 2014)
@@ -98,7 +98,8 @@ inline std::vector<float> bumpy_normal_map(int width, int height, double frequen
         if (!merged) waves.push_back({p, q, 1 / std::sqrt(p * p + q * q), phase});
     }
     double energy = 0;  // E |grad h|^2
-    for (const auto& w : waves) energy += 0.5 * w.a * w.a * two_pi * two_pi * (w.p * w.p + w.q * w.q);
+    for (const auto& w : waves)
+        energy += 0.5 * w.a * w.a * two_pi * two_pi * (w.p * w.p + w.q * w.q);
     const double scale = energy > 0 ? amplitude / std::sqrt(energy) : 0.0;
     std::vector<float> out(std::size_t(width) * std::size_t(height) * 3);
     for (int y = 0; y < height; ++y) {

@@ -93,8 +93,8 @@ class NormalMipChain {
         sphbasis::detail::check_range(fn, "width", t.width, 1, 16384);
         sphbasis::detail::check_range(fn, "height", t.height, 1, 16384);
         if (t.channels != 3 && t.channels != 4)
-            sphbasis::detail::throw_invalid(
-                fn, "3 or 4 channels, got " + std::to_string(t.channels));
+            sphbasis::detail::throw_invalid(fn,
+                                            "3 or 4 channels, got " + std::to_string(t.channels));
         Level l0;
         l0.width = t.width;
         l0.height = t.height;
@@ -106,8 +106,8 @@ class NormalMipChain {
                 const float c = t.texels[i * ch + k];
                 if (!std::isfinite(c))
                     sphbasis::detail::throw_invalid(
-                        fn, "finite texels, got a NaN or an infinity at texel " +
-                                std::to_string(i));
+                        fn,
+                        "finite texels, got a NaN or an infinity at texel " + std::to_string(i));
                 l0.n[3 * i + k] = 2 * c - 1;
             }
         levels_.push_back(std::move(l0));
@@ -323,8 +323,7 @@ class SpecularShading {
                        toksvig::specular(dot(na, h), std::min(len, 1.0), s);
             else
                 lobe = blinn_phong_lobe(dot(n, h), s);
-            for (std::size_t k = 0; k < 3; ++k)
-                out[k] += hit.specular[k] * lobe * nl * l.color[k];
+            for (std::size_t k = 0; k < 3; ++k) out[k] += hit.specular[k] * lobe * nl * l.color[k];
         }
         return out;
     }
@@ -388,10 +387,10 @@ inline Image render_specular_image(const SceneDesc& scene, const Scene& rt, cons
     const PinholeCamera pc(camera);
     const SpecularShading shading(scene);
     if (rt.mesh_count() != scene.meshes.size())
-        sphbasis::detail::throw_invalid(
-            "render::render_specular", "a ray-tracing scene of the description's " +
-                                           std::to_string(scene.meshes.size()) +
-                                           " meshes, got " + std::to_string(rt.mesh_count()));
+        sphbasis::detail::throw_invalid("render::render_specular",
+                                        "a ray-tracing scene of the description's " +
+                                            std::to_string(scene.meshes.size()) + " meshes, got " +
+                                            std::to_string(rt.mesh_count()));
     Image img(camera.width, camera.height, 3);
     const std::size_t per_pixel = std::size_t(samples) * std::size_t(samples);
     const double inv = 1.0 / samples, weight = 1.0 / static_cast<double>(per_pixel);
@@ -402,7 +401,8 @@ inline Image render_specular_image(const SceneDesc& scene, const Scene& rt, cons
             for (int x = x0; x < x1; ++x) {
                 for (int b = 0; b < samples; ++b)
                     for (int a = 0; a < samples; ++a) {
-                        const std::size_t i = std::size_t(b) * std::size_t(samples) + std::size_t(a);
+                        const std::size_t i =
+                            std::size_t(b) * std::size_t(samples) + std::size_t(a);
                         const CameraRay r = pc.ray(x + (a + 0.5) * inv, y + (b + 0.5) * inv);
                         dirs[i] = r.direction;
                         Scene::set_ray(rays[i], r.origin, r.direction);
