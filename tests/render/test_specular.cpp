@@ -1,5 +1,7 @@
 // Tests of render/specular.hpp and render/normal_maps.hpp: the normal mip chain, Blinn-Phong
 // specular (aliased, Toksvig, supersampled reference) and the procedural normal maps.
+#include <tbb/task_arena.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
@@ -554,4 +556,24 @@ TEST_CASE(
                 CHECK(c.reference_change < 0.2 * c.aliased);
                 if (distance < 10) CHECK(c.reference_change < 0.5 * c.toksvig);
             }
+}
+
+TEST_CASE("render::render_specular_reference: deterministic whatever the thread count",
+          "[render]") {
+    Mesh quad = mapped_quad(2, 4, bumpy_normal_map(32, 32, 4, 0.3, 2), 32, 32, 32, {1, 1, 1});
+    SceneDesc desc;
+    desc.meshes = {quad.view()};
+    desc.lights = {directional({0, 0.5, 0.8}, {1, 1, 1})};
+    Scene rt(desc.meshes);
+    Camera cam;
+    cam.position = {0, -2, 2};
+    cam.look_at = {0, 0, 0};
+    cam.width = 40;
+    cam.height = 20;
+    const Image a = render_specular_reference(desc, rt, cam, 3);
+    Image b;
+    tbb::task_arena one(1);
+    one.execute([&] { b = render_specular_reference(desc, rt, cam, 3); });
+    CHECK(a.data == b.data);
+    CHECK(rms(a) > 0);
 }
