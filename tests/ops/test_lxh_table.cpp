@@ -289,3 +289,27 @@ TEST_CASE("lxh: bad input throws", "[ops][lxh]") {
     std::vector<double> out(27);
     CHECK_THROWS_WITH(lxh_direct(3, light.data(), 3, 7, 0, 0, 1, out.data()), Catch::Contains("cosine bands"));
 }
+
+TEST_CASE("lxh: orbits reused across lightings, storage reused across builds", "[ops][lxh]") {
+    const param::CubeMap<double> cube(6);
+    const LxhOrbits orbits = make_lxh_orbits(cube);
+    CHECK(orbits.texels == cube.texel_count());
+    // 6 x 36 texels: orbits of 8 (z negation pairs +Z/-Z and the side halves, 4 rotations).
+    CHECK(orbits.orbits() == cube.texel_count() / 8);
+    LxhTable<param::CubeMap<double>> tab{cube, 0, 0, 0, {}, {}};
+    for (unsigned seed : {1u, 2u}) {
+        const auto light = random_lighting(4, seed);
+        const LxhMatrix m = lxh_matrix(4, light.data(), 3);
+        build_lxh_table(cube, m, orbits, tab);
+        const auto plain = build_lxh_table(cube, m);
+        double diff = 0, scale = 0;
+        for (std::size_t i = 0; i < plain.data.size(); ++i) {
+            diff = std::max(diff, std::fabs(double(plain.data[i]) - double(tab.data[i])));
+            scale = std::max(scale, std::fabs(double(plain.data[i])));
+        }
+        CHECK(diff <= 1e-6 * scale);
+        CHECK(tab.stats.orbits == orbits.orbits());
+    }
+    CHECK_THROWS_WITH(build_lxh_table(param::CubeMap<double>(4), lxh_matrix(4, random_lighting(4, 1).data(), 3), orbits, tab),
+                      Catch::Contains("the orbits of this parameterization"));
+}

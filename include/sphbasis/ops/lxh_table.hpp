@@ -293,116 +293,160 @@ enum class LxhConstruction {
     symmetric  ///< orbits under z negation and 90 degree z rotations share both (header comment)
 };
 
-/// The L x H table of lighting matrix m over the texels of param p (any class of param/).
-/// Cost, plain: per texel one SH evaluation of C bands and 3 K^2 multiply-adds per nonzero
-/// column; symmetric: per orbit of up to 8 texels one evaluation and about 4/8 of the column
-/// work per texel, plus a sort of the texel directions.
+/// The orbits of a parameterization's texels under z negation and 90 degree z rotations: what
+/// the symmetric construction needs besides the lighting, so it is made once per
+/// parameterization and reused for every lighting (make_lxh_orbits()).
+struct LxhOrbits {
+    std::size_t texels = 0;
+    std::vector<std::size_t> begin;               ///< orbit o: members [begin[o], begin[o+1])
+    std::vector<detail::LxhMember> members;       ///< relative to the orbit's first member
+    std::vector<std::array<double, 3>> direction; ///< the first member's unit direction
+    std::size_t orbits() const noexcept { return direction.size(); }
+};
+
+namespace detail {
+/// The unit direction (double) of texel `texel` (face-major, row-major index) of p.
 template <class Param>
-LxhTable<Param> build_lxh_table(const Param& p, const LxhMatrix& m,
-                                LxhConstruction how = LxhConstruction::plain) {
-    const char* fn = "build_lxh_table";
-    detail::check_lxh_bands(fn, m.lighting_bands, m.visibility_bands, m.cosine_bands);
-    if (m.cosine_bands < 1 || m.columns.size() != static_cast<std::size_t>(m.cosine_bands) *
-                                                       static_cast<std::size_t>(m.cosine_bands) *
-                                                       m.column_size())
-        detail::throw_invalid(fn, "an LxhMatrix made by lxh_matrix(), got an inconsistent one");
-    if (how != LxhConstruction::plain && how != LxhConstruction::symmetric)
-        detail::throw_invalid(fn, "construction plain or symmetric, got " +
-                                      std::to_string(static_cast<int>(how)));
-    LxhTable<Param> tab{p, m.lighting_bands, m.visibility_bands, m.cosine_bands, {}, {}};
-    const std::size_t e = m.column_size();
-    const std::size_t ntex = p.texel_count();
-    detail::check_table_bytes(fn, 4.0 * double(ntex) * double(e), "an L x H table");
-    tab.data.assign(ntex * e, 0.0f);
-    const int cc = m.cosine_bands * m.cosine_bands;
-    std::vector<double> c(static_cast<std::size_t>(cc)), out(e);
-    // Texel directions in double, normalised.
-    std::vector<std::array<double, 3>> dirs(ntex);
-    for (int face = 0; face < p.faces(); ++face)
-        for (int row = 0; row < p.height(); ++row)
-            for (int col = 0; col < p.width(); ++col) {
-                const auto d = p.texel_direction(face, col, row);
-                double x = static_cast<double>(d.x), y = static_cast<double>(d.y),
-                       z = static_cast<double>(d.z);
-                const double len = std::sqrt(x * x + y * y + z * z);
-                dirs[p.texel_index(face, col, row)] = {x / len, y / len, z / len};
-            }
-    auto write = [&](std::size_t texel, const double* v) {
-        float* dst = tab.data.data() + texel * e;
-        for (std::size_t q = 0; q < e; ++q) dst[q] = static_cast<float>(v[q]);
-    };
-    tab.stats.texels = ntex;
-    if (how == LxhConstruction::plain) {
-        for (std::size_t t = 0; t < ntex; ++t) {
-            detail::lxh_cosine_vector(m, dirs[t][0], dirs[t][1], dirs[t][2], c.data());
-            detail::lxh_apply(m, c.data(), out.data());
-            write(t, out.data());
-        }
-        tab.stats.orbits = ntex;
-        return tab;
-    }
-    // Orbits: sort the texels by their quantised canonical direction.
+std::array<double, 3> lxh_texel_direction(const Param& p, std::size_t texel) {
+    const std::size_t w = static_cast<std::size_t>(p.width());
+    const std::size_t h = static_cast<std::size_t>(p.height());
+    const auto d = p.texel_direction(static_cast<int>(texel / (w * h)),
+                                     static_cast<int>(texel % w),
+                                     static_cast<int>((texel / w) % h));
+    const double x = static_cast<double>(d.x), y = static_cast<double>(d.y),
+                 z = static_cast<double>(d.z);
+    const double len = std::sqrt(x * x + y * y + z * z);
+    return {x / len, y / len, z / len};
+}
+
+inline void check_lxh_matrix(const char* fn, const LxhMatrix& m) {
+    check_lxh_bands(fn, m.lighting_bands, m.visibility_bands, m.cosine_bands);
+    if (m.cosine_bands < 1 || m.cosine.size() != static_cast<std::size_t>(m.cosine_bands) ||
+        m.columns.size() != static_cast<std::size_t>(m.cosine_bands) *
+                                static_cast<std::size_t>(m.cosine_bands) * m.column_size())
+        throw_invalid(fn, "an LxhMatrix made by lxh_matrix(), got an inconsistent one");
+}
+
+template <class Param>
+void lxh_prepare(const char* fn, const Param& p, const LxhMatrix& m, LxhTable<Param>& tab) {
+    check_lxh_matrix(fn, m);
+    tab.param = p;
+    tab.lighting_bands = m.lighting_bands;
+    tab.visibility_bands = m.visibility_bands;
+    tab.cosine_bands = m.cosine_bands;
+    tab.stats = {};
+    tab.stats.texels = p.texel_count();
+    check_table_bytes(fn, 4.0 * double(p.texel_count()) * double(m.column_size()),
+                      "an L x H table");
+    tab.data.resize(p.texel_count() * m.column_size());  // every element is written
+}
+
+inline void lxh_write(float* dst, const double* v, std::size_t e) noexcept {
+    for (std::size_t q = 0; q < e; ++q) dst[q] = static_cast<float>(v[q]);
+}
+}  // namespace detail
+
+/// The orbits of p's texels (header comment: canonical images sorted, keys quantised to 2^-40,
+/// or 2^-21 for a float parameterization). Cost O(T log T) for T texels, 64 bytes a texel.
+template <class Param>
+LxhOrbits make_lxh_orbits(const Param& p) {
     using DirT = decltype(p.texel_direction(0, 0, 0).x);
-    const bool dbl = sizeof(DirT) >= sizeof(double);
-    const double quantum = std::ldexp(1.0, dbl ? 40 : 21);
+    const double quantum = std::ldexp(1.0, sizeof(DirT) >= sizeof(double) ? 40 : 21);
     struct Key {
         std::int64_t q[3];
         std::size_t texel;
         int k, f;
     };
+    const std::size_t ntex = p.texel_count();
     std::vector<Key> keys(ntex);
     for (std::size_t t = 0; t < ntex; ++t) {
-        double x = dirs[t][0], y = dirs[t][1], z = dirs[t][2];
+        auto d = detail::lxh_texel_direction(p, t);
         int k, f;
-        detail::lxh_canonical(x, y, z, k, f);
-        keys[t] = {{static_cast<std::int64_t>(std::llround(x * quantum)),
-                    static_cast<std::int64_t>(std::llround(y * quantum)),
-                    static_cast<std::int64_t>(std::llround(z * quantum))},
+        detail::lxh_canonical(d[0], d[1], d[2], k, f);
+        keys[t] = {{static_cast<std::int64_t>(std::llround(d[0] * quantum)),
+                    static_cast<std::int64_t>(std::llround(d[1] * quantum)),
+                    static_cast<std::int64_t>(std::llround(d[2] * quantum))},
                    t, k, f};
     }
     std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
-        return std::tie(a.q[0], a.q[1], a.q[2], a.texel) < std::tie(b.q[0], b.q[1], b.q[2], b.texel);
+        return std::tie(a.q[0], a.q[1], a.q[2], a.texel) <
+               std::tie(b.q[0], b.q[1], b.q[2], b.texel);
     });
-    // Per orbit: columns grouped into A_p (m = 0) and G_rp (m > 0), then the 4-point DFT.
-    std::vector<double> A(2 * e), G(2 * 4 * 2 * e);  // G[((p * 4 + r) * 2 + re/im) * e + q]
-    std::vector<double> U(2 * 4 * e);                // U[(p * 4 + k) * e + q]
-    auto gidx = [e](int p, int r, int im) {
-        return (static_cast<std::size_t>((p * 4 + r) * 2 + im)) * e;
-    };
+    LxhOrbits o;
+    o.texels = ntex;
+    o.members.reserve(ntex);
     std::size_t b = 0;
     while (b < ntex) {
         std::size_t end = b + 1;
         while (end < ntex && keys[end].q[0] == keys[b].q[0] && keys[end].q[1] == keys[b].q[1] &&
                keys[end].q[2] == keys[b].q[2])
             ++end;
-        const Key& rep = keys[b];
-        const auto& d = dirs[rep.texel];
+        o.begin.push_back(o.members.size());
+        o.direction.push_back(detail::lxh_texel_direction(p, keys[b].texel));
+        // This texel = R^km Z^fm canonical, the first = R^k0 Z^f0 canonical.
+        for (std::size_t i = b; i < end; ++i)
+            o.members.push_back({keys[i].texel, (keys[i].k - keys[b].k + 4) & 3,
+                                 keys[i].f ^ keys[b].f});
+        b = end;
+    }
+    o.begin.push_back(o.members.size());
+    return o;
+}
+
+/// The L x H table of lighting matrix m over the texels of p by the symmetric construction with
+/// p's orbits (make_lxh_orbits(p); throws std::invalid_argument if they have another texel
+/// count). Writes into `out` reusing its storage (repeated builds for changing lighting
+/// allocate nothing). Cost per orbit of up to 8 texels: one SH evaluation of C bands, 3 K^2
+/// multiply-adds per nonzero m = 0 column and 4 (2 pairs) per nonzero m != 0 column pair, and
+/// about 16 adds per texel and element for the DFT and the z sign.
+template <class Param>
+void build_lxh_table(const Param& p, const LxhMatrix& m, const LxhOrbits& orbits,
+                     LxhTable<Param>& out) {
+    const char* fn = "build_lxh_table";
+    if (orbits.texels != p.texel_count() || orbits.begin.size() != orbits.orbits() + 1)
+        detail::throw_invalid(fn, "the orbits of this parameterization (" +
+                                      std::to_string(p.texel_count()) + " texels), got " +
+                                      std::to_string(orbits.texels));
+    detail::lxh_prepare(fn, p, m, out);
+    const std::size_t e = m.column_size();
+    std::vector<double> c(static_cast<std::size_t>(m.cosine_bands * m.cosine_bands)), res(e);
+    std::vector<double> A(2 * e), G(2 * 4 * 2 * e);  // G[((p * 4 + r) * 2 + re/im) * e + q]
+    std::vector<double> U(2 * 4 * e);                // U[(p * 4 + k) * e + q]
+    auto gidx = [e](int p_, int r, int im) {
+        return static_cast<std::size_t>((p_ * 4 + r) * 2 + im) * e;
+    };
+    out.stats.orbits = orbits.orbits();
+    for (std::size_t o = 0; o < orbits.orbits(); ++o) {
+        const auto& d = orbits.direction[o];
         detail::lxh_cosine_vector(m, d[0], d[1], d[2], c.data());
-        ++tab.stats.orbits;
+        const std::size_t b = orbits.begin[o], end = orbits.begin[o + 1];
         if (end - b == 1) {
-            detail::lxh_apply(m, c.data(), out.data());
-            write(rep.texel, out.data());
-            b = end;
+            detail::lxh_apply(m, c.data(), res.data());
+            detail::lxh_write(out.data.data() + orbits.members[b].texel * e, res.data(), e);
             continue;
         }
+        // Columns grouped into A_p (m = 0) and G_rp (m > 0).
         std::fill(A.begin(), A.end(), 0.0);
         std::fill(G.begin(), G.end(), 0.0);
         for (int l = 0; l < m.cosine_bands; ++l) {
             if (m.cosine[static_cast<std::size_t>(l)] == 0) continue;
             {
                 const double cj = c[static_cast<std::size_t>(sh::index(l, 0))];
-                const double* col = m.columns.data() + static_cast<std::size_t>(sh::index(l, 0)) * e;
+                const double* col =
+                    m.columns.data() + static_cast<std::size_t>(sh::index(l, 0)) * e;
                 double* a = A.data() + static_cast<std::size_t>(l & 1) * e;
                 for (std::size_t q = 0; q < e; ++q) a[q] += cj * col[q];
             }
             for (int mm = 1; mm <= l; ++mm) {
-                const int p = (l + mm) & 1, r = mm & 3;
+                const int par = (l + mm) & 1, r = mm & 3;
                 const double cp = c[static_cast<std::size_t>(sh::index(l, mm))];
                 const double cm = c[static_cast<std::size_t>(sh::index(l, -mm))];
-                const double* pp = m.columns.data() + static_cast<std::size_t>(sh::index(l, mm)) * e;
-                const double* pm = m.columns.data() + static_cast<std::size_t>(sh::index(l, -mm)) * e;
-                double* gr = G.data() + gidx(p, r, 0);
-                double* gi = G.data() + gidx(p, r, 1);
+                const double* pp =
+                    m.columns.data() + static_cast<std::size_t>(sh::index(l, mm)) * e;
+                const double* pm =
+                    m.columns.data() + static_cast<std::size_t>(sh::index(l, -mm)) * e;
+                double* gr = G.data() + gidx(par, r, 0);
+                double* gi = G.data() + gidx(par, r, 1);
                 // conj(Q) z = (P+ - i P-)(c+ + i c-): Re = P+ c+ + P- c-, Im = P+ c- - P- c+.
                 for (std::size_t q = 0; q < e; ++q) {
                     gr[q] += pp[q] * cp + pm[q] * cm;
@@ -413,18 +457,18 @@ LxhTable<Param> build_lxh_table(const Param& p, const LxhMatrix& m,
         // U_kp = A_p + Re sum_r i^(rk) G_rp by the 4-point DFT: E0 = G0 + G2, E1 = G0 - G2,
         // O0 = G1 + G3, O1 = G1 - G3; Re S0 = Re E0 + Re O0, Re S2 = Re E0 - Re O0,
         // Re S1 = Re E1 - Im O1, Re S3 = Re E1 + Im O1.
-        for (int p = 0; p < 2; ++p) {
-            const double* a = A.data() + static_cast<std::size_t>(p) * e;
-            const double* g0 = G.data() + gidx(p, 0, 0);
-            const double* g1 = G.data() + gidx(p, 1, 0);
-            const double* g1i = G.data() + gidx(p, 1, 1);
-            const double* g2 = G.data() + gidx(p, 2, 0);
-            const double* g3 = G.data() + gidx(p, 3, 0);
-            const double* g3i = G.data() + gidx(p, 3, 1);
-            double* u0 = U.data() + static_cast<std::size_t>(p * 4 + 0) * e;
-            double* u1 = U.data() + static_cast<std::size_t>(p * 4 + 1) * e;
-            double* u2 = U.data() + static_cast<std::size_t>(p * 4 + 2) * e;
-            double* u3 = U.data() + static_cast<std::size_t>(p * 4 + 3) * e;
+        for (int par = 0; par < 2; ++par) {
+            const double* a = A.data() + static_cast<std::size_t>(par) * e;
+            const double* g0 = G.data() + gidx(par, 0, 0);
+            const double* g1 = G.data() + gidx(par, 1, 0);
+            const double* g1i = G.data() + gidx(par, 1, 1);
+            const double* g2 = G.data() + gidx(par, 2, 0);
+            const double* g3 = G.data() + gidx(par, 3, 0);
+            const double* g3i = G.data() + gidx(par, 3, 1);
+            double* u0 = U.data() + static_cast<std::size_t>(par * 4 + 0) * e;
+            double* u1 = U.data() + static_cast<std::size_t>(par * 4 + 1) * e;
+            double* u2 = U.data() + static_cast<std::size_t>(par * 4 + 2) * e;
+            double* u3 = U.data() + static_cast<std::size_t>(par * 4 + 3) * e;
             for (std::size_t q = 0; q < e; ++q) {
                 const double e0 = a[q] + g0[q] + g2[q], e1 = a[q] + g0[q] - g2[q];
                 const double o0 = g1[q] + g3[q], o1i = g1i[q] - g3i[q];
@@ -434,16 +478,55 @@ LxhTable<Param> build_lxh_table(const Param& p, const LxhMatrix& m,
                 u3[q] = e1 + o1i;
             }
         }
+        // T(Z^f R^k n) = U_k0 + (-1)^f U_k1.
         for (std::size_t i = b; i < end; ++i) {
-            // This texel = R^km Z^fm canonical, the representative = R^k0 Z^f0 canonical.
-            const int k = (keys[i].k - rep.k + 4) & 3, f = keys[i].f ^ rep.f;
-            const double* ue = U.data() + static_cast<std::size_t>(0 * 4 + k) * e;
-            const double* uo = U.data() + static_cast<std::size_t>(1 * 4 + k) * e;
-            for (std::size_t q = 0; q < e; ++q) out[q] = f ? ue[q] - uo[q] : ue[q] + uo[q];
-            write(keys[i].texel, out.data());
+            const detail::LxhMember& mem = orbits.members[i];
+            const double* ue = U.data() + static_cast<std::size_t>(mem.k) * e;
+            const double* uo = U.data() + static_cast<std::size_t>(4 + mem.k) * e;
+            float* dst = out.data.data() + mem.texel * e;
+            if (mem.f)
+                for (std::size_t q = 0; q < e; ++q) dst[q] = static_cast<float>(ue[q] - uo[q]);
+            else
+                for (std::size_t q = 0; q < e; ++q) dst[q] = static_cast<float>(ue[q] + uo[q]);
         }
-        b = end;
     }
+}
+
+/// The L x H table of lighting matrix m over the texels of param p (any class of param/),
+/// written into `out` reusing its storage. plain: per texel one SH evaluation of C bands and
+/// 3 K^2 multiply-adds per nonzero column; symmetric: make_lxh_orbits(p) and then the build
+/// above (keep the orbits and call that overload when building for many lightings).
+/// Throws std::invalid_argument for an inconsistent m or an unknown construction.
+template <class Param>
+void build_lxh_table(const Param& p, const LxhMatrix& m, LxhConstruction how,
+                     LxhTable<Param>& out) {
+    const char* fn = "build_lxh_table";
+    if (how != LxhConstruction::plain && how != LxhConstruction::symmetric)
+        detail::throw_invalid(fn, "construction plain or symmetric, got " +
+                                      std::to_string(static_cast<int>(how)));
+    if (how == LxhConstruction::symmetric) {
+        detail::check_lxh_matrix(fn, m);
+        build_lxh_table(p, m, make_lxh_orbits(p), out);
+        return;
+    }
+    detail::lxh_prepare(fn, p, m, out);
+    const std::size_t e = m.column_size();
+    std::vector<double> c(static_cast<std::size_t>(m.cosine_bands * m.cosine_bands)), res(e);
+    for (std::size_t t = 0; t < out.stats.texels; ++t) {
+        const auto d = detail::lxh_texel_direction(p, t);
+        detail::lxh_cosine_vector(m, d[0], d[1], d[2], c.data());
+        detail::lxh_apply(m, c.data(), res.data());
+        detail::lxh_write(out.data.data() + t * e, res.data(), e);
+    }
+    out.stats.orbits = out.stats.texels;
+}
+
+/// build_lxh_table(p, m, how, out) into a new table.
+template <class Param>
+LxhTable<Param> build_lxh_table(const Param& p, const LxhMatrix& m,
+                                LxhConstruction how = LxhConstruction::plain) {
+    LxhTable<Param> tab{p, 0, 0, 0, {}, {}};
+    build_lxh_table(p, m, how, tab);
     return tab;
 }
 
