@@ -57,10 +57,12 @@ void direct_table(const param::CubeMap<double>& p, int nb, const std::vector<dou
                     for (int m = -l; m <= l; ++m)
                         c[static_cast<std::size_t>(sh::index(l, m))] *=
                             constants::pi * a[static_cast<std::size_t>(l)];
-                float* out = table.data() + p.texel_index(face, col, row) * 3 * static_cast<std::size_t>(kk);
+                float* out =
+                    table.data() + p.texel_index(face, col, row) * 3 * static_cast<std::size_t>(kk);
                 for (int k = 0; k < 3; ++k) {
                     sh::product(t, ch.data() + k * nn, c.data(), r.data());
-                    for (int q = 0; q < kk; ++q) out[3 * q + k] = static_cast<float>(r[static_cast<std::size_t>(q)]);
+                    for (int q = 0; q < kk; ++q)
+                        out[3 * q + k] = static_cast<float>(r[static_cast<std::size_t>(q)]);
                 }
             }
 }

@@ -44,7 +44,8 @@ std::vector<double> quadrature_lxh(int nb, const std::vector<double>& rgb, int k
     vec3<double> n{nx, ny, nz}, s, tt;
     coordinate_system(n, s, tt);
     std::vector<double> out(3 * static_cast<std::size_t>(kb * kb), 0.0);
-    std::vector<double> yl(static_cast<std::size_t>(nb * nb)), yk(static_cast<std::size_t>(kb * kb));
+    std::vector<double> yl(static_cast<std::size_t>(nb * nb)),
+        yk(static_cast<std::size_t>(kb * kb));
     for (int i = 0; i < nt; ++i) {
         const double ct = 0.5 * (t[static_cast<std::size_t>(i)] + 1);
         const double st = std::sqrt(1 - ct * ct);
@@ -59,9 +60,12 @@ std::vector<double> quadrature_lxh(int nb, const std::vector<double>& rgb, int k
             sh::eval(kb, wx, wy, wz, yk.data());
             for (int c = 0; c < 3; ++c) {
                 double lv = 0;
-                for (int a = 0; a < nb * nb; ++a) lv += rgb[static_cast<std::size_t>(3 * a + c)] * yl[static_cast<std::size_t>(a)];
+                for (int a = 0; a < nb * nb; ++a)
+                    lv +=
+                        rgb[static_cast<std::size_t>(3 * a + c)] * yl[static_cast<std::size_t>(a)];
                 for (int k = 0; k < kb * kb; ++k)
-                    out[static_cast<std::size_t>(3 * k + c)] += w * lv * yk[static_cast<std::size_t>(k)];
+                    out[static_cast<std::size_t>(3 * k + c)] +=
+                        w * lv * yk[static_cast<std::size_t>(k)];
             }
         }
     }
@@ -105,7 +109,8 @@ void check_symmetric_equals_plain(const P& p, int nb, int kb, double tol) {
 
 TEST_CASE("lxh: row scaling equals the projection of L * H by quadrature", "[ops][lxh]") {
     std::mt19937 rng(5);
-    for (auto [nb, kb] : {std::pair{3, 3}, std::pair{4, 4}, std::pair{2, 6}, std::pair{6, 2}, std::pair{1, 1}}) {
+    for (auto [nb, kb] :
+         {std::pair{3, 3}, std::pair{4, 4}, std::pair{2, 6}, std::pair{6, 2}, std::pair{1, 1}}) {
         const auto light = random_lighting(nb, static_cast<unsigned>(nb * 10 + kb));
         const LxhMatrix m = lxh_matrix(nb, light.data(), kb);
         CHECK(m.cosine_bands == nb + kb - 1);
@@ -157,7 +162,8 @@ TEST_CASE("lxh: fewer cosine bands stay within the truncation bound", "[ops][lxh
         const auto n = random_unit(rng);
         lxh_at(m3, n[0], n[1], n[2], out.data());
         const auto ref = quadrature_lxh(3, light, 2, n[0], n[1], n[2]);
-        for (std::size_t q = 0; q < out.size(); ++q) CHECK(std::fabs(out[q] - ref[q]) <= 1e-12 * max_abs(ref));
+        for (std::size_t q = 0; q < out.size(); ++q)
+            CHECK(std::fabs(out[q] - ref[q]) <= 1e-12 * max_abs(ref));
     }
     // N = K = 3 with the reference's 9 rows (C = 3): the dropped band l = 4 gives an error that
     // is nonzero and below the bound.
@@ -179,7 +185,8 @@ TEST_CASE("lxh: fewer cosine bands stay within the truncation bound", "[ops][lxh
                 worst = std::max(worst, std::sqrt(e2));
             }
         }
-        INFO("N " << nb << " K " << kb << " C " << cb << ": error " << worst << ", bound " << bound);
+        INFO("N " << nb << " K " << kb << " C " << cb << ": error " << worst << ", bound "
+                  << bound);
         CHECK(worst <= bound);
         CHECK(worst > 1e-3 * bound);  // the bound is not vacuous
     }
@@ -190,15 +197,26 @@ TEST_CASE("lxh: fewer cosine bands stay within the truncation bound", "[ops][lxh
 
 TEST_CASE("lxh: the symmetric construction equals the plain one on every parameterization",
           "[ops][lxh]") {
-    SECTION("cube map, DX10 seamless") { check_symmetric_equals_plain(param::CubeMap<double>(8), 3, 3, 1e-6); }
-    SECTION("cube map, DX9 clamped") {
-        check_symmetric_equals_plain(param::CubeMap<double>(6, param::CubeFilter::dx9_clamped), 4, 2, 1e-6);
+    SECTION("cube map, DX10 seamless") {
+        check_symmetric_equals_plain(param::CubeMap<double>(8), 3, 3, 1e-6);
     }
-    SECTION("dual paraboloid") { check_symmetric_equals_plain(param::DualParaboloid<double>(8), 3, 4, 1e-6); }
-    SECTION("dual orthographic") { check_symmetric_equals_plain(param::DualOrthographic<double>(8), 3, 3, 1e-6); }
-    SECTION("octahedral") { check_symmetric_equals_plain(param::Octahedral<double>(8), 3, 3, 1e-6); }
+    SECTION("cube map, DX9 clamped") {
+        check_symmetric_equals_plain(param::CubeMap<double>(6, param::CubeFilter::dx9_clamped), 4,
+                                     2, 1e-6);
+    }
+    SECTION("dual paraboloid") {
+        check_symmetric_equals_plain(param::DualParaboloid<double>(8), 3, 4, 1e-6);
+    }
+    SECTION("dual orthographic") {
+        check_symmetric_equals_plain(param::DualOrthographic<double>(8), 3, 3, 1e-6);
+    }
+    SECTION("octahedral") {
+        check_symmetric_equals_plain(param::Octahedral<double>(8), 3, 3, 1e-6);
+    }
     SECTION("lat-long") { check_symmetric_equals_plain(param::LatLong<double>(8), 2, 5, 1e-6); }
-    SECTION("float texel directions") { check_symmetric_equals_plain(param::CubeMap<float>(8), 3, 3, 1e-5); }
+    SECTION("float texel directions") {
+        check_symmetric_equals_plain(param::CubeMap<float>(8), 3, 3, 1e-5);
+    }
 }
 
 TEST_CASE("lxh: odd resolutions and the pole keep the symmetric construction exact", "[ops][lxh]") {
@@ -263,7 +281,8 @@ TEST_CASE("lxh: shading V . (L x H)(n) equals the triple integral", "[ops][lxh]"
         double e = 0, s = 0;
         for (int k = 0; k < kb * kb; ++k) {
             e += v[static_cast<std::size_t>(k)] * ref[static_cast<std::size_t>(3 * k + c)];
-            s += std::fabs(v[static_cast<std::size_t>(k)] * ref[static_cast<std::size_t>(3 * k + c)]);
+            s += std::fabs(v[static_cast<std::size_t>(k)] *
+                           ref[static_cast<std::size_t>(3 * k + c)]);
         }
         CHECK(std::fabs(got[static_cast<std::size_t>(c)] - e) <= 1e-6 * s);
     }
@@ -272,22 +291,27 @@ TEST_CASE("lxh: shading V . (L x H)(n) equals the triple integral", "[ops][lxh]"
 TEST_CASE("lxh: bad input throws", "[ops][lxh]") {
     const auto light = random_lighting(3, 1);
     CHECK_THROWS_WITH(lxh_matrix(0, light.data(), 3), Catch::Contains("1 <= lighting bands <= 16"));
-    CHECK_THROWS_WITH(lxh_matrix(3, light.data(), 17), Catch::Contains("1 <= visibility bands <= 16"));
+    CHECK_THROWS_WITH(lxh_matrix(3, light.data(), 17),
+                      Catch::Contains("1 <= visibility bands <= 16"));
     CHECK_THROWS_WITH(lxh_matrix(3, light.data(), 3, 6), Catch::Contains("0 <= cosine bands <= 5"));
     CHECK_THROWS_WITH(lxh_matrix(3, light.data(), 3, -1), Catch::Contains("cosine bands"));
     CHECK_THROWS_WITH(lxh_matrix(3, nullptr, 3), Catch::Contains("null pointer"));
     auto bad = light;
     bad[7] = std::numeric_limits<double>::quiet_NaN();
-    CHECK_THROWS_WITH(lxh_matrix(3, bad.data(), 3), Catch::Contains("finite lighting coefficients"));
+    CHECK_THROWS_WITH(lxh_matrix(3, bad.data(), 3),
+                      Catch::Contains("finite lighting coefficients"));
     bad[7] = std::numeric_limits<double>::infinity();
-    CHECK_THROWS_AS(build_lxh_table(param::CubeMap<double>(2), 3, bad.data(), 3), std::invalid_argument);
-    CHECK_THROWS_WITH(lxh_truncation_bound(3, light.data(), 0, 3), Catch::Contains("visibility bands"));
+    CHECK_THROWS_AS(build_lxh_table(param::CubeMap<double>(2), 3, bad.data(), 3),
+                    std::invalid_argument);
+    CHECK_THROWS_WITH(lxh_truncation_bound(3, light.data(), 0, 3),
+                      Catch::Contains("visibility bands"));
     LxhMatrix broken = lxh_matrix(3, light.data(), 3);
     broken.columns.pop_back();
     CHECK_THROWS_WITH(build_lxh_table(param::CubeMap<double>(2), broken),
                       Catch::Contains("inconsistent"));
     std::vector<double> out(27);
-    CHECK_THROWS_WITH(lxh_direct(3, light.data(), 3, 7, 0, 0, 1, out.data()), Catch::Contains("cosine bands"));
+    CHECK_THROWS_WITH(lxh_direct(3, light.data(), 3, 7, 0, 0, 1, out.data()),
+                      Catch::Contains("cosine bands"));
 }
 
 TEST_CASE("lxh: orbits reused across lightings, storage reused across builds", "[ops][lxh]") {
@@ -310,6 +334,7 @@ TEST_CASE("lxh: orbits reused across lightings, storage reused across builds", "
         CHECK(diff <= 1e-6 * scale);
         CHECK(tab.stats.orbits == orbits.orbits());
     }
-    CHECK_THROWS_WITH(build_lxh_table(param::CubeMap<double>(4), lxh_matrix(4, random_lighting(4, 1).data(), 3), orbits, tab),
+    CHECK_THROWS_WITH(build_lxh_table(param::CubeMap<double>(4),
+                                      lxh_matrix(4, random_lighting(4, 1).data(), 3), orbits, tab),
                       Catch::Contains("the orbits of this parameterization"));
 }

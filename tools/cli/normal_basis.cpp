@@ -13,6 +13,8 @@
 //     {"clamped": {"uniform": [...], "cosine": [...]}, "unclamped": {"uniform": [...],
 //      "cosine": [...]}}
 // (bands^2 numbers each, percent). Bad options exit with status 2 and one line.
+#include "sphbasis/ops/normal_basis.hpp"
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <memory>
@@ -22,7 +24,6 @@
 #include "../support/json.hpp"
 #include "../support/output_file.hpp"
 #include "cli.hpp"
-#include "sphbasis/ops/normal_basis.hpp"
 
 namespace sphbasis::cli {
 
@@ -40,8 +41,7 @@ Run setup_normal_basis(CLI::App& app) {
         "singular values of the normal matrix of normal-mapped PRT (rows: normals over the\n"
         "hemisphere, columns: cosine-convolved SH lighting functions), for the lighting clamped\n"
         "to the hemisphere or not and normals weighted uniformly or by cosine.");
-    add_integer(app, "--bands", o->bands, 1, 8, "SH bands of the lighting (columns: bands^2)",
-                "N");
+    add_integer(app, "--bands", o->bands, 1, 8, "SH bands of the lighting (columns: bands^2)", "N");
     add_path(app, "--json", o->json_path,
              "write {\"clamped\": {\"uniform\": [...], \"cosine\": [...]}, \"unclamped\": {...}}");
     return [o] {

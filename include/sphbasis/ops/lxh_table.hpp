@@ -76,9 +76,9 @@ inline constexpr int max_lxh_bands = 16;
 /// The product matrix of an RGB lighting for L x H tables: P_L (K^2 x C^2 per channel) stored by
 /// columns, column j (an H coefficient) holding 3 K^2 doubles (coefficient k, then channel).
 struct LxhMatrix {
-    int lighting_bands = 0;    ///< N
-    int visibility_bands = 0;  ///< K
-    int cosine_bands = 0;      ///< C: H bands kept (N + K - 1 = exact)
+    int lighting_bands = 0;       ///< N
+    int visibility_bands = 0;     ///< K
+    int cosine_bands = 0;         ///< C: H bands kept (N + K - 1 = exact)
     std::vector<double> columns;  ///< C^2 columns of 3 K^2: columns[(j * K^2 + k) * 3 + c]
     std::vector<double> cosine;   ///< pi a_l for l < C (the clamped cosine's zonal factors)
     std::size_t column_size() const noexcept {
@@ -149,7 +149,8 @@ inline void check_lxh_lighting(const char* fn, int n, const double* rgb) {
 inline void lxh_cosine_vector(const LxhMatrix& m, double x, double y, double z, double* c) {
     sh::eval(m.cosine_bands, x, y, z, c);
     for (int l = 0; l < m.cosine_bands; ++l)
-        for (int mm = -l; mm <= l; ++mm) c[sh::index(l, mm)] *= m.cosine[static_cast<std::size_t>(l)];
+        for (int mm = -l; mm <= l; ++mm)
+            c[sh::index(l, mm)] *= m.cosine[static_cast<std::size_t>(l)];
 }
 
 /// out (3 K^2) = P c, skipping the columns of vanishing a_l.
@@ -220,8 +221,9 @@ inline LxhMatrix lxh_matrix(int lighting_bands, const double* rgb, int visibilit
         for (int k = 0; k < kk; ++k)
             for (int j = 0; j < cc; ++j)
                 m.columns[(static_cast<std::size_t>(j) * static_cast<std::size_t>(kk) +
-                           static_cast<std::size_t>(k)) * 3 + static_cast<std::size_t>(c)] =
-                    p[static_cast<std::size_t>(k * cc + j)];
+                           static_cast<std::size_t>(k)) *
+                              3 +
+                          static_cast<std::size_t>(c)] = p[static_cast<std::size_t>(k * cc + j)];
     }
     return m;
 }
@@ -248,7 +250,8 @@ inline void lxh_direct(int lighting_bands, const double* rgb, int visibility_ban
     sh::eval(cb, x, y, z, c.data());
     for (int l = 0; l < cb; ++l)
         for (int m = -l; m <= l; ++m)
-            c[static_cast<std::size_t>(sh::index(l, m))] *= constants::pi * a[static_cast<std::size_t>(l)];
+            c[static_cast<std::size_t>(sh::index(l, m))] *=
+                constants::pi * a[static_cast<std::size_t>(l)];
     const int nn = lighting_bands * lighting_bands, kk = visibility_bands * visibility_bands;
     std::vector<double> ch(static_cast<std::size_t>(nn)), r(static_cast<std::size_t>(kk));
     for (int ch_i = 0; ch_i < 3; ++ch_i) {
@@ -298,9 +301,9 @@ enum class LxhConstruction {
 /// parameterization and reused for every lighting (make_lxh_orbits()).
 struct LxhOrbits {
     std::size_t texels = 0;
-    std::vector<std::size_t> begin;               ///< orbit o: members [begin[o], begin[o+1])
-    std::vector<detail::LxhMember> members;       ///< relative to the orbit's first member
-    std::vector<std::array<double, 3>> direction; ///< the first member's unit direction
+    std::vector<std::size_t> begin;                ///< orbit o: members [begin[o], begin[o+1])
+    std::vector<detail::LxhMember> members;        ///< relative to the orbit's first member
+    std::vector<std::array<double, 3>> direction;  ///< the first member's unit direction
     std::size_t orbits() const noexcept { return direction.size(); }
 };
 
@@ -310,8 +313,7 @@ template <class Param>
 std::array<double, 3> lxh_texel_direction(const Param& p, std::size_t texel) {
     const std::size_t w = static_cast<std::size_t>(p.width());
     const std::size_t h = static_cast<std::size_t>(p.height());
-    const auto d = p.texel_direction(static_cast<int>(texel / (w * h)),
-                                     static_cast<int>(texel % w),
+    const auto d = p.texel_direction(static_cast<int>(texel / (w * h)), static_cast<int>(texel % w),
                                      static_cast<int>((texel / w) % h));
     const double x = static_cast<double>(d.x), y = static_cast<double>(d.y),
                  z = static_cast<double>(d.z);
@@ -366,7 +368,9 @@ LxhOrbits make_lxh_orbits(const Param& p) {
         keys[t] = {{static_cast<std::int64_t>(std::llround(d[0] * quantum)),
                     static_cast<std::int64_t>(std::llround(d[1] * quantum)),
                     static_cast<std::int64_t>(std::llround(d[2] * quantum))},
-                   t, k, f};
+                   t,
+                   k,
+                   f};
     }
     std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
         return std::tie(a.q[0], a.q[1], a.q[2], a.texel) <
@@ -385,8 +389,8 @@ LxhOrbits make_lxh_orbits(const Param& p) {
         o.direction.push_back(detail::lxh_texel_direction(p, keys[b].texel));
         // This texel = R^km Z^fm canonical, the first = R^k0 Z^f0 canonical.
         for (std::size_t i = b; i < end; ++i)
-            o.members.push_back({keys[i].texel, (keys[i].k - keys[b].k + 4) & 3,
-                                 keys[i].f ^ keys[b].f});
+            o.members.push_back(
+                {keys[i].texel, (keys[i].k - keys[b].k + 4) & 3, keys[i].f ^ keys[b].f});
         b = end;
     }
     o.begin.push_back(o.members.size());
@@ -502,8 +506,8 @@ void build_lxh_table(const Param& p, const LxhMatrix& m, LxhConstruction how,
                      LxhTable<Param>& out) {
     const char* fn = "build_lxh_table";
     if (how != LxhConstruction::plain && how != LxhConstruction::symmetric)
-        detail::throw_invalid(fn, "construction plain or symmetric, got " +
-                                      std::to_string(static_cast<int>(how)));
+        detail::throw_invalid(
+            fn, "construction plain or symmetric, got " + std::to_string(static_cast<int>(how)));
     if (how == LxhConstruction::symmetric) {
         detail::check_lxh_matrix(fn, m);
         build_lxh_table(p, m, make_lxh_orbits(p), out);
@@ -535,8 +539,7 @@ template <class Param>
 LxhTable<Param> build_lxh_table(const Param& p, int lighting_bands, const double* rgb,
                                 int visibility_bands, int cosine_bands = 0,
                                 LxhConstruction how = LxhConstruction::plain) {
-    return build_lxh_table(p, lxh_matrix(lighting_bands, rgb, visibility_bands, cosine_bands),
-                           how);
+    return build_lxh_table(p, lxh_matrix(lighting_bands, rgb, visibility_bands, cosine_bands), how);
 }
 
 /// (1 - t) a + t b, element-wise: the table of the blended lighting (the tables are linear in

@@ -58,19 +58,20 @@ enum class NormalWeighting {
 
 /// Settings of normal_basis().
 struct NormalBasisSettings {
-    int bands = 3;         ///< SH bands of the transferred lighting (columns: bands^2), 1..8
-    bool clamped = true;   ///< restrict the lighting to w_z > 0 before the cosine convolution
+    int bands = 3;        ///< SH bands of the transferred lighting (columns: bands^2), 1..8
+    bool clamped = true;  ///< restrict the lighting to w_z > 0 before the cosine convolution
     NormalWeighting weighting = NormalWeighting::uniform;
-    int rings = 0;         ///< Gauss-Legendre rings in n_z (azimuths: 2 rings); 0: automatic
+    int rings =
+        0;  ///< Gauss-Legendre rings in n_z (2 rings + 2 azimuths); 0: 24 clamped, bands + 1 not
 };
 
 /// The SVD of the weighted normal matrix and its cumulative energies.
 struct NormalBasis {
-    Eigen::MatrixXd u;               ///< rows x bands^2, the normal-basis functions at the rows
-    Eigen::VectorXd singular_values; ///< bands^2, descending
-    Eigen::MatrixXd v;               ///< bands^2 x bands^2
+    Eigen::MatrixXd u;                   ///< rows x bands^2, the normal-basis functions at the rows
+    Eigen::VectorXd singular_values;     ///< bands^2, descending
+    Eigen::MatrixXd v;                   ///< bands^2 x bands^2
     std::vector<double> energy_percent;  ///< [M - 1]: percent of sum s^2 kept by M terms
-    DirectionalRule normals;         ///< the rows' normals and quadrature weights (density folded)
+    DirectionalRule normals;  ///< the rows' normals and quadrature weights (density folded)
 };
 
 namespace detail {
@@ -193,8 +194,8 @@ inline NormalBasis normal_basis(const NormalBasisSettings& settings) {
     double total = 0;
     for (Eigen::Index i = 0; i < n; ++i) total += r.singular_values(i) * r.singular_values(i);
     if (!(total > 0) || !std::isfinite(total))
-        sphbasis::detail::throw_runtime("normal_basis", "a nonzero finite matrix, got energy " +
-                                                            std::to_string(total));
+        sphbasis::detail::throw_runtime(
+            "normal_basis", "a nonzero finite matrix, got energy " + std::to_string(total));
     double acc = 0;
     for (Eigen::Index i = 0; i < n; ++i) {
         acc += r.singular_values(i) * r.singular_values(i);
