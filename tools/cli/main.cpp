@@ -32,6 +32,8 @@ const Command commands[] = {
     {"bake", "bake AO, bent normals, visibility, transfer, irradiance (Embree)",
      sphbasis::cli::setup_bake},
     {"bake-merge", "join the shards of `bake --shard I/N`", sphbasis::cli::setup_bake_merge},
+    {"render", "path-traced reference vs baked representations: images and report",
+     sphbasis::cli::setup_render},
 };
 
 }  // namespace
