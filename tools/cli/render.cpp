@@ -65,7 +65,7 @@ struct RenderOptions {
     std::string scene, representations = "all", out = ".", exposure, tonemap, rotate, noise;
     long long spp = 0, max_spp = 4096, width = 0, height = 0, threads = 0, seed = 0, rays = 256,
               lightmap_size = 128, prt_bands = 3, specular_ss = 4;
-    double noise_limit = 0.05;
+    std::string noise_limit_text;
     bool no_cache = false;
     CLI::Option *spp_opt = nullptr, *noise_opt = nullptr, *width_opt = nullptr,
                 *height_opt = nullptr, *exposure_opt = nullptr, *tonemap_opt = nullptr,
@@ -283,6 +283,13 @@ int run_render(const RenderOptions& o) {
     if (o.tonemap_opt->count() > 0 && std::find(ops.begin(), ops.end(), o.tonemap) == ops.end())
         throw UsageError("--tonemap: unknown operator '" + o.tonemap +
                          "' (expected aces, reinhard or clamp)");
+    double noise_limit = 0.05;
+    if (!o.noise_limit_text.empty()) {
+        noise_limit = to_real(o.noise_limit_text, "--noise-limit");
+        if (!(noise_limit > 0))
+            throw UsageError("--noise-limit: expected a positive fraction, got " +
+                             o.noise_limit_text);
+    }
     std::vector<double> rot_deg;
     if (o.rotate_opt->count() > 0) {
         rot_deg = to_reals(o.rotate, "--rotate-lighting-deg");
@@ -319,7 +326,7 @@ int run_render(const RenderOptions& o) {
     rep.scene = scene.path;
     rep.width = camera.width;
     rep.height = camera.height;
-    rep.noise_limit = o.noise_limit;
+    rep.noise_limit = noise_limit;
     rep.lighting_rotation_deg = rot_deg;
     rep.bounces = scene.render.bounces;
     rep.tonemap = o.tonemap_opt->count() > 0 ? o.tonemap : scene.render.tonemap;
@@ -352,6 +359,10 @@ int run_render(const RenderOptions& o) {
         }
     }
     if (names.empty()) throw UsageError("--representations: nothing to render");
+
+    // --- The output directory, checked before any work.
+    ensure_dir(o.out);
+    check_writable(join(o.out, "report.json"));
 
     // --- Settings.
     render::TraceSettings ts;
@@ -447,10 +458,6 @@ int run_render(const RenderOptions& o) {
     }
     std::fputs(plan_text(rep).c_str(), stderr);
 
-    // --- The output directory, checked before the long work.
-    ensure_dir(o.out);
-    check_writable(join(o.out, "report.json"));
-
     // --- Bakes.
     std::unique_ptr<DiskBakeCache> cache;
     if (!o.no_cache) cache = std::make_unique<DiskBakeCache>(join(o.out, "cache"));
@@ -539,7 +546,7 @@ int run_render(const RenderOptions& o) {
         const render::Image& against = spec ? spec_ref : ref.color;
         const render::Image* se = spec ? nullptr : &ref.stderr_;
         row.against = spec ? "specular reference" : "path tracer";
-        const render::ImageError e = render::compare(img, against, se, o.noise_limit, mask);
+        const render::ImageError e = render::compare(img, against, se, noise_limit, mask);
         row.rmse = e.rmse;
         row.rel_mse = e.rel_mse;
         row.smape = e.smape;
@@ -557,7 +564,7 @@ int run_render(const RenderOptions& o) {
             row.cannot_show += std::string(row.cannot_show.empty() ? "" : "; ") +
                                "a rotated light (baked lighting)";
         add_image(n, img);
-        const render::Image err = render::error_image(img, against, se, o.noise_limit, mask);
+        const render::Image err = render::error_image(img, against, se, noise_limit, mask);
         files.add(join(o.out, n + "_error.png"),
                   png_bytes(render::false_colour(err), err.width, err.height));
         row.image = n + ".png";
@@ -641,11 +648,10 @@ Run setup_render(CLI::App& app) {
                                    "rotate the lighting at render time (x,y,z degrees; no re-bake "
                                    "for the SH-lit representations)")
                         ->type_name("X,Y,Z");
-    app.add_option("--noise-limit", o->noise_limit,
-                   "judge a pixel where the reference's stderr is at most this fraction")
-        ->type_name("X")
-        ->check(CLI::Range(1e-6, 1e6))
-        ->capture_default_str();
+    app.add_option("--noise-limit", o->noise_limit_text,
+                   "judge a pixel where the reference's stderr is at most X of its luminance "
+                   "(default 0.05)")
+        ->type_name("X");
     app.add_flag("--no-cache", o->no_cache, "bake everything again; keep no bake cache");
     add_path(app, "--out", o->out, "output directory (created if missing)")
         ->type_name("DIR")
