@@ -10,7 +10,7 @@ CHECKs:
   bakes_run=N         prepare() ran N bakes (bakes_loaded=N likewise)
   max_rel_mse=NAME:X  NAME's relative MSE is at most X
   less=A:B            A's relative MSE is below B's
-  judged>=X           every row judged at least a fraction X of its pixels
+  judged_min=X        every row judged at least a fraction X of its pixels
   counter=NAME:N      the reference's counter NAME equals N (e.g. bounce_rays:0)
   effect~TEXT         some effect of the plan contains TEXT; effect!~TEXT: none does
   plan~TEXT           some plan step (what: reason) contains TEXT
@@ -80,9 +80,9 @@ def main():
             a, b = c[5:].split(":")
             if a not in rows or b not in rows or not rows[a]["rel_mse"] < rows[b]["rel_mse"]:
                 fail("%s: rel_mse not below %s's" % (a, b))
-        elif c.startswith("judged>="):
+        elif c.startswith("judged_min="):
             for row in rows.values():
-                if row["judged_fraction"] < float(c[8:]):
+                if row["judged_fraction"] < float(c[11:]):
                     fail("%s: judged %s" % (row["name"], row["judged_fraction"]))
         elif c.startswith("counter="):
             name, n = c[8:].split(":")

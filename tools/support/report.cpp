@@ -149,9 +149,7 @@ Json report_json(const Report& r) {
                          {"key", b.key},
                          {"lighting_dependent", b.lighting_dependent},
                          {"read_by", b.read_by},
-                         {"status", b.status},
-                         {"seconds", b.seconds},
-                         {"rays", b.rays}});
+                         {"status", b.status}});
     Json j = {{"tool", "sphbasis render"},
               {"scene", r.scene},
               {"command", r.command},

@@ -33,8 +33,6 @@ struct PlannedBake {
     bool lighting_dependent = false;
     std::vector<std::string> read_by;  // representation names
     std::string status;                // "baked", "from cache" ("" before prepare)
-    double seconds = 0;
-    std::uint64_t rays = 0;
 };
 
 /// One representation's row of the table.
