@@ -656,7 +656,19 @@ Run setup_render(CLI::App& app) {
     add_path(app, "--out", o->out, "output directory (created if missing)")
         ->type_name("DIR")
         ->capture_default_str();
-    return [o] { return run_render(*o); };
+    return [o] {
+        // A run that fails leaves no trace: the output directory it created (still empty, as
+        // every file is written at the end, all at once) is removed again.
+        std::error_code ec;
+        const bool existed = std::filesystem::exists(o->out, ec);
+        try {
+            return run_render(*o);
+        } catch (...) {
+            if (!existed && std::filesystem::is_empty(o->out, ec) && !ec)
+                std::filesystem::remove(o->out, ec);
+            throw;
+        }
+    };
 }
 
 }  // namespace sphbasis::cli
