@@ -56,7 +56,7 @@ sphbasis_render_bad(shininess "[^ ]*bad_shininess.json: meshes\\[0\\].shininess:
 sphbasis_render_bad(specular "[^ ]*bad_specular.json: meshes\\[0\\].specular\\[0\\]: expected a value in \\[0, 1\\], got 2" ${_rscenes}/bad_specular.json)
 # Only the effects a scene calls for: asking for the specular comparison of a scene without a
 # shiny material is an error (with "all" it is skipped and the plan says so).
-sphbasis_render_bad(specular_without_shininess "--representations: specular-toksvig needs a specular scene, and this one has no material declares a \"shininess\""
+sphbasis_render_bad(specular_without_shininess "--representations: specular-toksvig needs a shiny material and a directional light, but in this scene no material declares a \"shininess\""
                     ${_rscenes}/tiny_sun.json --representations ao,specular-toksvig)
 sphbasis_render_bad(out_unwritable "cannot create output directory '/dev/null/x'" ${_rscenes}/tiny_sun.json --out /dev/null/x)
 # Bad input writes nothing: no output directory is created.

@@ -345,15 +345,16 @@ int run_render(const RenderOptions& o) {
     rep.plan.push_back({"scene", scene_summary(scene)});
     if (!any_shiny || !any_directional) {
         const std::string why = !any_shiny ? "no material declares a \"shininess\""
-                                           : "no directional light (the specular comparison "
-                                             "shades directional lights only)";
+                                           : "there is no directional light (the specular "
+                                             "comparison shades directional lights only)";
         std::vector<std::string> dropped;
         for (const std::string& n : names)
             if (is_specular(n)) dropped.push_back(n);
         if (!dropped.empty()) {
             if (o.representations != "all")
                 throw UsageError("--representations: " + dropped.front() +
-                                 " needs a specular scene, and this one has " + why);
+                                 " needs a shiny material and a directional light, but in " +
+                                 "this scene " + why);
             names.erase(std::remove_if(names.begin(), names.end(), is_specular), names.end());
             rep.plan.push_back({"specular pass", "skipped: " + why});
         }
