@@ -9,7 +9,8 @@
 //   NAME_error.png (its relative error against the reference in false colour: render::
 //   error_image and false_colour); specular_reference.{exr,png} when a specular representation
 //   runs (the specular ones are compared with render::render_specular_reference, not with the
-//   path tracer); report.json, report.md and report.html (support/report.hpp). All of them are
+//   path tracer); with --aovs the reference's first-hit aov_{normal,albedo,position}.exr;
+//   report.json, report.md and report.html (support/report.hpp). All of them are
 //   written all or none (support/output_file.hpp): a failed run leaves the directory as it was.
 // Bakes are kept in DIR/cache/<key>.bin (support/bake_cache.hpp) unless --no-cache.
 //
@@ -66,7 +67,7 @@ struct RenderOptions {
     long long spp = 0, max_spp = 4096, width = 0, height = 0, threads = 0, seed = 0, rays = 256,
               lightmap_size = 128, prt_bands = 3, specular_ss = 4;
     std::string noise_limit_text;
-    bool no_cache = false;
+    bool no_cache = false, aovs = false;
     CLI::Option *spp_opt = nullptr, *noise_opt = nullptr, *width_opt = nullptr,
                 *height_opt = nullptr, *exposure_opt = nullptr, *tonemap_opt = nullptr,
                 *rotate_opt = nullptr;
@@ -369,6 +370,7 @@ int run_render(const RenderOptions& o) {
     render::TraceSettings ts;
     ts.bounces = scene.render.bounces;
     ts.seed = static_cast<std::uint64_t>(o.seed);
+    ts.aovs = o.aovs;
     if (o.spp_opt->count() > 0 || (noise == 0 && scene.render.spp > 0)) {
         const int spp = o.spp_opt->count() > 0 ? int(o.spp) : scene.render.spp;
         ts.spp_min = ts.spp_max = spp;
@@ -515,6 +517,14 @@ int run_render(const RenderOptions& o) {
     add_image("reference", ref.color);
     files.add(join(o.out, "reference_stderr.exr"),
               exr_bytes(o.out, "reference_stderr.exr", ref.stderr_));
+    if (o.aovs)
+        for (const auto& [name, img] :
+             {std::pair<const char*, const render::Image*>{"normal", &ref.normal},
+              {"albedo", &ref.albedo},
+              {"position", &ref.position}})
+            if (!img->data.empty())
+                files.add(join(o.out, std::string("aov_") + name + ".exr"),
+                          exr_bytes(o.out, std::string("aov_") + name + ".exr", *img));
     rep.reference_image = "reference.png";
     rep.reference_exr = "reference.exr";
     rep.reference_stderr_exr = "reference_stderr.exr";
@@ -657,6 +667,9 @@ Run setup_render(CLI::App& app) {
                    "(default 0.05)")
         ->type_name("X");
     app.add_flag("--no-cache", o->no_cache, "bake everything again; keep no bake cache");
+    app.add_flag("--aovs", o->aovs,
+                 "also write the reference's first-hit normal, albedo and position "
+                 "(aov_normal.exr, aov_albedo.exr, aov_position.exr)");
     add_path(app, "--out", o->out, "output directory (created if missing)")
         ->type_name("DIR")
         ->capture_default_str();
