@@ -25,5 +25,6 @@ Run setup_rotate(CLI::App& app);
 Run setup_bake(CLI::App& app);
 Run setup_bake_merge(CLI::App& app);
 Run setup_normal_basis(CLI::App& app);
+Run setup_render(CLI::App& app);
 
 }  // namespace sphbasis::cli

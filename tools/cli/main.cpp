@@ -34,6 +34,8 @@ const Command commands[] = {
     {"bake-merge", "join the shards of `bake --shard I/N`", sphbasis::cli::setup_bake_merge},
     {"normal-basis", "the SVD normal basis of normal-mapped PRT",
      sphbasis::cli::setup_normal_basis},
+    {"render", "path-traced reference vs baked representations: images and report",
+     sphbasis::cli::setup_render},
 };
 
 }  // namespace

@@ -421,7 +421,8 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
     if (!j.is_object()) c.fail(where, "expected an object, got " + type_name(j));
     const bool has_file = j.contains("file"), has_shape = j.contains("shape");
     if (has_file == has_shape) c.fail(where, "expected exactly one of \"file\" or \"shape\"");
-    std::vector<std::string> keys = {"name", "transform", "albedo", "albedo_map", "normal_map"};
+    std::vector<std::string> keys = {"name",       "transform", "albedo",  "albedo_map",
+                                     "normal_map", "shininess", "specular"};
     std::string kind;
     if (has_file) {
         keys.push_back("file");
@@ -485,6 +486,21 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
         } catch (const std::exception& e) {
             c.fail(sub(where, "normal_map"), e.what());
         }
+        sm.mesh.normal_texels = sm.normal_map.texels;
+        sm.mesh.normal_map = {sm.normal_map.texels->data(), sm.normal_map.width,
+                              sm.normal_map.height, sm.normal_map.channels};
+    }
+    if (j.contains("shininess")) {
+        const double s = number(c, j["shininess"], sub(where, "shininess"));
+        if (s < 0 || s > 1e6)
+            c.fail(
+                sub(where, "shininess"),
+                "expected a Blinn-Phong exponent in [0, 1e6] (0: diffuse), got " + number_text(s));
+        sm.mesh.shininess = static_cast<float>(s);
+    }
+    if (j.contains("specular")) {
+        const render::RGB k = color(c, j["specular"], sub(where, "specular"), 1.0);
+        sm.mesh.specular = {float(k[0]), float(k[1]), float(k[2])};
     }
     return sm;
 }
@@ -563,6 +579,39 @@ render::Light load_light(const Ctx& c, const json& j, const std::string& where) 
             c.fail(sub(where, "angle_deg"), "expected a half-angle in (0, 90]");
     }
     return l;
+}
+
+void load_render(const Ctx& c, const json& j, SceneRender& r) {
+    check_keys(c, j, "render", {"bounces", "exposure", "tonemap", "spp", "noise"});
+    r.present = true;
+    if (j.contains("bounces")) r.bounces = integer(c, j["bounces"], "render.bounces", -1, 64);
+    if (j.contains("exposure")) {
+        const json& e = j["exposure"];
+        if (e.is_string()) {
+            if (e.get<std::string>() != "auto")
+                c.fail("render.exposure", "expected a positive number or \"auto\", got '" +
+                                              e.get<std::string>() + "'");
+        } else {
+            r.exposure = positive(c, e, "render.exposure");
+            r.auto_exposure = false;
+        }
+    }
+    if (j.contains("tonemap")) {
+        r.tonemap = string(c, j["tonemap"], "render.tonemap");
+        // The operators of render/image.hpp.
+        const std::vector<std::string> ops = {"aces", "reinhard", "clamp"};
+        if (std::find(ops.begin(), ops.end(), r.tonemap) == ops.end())
+            c.fail("render.tonemap", "unknown tone-mapping operator '" + r.tonemap +
+                                         "' (expected aces, reinhard or clamp)");
+    }
+    if (j.contains("spp")) r.spp = integer(c, j["spp"], "render.spp", 1, 1 << 20);
+    if (j.contains("noise")) {
+        r.noise = positive(c, j["noise"], "render.noise");
+        if (r.noise >= 1)
+            c.fail("render.noise",
+                   "expected a relative noise in (0, 1), got " + number_text(r.noise));
+    }
+    if (r.spp > 0 && r.noise > 0) c.fail("render", "expected at most one of \"spp\" and \"noise\"");
 }
 
 }  // namespace
@@ -683,7 +732,7 @@ SceneFile load_scene(const std::string& path) {
         c.fail("",
                std::string(e.id == 406 ? "expected finite numbers: " : "malformed JSON: ") + msg);
     }
-    check_keys(c, j, "", {"meshes", "environment", "lights", "camera", "probes"});
+    check_keys(c, j, "", {"meshes", "environment", "lights", "camera", "probes", "render"});
     SceneFile s;
     s.path = path;
     if (!j.contains("meshes")) c.fail("", "missing \"meshes\"");
@@ -705,7 +754,7 @@ SceneFile load_scene(const std::string& path) {
     }
     if (j.contains("camera")) {
         const json& cam = j["camera"];
-        check_keys(c, cam, "camera", {"position", "look_at", "up", "fov_deg"});
+        check_keys(c, cam, "camera", {"position", "look_at", "up", "fov_deg", "width", "height"});
         s.camera.present = true;
         if (cam.contains("position"))
             s.camera.position = vec(c, cam["position"], "camera.position");
@@ -716,7 +765,21 @@ SceneFile load_scene(const std::string& path) {
             if (!(s.camera.fov_deg > 0 && s.camera.fov_deg < 180))
                 c.fail("camera.fov_deg", "expected a field of view in (0, 180) degrees");
         }
+        if (cam.contains("width"))
+            s.camera.width = integer(c, cam["width"], "camera.width", 1, 16384);
+        if (cam.contains("height"))
+            s.camera.height = integer(c, cam["height"], "camera.height", 1, 16384);
+        const V3 f{s.camera.look_at.x - s.camera.position.x,
+                   s.camera.look_at.y - s.camera.position.y,
+                   s.camera.look_at.z - s.camera.position.z};
+        if (!(f.x * f.x + f.y * f.y + f.z * f.z > 0))
+            c.fail("camera", "expected look_at different from position");
+        const V3 u = s.camera.up;
+        const V3 x{f.y * u.z - f.z * u.y, f.z * u.x - f.x * u.z, f.x * u.y - f.y * u.x};
+        if (!(x.x * x.x + x.y * x.y + x.z * x.z > 1e-18 * (f.x * f.x + f.y * f.y + f.z * f.z)))
+            c.fail("camera.up", "expected a direction not parallel to the view direction");
     }
+    if (j.contains("render")) load_render(c, j["render"], s.render);
     if (j.contains("probes")) {
         const json& p = j["probes"];
         check_keys(c, p, "probes", {"min", "max", "counts"});

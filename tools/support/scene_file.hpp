@@ -36,7 +36,7 @@ struct SceneMesh {
     std::string name;    // "name" or "mesh<k>"
     std::string source;  // the resolved file, or "shape:<kind>"
     render::Mesh mesh;
-    SceneTexture normal_map;            // tangent-space normal map, [0, 1] per channel
+    SceneTexture normal_map;  // tangent-space normal map, [0, 1] per channel (also in mesh)
     std::size_t dropped_triangles = 0;  // zero-area or non-finite triangles removed on load
 };
 
@@ -45,6 +45,19 @@ struct SceneCamera {
     bool present = false;
     vec3<double> position{0, 0, 0}, look_at{0, 0, -1}, up{0, 0, 1};
     double fov_deg = 45;
+    int width = 320, height = 240;  // pixels
+};
+
+/// "render": the renderer's settings (`sphbasis render`; the bake ignores them). Options on
+/// the command line override them.
+struct SceneRender {
+    bool present = false;
+    int bounces = 1;            // diffuse interreflection bounces; -1: unbounded
+    bool auto_exposure = true;  // "exposure": "auto" (default) or a number
+    double exposure = 1;        // when !auto_exposure
+    std::string tonemap = "aces";
+    int spp = 0;       // 0: not given (progressive until `noise`)
+    double noise = 0;  // 0: not given
 };
 
 struct SceneFile {
@@ -54,6 +67,7 @@ struct SceneFile {
     std::shared_ptr<const std::vector<float>> environment_texels;
     std::vector<render::Light> lights;
     SceneCamera camera;
+    SceneRender render;
     bool has_probes = false;
     render::ProbeGrid probes;  // "probes": {"min", "max", "counts"}
 

@@ -1,0 +1,99 @@
+# Tests of `sphbasis render`. Included by tests/CMakeLists.txt after bake_tests.cmake. Label
+# "cli": options, help and bad input (rejected before any ray is traced; nothing written).
+# Label "render": small end-to-end runs (32x24 pixels) checked by check_render_report.py: the
+# furnace's closed form, the bake cache (re-render, rotated lighting, corrupt files), the plan's
+# skipped passes, the specular comparison, determinism across thread counts.
+set(_render $<TARGET_FILE:sphbasis_cli>)
+set(_rscenes ${CMAKE_CURRENT_SOURCE_DIR}/data/scenes/render)
+set(_check_report ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_render_report.py)
+
+# Passes when the command exits non-zero with exactly one line on stderr matching regex.
+function(sphbasis_render_bad name regex)
+  string(JOIN " " _args ${ARGN})
+  add_test(NAME cli_render_bad_${name}
+           COMMAND sh -c "err=$(\"${_render}\" render ${_args} 2>&1 >/dev/null); rc=$?; n=$(printf '%s\\n' \"$err\" | wc -l); if [ $rc -ne 0 ] && [ $n -eq 1 ]; then echo \"bad-input-ok: $err\"; else echo \"rc=$rc lines=$n: $err\"; fi")
+  set_tests_properties(cli_render_bad_${name} PROPERTIES
+                       PASS_REGULAR_EXPRESSION "bad-input-ok: sphbasis render: ${regex}"
+                       LABELS cli)
+endfunction()
+function(sphbasis_render_test name regex script)
+  add_test(NAME render_${name} COMMAND sh -c "${script}")
+  set_tests_properties(render_${name} PROPERTIES PASS_REGULAR_EXPRESSION "${regex}" LABELS render)
+endfunction()
+
+# Help.
+sphbasis_cli_test(render_help "Usage: sphbasis render.*SCENE.json.*--representations LIST\\|all.*--spp N.*--noise X.*--width W.*--height H.*--threads N.*--seed S.*--exposure X\\|auto.*--tonemap NAME.*--rays N.*--rotate-lighting-deg X,Y,Z.*--no-cache.*--out DIR"
+                  render --help)
+sphbasis_cli_test(help_lists_render "Subcommands:.*render" --help)
+
+# Bad options: one line, exit 2, before the scene is read.
+sphbasis_render_bad(unknown_representation "--representations: unknown representation 'sh9'; expected 'all' or a list of: irradiance-sh9 irradiance-sh9-windowed ao bent prt-vertex prt-texel lightmap-sh4 .* volume specular-toksvig specular-aliased$"
+                    ${_rscenes}/tiny_sun.json --representations ao,sh9)
+sphbasis_render_bad(representation_typo "--representations: unknown representation 'prt-vertx' \\(did you mean 'prt-vertex'\\?\\)"
+                    ${_rscenes}/tiny_sun.json --representations prt-vertx)
+sphbasis_render_bad(representation_twice "--representations: 'ao' given twice" ${_rscenes}/tiny_sun.json --representations ao,ao)
+sphbasis_render_bad(representation_empty "--representations: expected 'all' or a list" ${_rscenes}/tiny_sun.json --representations ao,)
+sphbasis_render_bad(spp_and_noise "give either --spp or --noise, not both" ${_rscenes}/tiny_sun.json --spp 4 --noise 0.1)
+sphbasis_render_bad(noise_range "--noise: expected a relative noise in \\(0, 1\\), got 1.5" ${_rscenes}/tiny_sun.json --noise 1.5)
+sphbasis_render_bad(noise_malformed "--noise: expected a finite number, got 'abc'" ${_rscenes}/tiny_sun.json --noise abc)
+sphbasis_render_bad(spp_zero "--spp: expected 1 <= N <= 1048576, got 0" ${_rscenes}/tiny_sun.json --spp 0)
+sphbasis_render_bad(exposure "--exposure: expected a positive number or auto" ${_rscenes}/tiny_sun.json --exposure -1)
+sphbasis_render_bad(tonemap "--tonemap: unknown operator 'filmic' \\(expected aces, reinhard or clamp\\)" ${_rscenes}/tiny_sun.json --tonemap filmic)
+sphbasis_render_bad(rotate_count "--rotate-lighting-deg: expected x,y,z" ${_rscenes}/tiny_sun.json --rotate-lighting-deg 0,90)
+sphbasis_render_bad(noise_limit "--noise-limit: expected a positive fraction, got 0" ${_rscenes}/tiny_sun.json --noise-limit 0)
+# Bad scenes: one line naming the file and the place.
+sphbasis_render_bad(missing_scene "[^ ]*no_such_scene.json: cannot open the scene file" ${_rscenes}/no_such_scene.json)
+sphbasis_render_bad(no_camera "[^ ]*no_camera.json: no \"camera\": the renderer needs one" ${_rscenes}/no_camera.json)
+sphbasis_render_bad(camera_width "[^ ]*bad_width.json: camera.width: expected an integer in \\[1, 16384\\], got 0" ${_rscenes}/bad_width.json)
+sphbasis_render_bad(camera_up "[^ ]*camera_up_parallel.json: camera.up: expected a direction not parallel to the view direction" ${_rscenes}/camera_up_parallel.json)
+sphbasis_render_bad(camera_points "[^ ]*camera_same_points.json: camera: expected look_at different from position" ${_rscenes}/camera_same_points.json)
+sphbasis_render_bad(scene_tonemap "[^ ]*bad_tonemap.json: render.tonemap: unknown tone-mapping operator 'filmic'" ${_rscenes}/bad_tonemap.json)
+sphbasis_render_bad(scene_bounces "[^ ]*bad_bounces.json: render.bounces: expected an integer in \\[-1, 64\\], got -2" ${_rscenes}/bad_bounces.json)
+sphbasis_render_bad(scene_exposure "[^ ]*bad_exposure.json: render.exposure: expected a positive number or \"auto\", got 'bright'" ${_rscenes}/bad_exposure.json)
+sphbasis_render_bad(scene_spp_noise "[^ ]*spp_and_noise.json: render: expected at most one of \"spp\" and \"noise\"" ${_rscenes}/spp_and_noise.json)
+sphbasis_render_bad(scene_typo "[^ ]*render_typo.json: render: unknown key 'bounce' \\(did you mean 'bounces'\\?\\)" ${_rscenes}/render_typo.json)
+sphbasis_render_bad(shininess "[^ ]*bad_shininess.json: meshes\\[0\\].shininess: expected a Blinn-Phong exponent in \\[0, 1e6\\]" ${_rscenes}/bad_shininess.json)
+sphbasis_render_bad(specular "[^ ]*bad_specular.json: meshes\\[0\\].specular\\[0\\]: expected a value in \\[0, 1\\], got 2" ${_rscenes}/bad_specular.json)
+# Only the effects a scene calls for: asking for the specular comparison of a scene without a
+# shiny material is an error (with "all" it is skipped and the plan says so).
+sphbasis_render_bad(specular_without_shininess "--representations: specular-toksvig needs a shiny material and a directional light, but in this scene no material declares a \"shininess\""
+                    ${_rscenes}/tiny_sun.json --representations ao,specular-toksvig)
+sphbasis_render_bad(out_unwritable "cannot create output directory '/dev/null/x'" ${_rscenes}/tiny_sun.json --out /dev/null/x)
+# Bad input writes nothing: no output directory is created.
+sphbasis_cli_script(render_bad_input_writes_nothing "nothing-written-ok"
+  "rm -rf render_nothing && ! \"${_render}\" render ${_rscenes}/no_camera.json --out render_nothing 2>/dev/null && ! \"${_render}\" render ${_rscenes}/tiny_sun.json --representations nope --out render_nothing 2>/dev/null && ! test -e render_nothing && echo nothing-written-ok")
+
+# --- End-to-end runs (label "render") ---------------------------------------------------------
+
+# White furnace: a white convex sphere under a constant unit environment, no bounces needed:
+# the reference is 1 at every pixel (zero variance, every pixel judged), and so are
+# irradiance-sh9 (exact for a constant environment) and prt-vertex (analytic: nothing occludes).
+# No bounce rays (bounces 0), no normal-map or specular work.
+sphbasis_render_test(furnace "render-report-ok"
+  "rm -rf render_furnace && \"${_render}\" render ${_rscenes}/tiny_sphere.json --representations irradiance-sh9,prt-vertex --rays 64 --out render_furnace && python3 ${_check_report} render_furnace rows=2 judged_min=0.99 max_rel_mse=irradiance-sh9:1e-4 max_rel_mse=prt-vertex:1e-4 counter=bounce_rays:0 counter=normal_map_lookups:0 counter=specular_evaluations:0 effect!~specular effect!~normal")
+# The plan is printed on stderr before the work, with the reference's effects and the bakes.
+sphbasis_render_test(plan_printed "plan for [^\n]*tiny_sun.json \\(32x24\\):.*reference: path tracer, bounces 1.*bake 1: "
+  "rm -rf render_plan && \"${_render}\" render ${_rscenes}/tiny_sun.json --representations ao,prt-vertex --rays 16 --out render_plan 2>&1 >/dev/null")
+# The bake cache: a second run bakes nothing; a rotated environment re-bakes nothing for PRT.
+sphbasis_render_test(cache_reuse "render-report-ok\nrender-report-ok\nrender-report-ok"
+  "rm -rf render_cache && \"${_render}\" render ${_rscenes}/tiny_sun.json --representations prt-vertex,ao --rays 16 --out render_cache 2>/dev/null && python3 ${_check_report} render_cache bakes_loaded=0 && \"${_render}\" render ${_rscenes}/tiny_sun.json --representations prt-vertex,ao --rays 16 --out render_cache 2>/dev/null && python3 ${_check_report} render_cache bakes_run=0 && \"${_render}\" render ${_rscenes}/tiny_sun.json --representations prt-vertex --rays 16 --rotate-lighting-deg 0,0,90 --out render_cache 2>/dev/null && python3 ${_check_report} render_cache bakes_run=0 plan~lighting")
+# A corrupt cache file is re-baked with a warning, not an error.
+sphbasis_render_test(cache_corrupt "warning: [^\n]*unreadable cache file.*render-report-ok"
+  "rm -rf render_corrupt && \"${_render}\" render ${_rscenes}/tiny_sun.json --representations prt-vertex --rays 16 --out render_corrupt 2>/dev/null && for f in render_corrupt/cache/*.bin; do printf 'garbage' > $f; done && \"${_render}\" render ${_rscenes}/tiny_sun.json --representations prt-vertex --rays 16 --out render_corrupt 2>&1 >/dev/null | grep warning; python3 ${_check_report} render_corrupt bakes_loaded=0")
+# --no-cache keeps no cache directory.
+sphbasis_render_test(no_cache "no-cache-ok"
+  "rm -rf render_nocache && \"${_render}\" render ${_rscenes}/tiny_sun.json --representations ao --rays 16 --no-cache --out render_nocache 2>/dev/null && ! test -e render_nocache/cache && echo no-cache-ok")
+# "all" on a scene without a shiny material: the specular comparison is skipped (and said so).
+sphbasis_render_test(all_without_specular "render-report-ok"
+  "rm -rf render_all && \"${_render}\" render ${_rscenes}/tiny_sun.json --rays 16 --lightmap-size 8 --out render_all 2>/dev/null && python3 ${_check_report} render_all rows=15 plan~skipped effect!~specular")
+# The specular comparison on a bumpy normal map under minification: Toksvig is closer to the
+# supersampled reference than the aliased lobe.
+sphbasis_render_test(specular_toksvig "render-report-ok"
+  "rm -rf render_spec && \"${_render}\" render ${_rscenes}/tiny_shiny.json --representations specular-toksvig,specular-aliased --out render_spec 2>/dev/null && test -s render_spec/specular_reference.png && python3 ${_check_report} render_spec rows=2 less=specular-toksvig:specular-aliased")
+# Deterministic whatever the thread count: the reference's EXR is byte-identical.
+sphbasis_render_test(threads_deterministic "deterministic-ok"
+  "rm -rf render_t1 render_t2 && \"${_render}\" render ${_rscenes}/tiny_sun.json --representations irradiance-sh9 --threads 1 --out render_t1 2>/dev/null && \"${_render}\" render ${_rscenes}/tiny_sun.json --representations irradiance-sh9 --threads 2 --out render_t2 2>/dev/null && cmp render_t1/reference.exr render_t2/reference.exr && cmp render_t1/irradiance-sh9.exr render_t2/irradiance-sh9.exr && echo deterministic-ok")
+# All or none: a failure during the run (the cache directory is a file, so storing a bake
+# fails) leaves no image and no report.
+sphbasis_render_test(all_or_none "all-or-none-ok"
+  "rm -rf render_aon && mkdir render_aon && : > render_aon/cache && ! \"${_render}\" render ${_rscenes}/tiny_sun.json --representations ao --rays 16 --out render_aon 2>/dev/null && test -z \"$(ls render_aon | grep -v '^cache$')\" && echo all-or-none-ok")

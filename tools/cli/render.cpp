@@ -1,0 +1,691 @@
+// sphbasis CLI: `sphbasis render SCENE.json [options]`
+//
+// Renders a scene (docs/scene-format.md) with the ground truth, render::PathTracer (the
+// effects the scene enables and nothing else), and with each requested baked representation
+// (render::Representations: irradiance-sh9, ao, bent, prt-*, lightmap-*, volume, specular-*),
+// and writes the comparison into --out DIR:
+//   reference.exr (linear RGB), reference.png (tone-mapped), reference_stderr.exr (the per-pixel
+//   standard error of the reference, RGB); for each representation NAME.exr, NAME.png and
+//   NAME_error.png (its relative error against the reference in false colour: render::
+//   error_image and false_colour); specular_reference.{exr,png} when a specular representation
+//   runs (the specular ones are compared with render::render_specular_reference, not with the
+//   path tracer); with --aovs the reference's first-hit aov_{normal,albedo,position}.exr;
+//   report.json, report.md and report.html (support/report.hpp). All of them are
+//   written all or none (support/output_file.hpp): a failed run leaves the directory as it was.
+// Bakes are kept in DIR/cache/<key>.bin (support/bake_cache.hpp) unless --no-cache.
+//
+// Before any work the plan is printed on stderr (and recorded in report.json): the path
+// tracer's effects, the bakes each representation reads (with their cache keys), the passes
+// skipped and why. The scene's "render" object gives the defaults of --spp/--noise, --exposure
+// and --tonemap, and the path tracer's bounce count.
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <memory>
+#include <set>
+#include <sphbasis/render/camera.hpp>
+#include <sphbasis/render/image.hpp>
+#include <sphbasis/render/path_tracer.hpp>
+#include <sphbasis/render/representation.hpp>
+#include <sphbasis/render/specular.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../support/bake_cache.hpp"
+#include "../support/exr.hpp"
+#include "../support/json.hpp"
+#include "../support/output_file.hpp"
+#include "../support/png.hpp"
+#include "../support/progress.hpp"
+#include "../support/report.hpp"
+#include "../support/scene_file.hpp"
+#include "cli.hpp"
+
+namespace sphbasis::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+struct RenderOptions {
+    std::string scene, representations = "all", out = ".", exposure, tonemap, rotate, noise;
+    long long spp = 0, max_spp = 4096, width = 0, height = 0, threads = 0, seed = 0, rays = 256,
+              lightmap_size = 128, prt_bands = 3, specular_ss = 4;
+    std::string noise_limit_text;
+    bool no_cache = false, aovs = false;
+    CLI::Option *spp_opt = nullptr, *noise_opt = nullptr, *width_opt = nullptr,
+                *height_opt = nullptr, *exposure_opt = nullptr, *tonemap_opt = nullptr,
+                *rotate_opt = nullptr;
+};
+
+bool is_specular(const std::string& name) { return name.rfind("specular-", 0) == 0; }
+/// The representations that read the distant lighting's SH at render time (and so follow
+/// RepresentationSettings::lighting_rotation).
+bool follows_rotation(const std::string& name) {
+    return name.rfind("irradiance-sh9", 0) == 0 || name == "ao" || name == "bent" ||
+           name.rfind("prt-", 0) == 0;
+}
+
+/// "all" or a comma-separated list of render::representation_names(), in the order given.
+std::vector<std::string> parse_representations(const std::string& s) {
+    const std::vector<std::string>& valid = render::representation_names();
+    if (s == "all") return valid;
+    std::vector<std::string> out;
+    std::stringstream in(s);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        if (std::find(valid.begin(), valid.end(), item) == valid.end()) {
+            std::string msg = "--representations: unknown representation '" + item + "'";
+            const std::string near = closest_key(item, valid);
+            if (!near.empty()) msg += " (did you mean '" + near + "'?)";
+            msg += "; expected 'all' or a list of:";
+            for (const std::string& v : valid) msg += " " + v;
+            throw UsageError(msg);
+        }
+        if (std::find(out.begin(), out.end(), item) != out.end())
+            throw UsageError("--representations: '" + item + "' given twice");
+        out.push_back(item);
+    }
+    if (out.empty() || s.back() == ',')
+        throw UsageError("--representations: expected 'all' or a list such as irradiance-sh9,ao");
+    return out;
+}
+
+Mat3<double> rotation_xyz_deg(const std::vector<double>& deg) {
+    // R = Rz(z) Ry(y) Rx(x), as the scene file's "rotate_deg" (docs/scene-format.md).
+    const double k = 3.14159265358979323846 / 180;
+    const double cx = std::cos(deg[0] * k), sx = std::sin(deg[0] * k);
+    const double cy = std::cos(deg[1] * k), sy = std::sin(deg[1] * k);
+    const double cz = std::cos(deg[2] * k), sz = std::sin(deg[2] * k);
+    const Mat3<double> rx{1, 0, 0, 0, cx, -sx, 0, sx, cx}, ry{cy, 0, sy, 0, 1, 0, -sy, 0, cy},
+        rz{cz, -sz, 0, sz, cz, 0, 0, 0, 1};
+    auto mul = [](const Mat3<double>& a, const Mat3<double>& b) {
+        Mat3<double> c{};
+        for (std::size_t i = 0; i < 3; ++i)
+            for (std::size_t j = 0; j < 3; ++j)
+                for (std::size_t l = 0; l < 3; ++l) c[3 * i + j] += a[3 * i + l] * b[3 * l + j];
+        return c;
+    };
+    return mul(rz, mul(ry, rx));
+}
+
+vec3<double> rotated(const Mat3<double>& r, const vec3<double>& v) {
+    return {r[0] * v.x + r[1] * v.y + r[2] * v.z, r[3] * v.x + r[4] * v.y + r[5] * v.z,
+            r[6] * v.x + r[7] * v.y + r[8] * v.z};
+}
+
+std::string quantity_text(unsigned q) {
+    static const std::pair<const char*, unsigned> names[] = {
+        {"ao", render::Quantity::ao},
+        {"bent", render::Quantity::bent},
+        {"visibility", render::Quantity::visibility},
+        {"transfer", render::Quantity::transfer},
+        {"irradiance", render::Quantity::irradiance},
+        {"radiance", render::Quantity::radiance}};
+    std::string s;
+    for (const auto& [n, bit] : names)
+        if (q & bit) s += (s.empty() ? "" : ",") + std::string(n);
+    return s;
+}
+
+std::string where_text(render::BakeRequest::Where w) {
+    switch (w) {
+        case render::BakeRequest::Where::vertex:
+            return "vertex";
+        case render::BakeRequest::Where::texel:
+            return "texel";
+        case render::BakeRequest::Where::probes:
+            return "probes";
+    }
+    return "?";
+}
+
+std::string request_details(const render::BakeRequest& r) {
+    const render::BakeSettings& s = r.settings;
+    std::string d;
+    if (s.quantities &
+        (render::Quantity::visibility | render::Quantity::transfer | render::Quantity::radiance))
+        d += "bands " + std::to_string(s.bands) + ", ";
+    if (s.quantities & render::Quantity::irradiance)
+        d += "basis " + s.basis + " (" + std::to_string(s.coeffs) + "), ";
+    d += "rays " + std::to_string(s.rays) + ", bounces " + std::to_string(s.bounces) + ", seed " +
+         std::to_string(s.seed);
+    if (r.where == render::BakeRequest::Where::texel)
+        d +=
+            ", lightmap " + std::to_string(r.lightmap_size) + "x" + std::to_string(r.lightmap_size);
+    return d;
+}
+
+/// A progress bar fed with (done, total) pairs from any thread (the library's callbacks), in
+/// thousandths of the total so that a total that grows (progressive passes) still ends at 100%.
+class FractionBar {
+  public:
+    explicit FractionBar(const std::string& label) : bar_(label, 1000) {}
+    void operator()(std::uint64_t done, std::uint64_t total) {
+        if (total == 0) return;
+        const long long now =
+            static_cast<long long>(std::min<double>(1000, 1000.0 * double(done) / double(total)));
+        long long prev = shown_.load();
+        while (now > prev && !shown_.compare_exchange_weak(prev, now)) {
+        }
+        if (now > prev) bar_.update(now - prev);
+    }
+    void done() { bar_.done(); }
+
+  private:
+    Progress bar_;
+    std::atomic<long long> shown_{0};
+};
+
+/// The bytes of an OpenEXR file of `img` (float RGB, or Y for one channel): written to a
+/// staging name in `dir` by write_exr_channels (which writes only files), read back and
+/// removed, so that the EXR joins the other outputs in one all-or-none commit.
+std::string exr_bytes(const std::string& dir, const std::string& name, const render::Image& img) {
+    std::vector<std::string> channels;
+    std::vector<float> values;
+    if (img.channels == 1) {
+        channels = {"Y"};
+        values = img.data;
+    } else {
+        channels = {"R", "G", "B"};
+        values.reserve(std::size_t(img.width) * std::size_t(img.height) * 3);
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x) {
+                const float* p = img.at(x, y);
+                values.insert(values.end(), {p[0], p[1], p[2]});
+            }
+    }
+    const std::string stage = temporary_name_for(dir + "/" + name);
+    try {
+        write_exr_channels(stage, img.width, img.height, channels, values);
+        std::ifstream in(stage, std::ios::binary);
+        std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (!in.good() && !in.eof()) throw std::runtime_error("cannot read back '" + stage + "'");
+        discard_temporary(stage);
+        return bytes;
+    } catch (...) {
+        discard_temporary(stage);
+        throw;
+    }
+}
+
+std::string png_bytes(const std::vector<std::uint8_t>& rgb, int w, int h) {
+    return encode_png(rgb, w, h, 3);
+}
+
+std::string join(const std::string& dir, const std::string& name) {
+    return dir.empty() || dir == "." ? name : dir + "/" + name;
+}
+
+void ensure_dir(const std::string& dir) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !std::filesystem::is_directory(dir))
+        throw std::runtime_error("cannot create output directory '" + dir + "'" +
+                                 (ec ? ": " + ec.message() : std::string()));
+}
+
+std::string scene_summary(const SceneFile& s) {
+    std::size_t tris = 0, normal_maps = 0, shiny = 0;
+    for (const SceneMesh& m : s.meshes) {
+        tris += m.mesh.triangle_count();
+        if (m.mesh.normal_map.texels != nullptr) ++normal_maps;
+        if (m.mesh.shininess > 0) ++shiny;
+    }
+    std::string env = "none";
+    if (s.environment.kind == render::Environment::Kind::constant) env = "constant";
+    if (s.environment.kind == render::Environment::Kind::latlong)
+        env = std::to_string(s.environment.width) + "x" + std::to_string(s.environment.height) +
+              " lat-long";
+    return std::to_string(s.meshes.size()) + " meshes, " + std::to_string(tris) +
+           " triangles, normal maps on " + std::to_string(normal_maps) + ", shiny materials on " +
+           std::to_string(shiny) + ", environment " + env + ", " + std::to_string(s.lights.size()) +
+           " analytic lights";
+}
+
+int run_render(const RenderOptions& o) {
+    const auto t_start = Clock::now();
+    // --- Options that need no scene (bad input fails before anything is read or written).
+    std::vector<std::string> names = parse_representations(o.representations);
+    if (o.spp_opt->count() > 0 && o.noise_opt->count() > 0)
+        throw UsageError("give either --spp or --noise, not both");
+    double noise = 0;
+    if (o.noise_opt->count() > 0) {
+        noise = to_real(o.noise, "--noise");
+        if (!(noise > 0 && noise < 1))
+            throw UsageError("--noise: expected a relative noise in (0, 1), got " + o.noise);
+    }
+    bool have_exposure = false, auto_exp = true;
+    double exposure = 1;
+    if (o.exposure_opt->count() > 0) {
+        have_exposure = true;
+        if (o.exposure != "auto") {
+            exposure = to_real(o.exposure, "--exposure");
+            if (!(exposure > 0)) throw UsageError("--exposure: expected a positive number or auto");
+            auto_exp = false;
+        }
+    }
+    const std::vector<std::string> ops = {"aces", "reinhard", "clamp"};  // render/image.hpp
+    if (o.tonemap_opt->count() > 0 && std::find(ops.begin(), ops.end(), o.tonemap) == ops.end())
+        throw UsageError("--tonemap: unknown operator '" + o.tonemap +
+                         "' (expected aces, reinhard or clamp)");
+    double noise_limit = 0.05;
+    if (!o.noise_limit_text.empty()) {
+        noise_limit = to_real(o.noise_limit_text, "--noise-limit");
+        if (!(noise_limit > 0))
+            throw UsageError("--noise-limit: expected a positive fraction, got " +
+                             o.noise_limit_text);
+    }
+    std::vector<double> rot_deg;
+    if (o.rotate_opt->count() > 0) {
+        rot_deg = to_reals(o.rotate, "--rotate-lighting-deg");
+        if (rot_deg.size() != 3)
+            throw UsageError("--rotate-lighting-deg: expected x,y,z (three angles in degrees)");
+    }
+
+    // --- The scene.
+    const SceneFile scene = load_scene(o.scene);
+    if (!scene.camera.present)
+        throw std::runtime_error(o.scene +
+                                 ": no \"camera\": the renderer needs one (docs/scene-format.md)");
+    render::Camera camera;
+    camera.position = scene.camera.position;
+    camera.look_at = scene.camera.look_at;
+    camera.up = scene.camera.up;
+    camera.fov_deg = scene.camera.fov_deg;
+    camera.width = o.width_opt->count() > 0 ? int(o.width) : scene.camera.width;
+    camera.height = o.height_opt->count() > 0 ? int(o.height) : scene.camera.height;
+    try {
+        render::validate(camera);
+    } catch (const std::invalid_argument& e) {
+        throw std::runtime_error(o.scene + ": camera: " + e.what());
+    }
+    for (std::size_t k = 0; k < scene.meshes.size(); ++k)
+        if (scene.meshes[k].dropped_triangles > 0)
+            std::fprintf(stderr,
+                         "sphbasis render: %s: meshes[%zu] ('%s'): %zu degenerate triangles "
+                         "dropped\n",
+                         scene.path.c_str(), k, scene.meshes[k].name.c_str(),
+                         scene.meshes[k].dropped_triangles);
+
+    Report rep;
+    rep.scene = scene.path;
+    rep.width = camera.width;
+    rep.height = camera.height;
+    rep.noise_limit = noise_limit;
+    rep.lighting_rotation_deg = rot_deg;
+    rep.bounces = scene.render.bounces;
+    rep.tonemap = o.tonemap_opt->count() > 0 ? o.tonemap : scene.render.tonemap;
+    if (!have_exposure) {
+        auto_exp = scene.render.auto_exposure;
+        exposure = scene.render.exposure;
+    }
+    rep.auto_exposure = auto_exp;
+
+    // Only the effects the scene calls for: the specular comparison needs a shiny material
+    // and a directional light (specular.hpp shades only those).
+    bool any_shiny = false, any_directional = false;
+    for (const SceneMesh& m : scene.meshes) any_shiny = any_shiny || m.mesh.shininess > 0;
+    for (const render::Light& l : scene.lights)
+        any_directional = any_directional || l.type == render::Light::Type::directional;
+    rep.plan.push_back({"scene", scene_summary(scene)});
+    if (!any_shiny || !any_directional) {
+        const std::string why = !any_shiny ? "no material declares a \"shininess\""
+                                           : "there is no directional light (the specular "
+                                             "comparison shades directional lights only)";
+        std::vector<std::string> dropped;
+        for (const std::string& n : names)
+            if (is_specular(n)) dropped.push_back(n);
+        if (!dropped.empty()) {
+            if (o.representations != "all")
+                throw UsageError("--representations: " + dropped.front() +
+                                 " needs a shiny material and a directional light, but in " +
+                                 "this scene " + why);
+            names.erase(std::remove_if(names.begin(), names.end(), is_specular), names.end());
+            rep.plan.push_back({"specular pass", "skipped: " + why});
+        }
+    }
+    if (names.empty()) throw UsageError("--representations: nothing to render");
+
+    // --- The output directory, checked before any work.
+    ensure_dir(o.out);
+    check_writable(join(o.out, "report.json"));
+
+    // --- Settings.
+    render::TraceSettings ts;
+    ts.bounces = scene.render.bounces;
+    ts.seed = static_cast<std::uint64_t>(o.seed);
+    ts.aovs = o.aovs;
+    if (o.spp_opt->count() > 0 || (noise == 0 && scene.render.spp > 0)) {
+        const int spp = o.spp_opt->count() > 0 ? int(o.spp) : scene.render.spp;
+        ts.spp_min = ts.spp_max = spp;
+        ts.target_noise = 0;
+    } else {
+        ts.target_noise = noise > 0 ? noise : (scene.render.noise > 0 ? scene.render.noise : 0.02);
+        ts.spp_max = int(o.max_spp);
+        ts.spp_min = std::min(16, ts.spp_max);
+    }
+    render::RepresentationSettings rs;
+    rs.rays = int(o.rays);
+    rs.bounces = scene.render.bounces < 0 ? 64 : scene.render.bounces;
+    rs.prt_bands = int(o.prt_bands);
+    rs.lightmap_size = int(o.lightmap_size);
+    rs.seed = static_cast<std::uint64_t>(o.seed);
+    rs.has_probes = scene.has_probes;
+    rs.probes = scene.probes;
+    Mat3<double> R{1, 0, 0, 0, 1, 0, 0, 0, 1};
+    if (!rot_deg.empty()) R = rotation_xyz_deg(rot_deg);
+    rs.lighting_rotation = R;
+
+    std::unique_ptr<tbb::global_control> limit;
+    if (o.threads > 0)
+        limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                      static_cast<std::size_t>(o.threads));
+    rep.threads = tbb::this_task_arena::max_concurrency();
+    if (o.threads > 0) rep.threads = std::min(rep.threads, int(o.threads));
+
+    // --- The plan.
+    const render::SceneDesc desc = scene.scene_desc();
+    const render::Scene rt(desc.meshes);
+    // The ground truth sees the rotated lighting; the bakes keep the scene's (the SH-lit
+    // representations rotate their SH at render time, the others cannot follow).
+    render::Environment env = desc.environment;
+    std::vector<render::Light> lights = desc.lights;
+    if (!rot_deg.empty()) {
+        Mat3<double> er{};
+        for (std::size_t i = 0; i < 3; ++i)
+            for (std::size_t j = 0; j < 3; ++j)
+                for (std::size_t l = 0; l < 3; ++l)
+                    er[3 * i + j] += R[3 * i + l] * env.rotation[3 * l + j];
+        env.rotation = er;
+        for (render::Light& l : lights) {
+            l.direction = rotated(R, l.direction);
+            l.position = rotated(R, l.position);
+        }
+        rep.plan.push_back(
+            {"lighting rotation",
+             "the reference's lighting rotated; irradiance-sh9*, ao, bent and prt-* rotate their "
+             "SH at render time (no bake); lightmaps, volume and specular keep the baked "
+             "lighting"});
+    }
+    render::PathTracer tracer(rt, env, lights, ts);
+    rep.effects = tracer.effects();
+    render::Representations reps(desc, rt, rs, names);
+    const std::vector<render::BakeRequest> requests = reps.bakes();
+    std::vector<std::uint64_t> keys;
+    for (const render::BakeRequest& r : requests) {
+        PlannedBake b;
+        b.where = where_text(r.where);
+        if (r.where != render::BakeRequest::Where::probes && r.mesh < scene.meshes.size())
+            b.mesh = scene.meshes[r.mesh].name;
+        b.quantities = quantity_text(r.settings.quantities);
+        b.details = request_details(r);
+        keys.push_back(render::bake_key(desc, r));
+        b.key = hex_key(keys.back());
+        b.lighting_dependent = r.lighting_dependent;
+        rep.bakes.push_back(b);
+    }
+    // Which representation reads which bake: each one's own plan, matched by key.
+    if (!requests.empty())
+        for (const std::string& n : names) {
+            const render::Representations one(desc, rt, rs, {n});
+            for (const render::BakeRequest& r : one.bakes()) {
+                const std::uint64_t k = render::bake_key(desc, r);
+                for (std::size_t i = 0; i < keys.size(); ++i)
+                    if (keys[i] == k) rep.bakes[i].read_by.push_back(n);
+            }
+        }
+    const bool want_specular = std::any_of(names.begin(), names.end(),
+                                           [](const std::string& n) { return is_specular(n); });
+    rep.specular_reference = want_specular;
+    rep.specular_ss = int(o.specular_ss);
+    {
+        std::string list;
+        for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+        rep.plan.push_back({"representations", list});
+    }
+    std::fputs(plan_text(rep).c_str(), stderr);
+
+    // --- Bakes.
+    std::unique_ptr<DiskBakeCache> cache;
+    if (!o.no_cache) cache = std::make_unique<DiskBakeCache>(join(o.out, "cache"));
+    std::vector<bool> cached_before(keys.size(), false);
+    for (std::size_t i = 0; i < keys.size() && cache; ++i) {
+        std::error_code ec;
+        cached_before[i] = std::filesystem::is_regular_file(cache->path_of(keys[i]), ec);
+    }
+    {
+        FractionBar bar("bake");
+        reps.prepare(cache.get(), [&bar](std::uint64_t d, std::uint64_t t) { bar(d, t); });
+        bar.done();
+    }
+    rep.bakes_run = reps.bakes_run();
+    rep.bakes_loaded = reps.bakes_loaded();
+    if (cache) rep.warnings = cache->warnings();
+    for (std::size_t i = 0; i < rep.bakes.size(); ++i) {
+        bool corrupt = false;
+        for (const std::string& w : rep.warnings)
+            corrupt = corrupt || w.rfind(cache->path_of(keys[i]), 0) == 0;
+        rep.bakes[i].status = cached_before[i] && !corrupt ? "from cache" : "baked";
+    }
+
+    // --- The reference.
+    render::TraceResult ref;
+    {
+        FractionBar bar("reference");
+        ref = tracer.render(camera, [&bar](std::uint64_t d, std::uint64_t t) { bar(d, t); });
+        bar.done();
+    }
+    rep.spp = ref.spp;
+    rep.relative_noise = ref.relative_noise;
+    rep.reference_seconds = ref.seconds;
+    const render::TraceCounters& c = ref.counters;
+    rep.camera_rays = c.camera_rays;
+    rep.shadow_rays = c.shadow_rays;
+    rep.bounce_rays = c.bounce_rays;
+    rep.normal_map_lookups = c.normal_map_lookups;
+    rep.specular_evaluations = c.specular_evaluations;
+    rep.environment_samples = c.environment_samples;
+    rep.light_samples = c.light_samples;
+    rep.rays_per_second =
+        ref.seconds > 0 ? double(c.camera_rays + c.shadow_rays + c.bounce_rays) / ref.seconds : 0;
+    if (auto_exp) exposure = render::auto_exposure(ref.color);
+    rep.exposure = exposure;
+    const render::Image* mask = ref.coverage.data.empty() ? nullptr : &ref.coverage;
+
+    OutputFiles files;
+    auto add_image = [&](const std::string& base, const render::Image& img) {
+        files.add(join(o.out, base + ".exr"), exr_bytes(o.out, base + ".exr", img));
+        files.add(join(o.out, base + ".png"),
+                  png_bytes(render::to_srgb8(img, exposure, rep.tonemap), img.width, img.height));
+    };
+    add_image("reference", ref.color);
+    files.add(join(o.out, "reference_stderr.exr"),
+              exr_bytes(o.out, "reference_stderr.exr", ref.stderr_));
+    if (o.aovs)
+        for (const auto& [name, img] :
+             {std::pair<const char*, const render::Image*>{"normal", &ref.normal},
+              {"albedo", &ref.albedo},
+              {"position", &ref.position}})
+            if (!img->data.empty())
+                files.add(join(o.out, std::string("aov_") + name + ".exr"),
+                          exr_bytes(o.out, std::string("aov_") + name + ".exr", *img));
+    rep.reference_image = "reference.png";
+    rep.reference_exr = "reference.exr";
+    rep.reference_stderr_exr = "reference_stderr.exr";
+
+    render::Image spec_ref;
+    if (want_specular) {
+        const auto t0 = Clock::now();
+        spec_ref = render::render_specular_reference(desc, rt, camera, int(o.specular_ss));
+        rep.specular_reference_seconds = seconds_since(t0);
+        add_image("specular_reference", spec_ref);
+        rep.specular_reference_image = "specular_reference.png";
+    }
+
+    // --- Each representation: the image with all threads, its time with one thread.
+    tbb::task_arena one_thread(1);
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        const std::string& n = names[i];
+        std::fprintf(stderr, "sphbasis render: %s\n", n.c_str());
+        ReportRow row;
+        row.name = n;
+        // The image (which also warms up whatever the representation builds lazily), then
+        // the timed frames: one on one thread, one on all threads.
+        const render::Image img = reps.render(i, camera);
+        one_thread.execute([&] {
+            const auto t1 = Clock::now();
+            (void)reps.render(i, camera);
+            row.render_ms_1 = 1e3 * seconds_since(t1);
+        });
+        const auto t0 = Clock::now();
+        (void)reps.render(i, camera);
+        row.render_ms_all = 1e3 * seconds_since(t0);
+        const bool spec = is_specular(n);
+        const render::Image& against = spec ? spec_ref : ref.color;
+        const render::Image* se = spec ? nullptr : &ref.stderr_;
+        row.against = spec ? "specular reference" : "path tracer";
+        const render::ImageError e = render::compare(img, against, se, noise_limit, mask);
+        row.rmse = e.rmse;
+        row.rel_mse = e.rel_mse;
+        row.smape = e.smape;
+        row.judged = e.judged;
+        row.total = e.total;
+        const render::RepresentationStats st = reps.stats(i);
+        row.bake_seconds = st.bake_seconds;
+        row.bake_rays = st.bake_rays;
+        row.cached = st.cached;
+        row.element = st.element;
+        row.bytes_per_element = st.bytes_per_element;
+        row.elements = st.elements;
+        row.cannot_show = st.cannot_show;
+        if (!rot_deg.empty() && !follows_rotation(n) && !spec)
+            row.cannot_show += std::string(row.cannot_show.empty() ? "" : "; ") +
+                               "a rotated light (baked lighting)";
+        add_image(n, img);
+        const render::Image err = render::error_image(img, against, se, noise_limit, mask);
+        files.add(join(o.out, n + "_error.png"),
+                  png_bytes(render::false_colour(err), err.width, err.height));
+        row.image = n + ".png";
+        row.error_image = n + "_error.png";
+        row.exr = n + ".exr";
+        rep.rows.push_back(row);
+    }
+    // --- The reports, then every file at once.
+    {
+        std::ostringstream cmd;
+        cmd << "sphbasis render " << o.scene << " --representations " << o.representations;
+        if (ts.target_noise > 0)
+            cmd << " --noise " << ts.target_noise << " --max-spp " << ts.spp_max;
+        else
+            cmd << " --spp " << ts.spp_max;
+        cmd << " --width " << camera.width << " --height " << camera.height << " --seed " << o.seed
+            << " --rays " << o.rays;
+        if (!rot_deg.empty())
+            cmd << " --rotate-lighting-deg " << rot_deg[0] << "," << rot_deg[1] << ","
+                << rot_deg[2];
+        rep.command = cmd.str();
+    }
+    rep.total_seconds = seconds_since(t_start);
+    files.add(
+        join(o.out, "report.json"),
+        dump_json(report_json(rep), {{"plan", 2}, {"bakes", 2}, {"representations", 2}}) + "\n");
+    files.add(join(o.out, "report.md"), report_markdown(rep));
+    files.add(join(o.out, "report.html"), report_html(rep));
+    files.commit();
+    std::fprintf(stderr,
+                 "sphbasis render: %zu representations, reference %d spp (noise %.3g) in %.3g s, "
+                 "%zu bakes run, %zu from the cache; wrote %s\n",
+                 names.size(), rep.spp, rep.relative_noise, rep.reference_seconds, rep.bakes_run,
+                 rep.bakes_loaded, join(o.out, "report.html").c_str());
+    return 0;
+}
+
+}  // namespace
+
+Run setup_render(CLI::App& app) {
+    auto o = std::make_shared<RenderOptions>();
+    app.footer(
+        "Render a scene (docs/scene-format.md; it needs a \"camera\") with the ground-truth path\n"
+        "tracer and with each baked representation, and write into DIR: reference.{exr,png},\n"
+        "reference_stderr.exr, NAME.{exr,png} and NAME_error.png per representation, and\n"
+        "report.{json,md,html} (error, bake time, render time, memory, what it cannot show).\n"
+        "Bakes are cached in DIR/cache. The plan is printed on stderr before any work.");
+    app.add_option("scene", o->scene, "the scene file (JSON)")->type_name("SCENE.json")->required();
+    app.add_option("--representations", o->representations,
+                   "'all' or a comma-separated list (irradiance-sh9, ao, prt-vertex, ...)")
+        ->type_name("LIST|all")
+        ->capture_default_str();
+    o->spp_opt =
+        add_integer(app, "--spp", o->spp, 1, 1 << 20,
+                    "reference samples per pixel (fixed; default: the scene's, or --noise)");
+    o->noise_opt =
+        app.add_option("--noise", o->noise,
+                       "reference: sample until this relative standard error (default 0.02)")
+            ->type_name("X");
+    add_integer(app, "--max-spp", o->max_spp, 1, 1 << 20,
+                "with --noise: at most N samples per pixel");
+    o->width_opt =
+        add_integer(app, "--width", o->width, 1, 16384, "image width (default: the scene's)", "W");
+    o->height_opt = add_integer(app, "--height", o->height, 1, 16384,
+                                "image height (default: the scene's)", "H");
+    add_integer(app, "--threads", o->threads, 0, 4096, "threads (0: all)");
+    add_integer(app, "--seed", o->seed, 0, std::numeric_limits<long long>::max(), "random seed",
+                "S");
+    o->exposure_opt =
+        app.add_option("--exposure", o->exposure, "exposure of the PNGs: a factor or auto")
+            ->type_name("X|auto");
+    o->tonemap_opt =
+        app.add_option("--tonemap", o->tonemap, "tone mapping of the PNGs: aces, reinhard, clamp")
+            ->type_name("NAME");
+    add_integer(app, "--rays", o->rays, 1, 1 << 24, "bake rays per point and pass");
+    add_integer(app, "--lightmap-size", o->lightmap_size, 1, 8192, "lightmap texels per side");
+    add_integer(app, "--prt-bands", o->prt_bands, 1, 16, "PRT transfer bands", "B");
+    add_integer(app, "--specular-ss", o->specular_ss, 1, 64,
+                "specular reference: S x S camera rays per pixel", "S");
+    o->rotate_opt = app.add_option("--rotate-lighting-deg", o->rotate,
+                                   "rotate the lighting at render time (x,y,z degrees; no re-bake "
+                                   "for the SH-lit representations)")
+                        ->type_name("X,Y,Z");
+    app.add_option("--noise-limit", o->noise_limit_text,
+                   "judge a pixel where the reference's stderr is at most X of its luminance "
+                   "(default 0.05)")
+        ->type_name("X");
+    app.add_flag("--no-cache", o->no_cache, "bake everything again; keep no bake cache");
+    app.add_flag("--aovs", o->aovs,
+                 "also write the reference's first-hit normal, albedo and position "
+                 "(aov_normal.exr, aov_albedo.exr, aov_position.exr)");
+    add_path(app, "--out", o->out, "output directory (created if missing)")
+        ->type_name("DIR")
+        ->capture_default_str();
+    return [o] {
+        // A run that fails leaves no trace: the output directory it created (still empty, as
+        // every file is written at the end, all at once) is removed again.
+        std::error_code ec;
+        const bool existed = std::filesystem::exists(o->out, ec);
+        try {
+            return run_render(*o);
+        } catch (...) {
+            if (!existed && std::filesystem::is_empty(o->out, ec) && !ec)
+                std::filesystem::remove(o->out, ec);
+            throw;
+        }
+    };
+}
+
+}  // namespace sphbasis::cli
