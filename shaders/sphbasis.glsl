@@ -460,8 +460,8 @@ float sphbasis_clamped_cosine(int l)
 }
 
 /// The H-basis (4 functions) at the unit direction d, as
-/// sphbasis::basis_eval<HBasis>(4, ...): order H1, H2 (y), H3 (z), H4 (x). Below the
-/// horizon the polynomials are returned. Precondition: d unit (z up).
+/// sphbasis::basis_eval<HBasis>(4, ...), in the order H1 (1), H2 (y), H3 (2z - 1), H4 (x).
+/// Below the horizon the polynomials are returned. Precondition: d unit (z up).
 void sphbasis_hbasis4_eval(vec3 d, out float h[4])
 {
     float x = d.x; float y = d.y; float z = d.z;
@@ -473,8 +473,9 @@ void sphbasis_hbasis4_eval(vec3 d, out float h[4])
 }
 
 /// The H-basis (6 functions) at the unit direction d, as
-/// sphbasis::basis_eval<HBasis>(6, ...): order H1, H2 (y), H3 (z), H4 (x), H5 (xy), H6 (x^2 - y^2). Below the
-/// horizon the polynomials are returned. Precondition: d unit (z up).
+/// sphbasis::basis_eval<HBasis>(6, ...), in the order H1 (1), H2 (y), H3 (2z - 1), H4 (x),
+/// H5 (xy), H6 (x^2 - y^2).
+/// Below the horizon the polynomials are returned. Precondition: d unit (z up).
 void sphbasis_hbasis6_eval(vec3 d, out float h[6])
 {
     float x = d.x; float y = d.y; float z = d.z;
@@ -487,9 +488,9 @@ void sphbasis_hbasis6_eval(vec3 d, out float h[6])
     h[5] = 0.772548378 * (x * x - y * y);  // sqrt(15/(2 pi))/2
 }
 
-/// The modified H-basis, H3 = sqrt(3/(2 pi)) (1 - z), (4 functions) at the unit direction d, as
-/// sphbasis::basis_eval<HBasisMod>(4, ...): order H1, H2 (y), H3 (z), H4 (x). Below the
-/// horizon the polynomials are returned. Precondition: d unit (z up).
+/// The modified H-basis (4 functions) at the unit direction d, as
+/// sphbasis::basis_eval<HBasisMod>(4, ...), in the order H1 (1), H2 (y), H3 (1 - z), H4 (x).
+/// Below the horizon the polynomials are returned. Precondition: d unit (z up).
 void sphbasis_hbasis_mod4_eval(vec3 d, out float h[4])
 {
     float x = d.x; float y = d.y; float z = d.z;
@@ -500,9 +501,10 @@ void sphbasis_hbasis_mod4_eval(vec3 d, out float h[4])
     h[3] = c1 * x;
 }
 
-/// The modified H-basis, H3 = sqrt(3/(2 pi)) (1 - z), (6 functions) at the unit direction d, as
-/// sphbasis::basis_eval<HBasisMod>(6, ...): order H1, H2 (y), H3 (z), H4 (x), H5 (xy), H6 (x^2 - y^2). Below the
-/// horizon the polynomials are returned. Precondition: d unit (z up).
+/// The modified H-basis (6 functions) at the unit direction d, as
+/// sphbasis::basis_eval<HBasisMod>(6, ...), in the order H1 (1), H2 (y), H3 (1 - z), H4 (x),
+/// H5 (xy), H6 (x^2 - y^2).
+/// Below the horizon the polynomials are returned. Precondition: d unit (z up).
 void sphbasis_hbasis_mod6_eval(vec3 d, out float h[6])
 {
     float x = d.x; float y = d.y; float z = d.z;
@@ -600,15 +602,23 @@ vec3 sphbasis_hl2_eval_sum(vec3 c[3], vec3 d)
 /// the exit radiance E/pi of a white Lambertian surface: the clamped-cosine convolution a_l
 /// (2.3) followed by the least-squares projection over the upper hemisphere of Ishmukhametov,
 /// "Irradiance Normal Mapping" (thesis), Listing 2.1, with a_l folded into each exact entry.
-/// Listing 2.1 prints the matrix as 0.70711, 1.2247, 1.1859, 0.59293, -1.3693 (x a_l here).
+/// Listing 2.1 prints the matrix as 0.70711, 1.2247, 1.1859, 0.59293, -1.3693 (x a_l here);
+/// its convolution line "SHc[1, 2, 3] = 2.0/3.0 * SHc[2, 3, 4]" is an index slip for
+/// SHc[1, 2, 3] = 2/3 SHc[1, 2, 3].
 void sphbasis_sh_to_hbasis_mod6(vec3 L[9], out vec3 h[6])
 {
-    h[0] = L[0] * 0.707106769 + L[2] * 0.816496611 + L[6] * 0.296463519;  // sqrt(2)/2, sqrt(6)/3, 3*sqrt(10)/32
-    h[1] = L[1] * 0.471404523 + L[5] * 0.14823176;  // sqrt(2)/3, 3*sqrt(10)/64
-    h[2] = L[2] * -0.471404523 + L[6] * -0.342326611;  // -sqrt(2)/3, -sqrt(30)/16
-    h[3] = L[3] * 0.471404523 + L[7] * 0.14823176;  // sqrt(2)/3, 3*sqrt(10)/64
-    h[4] = L[4] * 0.176776692;  // sqrt(2)/8
-    h[5] = L[8] * 0.176776692;  // sqrt(2)/8
+    // sqrt(2)/2, sqrt(6)/3, 3*sqrt(10)/32
+    h[0] = L[0] * 0.707106769 + L[2] * 0.816496611 + L[6] * 0.296463519;
+    // sqrt(2)/3, 3*sqrt(10)/64
+    h[1] = L[1] * 0.471404523 + L[5] * 0.14823176;
+    // -sqrt(2)/3, -sqrt(30)/16
+    h[2] = L[2] * -0.471404523 + L[6] * -0.342326611;
+    // sqrt(2)/3, 3*sqrt(10)/64
+    h[3] = L[3] * 0.471404523 + L[7] * 0.14823176;
+    // sqrt(2)/8
+    h[4] = L[4] * 0.176776692;
+    // sqrt(2)/8
+    h[5] = L[8] * 0.176776692;
 }
 
 /// The modified H-basis expansion of Ishmukhametov, Listing 2.2, at the unit tangent-space
@@ -688,7 +698,8 @@ float sphbasis_toksvig_specular(float na_dot_h, float len, float shininess)
 /// sphbasis::toksvig::specular_from_dots.
 float sphbasis_toksvig_specular_from_dots(float na_dot_h, float na_dot_na, float shininess)
 {
-    return sphbasis_toksvig_specular(na_dot_h, sqrt(sphbasis_toksvig_clamp01(na_dot_na)), shininess);
+    float l = sqrt(sphbasis_toksvig_clamp01(na_dot_na));
+    return sphbasis_toksvig_specular(na_dot_h, l, shininess);
 }
 
 #endif  // SPHBASIS_GLSL

@@ -285,10 +285,12 @@ def shader_hbasis(lang):
             name = "sphbasis_hbasis%s%d_eval" % ("_mod" if mod else "", n)
             cxx = "HBasisMod" if mod else "HBasis"
             w("/// The %s (%d functions) at the unit direction d, as" % (
-                "modified H-basis, H3 = sqrt(3/(2 pi)) (1 - z)," if mod else "H-basis", n))
-            w("/// sphbasis::basis_eval<%s>(%d, ...): order H1, H2 (y), H3 (z), H4 (x)%s. Below the" % (
-                cxx, n, ", H5 (xy), H6 (x^2 - y^2)" if n == 6 else ""))
-            w("/// horizon the polynomials are returned. Precondition: d unit (z up).")
+                "modified H-basis" if mod else "H-basis", n))
+            w("/// sphbasis::basis_eval<%s>(%d, ...), in the order H1 (1), H2 (y), H3 (%s), H4 (x)%s" % (
+                cxx, n, "1 - z" if mod else "2z - 1", "," if n == 6 else "."))
+            if n == 6:
+                w("/// H5 (xy), H6 (x^2 - y^2).")
+            w("/// Below the horizon the polynomials are returned. Precondition: d unit (z up).")
             w("void %s(%s d, out float h[%d])" % (name, vec3, n))
             w("{")
             w("    float x = d.x; float y = d.y; float z = d.z;")
@@ -394,7 +396,9 @@ def shader_listing22(lang):
     w("/// the exit radiance E/pi of a white Lambertian surface: the clamped-cosine convolution a_l")
     w("/// (2.3) followed by the least-squares projection over the upper hemisphere of Ishmukhametov,")
     w("/// \"Irradiance Normal Mapping\" (thesis), Listing 2.1, with a_l folded into each exact entry.")
-    w("/// Listing 2.1 prints the matrix as 0.70711, 1.2247, 1.1859, 0.59293, -1.3693 (x a_l here).")
+    w("/// Listing 2.1 prints the matrix as 0.70711, 1.2247, 1.1859, 0.59293, -1.3693 (x a_l here);")
+    w("/// its convolution line \"SHc[1, 2, 3] = 2.0/3.0 * SHc[2, 3, 4]\" is an index slip for")
+    w("/// SHc[1, 2, 3] = 2/3 SHc[1, 2, 3].")
     w("void sphbasis_sh_to_hbasis_mod6(%s L[9], out %s h[6])" % (vec3, vec3))
     w("{")
     for i, row in enumerate(modh_from_sh()):
@@ -404,7 +408,8 @@ def shader_listing22(lang):
             e = sp.nsimplify(v * clamped_cosine_exact(band[j]))
             terms.append("L[%d] * %s" % (j, flit(e, lang)))
             notes.append(str(e))
-        w("    h[%d] = %s;  // %s" % (i, " + ".join(terms), ", ".join(notes)))
+        w("    // %s" % ", ".join(notes))
+        w("    h[%d] = %s;" % (i, " + ".join(terms)))
     w("}")
     w("")
     c0 = flit_cxx(1 / sp.sqrt(2 * pi), lang, hdr)
@@ -496,7 +501,8 @@ def shader_toksvig(lang):
     w("/// sphbasis::toksvig::specular_from_dots.")
     w("float sphbasis_toksvig_specular_from_dots(float na_dot_h, float na_dot_na, float shininess)")
     w("{")
-    w("    return sphbasis_toksvig_specular(na_dot_h, sqrt(sphbasis_toksvig_clamp01(na_dot_na)), shininess);")
+    w("    float l = sqrt(sphbasis_toksvig_clamp01(na_dot_na));")
+    w("    return sphbasis_toksvig_specular(na_dot_h, l, shininess);")
     w("}")
     return "\n".join(out)
 
