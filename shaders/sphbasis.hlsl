@@ -435,4 +435,270 @@ float3 sphbasis_sh_irradiance(float3 L[9], float3 n)
     return e;
 }
 
+/// The normalised clamped-cosine (Funk-Hecke) factors a_l = Lambda_l / pi of
+/// sphbasis::clamped_cosine(l), l = 0..7: the irradiance of radiance sum c_lm y_lm is
+/// E = pi sum a_l c_lm y_lm (Ramamoorthi and Hanrahan, SIGGRAPH 2001, eq. 8).
+static const float sphbasis_clamped_cosine_a0 = 1.0f;  // 1
+static const float sphbasis_clamped_cosine_a1 = 0.666666687f;  // 2/3
+static const float sphbasis_clamped_cosine_a2 = 0.25f;  // 1/4
+static const float sphbasis_clamped_cosine_a3 = 0.0f;  // 0
+static const float sphbasis_clamped_cosine_a4 = -0.0416666679f;  // -1/24
+static const float sphbasis_clamped_cosine_a5 = 0.0f;  // 0
+static const float sphbasis_clamped_cosine_a6 = 0.015625f;  // 1/64
+static const float sphbasis_clamped_cosine_a7 = 0.0f;  // 0
+
+/// a_l for 0 <= l <= 7 (the bands of sphbasis_sh_eval1..8); 0 outside that range.
+float sphbasis_clamped_cosine(int l)
+{
+    if (l == 0) return sphbasis_clamped_cosine_a0;
+    if (l == 1) return sphbasis_clamped_cosine_a1;
+    if (l == 2) return sphbasis_clamped_cosine_a2;
+    if (l == 4) return sphbasis_clamped_cosine_a4;
+    if (l == 6) return sphbasis_clamped_cosine_a6;
+    return 0.0f;
+}
+
+/// The H-basis (4 functions) at the unit direction d, as
+/// sphbasis::basis_eval<HBasis>(4, ...), in the order H1 (1), H2 (y), H3 (2z - 1), H4 (x).
+/// Below the horizon the polynomials are returned. Precondition: d unit (z up).
+void sphbasis_hbasis4_eval(float3 d, out float h[4])
+{
+    float x = d.x; float y = d.y; float z = d.z;
+    float c1 = 0.690988302f;  // sqrt(3/(2 pi))
+    h[0] = 0.398942292f;  // 1/sqrt(2 pi)
+    h[1] = c1 * y;
+    h[2] = 1.3819766f * z - c1;  // 2 sqrt(3/(2 pi))
+    h[3] = c1 * x;
+}
+
+/// The H-basis (6 functions) at the unit direction d, as
+/// sphbasis::basis_eval<HBasis>(6, ...), in the order H1 (1), H2 (y), H3 (2z - 1), H4 (x),
+/// H5 (xy), H6 (x^2 - y^2).
+/// Below the horizon the polynomials are returned. Precondition: d unit (z up).
+void sphbasis_hbasis6_eval(float3 d, out float h[6])
+{
+    float x = d.x; float y = d.y; float z = d.z;
+    float c1 = 0.690988302f;  // sqrt(3/(2 pi))
+    h[0] = 0.398942292f;  // 1/sqrt(2 pi)
+    h[1] = c1 * y;
+    h[2] = 1.3819766f * z - c1;  // 2 sqrt(3/(2 pi))
+    h[3] = c1 * x;
+    h[4] = 1.54509676f * x * y;  // sqrt(15/(2 pi))
+    h[5] = 0.772548378f * (x * x - y * y);  // sqrt(15/(2 pi))/2
+}
+
+/// The modified H-basis (4 functions) at the unit direction d, as
+/// sphbasis::basis_eval<HBasisMod>(4, ...), in the order H1 (1), H2 (y), H3 (1 - z), H4 (x).
+/// Below the horizon the polynomials are returned. Precondition: d unit (z up).
+void sphbasis_hbasis_mod4_eval(float3 d, out float h[4])
+{
+    float x = d.x; float y = d.y; float z = d.z;
+    float c1 = 0.690988302f;  // sqrt(3/(2 pi))
+    h[0] = 0.398942292f;  // 1/sqrt(2 pi)
+    h[1] = c1 * y;
+    h[2] = c1 - c1 * z;
+    h[3] = c1 * x;
+}
+
+/// The modified H-basis (6 functions) at the unit direction d, as
+/// sphbasis::basis_eval<HBasisMod>(6, ...), in the order H1 (1), H2 (y), H3 (1 - z), H4 (x),
+/// H5 (xy), H6 (x^2 - y^2).
+/// Below the horizon the polynomials are returned. Precondition: d unit (z up).
+void sphbasis_hbasis_mod6_eval(float3 d, out float h[6])
+{
+    float x = d.x; float y = d.y; float z = d.z;
+    float c1 = 0.690988302f;  // sqrt(3/(2 pi))
+    h[0] = 0.398942292f;  // 1/sqrt(2 pi)
+    h[1] = c1 * y;
+    h[2] = c1 - c1 * z;
+    h[3] = c1 * x;
+    h[4] = 1.54509676f * x * y;  // sqrt(15/(2 pi))
+    h[5] = 0.772548378f * (x * x - y * y);  // sqrt(15/(2 pi))/2
+}
+
+/// The Half-Life 2 basis (3 functions) at the unit direction d, as
+/// sphbasis::basis_eval<HL2>(3, ...). Below the horizon the linear polynomials are returned.
+void sphbasis_hl2_eval(float3 d, out float h[3])
+{
+    float x = d.x; float y = d.y; float z = d.z;
+    float a = 0.398942292f * z;  // 1/sqrt(2 pi)
+    float b = a - 0.282094806f * x;  // 1/(2 sqrt(pi))
+    float c = 0.488602519f * y;  // sqrt(3/(4 pi))
+    h[0] = b - c;
+    h[1] = b + c;
+    h[2] = a + 0.564189613f * x;  // 1/sqrt(pi)
+}
+
+/// The expansion sum_k c[k] B_k(d) of RGB coefficients at the unit direction d, as
+/// sphbasis::basis_eval_sum<HBasis>(4, c, d) per channel (same order of the sum).
+float3 sphbasis_hbasis4_eval_sum(float3 c[4], float3 d)
+{
+    float h[4];
+    sphbasis_hbasis4_eval(d, h);
+    float3 e = c[0] * h[0];
+    e = e + c[1] * h[1];
+    e = e + c[2] * h[2];
+    e = e + c[3] * h[3];
+    return e;
+}
+
+/// The expansion sum_k c[k] B_k(d) of RGB coefficients at the unit direction d, as
+/// sphbasis::basis_eval_sum<HBasis>(6, c, d) per channel (same order of the sum).
+float3 sphbasis_hbasis6_eval_sum(float3 c[6], float3 d)
+{
+    float h[6];
+    sphbasis_hbasis6_eval(d, h);
+    float3 e = c[0] * h[0];
+    e = e + c[1] * h[1];
+    e = e + c[2] * h[2];
+    e = e + c[3] * h[3];
+    e = e + c[4] * h[4];
+    e = e + c[5] * h[5];
+    return e;
+}
+
+/// The expansion sum_k c[k] B_k(d) of RGB coefficients at the unit direction d, as
+/// sphbasis::basis_eval_sum<HBasisMod>(4, c, d) per channel (same order of the sum).
+float3 sphbasis_hbasis_mod4_eval_sum(float3 c[4], float3 d)
+{
+    float h[4];
+    sphbasis_hbasis_mod4_eval(d, h);
+    float3 e = c[0] * h[0];
+    e = e + c[1] * h[1];
+    e = e + c[2] * h[2];
+    e = e + c[3] * h[3];
+    return e;
+}
+
+/// The expansion sum_k c[k] B_k(d) of RGB coefficients at the unit direction d, as
+/// sphbasis::basis_eval_sum<HBasisMod>(6, c, d) per channel (same order of the sum).
+float3 sphbasis_hbasis_mod6_eval_sum(float3 c[6], float3 d)
+{
+    float h[6];
+    sphbasis_hbasis_mod6_eval(d, h);
+    float3 e = c[0] * h[0];
+    e = e + c[1] * h[1];
+    e = e + c[2] * h[2];
+    e = e + c[3] * h[3];
+    e = e + c[4] * h[4];
+    e = e + c[5] * h[5];
+    return e;
+}
+
+/// The expansion sum_k c[k] B_k(d) of RGB coefficients at the unit direction d, as
+/// sphbasis::basis_eval_sum<HL2>(3, c, d) per channel (same order of the sum).
+float3 sphbasis_hl2_eval_sum(float3 c[3], float3 d)
+{
+    float h[3];
+    sphbasis_hl2_eval(d, h);
+    float3 e = c[0] * h[0];
+    e = e + c[1] * h[1];
+    e = e + c[2] * h[2];
+    return e;
+}
+
+/// Radiance SH (3 bands, 9 RGB coefficients L, ACN) to the 6 modified H-basis coefficients h of
+/// the exit radiance E/pi of a white Lambertian surface: the clamped-cosine convolution a_l
+/// (2.3) followed by the least-squares projection over the upper hemisphere of Ishmukhametov,
+/// "Irradiance Normal Mapping" (thesis), Listing 2.1, with a_l folded into each exact entry.
+/// Listing 2.1 prints the matrix as 0.70711, 1.2247, 1.1859, 0.59293, -1.3693 (x a_l here);
+/// its convolution line "SHc[1, 2, 3] = 2.0/3.0 * SHc[2, 3, 4]" is an index slip for
+/// SHc[1, 2, 3] = 2/3 SHc[1, 2, 3].
+void sphbasis_sh_to_hbasis_mod6(float3 L[9], out float3 h[6])
+{
+    // sqrt(2)/2, sqrt(6)/3, 3*sqrt(10)/32
+    h[0] = L[0] * 0.707106769f + L[2] * 0.816496611f + L[6] * 0.296463519f;
+    // sqrt(2)/3, 3*sqrt(10)/64
+    h[1] = L[1] * 0.471404523f + L[5] * 0.14823176f;
+    // -sqrt(2)/3, -sqrt(30)/16
+    h[2] = L[2] * -0.471404523f + L[6] * -0.342326611f;
+    // sqrt(2)/3, 3*sqrt(10)/64
+    h[3] = L[3] * 0.471404523f + L[7] * 0.14823176f;
+    // sqrt(2)/8
+    h[4] = L[4] * 0.176776692f;
+    // sqrt(2)/8
+    h[5] = L[8] * 0.176776692f;
+}
+
+/// The modified H-basis expansion of Ishmukhametov, Listing 2.2, at the unit tangent-space
+/// normal n: E/pi = sum h_k H_k(n) for RGB coefficients h (already range-decoded: the
+/// listing's 2 * 0.75 * t - 0.75 is the caller's texture decoding), in the listing's order.
+/// Its constants are the normalisations 1/sqrt(2 pi), sqrt(3/(2 pi)), sqrt(15/(2 pi)),
+/// sqrt(15/(2 pi))/2, each the correctly rounded float here. The listing prints 0.39894,
+/// 0.69099 and 0.77255 correctly rounded to 5 digits but TRUNCATES sqrt(15/(2 pi)) =
+/// 1.5450968... to 1.54509 (correctly rounded: 1.54510). Stopping after the first term gives
+/// the light map, after four terms the listing's middle LOD (sphbasis_hbasis_mod4_irradiance).
+float3 sphbasis_hbasis_mod6_irradiance(float3 h[6], float3 n)
+{
+    return h[0] * 0.398942292f  // 1/sqrt(2 pi)
+        + h[1] * 0.690988302f * n.y  // sqrt(3/(2 pi))
+        + h[2] * 0.690988302f * (1.0f - n.z)
+        + h[3] * 0.690988302f * n.x
+        + h[4] * 1.54509676f * n.x * n.y  // sqrt(15/(2 pi)); Listing 2.2: 1.54509 (truncated)
+        + h[5] * 0.772548378f * (n.x * n.x - n.y * n.y);  // sqrt(15/(2 pi))/2
+}
+
+/// The middle LOD of Listing 2.2: the first four terms of sphbasis_hbasis_mod6_irradiance.
+float3 sphbasis_hbasis_mod4_irradiance(float3 h[4], float3 n)
+{
+    return h[0] * 0.398942292f
+        + h[1] * 0.690988302f * n.y
+        + h[2] * 0.690988302f * (1.0f - n.z)
+        + h[3] * 0.690988302f * n.x;
+}
+
+/// SH -> modified H-basis irradiance at the unit tangent-space normal n: the exit radiance E/pi
+/// of a white Lambertian surface lit by the radiance L (9 RGB SH coefficients), through the
+/// 6-coefficient modified H-basis (sphbasis_sh_to_hbasis_mod6, then Listing 2.2). Equals the SH
+/// irradiance / pi only where the quadratic SH irradiance lies in the span of the basis.
+float3 sphbasis_sh_irradiance_hbasis_mod6(float3 L[9], float3 n)
+{
+    float3 h[6];
+    sphbasis_sh_to_hbasis_mod6(L, h);
+    return sphbasis_hbasis_mod6_irradiance(h, n);
+}
+
+/// Toksvig, "Mipmapping Normal Maps" (NVIDIA 2004), as sphbasis::toksvig (shading/toksvig.hpp),
+/// with its clamps: lengths and cosines to [0, 1], a negative shininess to 0, +inf to FLT_MAX.
+/// (NaN inputs: GLSL and HLSL do not promise IEEE NaN comparisons, so unlike the C++ side the
+/// result for NaN is not specified.)
+float sphbasis_toksvig_clamp01(float x)
+{
+    return x > 1.0f ? 1.0f : (x > 0.0f ? x : 0.0f);
+}
+
+float sphbasis_toksvig_finite_shininess(float s)
+{
+    return s > 0.0f ? min(s, 3.40282347e+38f) : 0.0f;
+}
+
+/// eq. 6: the Toksvig factor f_t = L/(L + s(1 - L)), as sphbasis::toksvig::factor.
+float sphbasis_toksvig_factor(float len, float shininess)
+{
+    float s = sphbasis_toksvig_finite_shininess(shininess);
+    float l = sphbasis_toksvig_clamp01(len);
+    float den = l + s * (1.0f - l);
+    return den > 0.0f ? l / den : 1.0f;
+}
+
+/// eq. 8: (1 + f_t s)/(1 + s) * (Na.H/L)^(f_t s), as sphbasis::toksvig::specular; pow(0, 0)
+/// is taken as 1 (GLSL's and HLSL's pow leave x <= 0 undefined: handled here).
+float sphbasis_toksvig_specular(float na_dot_h, float len, float shininess)
+{
+    float s = sphbasis_toksvig_finite_shininess(shininess);
+    float l = sphbasis_toksvig_clamp01(len);
+    float e = sphbasis_toksvig_factor(l, s) * s;
+    float c = l > 0.0f ? sphbasis_toksvig_clamp01(na_dot_h / l) : 0.0f;
+    float p = e > 0.0f ? (c > 0.0f ? pow(c, e) : 0.0f) : 1.0f;
+    return (1.0f + e) / (1.0f + s) * p;
+}
+
+/// eq. 9: eq. 8 on the table axes Na.H and Na.Na (the square root taken here), as
+/// sphbasis::toksvig::specular_from_dots.
+float sphbasis_toksvig_specular_from_dots(float na_dot_h, float na_dot_na, float shininess)
+{
+    float l = sqrt(sphbasis_toksvig_clamp01(na_dot_na));
+    return sphbasis_toksvig_specular(na_dot_h, l, shininess);
+}
+
 #endif  // SPHBASIS_HLSL

@@ -1,7 +1,10 @@
 // GPU/C++ agreement of the shader twins: runs the functions of shaders/sphbasis.glsl as an OpenGL
 // 4.3 compute shader on Mesa's llvmpipe (EGL surfaceless: no display, no GPU) over a grid of
 // directions including the poles, the horizon and x = y = 0, reads the values back and compares
-// them with the C++ kernels (sh::eval_unit<N>, sh::irradiance) in float.
+// them with the C++ kernels in float: sh::eval_unit<N>, sh::irradiance, the H-basis, modified
+// H-basis and HL2 kernels and expansion sums (basis/hbasis.hpp, basis/hl2.hpp), clamped_cosine,
+// toksvig::factor / specular / specular_from_dots; and Ishmukhametov's Listing 2.1/2.2 shader
+// functions against a double reference from ops/projection.hpp.
 //
 // Error measure: |gpu - cpu| in units of the float ulp of max(|cpu|, scale), where scale is the
 // largest magnitude the function reaches in its band (sqrt((2l+1)/(4 pi)) for y_lm; for the
@@ -28,7 +31,13 @@
 #include <string>
 #include <vector>
 
+#include "sphbasis/basis/hbasis.hpp"
+#include "sphbasis/basis/hl2.hpp"
 #include "sphbasis/basis/sh.hpp"
+#include "sphbasis/core/clamped_cosine.hpp"
+#include "sphbasis/core/quadrature.hpp"
+#include "sphbasis/ops/projection.hpp"
+#include "sphbasis/shading/toksvig.hpp"
 #include "sphbasis/ops/sh_convolution.hpp"
 
 namespace {
@@ -38,10 +47,40 @@ namespace {
 // irradiance 3 ulps (llvmpipe fuses some multiply-adds). The worst case is printed every run.
 // (With the C++ side also fusing, -ffp-contract=fast, the two disagree by up to 6 ulps.)
 constexpr double max_ulps = 4.0;
+// The other families, measured on the same driver and compiler:
+//  - H-basis 4/6, modified H-basis 4/6, HL2, and their RGB expansion sums: bit-identical to the
+//    C++ kernels at every direction (0 ulps). Bound 1 ulp for a kernel value (room for one fused
+//    multiply-add in the driver), 2 for a sum; a constant one float away from the C++ one
+//    already gives 1 ulp at many directions (the bit-identical count drops), a constant
+//    mis-typed in the 6th digit (Listing 2.2's 1.54509) gives tens of ulps.
+//  - Listing 2.1/2.2 (SH -> modified H-basis) against a double reference built from the library's
+//    least-squares matrix: coefficients 0.77, irradiance 2.35-3.05 ulps of the terms' magnitude
+//    sum; bound 4.
+//  - Toksvig: the factor (eq. 6) bit-identical (bound 3: GLSL's division is 2.5 ulps); eq. 8 and
+//    eq. 9 16.5 and 6 ulps of the lobe's peak (1 + f_t s)/(1 + s): llvmpipe's pow, which GLSL
+//    specifies only as exp2(y log2 x) (error growing with |y log2 x|, here up to s = 1000);
+//    bound 64.
+//  - The clamped-cosine factors a_0..a_7: exactly float(clamped_cosine(l)) (bound 0).
+constexpr double max_ulps_hbasis = 1.0;
+constexpr double max_ulps_hbasis_sum = 2.0;
+constexpr double max_ulps_listing22 = 4.0;
+constexpr double max_ulps_toksvig_factor = 3.0;
+constexpr double max_ulps_toksvig_specular = 64.0;
 
 constexpr int max_n = 8;
 constexpr int sh_values = 204;  // sum_{n=1..8} n^2
-constexpr int stride = sh_values + 3;
+// Per direction, after the SH values: the SH irradiance (3), the H-basis family (23 values), their
+// expansion sums (5 x 3), the Listing 2.2 block (27), Toksvig (3), the clamped-cosine factors (8).
+constexpr int irr_at = sh_values;
+constexpr int hb_at = irr_at + 3;                 // hbasis4 (4), hbasis6 (6), mod4 (4), mod6 (6), hl2 (3)
+constexpr int sum_at = hb_at + 23;                // the same five, RGB expansion sums
+constexpr int l22_at = sum_at + 15;               // mod6 irradiance, mod4 irradiance, SH -> modH
+                                                  // irradiance (3 each), SH -> modH coefficients (18)
+constexpr int tk_at = l22_at + 27;                // factor, specular, specular_from_dots
+constexpr int cc_at = tk_at + 3;                  // a_0..a_7
+constexpr int stride = cc_at + 8;
+constexpr int hb_sizes[5] = {4, 6, 4, 6, 3};
+const char* const hb_names[5] = {"hbasis4", "hbasis6", "hbasis_mod4", "hbasis_mod6", "hl2"};
 
 int offset_of(int n) {
     int o = 0;
@@ -176,6 +215,7 @@ std::string compute_source(const std::string& library) {
          "layout(std430, binding = 0) readonly buffer Dirs { vec4 dirs[]; };\n"
          "layout(std430, binding = 1) readonly buffer Coef { vec4 coef[]; };\n"
          "layout(std430, binding = 2) writeonly buffer Vals { float vals[]; };\n"
+         "layout(std430, binding = 3) readonly buffer Tk { vec4 tk[]; };\n"
          "uniform uint count;\n"
          "void main() {\n"
          "    uint i = gl_GlobalInvocationID.x;\n"
@@ -192,8 +232,39 @@ std::string compute_source(const std::string& library) {
          "    for (int k = 0; k < 9; ++k) L[k] = coef[k].xyz;\n"
          "    vec3 e = sphbasis_sh_irradiance(L, d);\n"
       << "    vals[base + " << sh_values << "u] = e.x; vals[base + " << sh_values + 1
-      << "u] = e.y; vals[base + " << sh_values + 2 << "u] = e.z;\n"
-      << "}\n";
+      << "u] = e.y; vals[base + " << sh_values + 2 << "u] = e.z;\n";
+    s << "    uint o = base + " << hb_at << "u;\n";
+    for (int b = 0; b < 5; ++b)
+        s << "    { float h[" << hb_sizes[b] << "]; sphbasis_" << hb_names[b] << "_eval(d, h);\n"
+          << "      for (int k = 0; k < " << hb_sizes[b] << "; ++k) vals[o + uint(k)] = h[k]; o += "
+          << hb_sizes[b] << "u; }\n";
+    s << "    vec3 c6[6];\n"
+         "    for (int k = 0; k < 6; ++k) c6[k] = coef[9 + k].xyz;\n"
+         "    vec3 c4[4];\n"
+         "    for (int k = 0; k < 4; ++k) c4[k] = c6[k];\n"
+         "    vec3 c3[3];\n"
+         "    for (int k = 0; k < 3; ++k) c3[k] = c6[k];\n";
+    for (int b = 0; b < 5; ++b) {
+        const int n = hb_sizes[b];
+        s << "    { vec3 f = sphbasis_" << hb_names[b] << "_eval_sum(c" << n << ", d);\n"
+          << "      vals[o] = f.x; vals[o + 1u] = f.y; vals[o + 2u] = f.z; o += 3u; }\n";
+    }
+    s << "    { vec3 f = sphbasis_hbasis_mod6_irradiance(c6, d);\n"
+         "      vals[o] = f.x; vals[o + 1u] = f.y; vals[o + 2u] = f.z; o += 3u; }\n"
+         "    { vec3 f = sphbasis_hbasis_mod4_irradiance(c4, d);\n"
+         "      vals[o] = f.x; vals[o + 1u] = f.y; vals[o + 2u] = f.z; o += 3u; }\n"
+         "    { vec3 f = sphbasis_sh_irradiance_hbasis_mod6(L, d);\n"
+         "      vals[o] = f.x; vals[o + 1u] = f.y; vals[o + 2u] = f.z; o += 3u; }\n"
+         "    { vec3 h[6]; sphbasis_sh_to_hbasis_mod6(L, h);\n"
+         "      for (int k = 0; k < 6; ++k) { vals[o] = h[k].x; vals[o + 1u] = h[k].y;\n"
+         "          vals[o + 2u] = h[k].z; o += 3u; } }\n"
+         "    vec4 t = tk[i];\n"
+         "    vals[o] = sphbasis_toksvig_factor(t.y, t.z);\n"
+         "    vals[o + 1u] = sphbasis_toksvig_specular(t.x, t.y, t.z);\n"
+         "    vals[o + 2u] = sphbasis_toksvig_specular_from_dots(t.x, t.w, t.z);\n"
+         "    o += 3u;\n"
+         "    for (int l = 0; l < 8; ++l) vals[o + uint(l)] = sphbasis_clamped_cosine(l);\n"
+         "}\n";
     return s.str();
 }
 
@@ -274,6 +345,153 @@ std::vector<float> directions() {
     return d;
 }
 
+// Worst error of a family of values, in float ulps of max(|reference|, scale).
+struct Worst {
+    double worst = 0;
+    std::size_t identical = 0, total = 0;
+    void add(double gpu, double ref, double scale) {
+        const double e = std::isfinite(gpu)
+                             ? std::abs(gpu - ref) / ulp_of(std::max(std::abs(ref), scale))
+                             : 1e30;
+        identical += (gpu == ref);
+        ++total;
+        worst = std::max(worst, e);
+    }
+    bool report(const char* what, double bound) const {
+        const bool pass = worst <= bound;
+        std::printf("  %s: max %.2f ulps (bound %.1f), %zu/%zu bit-identical  %s\n", what, worst,
+                    bound, identical, total, pass ? "ok" : "FAIL");
+        return pass;
+    }
+};
+
+// The H-basis family against basis_eval / basis_eval_sum in float (same kernels, same operation
+// order). Scale of each function: its largest magnitude on the upper hemisphere, 1/sqrt(2 pi)
+// for H1 and sqrt(3/(2 pi)) (> sqrt(15/(2 pi))/2) for the rest; of a sum, sum_k |c_k B_k|.
+template <class B>
+bool check_hbasis_one(int which, int n, const std::vector<float>& dirs,
+                      const std::vector<float>& coef, const std::vector<float>& gpu) {
+    const unsigned count = unsigned(dirs.size() / 4);
+    int off = hb_at;
+    for (int b = 0; b < which; ++b) off += hb_sizes[b];
+    const int sum_off = sum_at + 3 * which;
+    Worst eval, sum;
+    float c[3][6];
+    for (int k = 0; k < n; ++k)
+        for (int ch = 0; ch < 3; ++ch) c[ch][k] = coef[std::size_t(4 * (9 + k) + ch)];
+    for (unsigned i = 0; i < count; ++i) {
+        const float x = dirs[4 * i], y = dirs[4 * i + 1], z = dirs[4 * i + 2];
+        // The kernel itself (basis_eval would first renormalise the direction, and a few of these
+        // float directions are not fixed points of normalize_or_pole: it moves them by an ulp).
+        float h[6];
+        B::with_kernel(n, [&](auto kernel) { kernel(x, y, z, [&](int k, float v) { h[k] = v; }); });
+        const float* g = &gpu[std::size_t(i) * stride];
+        for (int k = 0; k < n; ++k)
+            eval.add(g[off + k], h[k], (k == 0 && n != 3) ? 0.3989422804 : 0.6909882989);
+        for (int ch = 0; ch < 3; ++ch) {
+            // basis_eval_sum's accumulation (basis.hpp, sum_at) without the renormalisation.
+            float ref = 0;
+            for (int k = 0; k < n; ++k) ref = ref + c[ch][k] * h[k];
+            double scale = 0;
+            for (int k = 0; k < n; ++k) scale += std::abs(double(c[ch][k]) * h[k]);
+            sum.add(g[sum_off + ch], ref, scale);
+        }
+    }
+    const std::string name = std::string("sphbasis_") + hb_names[which];
+    return eval.report((name + "_eval").c_str(), max_ulps_hbasis) &&
+           sum.report((name + "_eval_sum").c_str(), max_ulps_hbasis_sum);
+}
+
+bool check_hbasis(const std::vector<float>& dirs, const std::vector<float>& coef,
+                  const std::vector<float>& gpu) {
+    bool ok = check_hbasis_one<sphbasis::HBasis>(0, 4, dirs, coef, gpu);
+    ok = check_hbasis_one<sphbasis::HBasis>(1, 6, dirs, coef, gpu) && ok;
+    ok = check_hbasis_one<sphbasis::HBasisMod>(2, 4, dirs, coef, gpu) && ok;
+    ok = check_hbasis_one<sphbasis::HBasisMod>(3, 6, dirs, coef, gpu) && ok;
+    ok = check_hbasis_one<sphbasis::HL2>(4, 3, dirs, coef, gpu) && ok;
+    return ok;
+}
+
+// Ishmukhametov's Listings 2.1/2.2 against an independent double reference: the library's
+// least-squares SH -> modified H-basis matrix over the hemisphere (ops/projection.hpp), the
+// clamped-cosine factors (core/clamped_cosine.hpp) and basis_eval<HBasisMod> in double. The
+// shader rounds differently (folded float constants, the listing's (1 - z) H3), so the measure
+// is ulps of the float of the sum of the terms' magnitudes.
+bool check_listing22(const std::vector<float>& dirs, const std::vector<float>& coef,
+                     const std::vector<float>& gpu) {
+    using namespace sphbasis;
+    const unsigned count = unsigned(dirs.size() / 4);
+    const Eigen::MatrixXd t =
+        conversion(evaluator<SH>(9), evaluator<HBasisMod>(6), hemisphere_rule(8));
+    const int band[9] = {0, 1, 1, 1, 2, 2, 2, 2, 2};
+    double hm[3][6], hmag[3][6];  // modified H-basis coefficients of E/pi, and their term sums
+    for (int ch = 0; ch < 3; ++ch)
+        for (int i = 0; i < 6; ++i) {
+            hm[ch][i] = hmag[ch][i] = 0;
+            for (int j = 0; j < 9; ++j) {
+                const double term =
+                    t(i, j) * clamped_cosine(band[j]) * double(coef[std::size_t(4 * j + ch)]);
+                hm[ch][i] += term;
+                hmag[ch][i] += std::abs(term);
+            }
+        }
+    Worst coeffs, irr6, irr4, sh_irr;
+    for (unsigned i = 0; i < count; ++i) {
+        const float* g = &gpu[std::size_t(i) * stride];
+        const double x = dirs[4 * i], y = dirs[4 * i + 1], z = dirs[4 * i + 2];
+        double h[6];
+        basis_eval<HBasisMod>(6, x, y, z, h);
+        for (int ch = 0; ch < 3; ++ch) {
+            for (int k = 0; k < 6; ++k) coeffs.add(g[l22_at + 9 + 3 * k + ch], hm[ch][k], hmag[ch][k]);
+            double e6 = 0, s6 = 0, e4 = 0, s4 = 0, e = 0, s = 0;
+            for (int k = 0; k < 6; ++k) {
+                const double c = coef[std::size_t(4 * (9 + k) + ch)];
+                e6 += c * h[k], s6 += std::abs(c * h[k]);
+                if (k < 4) e4 += c * h[k], s4 += std::abs(c * h[k]);
+                e += hm[ch][k] * h[k], s += hmag[ch][k] * std::abs(h[k]);
+            }
+            irr6.add(g[l22_at + ch], e6, s6);
+            irr4.add(g[l22_at + 3 + ch], e4, s4);
+            sh_irr.add(g[l22_at + 6 + ch], e, s);
+        }
+    }
+    bool ok = coeffs.report("sphbasis_sh_to_hbasis_mod6 (vs double)", max_ulps_listing22);
+    ok = irr6.report("sphbasis_hbasis_mod6_irradiance (vs double)", max_ulps_listing22) && ok;
+    ok = irr4.report("sphbasis_hbasis_mod4_irradiance (vs double)", max_ulps_listing22) && ok;
+    ok = sh_irr.report("sphbasis_sh_irradiance_hbasis_mod6 (vs double)", max_ulps_listing22) && ok;
+    return ok;
+}
+
+// Toksvig's eqs. 6, 8, 9 against shading/toksvig.hpp in float. The factor in ulps of itself;
+// the specular in ulps of the lobe's peak (1 + f_t s)/(1 + s): GLSL's pow promises no better
+// than exp2(y log2 x) (GLSL 4.50, section 4.7.1), whose error grows with |y log2 x|.
+bool check_toksvig(const std::vector<float>& tk, const std::vector<float>& gpu) {
+    const unsigned count = unsigned(tk.size() / 4);
+    Worst f, spec, dots;
+    for (unsigned i = 0; i < count; ++i) {
+        const float* g = &gpu[std::size_t(i) * stride];
+        const float ndh = tk[4 * i], len = tk[4 * i + 1], s = tk[4 * i + 2], ndn = tk[4 * i + 3];
+        f.add(g[tk_at], sphbasis::toksvig::factor(len, s), 0x1p-126);
+        spec.add(g[tk_at + 1], sphbasis::toksvig::specular(ndh, len, s),
+                 sphbasis::toksvig::relative_intensity(len, s));
+        const float l2 = std::sqrt(std::min(std::max(ndn, 0.0f), 1.0f));
+        dots.add(g[tk_at + 2], sphbasis::toksvig::specular_from_dots(ndh, ndn, s),
+                 sphbasis::toksvig::relative_intensity(l2, s));
+    }
+    bool ok = f.report("sphbasis_toksvig_factor", max_ulps_toksvig_factor);
+    ok = spec.report("sphbasis_toksvig_specular (ulps of the peak)", max_ulps_toksvig_specular) && ok;
+    ok = dots.report("sphbasis_toksvig_specular_from_dots (ulps of the peak)",
+                     max_ulps_toksvig_specular) && ok;
+    return ok;
+}
+
+// The clamped-cosine constants: exactly the float of clamped_cosine(l).
+bool check_clamped_cosine(const std::vector<float>& gpu) {
+    Worst w;
+    for (int l = 0; l < 8; ++l) w.add(gpu[std::size_t(cc_at + l)], float(sphbasis::clamped_cosine(l)), 0x1p-126);
+    return w.report("sphbasis_clamped_cosine a_0..a_7", 0.0);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -292,14 +510,34 @@ int main(int argc, char** argv) {
     const std::vector<float> dirs = directions();
     const unsigned count = unsigned(dirs.size() / 4);
     // RGB radiance coefficients of modest size with every term present.
-    std::vector<float> coef(9 * 4);
+    // Then 6 RGB coefficients for the H-basis family's expansion sums and Listing 2.2 (the first
+    // 4 and 3 of them for the 4- and 3-function sums).
+    std::vector<float> coef(15 * 4);
     for (std::size_t k = 0; k < 9; ++k) {
         coef[4 * k + 0] = 1.0f / float(k + 1);
         coef[4 * k + 1] = 0.5f - 0.1f * float(k);
         coef[4 * k + 2] = (k % 2 ? -0.3f : 0.7f) + 0.01f * float(k);
     }
-    unsigned buf[3];
-    gl.GenBuffers(3, buf);
+    for (std::size_t k = 0; k < 6; ++k) {
+        coef[4 * (9 + k) + 0] = 0.8f - 0.25f * float(k);
+        coef[4 * (9 + k) + 1] = 0.3f + 0.05f * float(k * k);
+        coef[4 * (9 + k) + 2] = (k % 3 ? -0.45f : 1.1f) + 0.02f * float(k);
+    }
+    // Toksvig inputs per direction: (Na.H, L, s, Na.Na) over and beyond the clamped ranges.
+    std::vector<float> tk(std::size_t(count) * 4);
+    {
+        std::mt19937 rng(7u);
+        std::uniform_real_distribution<float> u(-0.1f, 1.1f);
+        const float shin[6] = {0.0f, 1.0f, 8.0f, 32.0f, 128.0f, 1000.0f};
+        for (unsigned i = 0; i < count; ++i) {
+            tk[4 * i + 0] = u(rng);
+            tk[4 * i + 1] = i % 7 == 0 ? 1.0f : u(rng);
+            tk[4 * i + 2] = shin[i % 6];
+            tk[4 * i + 3] = u(rng);
+        }
+    }
+    unsigned buf[4];
+    gl.GenBuffers(4, buf);
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buf[0]);
     gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(dirs.size() * sizeof(float)), dirs.data(),
                   GL_STATIC_DRAW);
@@ -311,7 +549,10 @@ int main(int argc, char** argv) {
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buf[2]);
     gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(nvals * sizeof(float)), gpu.data(),
                   GL_DYNAMIC_READ);
-    for (unsigned i = 0; i < 3; ++i) gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buf[i]);
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buf[3]);
+    gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(tk.size() * sizeof(float)), tk.data(),
+                  GL_STATIC_DRAW);
+    for (unsigned i = 0; i < 4; ++i) gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buf[i]);
     gl.UseProgram(prog);
     gl.Uniform1ui(gl.GetUniformLocation(prog, "count"), count);
     gl.DispatchCompute((count + 63) / 64, 1, 1);
@@ -417,6 +658,10 @@ int main(int argc, char** argv) {
         std::printf("  sphbasis_sh_irradiance: max %.2f ulps, %zu/%zu bit-identical  %s\n", worst,
                     identical, total, pass ? "ok" : "FAIL");
     }
+    ok = check_hbasis(dirs, coef, gpu) && ok;
+    ok = check_listing22(dirs, coef, gpu) && ok;
+    ok = check_toksvig(tk, gpu) && ok;
+    ok = check_clamped_cosine(gpu) && ok;
     std::printf("sphbasis_shader_test: %s\n", ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
 }

@@ -18,4 +18,26 @@ void main()
     for (int i = 0; i < 9; ++i) L[i] = vec3(s3[i], 2.0 * s3[i], 0.5);
     vec3 e = sphbasis_sh_irradiance(L, d);
     out_buf.v[8] = e.x + e.y + e.z;
+    float h4[4]; sphbasis_hbasis4_eval(d, h4); out_buf.v[9] = h4[2];
+    float h6[6]; sphbasis_hbasis6_eval(d, h6); out_buf.v[10] = h6[5];
+    float m4[4]; sphbasis_hbasis_mod4_eval(d, m4); out_buf.v[11] = m4[2];
+    float m6[6]; sphbasis_hbasis_mod6_eval(d, m6); out_buf.v[12] = m6[5];
+    float t3[3]; sphbasis_hl2_eval(d, t3); out_buf.v[13] = t3[1];
+    vec3 c6[6];
+    for (int i = 0; i < 6; ++i) c6[i] = vec3(h6[i], 0.5, -0.25);
+    vec3 c4[4];
+    for (int i = 0; i < 4; ++i) c4[i] = c6[i];
+    vec3 c3[3];
+    for (int i = 0; i < 3; ++i) c3[i] = c6[i];
+    vec3 f = sphbasis_hbasis4_eval_sum(c4, d) + sphbasis_hbasis6_eval_sum(c6, d)
+        + sphbasis_hbasis_mod4_eval_sum(c4, d) + sphbasis_hbasis_mod6_eval_sum(c6, d)
+        + sphbasis_hl2_eval_sum(c3, d);
+    out_buf.v[14] = f.x + f.y + f.z;
+    out_buf.v[15] = sphbasis_clamped_cosine(4) + sphbasis_clamped_cosine_a6;
+    vec3 mh[6]; sphbasis_sh_to_hbasis_mod6(L, mh);
+    f = sphbasis_hbasis_mod6_irradiance(mh, d) + sphbasis_hbasis_mod4_irradiance(c4, d)
+        + sphbasis_sh_irradiance_hbasis_mod6(L, d);
+    out_buf.v[16] = f.x + f.y + f.z;
+    out_buf.v[17] = sphbasis_toksvig_factor(0.9, 32.0) + sphbasis_toksvig_specular(0.8, 0.9, 32.0)
+        + sphbasis_toksvig_specular_from_dots(0.8, 0.81, 32.0);
 }

@@ -18,8 +18,14 @@ Usage: /usr/bin/python3 tools/gen/gen_sh_fixed.py > include/sphbasis/basis/sh_fi
        /usr/bin/python3 tools/gen/gen_sh_fixed.py --hlsl > shaders/sphbasis.hlsl
 The shader twins (--glsl, --hlsl) carry the same kernels with the same operation order, each
 constant the float nearest to the exact sympy value (9 significant digits identify it), plus the
-Ramamoorthi-Hanrahan irradiance of sh::irradiance (ops/sh_convolution.hpp).
+Ramamoorthi-Hanrahan irradiance of sh::irradiance (ops/sh_convolution.hpp), the H-basis,
+modified H-basis and HL2 kernels and expansion sums (basis/hbasis.hpp, basis/hl2.hpp: their
+hand-written C++ literals are read and must round to the same floats as the exact values), the
+clamped-cosine factors (core/clamped_cosine.hpp), the SH -> modified H-basis irradiance of
+Ishmukhametov's Listings 2.1 and 2.2 (correctly rounded) and Toksvig's eqs. 6, 8 and 9
+(shading/toksvig.hpp).
 """
+import re
 import struct
 import sys
 
@@ -232,6 +238,274 @@ def shader_irradiance(lang):
     return "\n".join(out)
 
 
+# ---------------------------------------------------------------------------------------------
+# H-basis, modified H-basis, HL2, clamped-cosine factors, Ishmukhametov's Listing 2.2 and Toksvig.
+
+_ROOT = __import__("os").path.join(__import__("os").path.dirname(__file__), "..", "..")
+
+
+def _cxx_literals(header):
+    """The floating literals S(...) of a C++ kernel header of the library."""
+    path = __import__("os").path.join(_ROOT, "include", "sphbasis", header)
+    with open(path) as f:
+        return [float(t) for t in re.findall(r"S\(([-0-9.eE+]+)\)", f.read())]
+
+
+def flit_cxx(v, lang, header):
+    """flit(v), after checking that the hand-written C++ kernel in `header` carries a literal
+    for the exact value v that rounds to the same float: the shader and the C++ kernel then
+    multiply by one constant, and editing either side alone fails the generator."""
+    f = f32_nearest(v)
+    d = float(sp.N(v, 40))
+    if not any(abs(c - d) <= 4e-16 * abs(d) and _f32(c) == f for c in _cxx_literals(header)):
+        raise SystemExit("gen_sh_fixed.py: include/sphbasis/%s has no literal for %s = %.17g"
+                         % (header, v, d))
+    return flit(v, lang)
+
+
+def _kw(lang):
+    return ("vec3" if lang == "glsl" else "float3",
+            "const float" if lang == "glsl" else "static const float",
+            (lambda t: t) if lang == "glsl" else (lambda t: t + "f"))
+
+
+def shader_hbasis(lang):
+    vec3, _, _ = _kw(lang)
+    pi = sp.pi
+    hdr = "basis/hbasis.hpp"
+    c1 = flit_cxx(sp.sqrt(3 / (2 * pi)), lang, hdr)
+    k0 = flit_cxx(1 / sp.sqrt(2 * pi), lang, hdr)
+    k2 = flit_cxx(2 * sp.sqrt(3 / (2 * pi)), lang, hdr)
+    k4 = flit_cxx(sp.sqrt(15 / (2 * pi)), lang, hdr)
+    k5 = flit_cxx(sp.sqrt(15 / (2 * pi)) / 2, lang, hdr)
+    out = []
+    w = out.append
+    for mod in (False, True):
+        for n in (4, 6):
+            name = "sphbasis_hbasis%s%d_eval" % ("_mod" if mod else "", n)
+            cxx = "HBasisMod" if mod else "HBasis"
+            w("/// The %s (%d functions) at the unit direction d, as" % (
+                "modified H-basis" if mod else "H-basis", n))
+            w("/// sphbasis::basis_eval<%s>(%d, ...), in the order H1 (1), H2 (y), H3 (%s), H4 (x)%s" % (
+                cxx, n, "1 - z" if mod else "2z - 1", "," if n == 6 else "."))
+            if n == 6:
+                w("/// H5 (xy), H6 (x^2 - y^2).")
+            w("/// Below the horizon the polynomials are returned. Precondition: d unit (z up).")
+            w("void %s(%s d, out float h[%d])" % (name, vec3, n))
+            w("{")
+            w("    float x = d.x; float y = d.y; float z = d.z;")
+            w("    float c1 = %s;  // sqrt(3/(2 pi))" % c1)
+            w("    h[0] = %s;  // 1/sqrt(2 pi)" % k0)
+            w("    h[1] = c1 * y;")
+            if mod:
+                w("    h[2] = c1 - c1 * z;")
+            else:
+                w("    h[2] = %s * z - c1;  // 2 sqrt(3/(2 pi))" % k2)
+            w("    h[3] = c1 * x;")
+            if n == 6:
+                w("    h[4] = %s * x * y;  // sqrt(15/(2 pi))" % k4)
+                w("    h[5] = %s * (x * x - y * y);  // sqrt(15/(2 pi))/2" % k5)
+            w("}")
+            w("")
+    hdr = "basis/hl2.hpp"
+    w("/// The Half-Life 2 basis (3 functions) at the unit direction d, as")
+    w("/// sphbasis::basis_eval<HL2>(3, ...). Below the horizon the linear polynomials are returned.")
+    w("void sphbasis_hl2_eval(%s d, out float h[3])" % vec3)
+    w("{")
+    w("    float x = d.x; float y = d.y; float z = d.z;")
+    w("    float a = %s * z;  // 1/sqrt(2 pi)" % flit_cxx(1 / sp.sqrt(2 * pi), lang, hdr))
+    w("    float b = a - %s * x;  // 1/(2 sqrt(pi))" % flit_cxx(1 / (2 * sp.sqrt(pi)), lang, hdr))
+    w("    float c = %s * y;  // sqrt(3/(4 pi))" % flit_cxx(sp.sqrt(3 / (4 * pi)), lang, hdr))
+    w("    h[0] = b - c;")
+    w("    h[1] = b + c;")
+    w("    h[2] = a + %s * x;  // 1/sqrt(pi)" % flit_cxx(1 / sp.sqrt(pi), lang, hdr))
+    w("}")
+    w("")
+    sums = [("hbasis4", "HBasis", 4), ("hbasis6", "HBasis", 6), ("hbasis_mod4", "HBasisMod", 4),
+            ("hbasis_mod6", "HBasisMod", 6), ("hl2", "HL2", 3)]
+    for stem, cxx, n in sums:
+        w("/// The expansion sum_k c[k] B_k(d) of RGB coefficients at the unit direction d, as")
+        w("/// sphbasis::basis_eval_sum<%s>(%d, c, d) per channel (same order of the sum)." % (cxx, n))
+        w("%s sphbasis_%s_eval_sum(%s c[%d], %s d)" % (vec3, stem, vec3, n, vec3))
+        w("{")
+        w("    float h[%d];" % n)
+        w("    sphbasis_%s_eval(d, h);" % (stem if stem == "hl2" else stem))
+        w("    %s e = c[0] * h[0];" % vec3)
+        for k in range(1, n):
+            w("    e = e + c[%d] * h[%d];" % (k, k))
+        w("    return e;")
+        w("}")
+        w("")
+    return "\n".join(out).rstrip()
+
+
+CLAMPED_COSINE_BANDS = 8
+
+
+def clamped_cosine_exact(l):
+    """a_l = Lambda_l / pi (core/clamped_cosine.hpp), exact."""
+    if l == 0:
+        return sp.Integer(1)
+    if l == 1:
+        return sp.Rational(2, 3)
+    if l % 2:
+        return sp.Integer(0)
+    return sp.Rational(2 * (-1) ** (l // 2 - 1), (l + 2) * (l - 1)) * sp.binomial(l, l // 2) / sp.Integer(2) ** l
+
+
+def shader_clamped_cosine(lang):
+    _, const, _ = _kw(lang)
+    out = []
+    w = out.append
+    w("/// The normalised clamped-cosine (Funk-Hecke) factors a_l = Lambda_l / pi of")
+    w("/// sphbasis::clamped_cosine(l), l = 0..%d: the irradiance of radiance sum c_lm y_lm is" % (CLAMPED_COSINE_BANDS - 1))
+    w("/// E = pi sum a_l c_lm y_lm (Ramamoorthi and Hanrahan, SIGGRAPH 2001, eq. 8).")
+    for l in range(CLAMPED_COSINE_BANDS):
+        v = clamped_cosine_exact(l)
+        w("%s sphbasis_clamped_cosine_a%d = %s;  // %s" % (const, l, flit(v, lang), v))
+    w("")
+    w("/// a_l for 0 <= l <= %d (the bands of sphbasis_sh_eval1..%d); 0 outside that range." % (
+        CLAMPED_COSINE_BANDS - 1, CLAMPED_COSINE_BANDS))
+    w("float sphbasis_clamped_cosine(int l)")
+    w("{")
+    for l in range(CLAMPED_COSINE_BANDS):
+        if clamped_cosine_exact(l) != 0:
+            w("    if (l == %d) return sphbasis_clamped_cosine_a%d;" % (l, l))
+    w("    return %s;" % flit(sp.Integer(0), lang))
+    w("}")
+    return "\n".join(out)
+
+
+def modh_from_sh():
+    """The least-squares SH (3 bands) -> modified H-basis matrix over the upper hemisphere
+    (Ishmukhametov, Listing 2.1), exact: G^-1 <H_i, y_j> with the Gram matrix G of the modified
+    H-basis. Rows: H1..H6; {sh index: exact entry}."""
+    r2, r6, r10, r30 = sp.sqrt(2), sp.sqrt(6), sp.sqrt(10), sp.sqrt(30)
+    return [{0: r2 / 2, 2: r6 / 2, 6: 3 * r10 / 8}, {1: r2 / 2, 5: 3 * r10 / 16},
+            {2: -r2 / 2, 6: -r30 / 4}, {3: r2 / 2, 7: 3 * r10 / 16}, {4: r2 / 2}, {8: r2 / 2}]
+
+
+def shader_listing22(lang):
+    vec3, const, lit = _kw(lang)
+    pi = sp.pi
+    hdr = "basis/hbasis.hpp"
+    band = [0, 1, 1, 1, 2, 2, 2, 2, 2]
+    out = []
+    w = out.append
+    w("/// Radiance SH (3 bands, 9 RGB coefficients L, ACN) to the 6 modified H-basis coefficients h of")
+    w("/// the exit radiance E/pi of a white Lambertian surface: the clamped-cosine convolution a_l")
+    w("/// (2.3) followed by the least-squares projection over the upper hemisphere of Ishmukhametov,")
+    w("/// \"Irradiance Normal Mapping\" (thesis), Listing 2.1, with a_l folded into each exact entry.")
+    w("/// Listing 2.1 prints the matrix as 0.70711, 1.2247, 1.1859, 0.59293, -1.3693 (x a_l here);")
+    w("/// its convolution line \"SHc[1, 2, 3] = 2.0/3.0 * SHc[2, 3, 4]\" is an index slip for")
+    w("/// SHc[1, 2, 3] = 2/3 SHc[1, 2, 3].")
+    w("void sphbasis_sh_to_hbasis_mod6(%s L[9], out %s h[6])" % (vec3, vec3))
+    w("{")
+    for i, row in enumerate(modh_from_sh()):
+        terms = []
+        notes = []
+        for j, v in row.items():
+            e = sp.nsimplify(v * clamped_cosine_exact(band[j]))
+            terms.append("L[%d] * %s" % (j, flit(e, lang)))
+            notes.append(str(e))
+        w("    // %s" % ", ".join(notes))
+        w("    h[%d] = %s;" % (i, " + ".join(terms)))
+    w("}")
+    w("")
+    c0 = flit_cxx(1 / sp.sqrt(2 * pi), lang, hdr)
+    c1 = flit_cxx(sp.sqrt(3 / (2 * pi)), lang, hdr)
+    c4 = flit_cxx(sp.sqrt(15 / (2 * pi)), lang, hdr)
+    c5 = flit_cxx(sp.sqrt(15 / (2 * pi)) / 2, lang, hdr)
+    one = lit("1.0")
+    w("/// The modified H-basis expansion of Ishmukhametov, Listing 2.2, at the unit tangent-space")
+    w("/// normal n: E/pi = sum h_k H_k(n) for RGB coefficients h (already range-decoded: the")
+    w("/// listing's 2 * 0.75 * t - 0.75 is the caller's texture decoding), in the listing's order.")
+    w("/// Its constants are the normalisations 1/sqrt(2 pi), sqrt(3/(2 pi)), sqrt(15/(2 pi)),")
+    w("/// sqrt(15/(2 pi))/2, each the correctly rounded float here. The listing prints 0.39894,")
+    w("/// 0.69099 and 0.77255 correctly rounded to 5 digits but TRUNCATES sqrt(15/(2 pi)) =")
+    w("/// 1.5450968... to 1.54509 (correctly rounded: 1.54510). Stopping after the first term gives")
+    w("/// the light map, after four terms the listing's middle LOD (sphbasis_hbasis_mod4_irradiance).")
+    w("%s sphbasis_hbasis_mod6_irradiance(%s h[6], %s n)" % (vec3, vec3, vec3))
+    w("{")
+    w("    return h[0] * %s  // 1/sqrt(2 pi)" % c0)
+    w("        + h[1] * %s * n.y  // sqrt(3/(2 pi))" % c1)
+    w("        + h[2] * %s * (%s - n.z)" % (c1, one))
+    w("        + h[3] * %s * n.x" % c1)
+    w("        + h[4] * %s * n.x * n.y  // sqrt(15/(2 pi)); Listing 2.2: 1.54509 (truncated)" % c4)
+    w("        + h[5] * %s * (n.x * n.x - n.y * n.y);  // sqrt(15/(2 pi))/2" % c5)
+    w("}")
+    w("")
+    w("/// The middle LOD of Listing 2.2: the first four terms of sphbasis_hbasis_mod6_irradiance.")
+    w("%s sphbasis_hbasis_mod4_irradiance(%s h[4], %s n)" % (vec3, vec3, vec3))
+    w("{")
+    w("    return h[0] * %s" % c0)
+    w("        + h[1] * %s * n.y" % c1)
+    w("        + h[2] * %s * (%s - n.z)" % (c1, one))
+    w("        + h[3] * %s * n.x;" % c1)
+    w("}")
+    w("")
+    w("/// SH -> modified H-basis irradiance at the unit tangent-space normal n: the exit radiance E/pi")
+    w("/// of a white Lambertian surface lit by the radiance L (9 RGB SH coefficients), through the")
+    w("/// 6-coefficient modified H-basis (sphbasis_sh_to_hbasis_mod6, then Listing 2.2). Equals the SH")
+    w("/// irradiance / pi only where the quadratic SH irradiance lies in the span of the basis.")
+    w("%s sphbasis_sh_irradiance_hbasis_mod6(%s L[9], %s n)" % (vec3, vec3, vec3))
+    w("{")
+    w("    %s h[6];" % vec3)
+    w("    sphbasis_sh_to_hbasis_mod6(L, h);")
+    w("    return sphbasis_hbasis_mod6_irradiance(h, n);")
+    w("}")
+    return "\n".join(out)
+
+
+def shader_toksvig(lang):
+    _, const, lit = _kw(lang)
+    one, zero = lit("1.0"), lit("0.0")
+    out = []
+    w = out.append
+    w("/// Toksvig, \"Mipmapping Normal Maps\" (NVIDIA 2004), as sphbasis::toksvig (shading/toksvig.hpp),")
+    w("/// with its clamps: lengths and cosines to [0, 1], a negative shininess to 0, +inf to FLT_MAX.")
+    w("/// (NaN inputs: GLSL and HLSL do not promise IEEE NaN comparisons, so unlike the C++ side the")
+    w("/// result for NaN is not specified.)")
+    w("float sphbasis_toksvig_clamp01(float x)")
+    w("{")
+    w("    return x > %s ? %s : (x > %s ? x : %s);" % (one, one, zero, zero))
+    w("}")
+    w("")
+    w("float sphbasis_toksvig_finite_shininess(float s)")
+    w("{")
+    w("    return s > %s ? min(s, %s) : %s;" % (zero, lit("3.40282347e+38"), zero))
+    w("}")
+    w("")
+    w("/// eq. 6: the Toksvig factor f_t = L/(L + s(1 - L)), as sphbasis::toksvig::factor.")
+    w("float sphbasis_toksvig_factor(float len, float shininess)")
+    w("{")
+    w("    float s = sphbasis_toksvig_finite_shininess(shininess);")
+    w("    float l = sphbasis_toksvig_clamp01(len);")
+    w("    float den = l + s * (%s - l);" % one)
+    w("    return den > %s ? l / den : %s;" % (zero, one))
+    w("}")
+    w("")
+    w("/// eq. 8: (1 + f_t s)/(1 + s) * (Na.H/L)^(f_t s), as sphbasis::toksvig::specular; pow(0, 0)")
+    w("/// is taken as 1 (GLSL's and HLSL's pow leave x <= 0 undefined: handled here).")
+    w("float sphbasis_toksvig_specular(float na_dot_h, float len, float shininess)")
+    w("{")
+    w("    float s = sphbasis_toksvig_finite_shininess(shininess);")
+    w("    float l = sphbasis_toksvig_clamp01(len);")
+    w("    float e = sphbasis_toksvig_factor(l, s) * s;")
+    w("    float c = l > %s ? sphbasis_toksvig_clamp01(na_dot_h / l) : %s;" % (zero, zero))
+    w("    float p = e > %s ? (c > %s ? pow(c, e) : %s) : %s;" % (zero, zero, zero, one))
+    w("    return (%s + e) / (%s + s) * p;" % (one, one))
+    w("}")
+    w("")
+    w("/// eq. 9: eq. 8 on the table axes Na.H and Na.Na (the square root taken here), as")
+    w("/// sphbasis::toksvig::specular_from_dots.")
+    w("float sphbasis_toksvig_specular_from_dots(float na_dot_h, float na_dot_na, float shininess)")
+    w("{")
+    w("    float l = sqrt(sphbasis_toksvig_clamp01(na_dot_na));")
+    w("    return sphbasis_toksvig_specular(na_dot_h, l, shininess);")
+    w("}")
+    return "\n".join(out)
+
 def main_shader(lang):
     guard = "SPHBASIS_GLSL" if lang == "glsl" else "SPHBASIS_HLSL"
     ext = lang
@@ -254,6 +528,14 @@ def main_shader(lang):
         print(shader_kernel(n, lang))
         print()
     print(shader_irradiance(lang))
+    print()
+    print(shader_clamped_cosine(lang))
+    print()
+    print(shader_hbasis(lang))
+    print()
+    print(shader_listing22(lang))
+    print()
+    print(shader_toksvig(lang))
     print()
     print("#endif  // %s" % guard)
 
