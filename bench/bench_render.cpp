@@ -315,11 +315,10 @@ struct ShadeFixture {
             reps = std::make_unique<Representations>(desc, *rt, s, names);
         } catch (const std::exception& e) {  // the specular shading may not exist yet
             error = e.what();
-            names.erase(std::remove_if(names.begin(), names.end(),
-                                       [](const std::string& n) {
-                                           return n.rfind("specular", 0) == 0;
-                                       }),
-                        names.end());
+            names.erase(
+                std::remove_if(names.begin(), names.end(),
+                               [](const std::string& n) { return n.rfind("specular", 0) == 0; }),
+                names.end());
             reps = std::make_unique<Representations>(desc, *rt, s, names);
         }
         reps->prepare(nullptr);
@@ -366,9 +365,9 @@ void shade_representation(benchmark::State& state, const std::string& name) {
 
 [[maybe_unused]] const bool shade_registered = [] {
     for (const std::string& n : representation_names())
-        benchmark::RegisterBenchmark(("shade/" + n).c_str(),
-                                     [n](benchmark::State& s) { shade_representation(s, n); })
-            ->Unit(benchmark::kMicrosecond);
+        benchmark::RegisterBenchmark(("shade/" + n).c_str(), [n](benchmark::State& s) {
+            shade_representation(s, n);
+        })->Unit(benchmark::kMicrosecond);
     return true;
 }();
 

@@ -1,9 +1,8 @@
 // Tests of render/representation.hpp: closed forms under constant and analytic lighting, PRT
 // against ao under a constant sky, render-time rotation against re-baking, the bake cache's
 // counters, and the bake record's serialisation.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -136,8 +135,7 @@ TEST_CASE("representations: names, unknown and duplicate names, bad settings", "
     const auto& names = render::representation_names();
     REQUIRE(names.size() == 17);
     // Every lightmap basis exists in the registry.
-    for (const char* b : {"sh", "hbasis", "hbasis-mod", "hl2", "hsh"})
-        CHECK_NOTHROW(find_basis(b));
+    for (const char* b : {"sh", "hbasis", "hbasis-mod", "hl2", "hsh"}) CHECK_NOTHROW(find_basis(b));
     CHECK_THROWS_WITH(render::Representations(w.desc, *w.rt, s, {"ao", "nonsense"}),
                       Catch::Contains("nonsense") && Catch::Contains("prt-texel") &&
                           Catch::Contains("lightmap-hsh9"));
@@ -279,8 +277,8 @@ TEST_CASE("representations: irradiance-sh9 under analytic lights against the ana
                 const RGB exact_mesh = render::light_irradiance(light, hit.shading_normal);
                 for (std::size_t k = 0; k < 3; ++k) {
                     const double e3 = 0.25 + 0.5 * cm + 5.0 / 16.0 * (3 * cm * cm - 1) / 2;
-                    const double expect = albedo / constants::pi *
-                                          (which == 0 ? exact_mesh[k] : light.color[k] * e3);
+                    const double expect =
+                        albedo / constants::pi * (which == 0 ? exact_mesh[k] : light.color[k] * e3);
                     CHECK(img.at(x, y)[k] == Approx(expect).margin(1e-6).epsilon(1e-5));
                 }
                 for (std::size_t k = 0; k < 3; ++k) {
@@ -293,9 +291,9 @@ TEST_CASE("representations: irradiance-sh9 under analytic lights against the ana
                         const double e3 = 0.25 + 0.5 * cs + 5.0 / 16.0 * (3 * cs * cs - 1) / 2;
                         expect = albedo / constants::pi * light.color[k] * e3;
                         worst_exact = std::max(
-                            worst_exact, std::fabs(img.at(x, y)[k] -
-                                                   albedo / constants::pi * exact[k]) /
-                                             (albedo / constants::pi * light.color[k]));
+                            worst_exact,
+                            std::fabs(img.at(x, y)[k] - albedo / constants::pi * exact[k]) /
+                                (albedo / constants::pi * light.color[k]));
                     }
                     const double scale = albedo / constants::pi * light.color[k];
                     worst = std::max(worst, std::fabs(img.at(x, y)[k] - expect) / scale);
@@ -403,8 +401,7 @@ TEST_CASE("representations: render-time rotation of prt equals re-baking with ro
     CHECK(max_abs_diff(rn.render(0, cam, 1), ra.render(0, cam, 1)) > 1e-2);
 }
 
-TEST_CASE("representations: a changed light re-bakes lightmaps, not the PRT transfer",
-          "[render]") {
+TEST_CASE("representations: a changed light re-bakes lightmaps, not the PRT transfer", "[render]") {
     World w = sphere_on_plane(true);
     w.desc.environment = constant_env(0.3, 0.3, 0.3);
     Light sun;
@@ -531,7 +528,8 @@ TEST_CASE("representations: bake records round-trip and reject bad bytes", "[ren
     s.rays = 8;
     s.lightmap_size = 4;
     s.bounces = 1;
-    render::Representations r(w.desc, *w.rt, s, {"bent", "prt-vertex", "lightmap-hbasis6", "volume"});
+    render::Representations r(w.desc, *w.rt, s,
+                              {"bent", "prt-vertex", "lightmap-hbasis6", "volume"});
     r.prepare(nullptr);
     for (std::size_t i = 0; i < r.bakes().size(); ++i) {
         const render::BakeData& d = r.bake_data(i);

@@ -194,9 +194,10 @@ inline void hash_texture(Hasher& h, const TextureView& t) {
     h.word(std::uint64_t(std::max(t.width, 0)));
     h.word(std::uint64_t(std::max(t.height, 0)));
     h.word(std::uint64_t(std::max(t.channels, 0)));
-    const std::size_t n = t.texels && t.width > 0 && t.height > 0 && t.channels > 0
-                              ? std::size_t(t.width) * std::size_t(t.height) * std::size_t(t.channels)
-                              : 0;
+    const std::size_t n =
+        t.texels && t.width > 0 && t.height > 0 && t.channels > 0
+            ? std::size_t(t.width) * std::size_t(t.height) * std::size_t(t.channels)
+            : 0;
     h.array(t.texels, n);
 }
 
@@ -477,8 +478,7 @@ inline BakeData deserialize(const std::vector<std::uint8_t>& bytes) {
     repr_detail::Reader r{bytes};
     if (bytes.size() < 12 || std::memcmp(bytes.data(), repr_detail::magic, 8) != 0)
         sphbasis::detail::throw_runtime(fn, "bytes starting with the magic \"SPHBBAKE\", got " +
-                                                std::to_string(bytes.size()) +
-                                                " bytes without it");
+                                                std::to_string(bytes.size()) + " bytes without it");
     r.pos = 8;
     const std::uint32_t version = r.u32();
     if (version != repr_detail::format_version)
@@ -537,10 +537,9 @@ inline BakeData deserialize(const std::vector<std::uint8_t>& bytes) {
     d.seconds = r.f64();
     d.rays = r.u64();
     if (r.pos != bytes.size())
-        sphbasis::detail::throw_runtime(fn, "a bake record of " + std::to_string(r.pos) +
-                                                " bytes, got " +
-                                                std::to_string(bytes.size() - r.pos) +
-                                                " trailing bytes");
+        sphbasis::detail::throw_runtime(
+            fn, "a bake record of " + std::to_string(r.pos) + " bytes, got " +
+                    std::to_string(bytes.size() - r.pos) + " trailing bytes");
     d.from_cache = true;
     return d;
 }
@@ -695,9 +694,9 @@ class Representations {
                 double v[4];
                 lookup(fields_[std::size_t(b)], hit, v);
                 const vec3<double> n =
-                    r.kind == Kind::ao ? Scene::normal_mapped(hit)
-                                       : detail::rt::normalized({v[1], v[2], v[3]},
-                                                                hit.shading_normal);
+                    r.kind == Kind::ao
+                        ? Scene::normal_mapped(hit)
+                        : detail::rt::normalized({v[1], v[2], v[3]}, hit.shading_normal);
                 const RGB c = sh_shade(irr_, n, hit.albedo);
                 const double ao = std::clamp(v[0], 0.0, 1.0);
                 return {ao * c[0], ao * c[1], ao * c[2]};
@@ -777,9 +776,8 @@ class Representations {
                     for (int s = 0; s < spp; ++s) {
                         double dx = 0.5, dy = 0.5;
                         if (spp > 1) {
-                            const std::uint64_t h =
-                                detail::rt::hash(settings_.seed ^ 0x72656e646572ull, pixel,
-                                                 std::uint64_t(s));
+                            const std::uint64_t h = detail::rt::hash(
+                                settings_.seed ^ 0x72656e646572ull, pixel, std::uint64_t(s));
                             dx = detail::rt::unit(h);
                             dy = detail::rt::unit(detail::rt::mix64(h));
                         }
@@ -807,7 +805,7 @@ class Representations {
         return scene_.environment.radiance(m);
     }
     RepresentationStats stats(std::size_t index) const {
-        const Rep& r = rep(index, "render::Representations::stats");
+        const Rep& r = rep(index, "render::Representations::stats", false);
         RepresentationStats s;
         s.name = r.name;
         s.cannot_show = r.cannot_show;
@@ -863,6 +861,7 @@ class Representations {
         int coeffs = 0;
         std::vector<int> mesh_bake;  // per mesh: index into requests_, -1: none (fallback)
         int probe_bake = -1;
+        bool reads_bakes = false;
         std::string element = "none", cannot_show;
         std::size_t bytes_per_element = 0;
     };
@@ -877,19 +876,16 @@ class Representations {
     };
     static constexpr int gutter = 4;  // texels dilated around each chart
 
-    const Rep& rep(std::size_t index, const char* fn) const {
+    /// Representation `index`; with `ready`, also that its bakes are prepared.
+    const Rep& rep(std::size_t index, const char* fn, bool ready = true) const {
         if (index >= reps_.size())
             sphbasis::detail::throw_invalid(fn, "a representation index below " +
                                                     std::to_string(reps_.size()) + ", got " +
                                                     std::to_string(index));
         const Rep& r = reps_[index];
-        if (!prepared_ && (!r.mesh_bake.empty() || r.probe_bake >= 0)) {
-            bool reads = r.probe_bake >= 0;
-            for (int b : r.mesh_bake) reads = reads || b >= 0;
-            if (reads && std::string(fn) != "render::Representations::stats")
-                sphbasis::detail::throw_runtime(fn, "prepare() before rendering '" + r.name +
-                                                        "', got no bakes");
-        }
+        if (ready && r.reads_bakes && !prepared_)
+            sphbasis::detail::throw_runtime(
+                fn, "prepare() before rendering '" + r.name + "', got no bakes");
         return r;
     }
 
@@ -918,9 +914,8 @@ class Representations {
                     fn, "representations from: " + known + "; got unknown '" + names_[i] + "'");
             for (std::size_t j = 0; j < i; ++j)
                 if (names_[j] == names_[i])
-                    sphbasis::detail::throw_invalid(fn, "distinct representations (from: " +
-                                                            known + "), got '" + names_[i] +
-                                                            "' twice");
+                    sphbasis::detail::throw_invalid(fn, "distinct representations (from: " + known +
+                                                            "), got '" + names_[i] + "' twice");
         }
     }
 
@@ -972,10 +967,14 @@ class Representations {
             r.kind = Kind::lightmap;
             const std::string b = name.substr(9);
             static const std::pair<const char*, std::pair<const char*, int>> table[] = {
-                {"sh4", {"sh", 4}},         {"sh9", {"sh", 9}},
-                {"hbasis4", {"hbasis", 4}}, {"hbasis6", {"hbasis", 6}},
-                {"hbasis-mod6", {"hbasis-mod", 6}}, {"hl2", {"hl2", 3}},
-                {"hsh4", {"hsh", 4}},       {"hsh9", {"hsh", 9}}};
+                {"sh4", {"sh", 4}},
+                {"sh9", {"sh", 9}},
+                {"hbasis4", {"hbasis", 4}},
+                {"hbasis6", {"hbasis", 6}},
+                {"hbasis-mod6", {"hbasis-mod", 6}},
+                {"hl2", {"hl2", 3}},
+                {"hsh4", {"hsh", 4}},
+                {"hsh9", {"hsh", 9}}};
             for (const auto& t : table)
                 if (b == t.first) {
                     r.basis = &find_basis(t.second.first);
@@ -1106,6 +1105,8 @@ class Representations {
                 case Kind::specular_aliased:
                     break;
             }
+            r.reads_bakes = r.probe_bake >= 0;
+            for (int b : r.mesh_bake) r.reads_bakes = r.reads_bakes || b >= 0;
         }
     }
 
