@@ -606,3 +606,27 @@ TEST_CASE("representations: bake_key depends on exactly what a bake reads", "[re
     qs.mesh = 1;
     CHECK(render::bake_key(w.desc, qs) != k0);
 }
+
+TEST_CASE("representations: the windowed SH9 irradiance of a sun is non-negative", "[render]") {
+    // SH9's clamped cosine of a delta light is 1/4 + c/2 + 5/32 (3c^2 - 1), whose minimum
+    // -0.0396 (at c = -8/15) rings below zero; Sloan's window removes it.
+    World w = lone_sphere(16, 32, 0.8f);
+    Light sun;
+    sun.direction = {0, 1, 0.2};
+    sun.color = {1, 1, 1};
+    w.desc.lights = {sun};
+    w.build();
+    render::Representations r(w.desc, *w.rt, render::RepresentationSettings{},
+                              {"irradiance-sh9", "irradiance-sh9-windowed"});
+    r.prepare(nullptr);
+    // Seen from the side away from the sun, where the ringing is.
+    const Camera cam = camera_at({0, -4, 0}, {0, 0, 0}, 16, 16);
+    const Image plain = r.render(0, cam, 1), windowed = r.render(1, cam, 1);
+    double lo_plain = 0, lo_windowed = 0;
+    for (std::size_t i = 0; i < plain.data.size(); ++i) {
+        lo_plain = std::min(lo_plain, double(plain.data[i]));
+        lo_windowed = std::min(lo_windowed, double(windowed.data[i]));
+    }
+    CHECK(lo_plain < -0.8 / constants::pi * 0.03);
+    CHECK(lo_windowed >= -1e-7);
+}
