@@ -19,11 +19,15 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cmath>
 #include <cstring>
 #include <memory>
 #include <sphbasis/render/bake.hpp>
+#include <sphbasis/render/path_tracer.hpp>
+#include <sphbasis/render/representation.hpp>
+#include <sphbasis/render/shapes.hpp>
 #include <string>
 #include <vector>
 
@@ -261,8 +265,6 @@ BENCHMARK(transfer6)->Apply(args);
 
 }  // namespace
 
-BENCHMARK_MAIN();
-
 // ---------------------------------------------------------------------------------------------
 // The path tracer (render/path_tracer.hpp) against a bare Embree loop of the same rays.
 //   trace/<threads>:     PathTracer::render of the procedural scene (constant sky and a sun,
@@ -273,7 +275,6 @@ BENCHMARK_MAIN();
 //                        tile's 256, the others one at a time: intersect for bounce rays,
 //                        occluded for shadow rays), tbb::parallel_for over blocks of 1024.
 // The ratio of the two items_per_second is the tracer's efficiency (the goal is >= 70%).
-#include <sphbasis/render/path_tracer.hpp>
 
 namespace {
 
@@ -375,5 +376,111 @@ void trace_args(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(trace_bare)->Apply(trace_args);
 BENCHMARK(trace)->Apply(trace_args);
+// ---------------------------------------------------------------------------------------------
+// Representation shading (render/representation.hpp): the cost per pixel of each
+// representation's shade() at precomputed camera hits, one thread ("what accuracy costs in
+// time"; camera rays and bakes are not timed). Items are pixels: ns per pixel = 1e9 /
+// items_per_second. Scene: a UV sphere (16 x 32) over a 4 x 4 plane under a lat-long sky and a
+// sun, 64 x 64 camera, bakes of 32 rays, 64 x 64 lightmaps, 1 bounce.
+
+namespace {
+
+struct ShadeFixture {
+    std::vector<Mesh> meshes;
+    std::vector<float> sky;
+    SceneDesc desc;
+    std::unique_ptr<Scene> rt;
+    std::unique_ptr<Representations> reps;
+    std::vector<Hit> hits;
+    std::vector<vec3<double>> views;
+    std::vector<double> footprints;
+    std::vector<std::string> names;
+    std::string error;
+
+    ShadeFixture() {
+        meshes.push_back(shapes::sphere({0, 0, 0.6}, 0.5, 16, 32));
+        meshes.push_back(shapes::quad({0, 0, 0}, {2, 0, 0}, {0, 2, 0}, 4));
+        sky.resize(32 * 16 * 3);
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 32; ++x)
+                for (int c = 0; c < 3; ++c)
+                    sky[std::size_t((y * 32 + x) * 3 + c)] =
+                        0.2f + 0.8f * float(16 - y) / 16.0f + (x == 5 && y == 3 ? 20.0f : 0.0f);
+        for (const Mesh& m : meshes) desc.meshes.push_back(m.view());
+        desc.environment.kind = Environment::Kind::latlong;
+        desc.environment.texels = sky.data();
+        desc.environment.width = 32;
+        desc.environment.height = 16;
+        Light sun;
+        sun.direction = {0.3, -0.4, 0.8};
+        sun.color = {2, 2, 1.8};
+        desc.lights = {sun};
+        rt = std::make_unique<Scene>(desc.meshes);
+        RepresentationSettings s;
+        s.rays = 32;
+        s.bounces = 1;
+        s.lightmap_size = 64;
+        names = representation_names();
+        try {
+            reps = std::make_unique<Representations>(desc, *rt, s, names);
+        } catch (const std::exception& e) {  // the specular shading may not exist yet
+            error = e.what();
+            names.erase(
+                std::remove_if(names.begin(), names.end(),
+                               [](const std::string& n) { return n.rfind("specular", 0) == 0; }),
+                names.end());
+            reps = std::make_unique<Representations>(desc, *rt, s, names);
+        }
+        reps->prepare(nullptr);
+        Camera cam;
+        cam.position = {0, -3, 1.5};
+        cam.look_at = {0, 0, 0.3};
+        cam.width = cam.height = 64;
+        const PinholeCamera pc(cam);
+        for (int y = 0; y < cam.height; ++y)
+            for (int x = 0; x < cam.width; ++x) {
+                const CameraRay r = pc.ray(x + 0.5, y + 0.5);
+                const Hit h = rt->intersect(r.origin, r.direction);
+                if (!h.valid) continue;
+                hits.push_back(h);
+                views.push_back({-r.direction.x, -r.direction.y, -r.direction.z});
+                footprints.push_back(h.t * pc.pixel_angle());
+            }
+    }
+};
+
+ShadeFixture& shade_fixture() {
+    static ShadeFixture f;
+    return f;
+}
+
+void shade_representation(benchmark::State& state, const std::string& name) {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    ShadeFixture& f = shade_fixture();
+    const auto it = std::find(f.names.begin(), f.names.end(), name);
+    if (it == f.names.end()) {
+        state.SkipWithError(("not available: " + f.error).c_str());
+        return;
+    }
+    const std::size_t index = std::size_t(it - f.names.begin());
+    double sink = 0;
+    for (auto _ : state) {
+        for (std::size_t i = 0; i < f.hits.size(); ++i)
+            sink += f.reps->shade(index, f.hits[i], f.views[i], f.footprints[i])[0];
+        benchmark::DoNotOptimize(sink);
+    }
+    state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(f.hits.size()));
+    state.counters["bytes_per_element"] = double(f.reps->stats(index).bytes_per_element);
+}
+
+[[maybe_unused]] const bool shade_registered = [] {
+    for (const std::string& n : representation_names())
+        benchmark::RegisterBenchmark(("shade/" + n).c_str(), [n](benchmark::State& s) {
+            shade_representation(s, n);
+        })->Unit(benchmark::kMicrosecond);
+    return true;
+}();
 
 }  // namespace
+
+BENCHMARK_MAIN();

@@ -41,23 +41,63 @@
 // lighting-dependent quantities (irradiance, radiance), and the settings. Re-rendering with a
 // rotated environment therefore re-bakes nothing for PRT and only lightmaps and probes for a
 // changed light.
+//
+// Implementation notes (the representations helper):
+//   * Distant lighting for the SH-lit representations: project_sh(environment, n) plus
+//     project_sh(light, n, c) for every light (c the centre of the scene's bounding box: sphere
+//     lights are treated as distant from there), then rotated by lighting_rotation. White
+//     Lambertian shading of SH radiance L is sum a_l L_lm y_lm(n) (core/clamped_cosine.hpp).
+//     The windowed variant applies Sloan's ringing-minimising window (sh::ringing_window with
+//     the clamped-cosine kernel and target 0: the smallest window that makes the irradiance
+//     non-negative everywhere; no window when it already is).
+//   * Bakes: ao and bent read one bake (ao | bent, no bounces); prt-* the transfer (prt_bands,
+//     bounces); lightmap-* the irradiance in their basis (bounces, lighting-dependent);
+//     volume the radiance at the probes (3 bands, bounces, lighting-dependent). Vertex points
+//     use the mesh normals (area-weighted face normals without them), point id
+//     (mesh << 32) + vertex; texel points come from layout_lightmap() (id base mesh << 32),
+//     with the tangent of render::Hit where the mesh has no tangents (the triangle's dp/du and
+//     its handedness), so the tangent frame of the baked irradiance is the one a camera hit
+//     reconstructs. Requests with equal settings share one Baker (one Embree build).
+//   * Texel data is laid into a lightmap per mesh at float precision, gutters dilated by 4
+//     texels (dilate()), read bilinearly at Hit::uv with clamp-to-edge; vertex data is
+//     interpolated with the hit's barycentrics. Lightmaps are baked on the front side of each
+//     surface (the side of its normal); a back-face hit reads the front's data.
+//   * Camera rays: one per pixel centre (spp = 1) or spp jittered ones, the jitter a hash of
+//     (seed, pixel, sample); footprint = t * pixel_angle() (the obliquity is ignored).
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
+#include "../basis/registry.hpp"
+#include "../basis/sh.hpp"
+#include "../core/clamped_cosine.hpp"
+#include "../core/constants.hpp"
 #include "../core/error.hpp"
 #include "../core/frame.hpp"
+#include "../ops/sh_rotation.hpp"
+#include "../ops/sh_windowing.hpp"
 #include "bake.hpp"
 #include "camera.hpp"
+#include "detail/rt_math.hpp"
 #include "image.hpp"
+#include "lighting.hpp"
 #include "lightmap.hpp"
 #include "probe_grid.hpp"
 #include "scene.hpp"
+#include "specular.hpp"
 
 namespace sphbasis::render {
 
@@ -103,6 +143,7 @@ struct BakeRequest {
     BakeSettings settings;
     int lightmap_size = 0;  // texel bakes
     bool lighting_dependent = false;
+    ProbeGrid probes;  // probe bakes: the grid (part of the key)
 };
 
 struct BakeData {
@@ -115,20 +156,392 @@ struct BakeData {
     bool from_cache = false;
 };
 
-/// The hash of everything a bake depends on (header comment).
-inline std::uint64_t bake_key(const SceneDesc& scene, const BakeRequest& request) {
-    sphbasis::detail::throw_runtime("render::representation",
-                                    "an implementation, got the contract stub");
+namespace repr_detail {
+
+/// A 64-bit FNV-1a over 64-bit words (and bytes for the tail), finished by SplitMix64's mixer.
+struct Hasher {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    void word(std::uint64_t w) noexcept { h = (h ^ w) * 0x100000001b3ull; }
+    void bytes(const void* p, std::size_t n) noexcept {
+        const unsigned char* c = static_cast<const unsigned char*>(p);
+        word(n);
+        std::size_t i = 0;
+        for (; i + 8 <= n; i += 8) {
+            std::uint64_t w;
+            std::memcpy(&w, c + i, 8);
+            word(w);
+        }
+        std::uint64_t tail = 0;
+        for (std::size_t k = 0; i < n; ++i, ++k) tail |= std::uint64_t(c[i]) << (8 * k);
+        word(tail);
+    }
+    void f64(double x) noexcept {
+        if (x == 0) x = 0;  // -0 == +0
+        std::uint64_t w;
+        std::memcpy(&w, &x, 8);
+        word(w);
+    }
+    void str(const std::string& s) noexcept { bytes(s.data(), s.size()); }
+    template <class T>
+    void array(const T* p, std::size_t n) noexcept {
+        word(p ? 1 : 0);
+        if (p) bytes(p, n * sizeof(T));
+    }
+    std::uint64_t value() const noexcept { return detail::rt::mix64(h); }
+};
+
+inline void hash_texture(Hasher& h, const TextureView& t) {
+    h.word(std::uint64_t(std::max(t.width, 0)));
+    h.word(std::uint64_t(std::max(t.height, 0)));
+    h.word(std::uint64_t(std::max(t.channels, 0)));
+    const std::size_t n =
+        t.texels && t.width > 0 && t.height > 0 && t.channels > 0
+            ? std::size_t(t.width) * std::size_t(t.height) * std::size_t(t.channels)
+            : 0;
+    h.array(t.texels, n);
 }
+
+/// Little-endian writer.
+struct Writer {
+    std::vector<std::uint8_t> out;
+    void u64(std::uint64_t v) {
+        for (int k = 0; k < 8; ++k) out.push_back(std::uint8_t(v >> (8 * k)));
+    }
+    void u32(std::uint32_t v) {
+        for (int k = 0; k < 4; ++k) out.push_back(std::uint8_t(v >> (8 * k)));
+    }
+    void i32(int v) { u32(static_cast<std::uint32_t>(v)); }
+    void u8(std::uint8_t v) { out.push_back(v); }
+    void f64(double x) {
+        std::uint64_t w;
+        std::memcpy(&w, &x, 8);
+        u64(w);
+    }
+    void v3(const vec3<double>& v) {
+        f64(v.x);
+        f64(v.y);
+        f64(v.z);
+    }
+    void str(const std::string& s) {
+        u64(s.size());
+        out.insert(out.end(), s.begin(), s.end());
+    }
+    void vec(const std::vector<double>& v) {
+        u64(v.size());
+        for (double x : v) f64(x);
+    }
+};
+
+/// Little-endian reader; every read checks the remaining bytes.
+struct Reader {
+    const std::vector<std::uint8_t>& in;
+    std::size_t pos = 0;
+    [[noreturn]] void truncated() const {
+        sphbasis::detail::throw_runtime("render::deserialize",
+                                        "a complete bake record, got " + std::to_string(in.size()) +
+                                            " bytes, truncated at byte " + std::to_string(pos));
+    }
+    void need(std::size_t n) const {
+        if (n > in.size() - pos) truncated();
+    }
+    std::uint64_t u64() {
+        need(8);
+        std::uint64_t v = 0;
+        for (int k = 0; k < 8; ++k) v |= std::uint64_t(in[pos + std::size_t(k)]) << (8 * k);
+        pos += 8;
+        return v;
+    }
+    std::uint32_t u32() {
+        need(4);
+        std::uint32_t v = 0;
+        for (int k = 0; k < 4; ++k) v |= std::uint32_t(in[pos + std::size_t(k)]) << (8 * k);
+        pos += 4;
+        return v;
+    }
+    int i32() { return static_cast<int>(u32()); }
+    std::uint8_t u8() {
+        need(1);
+        return in[pos++];
+    }
+    double f64() {
+        const std::uint64_t w = u64();
+        double x;
+        std::memcpy(&x, &w, 8);
+        return x;
+    }
+    vec3<double> v3() {
+        const double x = f64(), y = f64();
+        return {x, y, f64()};
+    }
+    /// A count of items of at least `min_bytes` each that must fit in the rest.
+    std::size_t count(std::size_t min_bytes) {
+        const std::uint64_t n = u64();
+        if (min_bytes > 0 && n > (in.size() - pos) / min_bytes) truncated();
+        return static_cast<std::size_t>(n);
+    }
+    std::string str() {
+        const std::size_t n = count(1);
+        std::string s(in.begin() + std::ptrdiff_t(pos), in.begin() + std::ptrdiff_t(pos + n));
+        pos += n;
+        return s;
+    }
+    std::vector<double> vec() {
+        const std::size_t n = count(8);
+        std::vector<double> v(n);
+        for (double& x : v) x = f64();
+        return v;
+    }
+};
+
+inline void write_settings(Writer& w, const BakeSettings& s) {
+    w.u32(s.quantities);
+    w.i32(s.bands);
+    w.str(s.basis);
+    w.i32(s.coeffs);
+    w.i32(s.rays);
+    w.i32(s.bounces);
+    w.u64(s.seed);
+    w.f64(s.max_distance);
+    w.f64(s.target_error);
+    w.u8(s.force_all_passes ? 1 : 0);
+}
+inline BakeSettings read_settings(Reader& r) {
+    BakeSettings s;
+    s.quantities = r.u32();
+    s.bands = r.i32();
+    s.basis = r.str();
+    s.coeffs = r.i32();
+    s.rays = r.i32();
+    s.bounces = r.i32();
+    s.seed = r.u64();
+    s.max_distance = r.f64();
+    s.target_error = r.f64();
+    s.force_all_passes = r.u8() != 0;
+    return s;
+}
+inline void write_request(Writer& w, const BakeRequest& q) {
+    w.u8(static_cast<std::uint8_t>(q.where));
+    w.u64(q.mesh);
+    write_settings(w, q.settings);
+    w.i32(q.lightmap_size);
+    w.u8(q.lighting_dependent ? 1 : 0);
+    w.v3(q.probes.lo);
+    w.v3(q.probes.hi);
+    for (int c : q.probes.counts) w.i32(c);
+}
+inline BakeRequest read_request(Reader& r) {
+    BakeRequest q;
+    const std::uint8_t where = r.u8();
+    if (where > 2)
+        sphbasis::detail::throw_runtime("render::deserialize",
+                                        "a bake location 0, 1 or 2, got " + std::to_string(where));
+    q.where = static_cast<BakeRequest::Where>(where);
+    q.mesh = static_cast<std::size_t>(r.u64());
+    q.settings = read_settings(r);
+    q.lightmap_size = r.i32();
+    q.lighting_dependent = r.u8() != 0;
+    q.probes.lo = r.v3();
+    q.probes.hi = r.v3();
+    for (int& c : q.probes.counts) c = r.i32();
+    return q;
+}
+/// The identity of a request (its bytes), for finding distinct requests.
+inline std::vector<std::uint8_t> request_bytes(const BakeRequest& q) {
+    Writer w;
+    write_request(w, q);
+    return std::move(w.out);
+}
+inline std::vector<std::uint8_t> settings_bytes(const BakeSettings& s) {
+    Writer w;
+    write_settings(w, s);
+    return std::move(w.out);
+}
+
+constexpr char magic[8] = {'S', 'P', 'H', 'B', 'B', 'A', 'K', 'E'};
+constexpr std::uint32_t format_version = 1;
+
+}  // namespace repr_detail
+
+/// The hash of everything a bake depends on (header comment): the request (location, mesh,
+/// settings, lightmap size, probe grid), the geometry of every mesh (positions, indices,
+/// normals, UVs, tangents), the albedos and albedo maps when settings.bounces > 0, and the
+/// lighting (environment kind, constant, texels, rotation, scale; every light) only when
+/// request.lighting_dependent. FNV-1a over 64-bit words, mixed by SplitMix64. Cost: one pass over
+/// the arrays.
+inline std::uint64_t bake_key(const SceneDesc& scene, const BakeRequest& request) {
+    repr_detail::Hasher h;
+    h.str("sphbasis bake key 1");
+    const std::vector<std::uint8_t> req = repr_detail::request_bytes(request);
+    h.bytes(req.data(), req.size());
+    h.word(scene.meshes.size());
+    for (const MeshView& m : scene.meshes) {
+        h.word(m.vertex_count);
+        h.word(m.triangle_count);
+        h.array(m.positions, 3 * m.vertex_count);
+        h.array(m.indices, 3 * m.triangle_count);
+        h.array(m.normals, 3 * m.vertex_count);
+        h.array(m.uvs, 2 * m.vertex_count);
+        h.array(m.tangents, 4 * m.vertex_count);
+        if (request.settings.bounces > 0) {
+            for (float a : m.albedo) h.f64(a);
+            repr_detail::hash_texture(h, m.albedo_map);
+        }
+    }
+    if (request.lighting_dependent) {
+        const Environment& e = scene.environment;
+        h.word(static_cast<std::uint64_t>(e.kind));
+        if (e.kind == Environment::Kind::constant)
+            for (double c : e.constant) h.f64(c);
+        if (e.kind == Environment::Kind::latlong) {
+            h.word(std::uint64_t(std::max(e.width, 0)));
+            h.word(std::uint64_t(std::max(e.height, 0)));
+            h.array(e.texels, e.width > 0 && e.height > 0
+                                  ? std::size_t(e.width) * std::size_t(e.height) * 3
+                                  : 0);
+        }
+        for (double r : e.rotation) h.f64(r);
+        h.f64(e.scale);
+        h.word(scene.lights.size());
+        for (const Light& l : scene.lights) {
+            h.word(static_cast<std::uint64_t>(l.type));
+            h.f64(l.direction.x), h.f64(l.direction.y), h.f64(l.direction.z);
+            h.f64(l.position.x), h.f64(l.position.y), h.f64(l.position.z);
+            h.f64(l.radius), h.f64(l.angle_deg);
+            for (double c : l.color) h.f64(c);
+            for (double c : l.ground) h.f64(c);
+        }
+    }
+    return h.value();
+}
+
 /// Bytes of a BakeData (versioned, little-endian) and back; deserialize throws
-/// std::runtime_error for truncated or foreign bytes.
+/// std::runtime_error for truncated or foreign bytes. Format: the magic "SPHBBAKE", a 32-bit
+/// version (1), the request, the layout, the results, the plan, seconds and rays; integers
+/// little-endian, doubles as their IEEE-754 bits, vectors and strings length-prefixed (64-bit).
+/// from_cache is not stored (deserialize sets it).
 inline std::vector<std::uint8_t> serialize(const BakeData& data) {
-    sphbasis::detail::throw_runtime("render::representation",
-                                    "an implementation, got the contract stub");
+    repr_detail::Writer w;
+    for (char c : repr_detail::magic) w.u8(static_cast<std::uint8_t>(c));
+    w.u32(repr_detail::format_version);
+    repr_detail::write_request(w, data.request);
+    const LightmapLayout& L = data.layout;
+    w.i32(L.width);
+    w.i32(L.height);
+    w.u64(L.samples.size());
+    for (const LightmapSample& s : L.samples) {
+        w.i32(s.x);
+        w.i32(s.y);
+        w.v3(s.point.p);
+        w.v3(s.point.n);
+        w.v3(s.point.tangent);
+        w.f64(s.point.bitangent_sign);
+        w.u64(s.point.id);
+        w.u32(s.triangle);
+        for (double b : s.barycentric) w.f64(b);
+        w.v3(s.surface);
+        w.f64(s.u);
+        w.f64(s.v);
+        w.f64(s.bitangent_sign);
+        w.f64(s.offset);
+    }
+    w.u64(L.covered.size());
+    w.out.insert(w.out.end(), L.covered.begin(), L.covered.end());
+    w.u64(L.skipped_triangles);
+    w.u64(L.degenerate_triangles);
+    w.u64(data.results.size());
+    for (const PointResult& r : data.results) {
+        w.f64(r.ao);
+        w.f64(r.ao_stderr);
+        w.v3(r.bent);
+        w.vec(r.visibility);
+        w.vec(r.visibility_stderr);
+        for (const auto& v : r.transfer) w.vec(v);
+        w.vec(r.transfer_stderr);
+        w.u8(r.transfer_rgb ? 1 : 0);
+        for (const auto& v : r.irradiance) w.vec(v);
+        for (const auto& v : r.radiance) w.vec(v);
+        w.u8(r.inside ? 1 : 0);
+    }
+    w.u64(data.plan.size());
+    for (const Pass& p : data.plan) {
+        w.str(p.name);
+        w.str(p.reason);
+        w.u64(p.rays);
+        w.f64(p.seconds);
+    }
+    w.f64(data.seconds);
+    w.u64(data.rays);
+    return std::move(w.out);
 }
 inline BakeData deserialize(const std::vector<std::uint8_t>& bytes) {
-    sphbasis::detail::throw_runtime("render::representation",
-                                    "an implementation, got the contract stub");
+    constexpr const char* fn = "render::deserialize";
+    repr_detail::Reader r{bytes};
+    if (bytes.size() < 12 || std::memcmp(bytes.data(), repr_detail::magic, 8) != 0)
+        sphbasis::detail::throw_runtime(fn, "bytes starting with the magic \"SPHBBAKE\", got " +
+                                                std::to_string(bytes.size()) + " bytes without it");
+    r.pos = 8;
+    const std::uint32_t version = r.u32();
+    if (version != repr_detail::format_version)
+        sphbasis::detail::throw_runtime(fn, "format version " +
+                                                std::to_string(repr_detail::format_version) +
+                                                ", got " + std::to_string(version));
+    BakeData d;
+    d.request = repr_detail::read_request(r);
+    LightmapLayout& L = d.layout;
+    L.width = r.i32();
+    L.height = r.i32();
+    L.samples.resize(r.count(8 * 27));
+    for (LightmapSample& s : L.samples) {
+        s.x = r.i32();
+        s.y = r.i32();
+        s.point.p = r.v3();
+        s.point.n = r.v3();
+        s.point.tangent = r.v3();
+        s.point.bitangent_sign = r.f64();
+        s.point.id = r.u64();
+        s.triangle = r.u32();
+        for (double& b : s.barycentric) b = r.f64();
+        s.surface = r.v3();
+        s.u = r.f64();
+        s.v = r.f64();
+        s.bitangent_sign = r.f64();
+        s.offset = r.f64();
+    }
+    const std::size_t nc = r.count(1);
+    L.covered.assign(bytes.begin() + std::ptrdiff_t(r.pos),
+                     bytes.begin() + std::ptrdiff_t(r.pos + nc));
+    r.pos += nc;
+    L.skipped_triangles = static_cast<std::size_t>(r.u64());
+    L.degenerate_triangles = static_cast<std::size_t>(r.u64());
+    d.results.resize(r.count(8 * 5 + 8 * 12 + 2));
+    for (PointResult& p : d.results) {
+        p.ao = r.f64();
+        p.ao_stderr = r.f64();
+        p.bent = r.v3();
+        p.visibility = r.vec();
+        p.visibility_stderr = r.vec();
+        for (auto& v : p.transfer) v = r.vec();
+        p.transfer_stderr = r.vec();
+        p.transfer_rgb = r.u8() != 0;
+        for (auto& v : p.irradiance) v = r.vec();
+        for (auto& v : p.radiance) v = r.vec();
+        p.inside = r.u8() != 0;
+    }
+    d.plan.resize(r.count(32));
+    for (Pass& p : d.plan) {
+        p.name = r.str();
+        p.reason = r.str();
+        p.rays = r.u64();
+        p.seconds = r.f64();
+    }
+    d.seconds = r.f64();
+    d.rays = r.u64();
+    if (r.pos != bytes.size())
+        sphbasis::detail::throw_runtime(
+            fn, "a bake record of " + std::to_string(r.pos) + " bytes, got " +
+                    std::to_string(bytes.size() - r.pos) + " trailing bytes");
+    d.from_cache = true;
+    return d;
 }
 
 /// Where bakes are kept between runs (the tool keeps files; tests keep memory).
@@ -137,6 +550,26 @@ class BakeCache {
     virtual ~BakeCache() = default;
     virtual bool load(std::uint64_t key, BakeData& out) = 0;
     virtual void store(std::uint64_t key, const BakeData& data) = 0;
+};
+
+/// A BakeCache in memory that keeps serialize()d bytes (so a round trip is exercised on every
+/// load). Not thread-safe (prepare() calls it from one thread).
+class MemoryBakeCache : public BakeCache {
+  public:
+    bool load(std::uint64_t key, BakeData& out) override {
+        const auto it = entries_.find(key);
+        if (it == entries_.end()) return false;
+        out = deserialize(it->second);
+        return true;
+    }
+    void store(std::uint64_t key, const BakeData& data) override {
+        entries_[key] = serialize(data);
+    }
+    std::size_t size() const noexcept { return entries_.size(); }
+    void clear() noexcept { entries_.clear(); }
+
+  private:
+    std::map<std::uint64_t, std::vector<std::uint8_t>> entries_;
 };
 
 struct RepresentationStats {
@@ -157,52 +590,804 @@ class Representations {
     /// std::invalid_argument for an unknown name (the message lists representation_names()),
     /// a duplicate, or invalid settings.
     Representations(const SceneDesc& scene, const Scene& rt, const RepresentationSettings& settings,
-                    const std::vector<std::string>& names) {
-        sphbasis::detail::throw_runtime("render::Representations",
-                                        "an implementation, got the contract stub");
+                    const std::vector<std::string>& names)
+        : scene_(scene), rt_(rt), settings_(settings), names_(names) {
+        validate_input();
+        for (const std::string& n : names_) reps_.push_back(parse(n));
+        plan();
+        if (needs_sh_) prepare_lighting();
+        for (const Rep& r : reps_)
+            if (r.kind == Kind::specular_toksvig || r.kind == Kind::specular_aliased) {
+                if (!spec_) spec_ = std::make_unique<SpecularShading>(scene_);
+            }
     }
     /// The distinct bakes the requested representations read (the plan), before prepare().
-    const std::vector<BakeRequest>& bakes() const noexcept {
-        sphbasis::detail::throw_runtime("render::Representations",
-                                        "an implementation, got the contract stub");
-    }
+    const std::vector<BakeRequest>& bakes() const noexcept { return requests_; }
     /// Runs or loads every planned bake (cache may be null). progress(done, total) in points.
+    /// Each distinct request is baked once (or loaded under bake_key()); fresh bakes are
+    /// stored in the cache. The counters below count this call only.
     void prepare(BakeCache* cache,
                  const std::function<void(std::uint64_t, std::uint64_t)>& progress = {}) {
-        sphbasis::detail::throw_runtime("render::Representations",
-                                        "an implementation, got the contract stub");
+        bakes_run_ = bakes_loaded_ = 0;
+        data_.assign(requests_.size(), BakeData{});
+        std::vector<std::uint64_t> keys(requests_.size());
+        std::vector<std::size_t> todo;
+        for (std::size_t i = 0; i < requests_.size(); ++i) {
+            keys[i] = bake_key(scene_, requests_[i]);
+            BakeData d;
+            if (cache && cache->load(keys[i], d) && consistent(d, requests_[i])) {
+                d.from_cache = true;
+                data_[i] = std::move(d);
+                ++bakes_loaded_;
+            } else {
+                todo.push_back(i);
+            }
+        }
+        std::vector<std::vector<BakePoint>> points(todo.size());
+        std::vector<LightmapLayout> layouts(todo.size());
+        std::uint64_t total = 0;
+        for (std::size_t k = 0; k < todo.size(); ++k) {
+            points[k] = make_points(requests_[todo[k]], layouts[k]);
+            total += points[k].size();
+        }
+        std::map<std::vector<std::uint8_t>, std::unique_ptr<Baker>> bakers;
+        std::atomic<std::uint64_t> done{0};
+        std::mutex progress_mutex;
+        for (std::size_t k = 0; k < todo.size(); ++k) {
+            const std::size_t i = todo[k];
+            const BakeRequest& q = requests_[i];
+            const auto t0 = std::chrono::steady_clock::now();
+            std::unique_ptr<Baker>& baker = bakers[repr_detail::settings_bytes(q.settings)];
+            if (!baker) baker = std::make_unique<Baker>(scene_, q.settings);
+            const std::uint64_t rays0 = baker->rays_traced();
+            BakeData& d = data_[i];
+            d.request = q;
+            d.results = baker->bake(points[k], [&](std::size_t c) {
+                const std::uint64_t now = done.fetch_add(c) + c;
+                if (progress) {
+                    std::lock_guard<std::mutex> lock(progress_mutex);
+                    progress(now, total);
+                }
+            });
+            d.plan = baker->plan();
+            d.rays = baker->rays_traced() - rays0;
+            d.seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            d.layout = std::move(layouts[k]);
+            d.from_cache = false;
+            if (cache) cache->store(keys[i], d);
+            ++bakes_run_;
+        }
+        fields_.clear();
+        for (const BakeData& d : data_) fields_.push_back(make_field(d));
+        prepared_ = true;
     }
     /// Bakes run and bakes loaded from the cache by prepare().
-    std::size_t bakes_run() const noexcept {
-        sphbasis::detail::throw_runtime("render::Representations",
-                                        "an implementation, got the contract stub");
+    std::size_t bakes_run() const noexcept { return bakes_run_; }
+    std::size_t bakes_loaded() const noexcept { return bakes_loaded_; }
+    /// The data of bake i (bakes()[i]) after prepare().
+    const BakeData& bake_data(std::size_t i) const {
+        if (!prepared_ || i >= data_.size())
+            sphbasis::detail::throw_invalid("render::Representations::bake_data",
+                                            "a bake index below " + std::to_string(data_.size()) +
+                                                " after prepare(), got " + std::to_string(i));
+        return data_[i];
     }
-    std::size_t bakes_loaded() const noexcept {
-        sphbasis::detail::throw_runtime("render::Representations",
-                                        "an implementation, got the contract stub");
-    }
+
     /// The outgoing radiance toward the camera at a hit for representation `index` (into the
     /// names given), view = unit direction from the hit to the eye, footprint = the pixel's
-    /// world-space width at the hit (for the normal map's mip level).
+    /// world-space width at the hit (for the normal map's mip level). Throws
+    /// std::invalid_argument for a bad index, std::runtime_error before prepare() for a
+    /// representation that reads bakes. An invalid hit gives 0.
     RGB shade(std::size_t index, const Hit& hit, const vec3<double>& view, double footprint) const {
-        sphbasis::detail::throw_runtime("render::Representations",
-                                        "an implementation, got the contract stub");
+        const Rep& r = rep(index, "render::Representations::shade");
+        if (!hit.valid) return {0, 0, 0};
+        switch (r.kind) {
+            case Kind::irradiance:
+                return sh_shade(irr_, Scene::normal_mapped(hit), hit.albedo);
+            case Kind::windowed:
+                return sh_shade(irr_windowed_, Scene::normal_mapped(hit), hit.albedo);
+            case Kind::ao:
+            case Kind::bent: {
+                const int b = r.mesh_bake[hit.mesh];
+                if (b < 0) return sh_shade(irr_, Scene::normal_mapped(hit), hit.albedo);
+                double v[4];
+                lookup(fields_[std::size_t(b)], hit, v);
+                const vec3<double> n =
+                    r.kind == Kind::ao
+                        ? Scene::normal_mapped(hit)
+                        : detail::rt::normalized({v[1], v[2], v[3]}, hit.shading_normal);
+                const RGB c = sh_shade(irr_, n, hit.albedo);
+                const double ao = std::clamp(v[0], 0.0, 1.0);
+                return {ao * c[0], ao * c[1], ao * c[2]};
+            }
+            case Kind::prt_vertex:
+            case Kind::prt_texel: {
+                const int b = r.mesh_bake[hit.mesh];
+                if (b < 0) return {0, 0, 0};
+                std::array<double, 3 * 64> t;
+                lookup(fields_[std::size_t(b)], hit, t.data());
+                const std::size_t n = std::size_t(settings_.prt_bands * settings_.prt_bands);
+                RGB out{0, 0, 0};
+                for (std::size_t c = 0; c < 3; ++c) {
+                    double s = 0;
+                    for (std::size_t k = 0; k < n; ++k) s += t[c * n + k] * prt_light_[c][k];
+                    out[c] = hit.albedo[c] * s;
+                }
+                return out;
+            }
+            case Kind::lightmap: {
+                const int b = r.mesh_bake[hit.mesh];
+                if (b < 0) return sh_shade(irr_, Scene::normal_mapped(hit), hit.albedo);
+                std::array<double, 3 * 16> e;
+                lookup(fields_[std::size_t(b)], hit, e.data());
+                using namespace detail::rt;
+                const V3 nm = Scene::normal_mapped(hit);
+                const V3 ns = hit.shading_normal, t = hit.tangent;
+                const V3 bt = cross(ns, t) * hit.bitangent_sign;
+                // The basis lives on the tangent hemisphere: a mapped normal below it (a steep
+                // map) is read at the horizon.
+                V3 local{dot(nm, t), dot(nm, bt), std::max(dot(nm, ns), 0.0)};
+                local = normalized(local, {0, 0, 1});
+                std::array<double, 16> y;
+                r.basis->eval_d(r.coeffs, local.x, local.y, local.z, y.data());
+                const std::size_t n = std::size_t(r.coeffs);
+                RGB out{0, 0, 0};
+                for (std::size_t c = 0; c < 3; ++c) {
+                    double s = 0;
+                    for (std::size_t k = 0; k < n; ++k) s += e[c * n + k] * y[k];
+                    out[c] = hit.albedo[c] * s * constants::inv_pi;
+                }
+                return out;
+            }
+            case Kind::volume: {
+                const Field& f = fields_[std::size_t(r.probe_bake)];
+                std::array<double, 27> v;
+                f.grid.interpolate_valid(f.probe_values.data(), 27, f.inside.data(), hit.position,
+                                         v.data());
+                std::array<std::array<double, 9>, 3> cc;
+                for (std::size_t c = 0; c < 3; ++c)
+                    for (std::size_t k = 0; k < 9; ++k) cc[c][k] = cosine9_[k] * v[c * 9 + k];
+                return sh_shade(cc, Scene::normal_mapped(hit), hit.albedo);
+            }
+            case Kind::specular_toksvig:
+                return spec_->shade(SpecularShading::Mode::toksvig, hit, view, footprint);
+            case Kind::specular_aliased:
+                return spec_->shade(SpecularShading::Mode::aliased, hit, view, footprint);
+        }
+        return {0, 0, 0};
     }
-    /// One image: a camera ray per pixel centre (spp > 1: jittered, averaged) {
-    /// sphbasis::detail::throw_runtime("render::Representations", "an implementation, got the
-    /// contract stub"); } escaped rays show the (rotated) environment like the ground truth.
+    /// One image: a camera ray per pixel centre (spp > 1: jittered, averaged); escaped rays
+    /// show the (rotated) environment like the ground truth. Multithreaded by 16 x 16 tiles;
+    /// deterministic (the jitter hashes (seed, pixel, sample)). Throws std::invalid_argument
+    /// for a bad index, camera or spp < 1.
     Image render(std::size_t index, const Camera& camera, int spp = 1) const {
-        sphbasis::detail::throw_runtime("render::Representations",
-                                        "an implementation, got the contract stub");
+        rep(index, "render::Representations::render");
+        sphbasis::detail::check_range("render::Representations::render", "spp", spp, 1, 1 << 20);
+        const PinholeCamera pc(camera);
+        Image img(camera.width, camera.height, 3);
+        const double angle = pc.pixel_angle();
+        for_each_tile(camera.width, camera.height, 16, [&](int x0, int y0, int x1, int y1) {
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x) {
+                    RGB sum{0, 0, 0};
+                    const std::uint64_t pixel =
+                        std::uint64_t(y) * std::uint64_t(camera.width) + std::uint64_t(x);
+                    for (int s = 0; s < spp; ++s) {
+                        double dx = 0.5, dy = 0.5;
+                        if (spp > 1) {
+                            const std::uint64_t h = detail::rt::hash(
+                                settings_.seed ^ 0x72656e646572ull, pixel, std::uint64_t(s));
+                            dx = detail::rt::unit(h);
+                            dy = detail::rt::unit(detail::rt::mix64(h));
+                        }
+                        const CameraRay ray = pc.ray(x + dx, y + dy);
+                        const Hit h = rt_.intersect(ray.origin, ray.direction);
+                        const vec3<double> view{-ray.direction.x, -ray.direction.y,
+                                                -ray.direction.z};
+                        const RGB c = h.valid ? shade(index, h, view, h.t * angle)
+                                              : background(ray.direction);
+                        for (std::size_t k = 0; k < 3; ++k) sum[k] += c[k];
+                    }
+                    float* p = img.at(x, y);
+                    for (std::size_t k = 0; k < 3; ++k) p[k] = static_cast<float>(sum[k] / spp);
+                }
+        });
+        return img;
+    }
+    /// The radiance an escaped camera ray shows: the environment at R^T d (R the render-time
+    /// lighting rotation); analytic lights are not visible to camera rays.
+    RGB background(const vec3<double>& d) const noexcept {
+        const Mat3<double>& R = settings_.lighting_rotation;
+        const vec3<double> m{R[0] * d.x + R[3] * d.y + R[6] * d.z,
+                             R[1] * d.x + R[4] * d.y + R[7] * d.z,
+                             R[2] * d.x + R[5] * d.y + R[8] * d.z};
+        return scene_.environment.radiance(m);
     }
     RepresentationStats stats(std::size_t index) const {
-        sphbasis::detail::throw_runtime("render::Representations",
-                                        "an implementation, got the contract stub");
+        const Rep& r = rep(index, "render::Representations::stats", false);
+        RepresentationStats s;
+        s.name = r.name;
+        s.cannot_show = r.cannot_show;
+        std::vector<int> used = r.mesh_bake;
+        if (r.probe_bake >= 0) used.push_back(r.probe_bake);
+        bool any = false, all_cached = true;
+        std::vector<char> seen(requests_.size(), 0);
+        for (int b : used) {
+            if (b < 0 || seen[std::size_t(b)]) continue;
+            seen[std::size_t(b)] = 1;
+            any = true;
+            if (!prepared_) continue;
+            const BakeData& d = data_[std::size_t(b)];
+            s.bake_seconds += d.seconds;
+            s.bake_rays += d.rays;
+            all_cached = all_cached && d.from_cache;
+            s.elements += d.results.size();
+        }
+        s.cached = prepared_ && any && all_cached;
+        s.element = r.element;
+        s.bytes_per_element = r.bytes_per_element;
+        if (r.kind == Kind::prt_vertex || r.kind == Kind::prt_texel) {
+            bool rgb = false;
+            if (prepared_)
+                for (int b : used)
+                    if (b >= 0)
+                        for (const PointResult& p : data_[std::size_t(b)].results)
+                            rgb = rgb || p.transfer_rgb;
+            s.bytes_per_element = (rgb ? 3 : 1) * std::size_t(settings_.prt_bands) *
+                                  std::size_t(settings_.prt_bands) * sizeof(float);
+        }
+        return s;
     }
-    const std::vector<std::string>& names() const noexcept {
-        sphbasis::detail::throw_runtime("render::Representations",
-                                        "an implementation, got the contract stub");
+    const std::vector<std::string>& names() const noexcept { return names_; }
+
+  private:
+    enum class Kind {
+        irradiance,
+        windowed,
+        ao,
+        bent,
+        prt_vertex,
+        prt_texel,
+        lightmap,
+        volume,
+        specular_toksvig,
+        specular_aliased
+    };
+    struct Rep {
+        std::string name;
+        Kind kind = Kind::irradiance;
+        const BasisInfo* basis = nullptr;
+        int coeffs = 0;
+        std::vector<int> mesh_bake;  // per mesh: index into requests_, -1: none (fallback)
+        int probe_bake = -1;
+        bool reads_bakes = false;
+        std::string element = "none", cannot_show;
+        std::size_t bytes_per_element = 0;
+    };
+    /// Baked values laid out for lookups at float precision (probes: double).
+    struct Field {
+        BakeRequest::Where where = BakeRequest::Where::vertex;
+        int channels = 0, width = 0, height = 0;
+        std::vector<float> data;  // vertex: vertex_count x channels; texel: width x height x ch
+        std::vector<double> probe_values;  // probes x 27 (R, G, B x 9)
+        std::vector<std::uint8_t> inside;
+        ProbeGrid grid;
+    };
+    static constexpr int gutter = 4;  // texels dilated around each chart
+
+    /// Representation `index`; with `ready`, also that its bakes are prepared.
+    const Rep& rep(std::size_t index, const char* fn, bool ready = true) const {
+        if (index >= reps_.size())
+            sphbasis::detail::throw_invalid(fn, "a representation index below " +
+                                                    std::to_string(reps_.size()) + ", got " +
+                                                    std::to_string(index));
+        const Rep& r = reps_[index];
+        if (ready && r.reads_bakes && !prepared_)
+            sphbasis::detail::throw_runtime(
+                fn, "prepare() before rendering '" + r.name + "', got no bakes");
+        return r;
     }
+
+    void validate_input() {
+        constexpr const char* fn = "render::Representations";
+        sphbasis::detail::check_range(fn, "settings.rays", settings_.rays, 1, 1 << 20);
+        sphbasis::detail::check_range(fn, "settings.bounces", settings_.bounces, 0, 64);
+        sphbasis::detail::check_range(fn, "settings.prt_bands", settings_.prt_bands, 1, 8);
+        sphbasis::detail::check_range(fn, "settings.lightmap_size", settings_.lightmap_size, 1,
+                                      16384);
+        sphbasis::detail::check_orthonormal(settings_.lighting_rotation, 1e-6, fn);
+        if (settings_.has_probes) settings_.probes.validate();
+        if (rt_.mesh_count() != scene_.meshes.size())
+            sphbasis::detail::throw_invalid(
+                fn, "a ray-tracing scene of the scene's " + std::to_string(scene_.meshes.size()) +
+                        " meshes, got " + std::to_string(rt_.mesh_count()));
+        validate(scene_.environment);
+        for (const Light& l : scene_.lights) validate(l);
+        std::string known;
+        for (const std::string& n : representation_names())
+            known += (known.empty() ? "" : ", ") + n;
+        for (std::size_t i = 0; i < names_.size(); ++i) {
+            const auto& all = representation_names();
+            if (std::find(all.begin(), all.end(), names_[i]) == all.end())
+                sphbasis::detail::throw_invalid(
+                    fn, "representations from: " + known + "; got unknown '" + names_[i] + "'");
+            for (std::size_t j = 0; j < i; ++j)
+                if (names_[j] == names_[i])
+                    sphbasis::detail::throw_invalid(fn, "distinct representations (from: " + known +
+                                                            "), got '" + names_[i] + "' twice");
+        }
+    }
+
+    static bool has_uvs(const MeshView& m) noexcept {
+        return m.uvs != nullptr && m.triangle_count > 0;
+    }
+
+    Rep parse(const std::string& name) {
+        Rep r;
+        r.name = name;
+        const char* no_bounce = settings_.bounces > 0 ? "" : "; no interreflection";
+        if (name == "irradiance-sh9") {
+            r.kind = Kind::irradiance;
+            r.cannot_show =
+                "no shadows; no interreflection; lighting truncated to 3 SH bands (small lights "
+                "blurred, ringing)";
+        } else if (name == "irradiance-sh9-windowed") {
+            r.kind = Kind::windowed;
+            r.cannot_show =
+                "no shadows; no interreflection; lighting truncated to 3 SH bands and windowed "
+                "(no ringing, more blur)";
+        } else if (name == "ao" || name == "bent") {
+            r.kind = name == "ao" ? Kind::ao : Kind::bent;
+            r.cannot_show = name == "ao"
+                                ? "no directional shadows (occlusion ignores where the light is); "
+                                  "no interreflection"
+                                : "shadows only as one bent direction and the ao fraction; no "
+                                  "interreflection; no normal-map detail";
+            r.element = "texel";
+            for (const MeshView& m : scene_.meshes)
+                if (!has_uvs(m)) r.element = "vertex";
+            r.bytes_per_element = (r.kind == Kind::ao ? 1 : 4) * sizeof(float);
+        } else if (name == "prt-vertex" || name == "prt-texel") {
+            r.kind = name == "prt-vertex" ? Kind::prt_vertex : Kind::prt_texel;
+            r.cannot_show = "lighting above " + std::to_string(settings_.prt_bands) +
+                            " SH bands (sharp shadows of small lights); no normal-map detail" +
+                            no_bounce;
+            if (r.kind == Kind::prt_vertex)
+                r.cannot_show += "; shadows finer than the vertex spacing";
+            r.element = r.kind == Kind::prt_vertex ? "vertex" : "texel";
+            if (r.kind == Kind::prt_texel)
+                for (const MeshView& m : scene_.meshes)
+                    if (!has_uvs(m)) {
+                        r.element = "texel";
+                        r.cannot_show += "; meshes without UVs read per-vertex transfer";
+                        break;
+                    }
+        } else if (name.rfind("lightmap-", 0) == 0) {
+            r.kind = Kind::lightmap;
+            const std::string b = name.substr(9);
+            static const std::pair<const char*, std::pair<const char*, int>> table[] = {
+                {"sh4", {"sh", 4}},
+                {"sh9", {"sh", 9}},
+                {"hbasis4", {"hbasis", 4}},
+                {"hbasis6", {"hbasis", 6}},
+                {"hbasis-mod6", {"hbasis-mod", 6}},
+                {"hl2", {"hl2", 3}},
+                {"hsh4", {"hsh", 4}},
+                {"hsh9", {"hsh", 9}}};
+            for (const auto& t : table)
+                if (b == t.first) {
+                    r.basis = &find_basis(t.second.first);
+                    r.coeffs = t.second.second;
+                }
+            if (!r.basis)  // representation_names() and the table disagree
+                sphbasis::detail::throw_invalid("render::Representations",
+                                                "a lightmap basis, got '" + b + "'");
+            (void)r.basis->functions(r.coeffs);  // checks the count
+            r.element = "texel";
+            r.bytes_per_element = 3 * std::size_t(r.coeffs) * sizeof(float);
+            r.cannot_show = std::string("static lighting (ignores the render-time rotation)") +
+                            "; directional detail beyond " + std::to_string(r.coeffs) + " " +
+                            r.basis->name + " functions" + no_bounce;
+            for (const MeshView& m : scene_.meshes)
+                if (!has_uvs(m)) {
+                    r.cannot_show += "; meshes without UVs fall back to irradiance-sh9";
+                    break;
+                }
+        } else if (name == "volume") {
+            r.kind = Kind::volume;
+            r.element = "probe";
+            r.bytes_per_element = 27 * sizeof(float);
+            r.cannot_show =
+                "static lighting (ignores the render-time rotation); shadows and occlusion finer "
+                "than the probe spacing; light leaks where probes straddle walls" +
+                std::string(no_bounce);
+        } else if (name == "specular-toksvig" || name == "specular-aliased") {
+            r.kind = name == "specular-toksvig" ? Kind::specular_toksvig : Kind::specular_aliased;
+            r.cannot_show =
+                "specular of the directional lights only (no diffuse, no environment, no "
+                "shadows)";
+        }
+        return r;
+    }
+
+    int add_request(const BakeRequest& q) {
+        const std::vector<std::uint8_t> b = repr_detail::request_bytes(q);
+        for (std::size_t i = 0; i < requests_.size(); ++i)
+            if (repr_detail::request_bytes(requests_[i]) == b) return int(i);
+        requests_.push_back(q);
+        return int(requests_.size() - 1);
+    }
+    BakeSettings base_settings(unsigned quantities, int bounces) const {
+        BakeSettings s;
+        s.quantities = quantities;
+        s.rays = settings_.rays;
+        s.bounces = bounces;
+        s.seed = settings_.seed;
+        return s;
+    }
+
+    void plan() {
+        const std::size_t nm = scene_.meshes.size();
+        for (Rep& r : reps_) {
+            switch (r.kind) {
+                case Kind::irradiance:
+                case Kind::windowed:
+                    needs_sh_ = true;
+                    break;
+                case Kind::ao:
+                case Kind::bent:
+                    needs_sh_ = true;
+                    r.mesh_bake.assign(nm, -1);
+                    for (std::size_t m = 0; m < nm; ++m) {
+                        if (scene_.meshes[m].triangle_count == 0) continue;
+                        BakeRequest q;
+                        q.mesh = m;
+                        q.settings = base_settings(Quantity::ao | Quantity::bent, 0);
+                        if (has_uvs(scene_.meshes[m])) {
+                            q.where = BakeRequest::Where::texel;
+                            q.lightmap_size = settings_.lightmap_size;
+                        }
+                        r.mesh_bake[m] = add_request(q);
+                    }
+                    break;
+                case Kind::prt_vertex:
+                case Kind::prt_texel:
+                    r.mesh_bake.assign(nm, -1);
+                    for (std::size_t m = 0; m < nm; ++m) {
+                        if (scene_.meshes[m].triangle_count == 0) continue;
+                        BakeRequest q;
+                        q.mesh = m;
+                        q.settings = base_settings(Quantity::transfer, settings_.bounces);
+                        q.settings.bands = settings_.prt_bands;
+                        if (r.kind == Kind::prt_texel && has_uvs(scene_.meshes[m])) {
+                            q.where = BakeRequest::Where::texel;
+                            q.lightmap_size = settings_.lightmap_size;
+                        }
+                        r.mesh_bake[m] = add_request(q);
+                    }
+                    break;
+                case Kind::lightmap:
+                    r.mesh_bake.assign(nm, -1);
+                    for (std::size_t m = 0; m < nm; ++m) {
+                        if (!has_uvs(scene_.meshes[m])) {
+                            needs_sh_ = true;
+                            continue;
+                        }
+                        BakeRequest q;
+                        q.mesh = m;
+                        q.where = BakeRequest::Where::texel;
+                        q.lightmap_size = settings_.lightmap_size;
+                        q.lighting_dependent = true;
+                        q.settings = base_settings(Quantity::irradiance, settings_.bounces);
+                        q.settings.basis = r.basis->name;
+                        q.settings.coeffs = r.coeffs;
+                        r.mesh_bake[m] = add_request(q);
+                    }
+                    break;
+                case Kind::volume: {
+                    BakeRequest q;
+                    q.where = BakeRequest::Where::probes;
+                    q.lighting_dependent = true;
+                    q.settings = base_settings(Quantity::radiance, settings_.bounces);
+                    q.settings.bands = 3;
+                    if (settings_.has_probes) {
+                        q.probes = settings_.probes;
+                    } else {
+                        q.probes.lo = rt_.bounds_min();
+                        q.probes.hi = rt_.bounds_max();
+                        q.probes.counts = {4, 4, 4};
+                    }
+                    r.probe_bake = add_request(q);
+                    break;
+                }
+                case Kind::specular_toksvig:
+                case Kind::specular_aliased:
+                    break;
+            }
+            r.reads_bakes = r.probe_bake >= 0;
+            for (int b : r.mesh_bake) r.reads_bakes = r.reads_bakes || b >= 0;
+        }
+    }
+
+    /// SH of the distant lighting, rotated; the white Lambertian factors a_l folded in.
+    void prepare_lighting() {
+        const int nb = std::max(3, settings_.prt_bands);
+        const std::size_t n = std::size_t(nb) * std::size_t(nb);
+        std::vector<RGB> L = project_sh(scene_.environment, nb);
+        const vec3<double> centre{0.5 * (rt_.bounds_min().x + rt_.bounds_max().x),
+                                  0.5 * (rt_.bounds_min().y + rt_.bounds_max().y),
+                                  0.5 * (rt_.bounds_min().z + rt_.bounds_max().z)};
+        for (const Light& l : scene_.lights) {
+            const std::vector<RGB> s = project_sh(l, nb, centre);
+            for (std::size_t k = 0; k < n; ++k)
+                for (std::size_t c = 0; c < 3; ++c) L[k][c] += s[k][c];
+        }
+        std::array<std::vector<double>, 3> ch;
+        for (std::size_t c = 0; c < 3; ++c) {
+            ch[c].resize(n);
+            for (std::size_t k = 0; k < n; ++k) ch[c][k] = L[k][c];
+        }
+        double a[3];
+        clamped_cosine_factors(3, a);
+        for (std::size_t k = 0; k < 9; ++k) {
+            const int l = k == 0 ? 0 : (k < 4 ? 1 : 2);
+            cosine9_[k] = a[l];
+        }
+        // Windowed copy (3 bands): Sloan's window making the irradiance non-negative.
+        std::vector<double> c9(27);
+        for (std::size_t c = 0; c < 3; ++c)
+            for (std::size_t k = 0; k < 9; ++k) c9[c * 9 + k] = ch[c][k];
+        const auto rw = sh::ringing_window<double>(3, c9.data(), 3, a, 0.0);
+        window_lambda_ = rw.lambda;
+        std::array<std::vector<double>, 3> win;
+        for (std::size_t c = 0; c < 3; ++c) {
+            win[c].assign(ch[c].begin(), ch[c].begin() + 9);
+            for (std::size_t k = 0; k < 9; ++k)
+                win[c][k] *= rw.window[k == 0 ? 0 : (k < 4 ? 1 : 2)];
+        }
+        const Mat3<double>& R = settings_.lighting_rotation;
+        for (std::size_t c = 0; c < 3; ++c) {
+            std::vector<double> rot(n), rot9(9);
+            sh::rotate(nb, R, ch[c], rot);
+            sh::rotate(3, R, win[c], rot9);
+            for (std::size_t k = 0; k < 9; ++k) {
+                irr_[c][k] = cosine9_[k] * rot[k];
+                irr_windowed_[c][k] = cosine9_[k] * rot9[k];
+            }
+            const std::size_t np = std::size_t(settings_.prt_bands * settings_.prt_bands);
+            prt_light_[c].assign(rot.begin(), rot.begin() + std::ptrdiff_t(np));
+        }
+    }
+
+    static RGB sh_shade(const std::array<std::array<double, 9>, 3>& C, const vec3<double>& n,
+                        const std::array<double, 3>& albedo) noexcept {
+        double y[9];
+        sh::eval_unit(3, n.x, n.y, n.z, y);
+        RGB out{0, 0, 0};
+        for (std::size_t c = 0; c < 3; ++c) {
+            double s = 0;
+            for (std::size_t k = 0; k < 9; ++k) s += C[c][k] * y[k];
+            out[c] = albedo[c] * s;
+        }
+        return out;
+    }
+
+    /// Vertex normals: the mesh's, else area-weighted face normals.
+    static std::vector<double> vertex_normals(const MeshView& m) {
+        std::vector<double> n(3 * m.vertex_count, 0.0);
+        if (m.normals) {
+            for (std::size_t i = 0; i < n.size(); ++i) n[i] = m.normals[i];
+            return n;
+        }
+        for (std::size_t t = 0; t < m.triangle_count; ++t) {
+            const std::uint32_t* tri = m.indices + 3 * t;
+            using namespace detail::rt;
+            const V3 p0 = lightmap_detail::load3(m.positions, tri[0]);
+            const V3 p1 = lightmap_detail::load3(m.positions, tri[1]);
+            const V3 p2 = lightmap_detail::load3(m.positions, tri[2]);
+            const V3 c = cross(p1 - p0, p2 - p0);
+            for (int k = 0; k < 3; ++k) {
+                const std::size_t v = tri[k];
+                if (v >= m.vertex_count) continue;
+                n[3 * v] += c.x;
+                n[3 * v + 1] += c.y;
+                n[3 * v + 2] += c.z;
+            }
+        }
+        return n;
+    }
+
+    /// The tangent render::Hit gives a point of triangle t without mesh tangents: the
+    /// triangle's dp/du, orthogonalised against n, with the handedness of dp/dv.
+    static void hit_tangent(const MeshView& m, LightmapSample& s) {
+        using namespace detail::rt;
+        if (m.tangents || !m.uvs || s.triangle >= m.triangle_count) return;
+        const std::uint32_t* tri = m.indices + 3 * std::size_t(s.triangle);
+        const V3 p0 = lightmap_detail::load3(m.positions, tri[0]);
+        const V3 p1 = lightmap_detail::load3(m.positions, tri[1]);
+        const V3 p2 = lightmap_detail::load3(m.positions, tri[2]);
+        const float* uv = m.uvs;
+        const double du1 = double(uv[2 * tri[1]]) - uv[2 * tri[0]],
+                     dv1 = double(uv[2 * tri[1] + 1]) - uv[2 * tri[0] + 1];
+        const double du2 = double(uv[2 * tri[2]]) - uv[2 * tri[0]],
+                     dv2 = double(uv[2 * tri[2] + 1]) - uv[2 * tri[0] + 1];
+        const double det = du1 * dv2 - du2 * dv1;
+        if (!(det != 0 && std::isfinite(det))) return;
+        const V3 dpdu = ((p1 - p0) * dv2 - (p2 - p0) * dv1) * (1 / det);
+        const V3 dpdv = ((p2 - p0) * du1 - (p1 - p0) * du2) * (1 / det);
+        const V3 nc = normalized(cross(p1 - p0, p2 - p0));
+        const double sign = dot(cross(nc, dpdu), dpdv) < 0 ? -1 : 1;
+        const V3 n = normalized(s.point.n);
+        const V3 t = dpdu - n * dot(n, dpdu);
+        const double tl = length(t);
+        if (!(tl > 1e-12 * (length(dpdu) + 1e-300) && std::isfinite(tl))) return;
+        s.point.tangent = t * (1 / tl);
+        s.point.bitangent_sign = s.bitangent_sign = sign;
+    }
+
+    std::vector<BakePoint> make_points(const BakeRequest& q, LightmapLayout& layout) const {
+        std::vector<BakePoint> pts;
+        if (q.where == BakeRequest::Where::probes) {
+            for (std::size_t i = 0; i < q.probes.size(); ++i) {
+                BakePoint p;
+                p.p = q.probes.position(i);
+                p.id = i;
+                pts.push_back(p);
+            }
+            return pts;
+        }
+        const MeshView& m = scene_.meshes[q.mesh];
+        const std::uint64_t base = std::uint64_t(q.mesh) << 32;
+        if (q.where == BakeRequest::Where::vertex) {
+            const std::vector<double> n = vertex_normals(m);
+            pts.resize(m.vertex_count);
+            for (std::size_t v = 0; v < m.vertex_count; ++v) {
+                BakePoint& p = pts[v];
+                p.p = lightmap_detail::load3(m.positions, v);
+                p.n = {n[3 * v], n[3 * v + 1], n[3 * v + 2]};
+                if (!(dot(p.n, p.n) > 0) || !detail::rt::finite(p.n)) p.n = {0, 0, 1};
+                p.id = base + v;
+            }
+            return pts;
+        }
+        layout = layout_lightmap(m, q.lightmap_size, q.lightmap_size, base);
+        for (LightmapSample& s : layout.samples) {
+            hit_tangent(m, s);
+            pts.push_back(s.point);
+        }
+        return pts;
+    }
+
+    bool consistent(const BakeData& d, const BakeRequest& q) const {
+        if (repr_detail::request_bytes(d.request) != repr_detail::request_bytes(q)) return false;
+        switch (q.where) {
+            case BakeRequest::Where::probes:
+                return d.results.size() == q.probes.size();
+            case BakeRequest::Where::vertex:
+                return d.results.size() == scene_.meshes[q.mesh].vertex_count;
+            case BakeRequest::Where::texel:
+                return d.layout.width == q.lightmap_size && d.layout.height == q.lightmap_size &&
+                       d.results.size() == d.layout.samples.size() &&
+                       d.layout.covered.size() ==
+                           std::size_t(d.layout.width) * std::size_t(d.layout.height);
+        }
+        return false;
+    }
+
+    /// Channels of a result: ao + bent (4), transfer (3 bands^2) or irradiance (3 coeffs).
+    static int channels_of(const BakeSettings& s) noexcept {
+        if (s.quantities & Quantity::transfer) return 3 * s.bands * s.bands;
+        if (s.quantities & Quantity::irradiance) return 3 * s.coeffs;
+        return 4;
+    }
+    static void pack(const BakeSettings& s, const PointResult& r, float* out) noexcept {
+        if (s.quantities & Quantity::transfer) {
+            const std::size_t n = std::size_t(s.bands * s.bands);
+            for (std::size_t c = 0; c < 3; ++c)
+                for (std::size_t k = 0; k < n; ++k)
+                    out[c * n + k] = k < r.transfer[c].size() ? float(r.transfer[c][k]) : 0.f;
+        } else if (s.quantities & Quantity::irradiance) {
+            const std::size_t n = std::size_t(s.coeffs);
+            for (std::size_t c = 0; c < 3; ++c)
+                for (std::size_t k = 0; k < n; ++k)
+                    out[c * n + k] = k < r.irradiance[c].size() ? float(r.irradiance[c][k]) : 0.f;
+        } else {
+            out[0] = float(r.ao);
+            out[1] = float(r.bent.x);
+            out[2] = float(r.bent.y);
+            out[3] = float(r.bent.z);
+        }
+    }
+
+    Field make_field(const BakeData& d) const {
+        Field f;
+        const BakeRequest& q = d.request;
+        f.where = q.where;
+        if (q.where == BakeRequest::Where::probes) {
+            f.grid = q.probes;
+            f.probe_values.assign(27 * d.results.size(), 0.0);
+            f.inside.assign(d.results.size(), 0);
+            for (std::size_t i = 0; i < d.results.size(); ++i) {
+                const PointResult& r = d.results[i];
+                f.inside[i] = r.inside ? 1 : 0;
+                for (std::size_t c = 0; c < 3; ++c)
+                    for (std::size_t k = 0; k < 9 && k < r.radiance[c].size(); ++k)
+                        f.probe_values[27 * i + 9 * c + k] = r.radiance[c][k];
+            }
+            // Every probe inside geometry: keep them all rather than fail at render time.
+            if (std::find(f.inside.begin(), f.inside.end(), 0) == f.inside.end())
+                std::fill(f.inside.begin(), f.inside.end(), 0);
+            return f;
+        }
+        f.channels = channels_of(q.settings);
+        const std::size_t ch = std::size_t(f.channels);
+        if (q.where == BakeRequest::Where::vertex) {
+            f.data.assign(d.results.size() * ch, 0.f);
+            for (std::size_t v = 0; v < d.results.size(); ++v)
+                pack(q.settings, d.results[v], f.data.data() + v * ch);
+            return f;
+        }
+        f.width = d.layout.width;
+        f.height = d.layout.height;
+        f.data.assign(std::size_t(f.width) * std::size_t(f.height) * ch, 0.f);
+        for (std::size_t i = 0; i < d.results.size(); ++i) {
+            const LightmapSample& s = d.layout.samples[i];
+            pack(q.settings, d.results[i],
+                 f.data.data() + (std::size_t(s.y) * std::size_t(f.width) + std::size_t(s.x)) * ch);
+        }
+        dilate(f.data.data(), f.width, f.height, f.channels, d.layout.covered, gutter);
+        return f;
+    }
+
+    /// Interpolated channels of a field at a hit (vertex: barycentric; texel: bilinear at uv,
+    /// clamp to edge; texel (0, 0) at uv (0, 1)).
+    static void lookup(const Field& f, const Hit& h, double* out) noexcept {
+        const std::size_t ch = std::size_t(f.channels);
+        if (f.where == BakeRequest::Where::vertex) {
+            const double w[3] = {1 - h.u - h.v, h.u, h.v};
+            for (std::size_t c = 0; c < ch; ++c) out[c] = 0;
+            for (int k = 0; k < 3; ++k) {
+                const std::size_t v = h.vertices[std::size_t(k)];
+                if ((v + 1) * ch > f.data.size()) continue;
+                const float* p = f.data.data() + v * ch;
+                for (std::size_t c = 0; c < ch; ++c) out[c] += w[k] * double(p[c]);
+            }
+            return;
+        }
+        double x = h.uv[0] * f.width - 0.5, y = (1 - h.uv[1]) * f.height - 0.5;
+        if (!std::isfinite(x)) x = 0;
+        if (!std::isfinite(y)) y = 0;
+        x = std::clamp(x, 0.0, double(f.width - 1));
+        y = std::clamp(y, 0.0, double(f.height - 1));
+        const int x0 = std::min(int(x), f.width - 1), y0 = std::min(int(y), f.height - 1);
+        const int x1 = std::min(x0 + 1, f.width - 1), y1 = std::min(y0 + 1, f.height - 1);
+        const double ax = x - x0, ay = y - y0;
+        auto at = [&](int xx, int yy) {
+            return f.data.data() + (std::size_t(yy) * std::size_t(f.width) + std::size_t(xx)) * ch;
+        };
+        const float *p00 = at(x0, y0), *p10 = at(x1, y0), *p01 = at(x0, y1), *p11 = at(x1, y1);
+        const double w00 = (1 - ax) * (1 - ay), w10 = ax * (1 - ay), w01 = (1 - ax) * ay,
+                     w11 = ax * ay;
+        for (std::size_t c = 0; c < ch; ++c)
+            out[c] = w00 * p00[c] + w10 * p10[c] + w01 * p01[c] + w11 * p11[c];
+    }
+
+    SceneDesc scene_;
+    const Scene& rt_;
+    RepresentationSettings settings_;
+    std::vector<std::string> names_;
+    std::vector<Rep> reps_;
+    std::vector<BakeRequest> requests_;
+    std::vector<BakeData> data_;
+    std::vector<Field> fields_;
+    bool prepared_ = false, needs_sh_ = false;
+    std::size_t bakes_run_ = 0, bakes_loaded_ = 0;
+    std::array<double, 9> cosine9_{};
+    std::array<std::array<double, 9>, 3> irr_{}, irr_windowed_{};
+    std::array<std::vector<double>, 3> prt_light_;
+    double window_lambda_ = 0;
+    std::unique_ptr<SpecularShading> spec_;
 };
 
 }  // namespace sphbasis::render
