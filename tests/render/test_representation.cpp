@@ -517,6 +517,12 @@ TEST_CASE("representations: every representation renders finite values", "[rende
         const auto st = r.stats(k);
         CHECK(st.name == names[k]);
         CHECK_FALSE(st.cannot_show.empty());
+        // Requested alone it plans its own inputs (lighting SH, clamped-cosine factors, bakes)
+        // and renders the same image as in the group.
+        render::Representations alone(w.desc, *w.rt, s, {names[k]});
+        alone.prepare(nullptr);
+        const Image a = alone.render(0, cam, 1);
+        CHECK(a.data == img.data);
     }
 }
 

@@ -1053,6 +1053,7 @@ class Representations {
                     break;
                 case Kind::prt_vertex:
                 case Kind::prt_texel:
+                    needs_sh_ = true;  // the lighting's SH (prt_light_)
                     r.mesh_bake.assign(nm, -1);
                     for (std::size_t m = 0; m < nm; ++m) {
                         if (scene_.meshes[m].triangle_count == 0) continue;
@@ -1086,6 +1087,7 @@ class Representations {
                     }
                     break;
                 case Kind::volume: {
+                    needs_sh_ = true;  // the clamped-cosine factors (cosine9_)
                     BakeRequest q;
                     q.where = BakeRequest::Where::probes;
                     q.lighting_dependent = true;
