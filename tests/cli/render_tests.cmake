@@ -38,7 +38,7 @@ sphbasis_render_bad(noise_range "--noise: expected a relative noise in \\(0, 1\\
 sphbasis_render_bad(noise_malformed "--noise: expected a finite number, got 'abc'" ${_rscenes}/tiny_sun.json --noise abc)
 sphbasis_render_bad(spp_zero "--spp: expected 1 <= N <= 1048576, got 0" ${_rscenes}/tiny_sun.json --spp 0)
 sphbasis_render_bad(exposure "--exposure: expected a positive number or auto" ${_rscenes}/tiny_sun.json --exposure -1)
-sphbasis_render_bad(tonemap "--tonemap: unknown operator 'filmic' \\(expected aces, reinhard or clamp\\)" ${_rscenes}/tiny_sun.json --tonemap filmic)
+sphbasis_render_bad(tonemap "--tonemap: unknown operator 'filmic' \\(expected clamp, reinhard or aces\\)" ${_rscenes}/tiny_sun.json --tonemap filmic)
 sphbasis_render_bad(rotate_count "--rotate-lighting-deg: expected x,y,z" ${_rscenes}/tiny_sun.json --rotate-lighting-deg 0,90)
 sphbasis_render_bad(noise_limit "--noise-limit: expected a positive fraction, got 0" ${_rscenes}/tiny_sun.json --noise-limit 0)
 # Bad scenes: one line naming the file and the place.

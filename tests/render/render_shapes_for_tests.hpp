@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "sphbasis/render/camera.hpp"
 #include "sphbasis/render/mesh.hpp"
 #include "sphbasis/render/shapes.hpp"
 
@@ -41,6 +42,20 @@ inline Mesh box(double x0, double y0, double z0, double x1, double y1, double z1
         m.indices.insert(m.indices.end(), {q[f][0], q[f][1], q[f][2], q[f][0], q[f][2], q[f][3]});
     }
     return m;
+}
+
+/// A w x h camera at pos looking at `at` (z up; y up when looking straight along z).
+inline sphbasis::render::Camera camera_at(sphbasis::vec3<double> pos, sphbasis::vec3<double> at,
+                                          int w, int h, double fov = 40) {
+    sphbasis::render::Camera c;
+    c.position = pos;
+    c.look_at = at;
+    c.up = {0, 0, 1};
+    if (std::fabs(pos.x - at.x) < 1e-12 && std::fabs(pos.y - at.y) < 1e-12) c.up = {0, 1, 0};
+    c.fov_deg = fov;
+    c.width = w;
+    c.height = h;
+    return c;
 }
 
 }  // namespace sphbasis_test

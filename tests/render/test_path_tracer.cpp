@@ -76,16 +76,7 @@ Estimate estimate(const PathTracer& t, vec3<double> o, vec3<double> d, int n,
     return e;
 }
 
-Camera camera_at(vec3<double> p, vec3<double> look, int w, int h, double fov = 40) {
-    Camera c;
-    c.position = p;
-    c.look_at = look;
-    c.up = {0, 0, 1};
-    c.fov_deg = fov;
-    c.width = w;
-    c.height = h;
-    return c;
-}
+using sphbasis_test::camera_at;
 
 /// Analytic ray-sphere hit: the unit normal at the near intersection (false on a miss).
 bool sphere_normal(vec3<double> o, vec3<double> d, vec3<double> c, double r, vec3<double>& n) {
@@ -186,8 +177,7 @@ TEST_CASE("PathTracer: a sphere on a plane under a sun and a sky", "[render][pat
         const vec3<double> c{-p.x, -p.y, hc};
         const double dist = std::sqrt(sphbasis::dot(c, c));
         const double sin_a = r / dist, cos_a = std::sqrt(1 - sin_a * sin_a);
-        const double hidden =
-            render::detail::cap_cosine_integral(hc / dist, cos_a, sin_a * sin_a);
+        const double hidden = render::detail::cap_cosine_integral(hc / dist, cos_a, sin_a * sin_a);
         const double expect = 0.6 / constants::pi * (E + L * (constants::pi - hidden));
         CHECK(std::fabs(e.mean - expect) < 4 * e.se + 4e-3);
     }
@@ -203,8 +193,8 @@ TEST_CASE("PathTracer: white furnace, an open box of albedo 1 with unbounded bou
     PathTracer t(*scene, constant_sky(1), {}, s);
     // Rays into the box from above hit its floor and walls: every estimate's mean is 1.
     const vec3<double> o{0.1, 0.2, 3};
-    for (const vec3<double> target : {vec3<double>{0, 0, -1}, vec3<double>{0.9, -0.5, -1},
-                                      vec3<double>{1, 0.3, 0.2}}) {
+    for (const vec3<double> target :
+         {vec3<double>{0, 0, -1}, vec3<double>{0.9, -0.5, -1}, vec3<double>{1, 0.3, 0.2}}) {
         const Estimate e =
             estimate(t, o, unit({target.x - o.x, target.y - o.y, target.z - o.z}), 1500);
         CHECK(std::fabs(e.mean - 1) < 4 * e.se + 1e-3);
@@ -238,10 +228,9 @@ TEST_CASE("PathTracer: sphere, cone and hemisphere lights with MIS equal their i
     for (const Light& l : {ball, cone, hemi}) {
         PathTracer t(*scene, Environment{}, {l}, s);
         const vec3<double> o{0.3, -1, 1}, p{0, 0, 0};
-        const Estimate e = estimate(t, o, unit({p.x - o.x, p.y - o.y, p.z - o.z}), 3000,
-                                    std::uint64_t(pixel++));
-        const double expect =
-            0.9 / constants::pi * render::light_irradiance(l, {0, 0, 1}, p)[0];
+        const Estimate e =
+            estimate(t, o, unit({p.x - o.x, p.y - o.y, p.z - o.z}), 3000, std::uint64_t(pixel++));
+        const double expect = 0.9 / constants::pi * render::light_irradiance(l, {0, 0, 1}, p)[0];
         CHECK(std::fabs(e.mean - expect) < 4 * e.se + 1e-3 * expect);
         CHECK(e.se < 0.05 * expect);
     }
@@ -320,7 +309,8 @@ TEST_CASE("PathTracer: MIS irradiance of a lat-long map equals quadrature",
             for (int b = 0; b < np; ++b) {
                 const double z = (a + 0.5) / nt, phi = 2 * constants::pi * (b + 0.5) / np;
                 const double rr = std::sqrt(1 - z * z);
-                const vec3<double> w = f.to_world(vec3<double>{rr * std::cos(phi), rr * std::sin(phi), z});
+                const vec3<double> w =
+                    f.to_world(vec3<double>{rr * std::cos(phi), rr * std::sin(phi), z});
                 E += env.radiance(w)[0] * z;
             }
         E *= 2 * constants::pi / (double(nt) * np);
@@ -364,7 +354,8 @@ TEST_CASE("PathTracer: Blinn-Phong under a lat-long map (MIS with lobe sampling)
             const double rr = std::sqrt(1 - z * z);
             const vec3<double> w{rr * std::cos(phi), rr * std::sin(phi), z};
             const vec3<double> h = unit({wo.x + w.x, wo.y + w.y, wo.z + w.z});
-            const double f = 0.2 / constants::pi + 0.6 * 16 / (8 * constants::pi) * std::pow(h.z, 8);
+            const double f =
+                0.2 / constants::pi + 0.6 * 16 / (8 * constants::pi) * std::pow(h.z, 8);
             ref += f * env.radiance(w)[0] * z;
         }
     ref *= 2 * constants::pi / (double(nt) * np);
@@ -568,6 +559,6 @@ TEST_CASE("PathTracer: furnace and convergence at scale", "[render][path_tracer]
     const double e16 = rmse(render_spp(16, 1)), e64 = rmse(render_spp(64, 2)),
                  e256 = rmse(render_spp(256, 3));
     CHECK(e16 / e64 == Approx(2).epsilon(0.15));
-    CHECK(e64 / e256 == Approx(std::sqrt((1 / 64.0 + 1 / 4096.0) / (1 / 256.0 + 1 / 4096.0)))
-                            .epsilon(0.15));
+    CHECK(e64 / e256 ==
+          Approx(std::sqrt((1 / 64.0 + 1 / 4096.0) / (1 / 256.0 + 1 / 4096.0))).epsilon(0.15));
 }

@@ -41,17 +41,7 @@ Environment constant_env(double r, double g, double b) {
     return e;
 }
 
-Camera camera_at(vec3<double> pos, vec3<double> at, int w, int h, double fov = 40) {
-    Camera c;
-    c.position = pos;
-    c.look_at = at;
-    c.up = {0, 0, 1};
-    if (std::fabs(pos.x - at.x) < 1e-12 && std::fabs(pos.y - at.y) < 1e-12) c.up = {0, 1, 0};
-    c.fov_deg = fov;
-    c.width = w;
-    c.height = h;
-    return c;
-}
+using sphbasis_test::camera_at;
 
 /// Sphere of radius 1 at the origin, UVs stripped or kept.
 World lone_sphere(int rings, int segments, float albedo) {

@@ -280,10 +280,10 @@ int run_render(const RenderOptions& o) {
             auto_exp = false;
         }
     }
-    const std::vector<std::string> ops = {"aces", "reinhard", "clamp"};  // render/image.hpp
+    const std::vector<std::string> ops = render::tone_map_names();
     if (o.tonemap_opt->count() > 0 && std::find(ops.begin(), ops.end(), o.tonemap) == ops.end())
-        throw UsageError("--tonemap: unknown operator '" + o.tonemap +
-                         "' (expected aces, reinhard or clamp)");
+        throw UsageError("--tonemap: unknown operator '" + o.tonemap + "' (expected " +
+                         render::tone_map_list() + ")");
     double noise_limit = 0.05;
     if (!o.noise_limit_text.empty()) {
         noise_limit = to_real(o.noise_limit_text, "--noise-limit");
@@ -650,9 +650,9 @@ Run setup_render(CLI::App& app) {
     o->exposure_opt =
         app.add_option("--exposure", o->exposure, "exposure of the PNGs: a factor or auto")
             ->type_name("X|auto");
-    o->tonemap_opt =
-        app.add_option("--tonemap", o->tonemap, "tone mapping of the PNGs: aces, reinhard, clamp")
-            ->type_name("NAME");
+    o->tonemap_opt = app.add_option("--tonemap", o->tonemap,
+                                    "tone mapping of the PNGs: " + render::tone_map_list())
+                         ->type_name("NAME");
     add_integer(app, "--rays", o->rays, 1, 1 << 24, "bake rays per point and pass");
     add_integer(app, "--lightmap-size", o->lightmap_size, 1, 8192, "lightmap texels per side");
     add_integer(app, "--prt-bands", o->prt_bands, 1, 16, "PRT transfer bands", "B");

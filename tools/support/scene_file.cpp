@@ -18,6 +18,7 @@
 #define STBI_FAILURE_USERMSG
 #include <stb/stb_image.h>
 
+#include <sphbasis/render/image.hpp>
 #include <sphbasis/render/shapes.hpp>
 
 #include "exr.hpp"
@@ -598,11 +599,10 @@ void load_render(const Ctx& c, const json& j, SceneRender& r) {
     }
     if (j.contains("tonemap")) {
         r.tonemap = string(c, j["tonemap"], "render.tonemap");
-        // The operators of render/image.hpp.
-        const std::vector<std::string> ops = {"aces", "reinhard", "clamp"};
+        const std::vector<std::string> ops = render::tone_map_names();
         if (std::find(ops.begin(), ops.end(), r.tonemap) == ops.end())
             c.fail("render.tonemap", "unknown tone-mapping operator '" + r.tonemap +
-                                         "' (expected aces, reinhard or clamp)");
+                                         "' (expected " + render::tone_map_list() + ")");
     }
     if (j.contains("spp")) r.spp = integer(c, j["spp"], "render.spp", 1, 1 << 20);
     if (j.contains("noise")) {

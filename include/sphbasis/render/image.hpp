@@ -206,6 +206,14 @@ inline Judgement judge(const char* fn, const Image& test, const Image& reference
 
 /// Tone-mapping operators by name: "clamp", "reinhard", "aces" (header comment).
 inline std::vector<std::string> tone_map_names() { return {"clamp", "reinhard", "aces"}; }
+/// The names as a message lists them: "clamp, reinhard or aces".
+inline std::string tone_map_list() {
+    const auto names = tone_map_names();
+    std::string s;
+    for (std::size_t i = 0; i < names.size(); ++i)
+        s += (i == 0 ? "" : (i + 1 == names.size() ? " or " : ", ")) + names[i];
+    return s;
+}
 
 /// Exposure that maps the log-average luminance to 0.18 (header comment): 0.18 / exp(mean of
 /// log(luminance)) over finite pixels with luminance > 0; 1 without such a pixel. A 1-channel
@@ -238,7 +246,7 @@ inline std::vector<std::uint8_t> to_srgb8(const Image& image, double exposure,
         if (names[i] == op) k = int(i);
     if (k < 0)
         sphbasis::detail::throw_invalid(
-            fn, "a tone-mapping operator clamp, reinhard or aces, got \"" + op + "\"");
+            fn, "a tone-mapping operator " + tone_map_list() + ", got \"" + op + "\"");
     if (!(exposure >= 0) || !std::isfinite(exposure))
         sphbasis::detail::throw_invalid(fn,
                                         "a finite exposure >= 0, got " + std::to_string(exposure));
@@ -352,11 +360,10 @@ inline std::vector<std::uint8_t> false_colour(const Image& error) {
         const int k = std::min(3, static_cast<int>(x));
         const double f = x - k;
         for (int c = 0; c < 3; ++c)
-            out[3 * i + std::size_t(c)] = static_cast<std::uint8_t>(
-                std::lround((1 - f) * ramp[k][c] + f * ramp[k + 1][c]));
+            out[3 * i + std::size_t(c)] =
+                static_cast<std::uint8_t>(std::lround((1 - f) * ramp[k][c] + f * ramp[k + 1][c]));
     }
     return out;
 }
-
 
 }  // namespace sphbasis::render
