@@ -465,10 +465,17 @@ Cpca<typename Derived::Scalar> cpca_iterative(const Eigen::MatrixBase<Derived>& 
     const Eigen::Index np = x.rows();
     MatrixX<Scalar> resid(np, nc);
     for (int it = 0; it < settings.max_iterations; ++it) {
-        for (int c = 0; c < nc; ++c) {
-            const auto& b = model.bases[static_cast<std::size_t>(c)];
-            const MatrixX<Scalar> d = x.rowwise() - model.means.row(c);
-            resid.col(c) = d.rowwise().squaredNorm() - (d * b).rowwise().squaredNorm();
+        // Residual of every point in every cluster's affine subspace, |d|^2 - |B^T d|^2 with
+        // d = x - mu_c, in blocks of rows so the temporaries stay in cache.
+        constexpr Eigen::Index block = 1024;
+        for (Eigen::Index r0 = 0; r0 < np; r0 += block) {
+            const Eigen::Index nr = std::min(block, np - r0);
+            for (int c = 0; c < nc; ++c) {
+                const auto& b = model.bases[static_cast<std::size_t>(c)];
+                const MatrixX<Scalar> d = x.middleRows(r0, nr).rowwise() - model.means.row(c);
+                resid.block(r0, c, nr, 1) =
+                    d.rowwise().squaredNorm() - (d * b).rowwise().squaredNorm();
+            }
         }
         Cpca<Scalar> next = model;
         Eigen::Index moved = 0;
