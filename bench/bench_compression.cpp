@@ -29,7 +29,10 @@ Eigen::MatrixXd transfer_like(Eigen::Index p) {
         const double albedo[3] = {0.8, 0.6 + 0.2 * d.x, 0.4 + 0.3 * d.z};
         for (int ch = 0; ch < 3; ++ch)
             for (int k = 0; k < 9; ++k)
-                x(i, ch * 9 + k) = albedo[ch] * y[k] * (k == 0 ? 1.0 : k < 4 ? 0.667 : 0.25) +
+                x(i, ch * 9 + k) = albedo[ch] * y[k] *
+                                       (k == 0  ? 1.0
+                                        : k < 4 ? 0.667
+                                                : 0.25) +
                                    1e-3 * (uni() - 0.5);
     }
     return x;
@@ -86,7 +89,8 @@ void cpca_iterative(benchmark::State& state) {
         state.PauseTiming();
         auto t0 = std::chrono::steady_clock::now();
         benchmark::DoNotOptimize(compress::cpca_static(x, s));
-        const double st = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const double st =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         state.ResumeTiming();
         t0 = std::chrono::steady_clock::now();
         const auto m = compress::cpca_iterative(x, s);

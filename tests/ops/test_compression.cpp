@@ -253,12 +253,10 @@ TEST_CASE("compression: shading from exit values equals reconstruct-then-dot", "
     const auto pc = compress::pca(x, 4);
     const auto pm = compress::as_cpca(pc);
     const Eigen::MatrixXd ps = compress::shade(pm, compress::exit_values(pm, light));
-    CHECK((ps - pc.reconstruct() * light).cwiseAbs().maxCoeff() <
-          1e-12 * ps.cwiseAbs().maxCoeff());
+    CHECK((ps - pc.reconstruct() * light).cwiseAbs().maxCoeff() < 1e-12 * ps.cwiseAbs().maxCoeff());
 }
 
-TEST_CASE("compression: quantized weights and rendering within the stated bound",
-          "[compression]") {
+TEST_CASE("compression: quantized weights and rendering within the stated bound", "[compression]") {
     std::mt19937_64 rng(10);
     const Eigen::MatrixXd x = decaying_data(400, 27, rng);
     compress::CpcaSettings s;

@@ -34,10 +34,10 @@ TEST_CASE("PinholeCamera: centre, edges, orientation", "[render][camera]") {
     const double half = 30 * sphbasis::constants::pi / 180;
     const auto top = cam.ray(100, 0), bottom = cam.ray(100, 100);
     CHECK(angle(top.direction, mid.direction) == Approx(half));
-    CHECK(top.direction.z > 0);     // row 0 is the top
+    CHECK(top.direction.z > 0);  // row 0 is the top
     CHECK(bottom.direction.z < 0);
     const auto right = cam.ray(200, 50);
-    CHECK(right.direction.x > 0);   // x grows to the right
+    CHECK(right.direction.x > 0);  // x grows to the right
     CHECK(std::tan(angle(right.direction, mid.direction)) == Approx(2 * std::tan(half)));
     CHECK(cam.pixel_angle() == Approx(2 * std::tan(half) / 100));
     CHECK(sphbasis::dot(cam.up(), cam.forward()) == Approx(0).margin(1e-12));

@@ -30,7 +30,7 @@ std::vector<float> test_map(int w, int h) {
             p[0] = g;
             p[1] = 0.5f * g;
             p[2] = 0.2f + 0.1f * float(j) / float(h);
-            if (j == h - 2) p[0] = p[1] = p[2] = 0;            // a black band
+            if (j == h - 2) p[0] = p[1] = p[2] = 0;                     // a black band
             if (j == 2 && (i == 5 || i == 6)) p[0] = p[1] = p[2] = 40;  // the sun
         }
     return t;
@@ -135,9 +135,10 @@ TEST_CASE("EnvironmentSampler: a histogram of sampled texels matches the density
         }
     CHECK(total_p == Approx(1).epsilon(1e-9));
     // The sun texels (and their neighbours) carry most of the density: over 8 times uniform.
-    CHECK(s.pdf(vec3<double>{std::sin(2.5 * constants::pi / H) * std::cos(2 * constants::pi * 6 / W),
-                             std::sin(2.5 * constants::pi / H) * std::sin(2 * constants::pi * 6 / W),
-                             std::cos(2.5 * constants::pi / H)}) > 8 / (4 * constants::pi));
+    CHECK(
+        s.pdf(vec3<double>{std::sin(2.5 * constants::pi / H) * std::cos(2 * constants::pi * 6 / W),
+                           std::sin(2.5 * constants::pi / H) * std::sin(2 * constants::pi * 6 / W),
+                           std::cos(2.5 * constants::pi / H)}) > 8 / (4 * constants::pi));
 }
 
 TEST_CASE("EnvironmentSampler: constant, black and absent environments",

@@ -25,7 +25,8 @@ Image constant_image(int w, int h, float r, float g, float b) {
 }
 
 int srgb8(double linear) {
-    const double y = linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1 / 2.4) - 0.055;
+    const double y =
+        linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1 / 2.4) - 0.055;
     return int(std::lround(255 * y));
 }
 
@@ -56,8 +57,8 @@ TEST_CASE("to_srgb8: the operators against their formulas", "[render][image]") {
         const double e = xf * exposure;
         const double clamp_v = std::min(e, 1.0);
         const double reinhard = e / (1 + e);
-        const double aces = std::min(1.0, std::max(0.0, (e * (2.51 * e + 0.03)) /
-                                                            (e * (2.43 * e + 0.59) + 0.14)));
+        const double aces =
+            std::min(1.0, std::max(0.0, (e * (2.51 * e + 0.03)) / (e * (2.43 * e + 0.59) + 0.14)));
         CHECK(int(render::to_srgb8(im, exposure, "clamp")[1]) == srgb8(clamp_v));
         CHECK(int(render::to_srgb8(im, exposure, "reinhard")[1]) == srgb8(reinhard));
         CHECK(int(render::to_srgb8(im, exposure, "aces")[1]) == srgb8(aces));
@@ -137,8 +138,7 @@ TEST_CASE("compare: identical images, a known offset, judged counts", "[render][
     Image se(8, 4, 3);
     for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 8; ++x)
-            for (int c = 0; c < 3; ++c)
-                se.at(x, y)[c] = float(x < 4 ? 0.1 * lum : 0.01 * lum);
+            for (int c = 0; c < 3; ++c) se.at(x, y)[c] = float(x < 4 ? 0.1 * lum : 0.01 * lum);
     const auto j = render::compare(off, ref, &se, 0.05);
     CHECK(j.judged == 16);
     CHECK(j.total == 32);
@@ -154,8 +154,8 @@ TEST_CASE("compare: identical images, a known offset, judged counts", "[render][
     // The error image: |t - r| / (|r| + floor), -1 where not judged.
     const Image err = render::error_image(off, ref, &se, 0.05, &mask);
     REQUIRE(err.channels == 1);
-    CHECK(err.at(0, 0)[0] == -1.0f);   // masked
-    CHECK(err.at(1, 2)[0] == -1.0f);   // too noisy
+    CHECK(err.at(0, 0)[0] == -1.0f);  // masked
+    CHECK(err.at(1, 2)[0] == -1.0f);  // too noisy
     CHECK(err.at(6, 2)[0] == Approx(std::sqrt(3 * d * d) / (std::sqrt(r2) + floor)).epsilon(1e-6));
     const auto fc = render::false_colour(err);
     REQUIRE(fc.size() == 3 * 32);

@@ -37,8 +37,8 @@
 #include "sphbasis/core/clamped_cosine.hpp"
 #include "sphbasis/core/quadrature.hpp"
 #include "sphbasis/ops/projection.hpp"
-#include "sphbasis/shading/toksvig.hpp"
 #include "sphbasis/ops/sh_convolution.hpp"
+#include "sphbasis/shading/toksvig.hpp"
 
 namespace {
 
@@ -72,12 +72,12 @@ constexpr int sh_values = 204;  // sum_{n=1..8} n^2
 // Per direction, after the SH values: the SH irradiance (3), the H-basis family (23 values), their
 // expansion sums (5 x 3), the Listing 2.2 block (27), Toksvig (3), the clamped-cosine factors (8).
 constexpr int irr_at = sh_values;
-constexpr int hb_at = irr_at + 3;                 // hbasis4 (4), hbasis6 (6), mod4 (4), mod6 (6), hl2 (3)
-constexpr int sum_at = hb_at + 23;                // the same five, RGB expansion sums
-constexpr int l22_at = sum_at + 15;               // mod6 irradiance, mod4 irradiance, SH -> modH
-                                                  // irradiance (3 each), SH -> modH coefficients (18)
-constexpr int tk_at = l22_at + 27;                // factor, specular, specular_from_dots
-constexpr int cc_at = tk_at + 3;                  // a_0..a_7
+constexpr int hb_at = irr_at + 3;    // hbasis4 (4), hbasis6 (6), mod4 (4), mod6 (6), hl2 (3)
+constexpr int sum_at = hb_at + 23;   // the same five, RGB expansion sums
+constexpr int l22_at = sum_at + 15;  // mod6 irradiance, mod4 irradiance, SH -> modH
+                                     // irradiance (3 each), SH -> modH coefficients (18)
+constexpr int tk_at = l22_at + 27;   // factor, specular, specular_from_dots
+constexpr int cc_at = tk_at + 3;     // a_0..a_7
 constexpr int stride = cc_at + 8;
 constexpr int hb_sizes[5] = {4, 6, 4, 6, 3};
 const char* const hb_names[5] = {"hbasis4", "hbasis6", "hbasis_mod4", "hbasis_mod6", "hl2"};
@@ -236,8 +236,8 @@ std::string compute_source(const std::string& library) {
     s << "    uint o = base + " << hb_at << "u;\n";
     for (int b = 0; b < 5; ++b)
         s << "    { float h[" << hb_sizes[b] << "]; sphbasis_" << hb_names[b] << "_eval(d, h);\n"
-          << "      for (int k = 0; k < " << hb_sizes[b] << "; ++k) vals[o + uint(k)] = h[k]; o += "
-          << hb_sizes[b] << "u; }\n";
+          << "      for (int k = 0; k < " << hb_sizes[b]
+          << "; ++k) vals[o + uint(k)] = h[k]; o += " << hb_sizes[b] << "u; }\n";
     s << "    vec3 c6[6];\n"
          "    for (int k = 0; k < 6; ++k) c6[k] = coef[9 + k].xyz;\n"
          "    vec3 c4[4];\n"
@@ -442,7 +442,8 @@ bool check_listing22(const std::vector<float>& dirs, const std::vector<float>& c
         double h[6];
         basis_eval<HBasisMod>(6, x, y, z, h);
         for (int ch = 0; ch < 3; ++ch) {
-            for (int k = 0; k < 6; ++k) coeffs.add(g[l22_at + 9 + 3 * k + ch], hm[ch][k], hmag[ch][k]);
+            for (int k = 0; k < 6; ++k)
+                coeffs.add(g[l22_at + 9 + 3 * k + ch], hm[ch][k], hmag[ch][k]);
             double e6 = 0, s6 = 0, e4 = 0, s4 = 0, e = 0, s = 0;
             for (int k = 0; k < 6; ++k) {
                 const double c = coef[std::size_t(4 * (9 + k) + ch)];
@@ -479,16 +480,19 @@ bool check_toksvig(const std::vector<float>& tk, const std::vector<float>& gpu) 
                  sphbasis::toksvig::relative_intensity(l2, s));
     }
     bool ok = f.report("sphbasis_toksvig_factor", max_ulps_toksvig_factor);
-    ok = spec.report("sphbasis_toksvig_specular (ulps of the peak)", max_ulps_toksvig_specular) && ok;
+    ok = spec.report("sphbasis_toksvig_specular (ulps of the peak)", max_ulps_toksvig_specular) &&
+         ok;
     ok = dots.report("sphbasis_toksvig_specular_from_dots (ulps of the peak)",
-                     max_ulps_toksvig_specular) && ok;
+                     max_ulps_toksvig_specular) &&
+         ok;
     return ok;
 }
 
 // The clamped-cosine constants: exactly the float of clamped_cosine(l).
 bool check_clamped_cosine(const std::vector<float>& gpu) {
     Worst w;
-    for (int l = 0; l < 8; ++l) w.add(gpu[std::size_t(cc_at + l)], float(sphbasis::clamped_cosine(l)), 0x1p-126);
+    for (int l = 0; l < 8; ++l)
+        w.add(gpu[std::size_t(cc_at + l)], float(sphbasis::clamped_cosine(l)), 0x1p-126);
     return w.report("sphbasis_clamped_cosine a_0..a_7", 0.0);
 }
 

@@ -83,17 +83,15 @@ enum class PcaMethod { svd, covariance };
 /// A PCA model: x_p ~ mean + weights.row(p) * basis^T.
 template <class Scalar = double>
 struct Pca {
-    RowVectorX<Scalar> mean;               ///< 1 x c
-    MatrixX<Scalar> basis;                 ///< c x M, orthonormal columns, by decreasing energy
-    MatrixX<Scalar> weights;               ///< P x M
-    RowVectorX<Scalar> singular_values;    ///< all min(P, c) singular values of the centred data
-    int rank = 0;                          ///< numerical rank of the centred data
+    RowVectorX<Scalar> mean;             ///< 1 x c
+    MatrixX<Scalar> basis;               ///< c x M, orthonormal columns, by decreasing energy
+    MatrixX<Scalar> weights;             ///< P x M
+    RowVectorX<Scalar> singular_values;  ///< all min(P, c) singular values of the centred data
+    int rank = 0;                        ///< numerical rank of the centred data
 
     int vectors() const { return static_cast<int>(basis.cols()); }
     /// P x c reconstruction mean + W B^T.
-    MatrixX<Scalar> reconstruct() const {
-        return (weights * basis.transpose()).rowwise() + mean;
-    }
+    MatrixX<Scalar> reconstruct() const { return (weights * basis.transpose()).rowwise() + mean; }
     /// Squared error predicted by the dropped singular values: sum_{i >= M} s_i^2.
     double dropped_energy() const {
         double e = 0;
@@ -111,14 +109,14 @@ struct Pca {
 /// A CPCA model (C clusters x M vectors); a PCA is the case C = 1 (as_cpca()).
 template <class Scalar = double>
 struct Cpca {
-    std::vector<int> cluster;                  ///< P cluster indices in [0, C)
-    MatrixX<Scalar> means;                     ///< C x c
-    std::vector<MatrixX<Scalar>> bases;        ///< C matrices c x M, orthonormal columns
-    MatrixX<Scalar> weights;                   ///< P x M, in the point's cluster's basis
-    std::vector<double> error_history;         ///< squared error: [0] static, then each accepted
-                                               ///< iteration (non-increasing)
-    int iterations = 0;                        ///< accepted reclassification steps
-    int lloyd_iterations = 0;                  ///< k-means iterations of the static stage
+    std::vector<int> cluster;            ///< P cluster indices in [0, C)
+    MatrixX<Scalar> means;               ///< C x c
+    std::vector<MatrixX<Scalar>> bases;  ///< C matrices c x M, orthonormal columns
+    MatrixX<Scalar> weights;             ///< P x M, in the point's cluster's basis
+    std::vector<double> error_history;   ///< squared error: [0] static, then each accepted
+                                         ///< iteration (non-increasing)
+    int iterations = 0;                  ///< accepted reclassification steps
+    int lloyd_iterations = 0;            ///< k-means iterations of the static stage
 
     int clusters() const { return static_cast<int>(means.rows()); }
     int vectors() const { return static_cast<int>(weights.cols()); }
@@ -126,8 +124,8 @@ struct Cpca {
         MatrixX<Scalar> r(weights.rows(), means.cols());
         for (Eigen::Index p = 0; p < weights.rows(); ++p) {
             const auto c = static_cast<std::size_t>(cluster[static_cast<std::size_t>(p)]);
-            r.row(p) = means.row(static_cast<Eigen::Index>(c)) +
-                       weights.row(p) * bases[c].transpose();
+            r.row(p) =
+                means.row(static_cast<Eigen::Index>(c)) + weights.row(p) * bases[c].transpose();
         }
         return r;
     }
@@ -141,11 +139,11 @@ struct Cpca {
 
 /// Settings of cpca_static() / cpca_iterative().
 struct CpcaSettings {
-    int clusters = 16;         ///< C >= 1, <= number of points
-    int vectors = 4;           ///< M >= 1, <= min(rank, c)
-    std::uint64_t seed = 1;    ///< k-means++ seeding (a fixed std::mt19937_64 stream)
-    int lloyd_iterations = 100;    ///< k-means iteration cap
-    int max_iterations = 30;       ///< iterative CPCA: reclassification cap
+    int clusters = 16;                    ///< C >= 1, <= number of points
+    int vectors = 4;                      ///< M >= 1, <= min(rank, c)
+    std::uint64_t seed = 1;               ///< k-means++ seeding (a fixed std::mt19937_64 stream)
+    int lloyd_iterations = 100;           ///< k-means iteration cap
+    int max_iterations = 30;              ///< iterative CPCA: reclassification cap
     double min_relative_decrease = 1e-9;  ///< iterative CPCA: stop when the error falls less
 };
 
@@ -166,9 +164,9 @@ namespace detail {
 template <class Derived>
 void check_data(const Eigen::MatrixBase<Derived>& x, const char* fn) {
     if (x.rows() < 1 || x.cols() < 1)
-        sphbasis::detail::throw_invalid(
-            fn, "non-empty data (points x components), got " + std::to_string(x.rows()) + " x " +
-                    std::to_string(x.cols()));
+        sphbasis::detail::throw_invalid(fn, "non-empty data (points x components), got " +
+                                                std::to_string(x.rows()) + " x " +
+                                                std::to_string(x.cols()));
     for (Eigen::Index j = 0; j < x.cols(); ++j)
         for (Eigen::Index i = 0; i < x.rows(); ++i)
             if (!std::isfinite(static_cast<double>(x(i, j))))
@@ -182,13 +180,12 @@ void check_vectors(int m, int rank, Eigen::Index cols, const char* fn) {
     if (m < 1)
         sphbasis::detail::throw_invalid(fn, "M >= 1 basis vectors, got M = " + std::to_string(m));
     if (m > cols)
-        sphbasis::detail::throw_invalid(
-            fn, "M <= the number of columns (" + std::to_string(cols) + ") basis vectors, got M = " +
-                    std::to_string(m));
+        sphbasis::detail::throw_invalid(fn, "M <= the number of columns (" + std::to_string(cols) +
+                                                ") basis vectors, got M = " + std::to_string(m));
     if (m > rank)
-        sphbasis::detail::throw_invalid(
-            fn, "M <= the rank of the centred data (" + std::to_string(rank) +
-                    ") basis vectors, got M = " + std::to_string(m));
+        sphbasis::detail::throw_invalid(fn, "M <= the rank of the centred data (" +
+                                                std::to_string(rank) +
+                                                ") basis vectors, got M = " + std::to_string(m));
 }
 
 /// Full decomposition of the centred data: V (c x k, by decreasing singular value), singular
@@ -298,7 +295,8 @@ void kmeans(const MatrixX<Scalar>& x, const CpcaSettings& s, Cpca<Scalar>& model
         np - 1, static_cast<Eigen::Index>(uniform01(rng) * static_cast<double>(np)));
     centres.row(0) = x.row(first);
     for (Eigen::Index p = 0; p < np; ++p)
-        d2[static_cast<std::size_t>(p)] = static_cast<double>((x.row(p) - centres.row(0)).squaredNorm());
+        d2[static_cast<std::size_t>(p)] =
+            static_cast<double>((x.row(p) - centres.row(0)).squaredNorm());
     for (int j = 1; j < k; ++j) {
         double total = 0;
         for (double v : d2) total += v;
@@ -348,14 +346,15 @@ void kmeans(const MatrixX<Scalar>& x, const CpcaSettings& s, Cpca<Scalar>& model
         }
         for (int j = 0; j < k; ++j) {
             if (count[static_cast<std::size_t>(j)] > 0) {
-                centres.row(j) = sum.row(j) / static_cast<Scalar>(count[static_cast<std::size_t>(j)]);
+                centres.row(j) =
+                    sum.row(j) / static_cast<Scalar>(count[static_cast<std::size_t>(j)]);
             } else {
                 // Empty cluster: move it to the point farthest from its centre.
                 Eigen::Index far = 0;
                 Scalar best = -1;
                 for (Eigen::Index p = 0; p < np; ++p) {
-                    const Scalar v = (x.row(p) - centres.row(assign[static_cast<std::size_t>(p)]))
-                                         .squaredNorm();
+                    const Scalar v =
+                        (x.row(p) - centres.row(assign[static_cast<std::size_t>(p)])).squaredNorm();
                     if (v > best) best = v, far = p;
                 }
                 centres.row(j) = x.row(far);
@@ -373,14 +372,14 @@ MatrixX<typename Derived::Scalar> checked_cpca_input(const Eigen::MatrixBase<Der
     using Scalar = typename Derived::Scalar;
     check_data(data, fn);
     if (s.clusters < 1)
-        sphbasis::detail::throw_invalid(fn, "C >= 1 clusters, got C = " + std::to_string(s.clusters));
+        sphbasis::detail::throw_invalid(fn,
+                                        "C >= 1 clusters, got C = " + std::to_string(s.clusters));
     if (s.clusters > data.rows())
         sphbasis::detail::throw_invalid(
             fn, "C <= the number of points (" + std::to_string(data.rows()) +
                     ") clusters, got C = " + std::to_string(s.clusters));
     MatrixX<Scalar> x = data;
-    if (s.vectors < 1 || s.vectors > x.cols())
-        check_vectors<Scalar>(s.vectors, 0, x.cols(), fn);
+    if (s.vectors < 1 || s.vectors > x.cols()) check_vectors<Scalar>(s.vectors, 0, x.cols(), fn);
     MatrixX<Scalar> centred = x.rowwise() - x.colwise().mean();
     MatrixX<Scalar> v;
     RowVectorX<Scalar> sv;
@@ -522,9 +521,9 @@ Cpca<typename Derived::Scalar> cpca_iterative(const Eigen::MatrixBase<Derived>& 
 template <class Scalar = double>
 struct QuantizedWeights {
     int bits = 8;
-    std::vector<std::int16_t> codes;   ///< P x M, row-major
-    MatrixX<Scalar> scales;            ///< C x M: max |w| over the cluster's points
-    std::vector<int> cluster;          ///< P cluster indices
+    std::vector<std::int16_t> codes;  ///< P x M, row-major
+    MatrixX<Scalar> scales;           ///< C x M: max |w| over the cluster's points
+    std::vector<int> cluster;         ///< P cluster indices
     Eigen::Index points = 0, vectors = 0;
     int levels() const { return bits == 8 ? 127 : 32767; }
 };
@@ -590,17 +589,16 @@ Cpca<Scalar> with_weights(Cpca<Scalar> model, const QuantizedWeights<Scalar>& q)
 /// basis[c] = B_c^T L (M x K). Computed once per lighting; cost O(C M c K).
 template <class Scalar = double>
 struct ExitValues {
-    MatrixX<Scalar> mean;                 ///< C x K
-    std::vector<MatrixX<Scalar>> basis;   ///< C matrices M x K
+    MatrixX<Scalar> mean;                ///< C x K
+    std::vector<MatrixX<Scalar>> basis;  ///< C matrices M x K
 };
 
 template <class Scalar, class Derived>
 ExitValues<Scalar> exit_values(const Cpca<Scalar>& model, const Eigen::MatrixBase<Derived>& light) {
     if (light.rows() != model.means.cols())
         sphbasis::detail::throw_invalid(
-            "compress::exit_values",
-            "a lighting matrix of " + std::to_string(model.means.cols()) + " rows, got " +
-                std::to_string(light.rows()));
+            "compress::exit_values", "a lighting matrix of " + std::to_string(model.means.cols()) +
+                                         " rows, got " + std::to_string(light.rows()));
     const MatrixX<Scalar> l = light.template cast<Scalar>();
     ExitValues<Scalar> e;
     e.mean = model.means * l;

@@ -73,8 +73,8 @@ class EnvironmentSampler {
             double* cdf = &col_cdf_[j * (W + 1)];
             cdf[0] = 0;
             for (std::size_t i = 0; i < W; ++i) {
-                const double m = std::max(
-                    {rowmax[i], rowmax[(i + W - 1) % W], rowmax[(i + 1) % W]});
+                const double m =
+                    std::max({rowmax[i], rowmax[(i + W - 1) % W], rowmax[(i + 1) % W]});
                 cdf[i + 1] = cdf[i] + m * omega;
             }
             row_cdf_[j + 1] = row_cdf_[j] + cdf[W];
@@ -138,7 +138,8 @@ class EnvironmentSampler {
         normalize_or_pole(mx, my, mz);
         const std::size_t W = std::size_t(env_.width), H = std::size_t(env_.height);
         const param::Point2<double> uv = param::latlong_to_square(mx, my, mz);
-        const std::size_t i = std::min(W - 1, static_cast<std::size_t>(std::max(0.0, uv.x) * double(W)));
+        const std::size_t i =
+            std::min(W - 1, static_cast<std::size_t>(std::max(0.0, uv.x) * double(W)));
         // The row from cos(theta) against the table, so sample() and pdf() agree at row edges.
         std::size_t j = std::min(H - 1, static_cast<std::size_t>(std::max(0.0, uv.y) * double(H)));
         if (j > 0 && mz > cos_row_[j]) --j;

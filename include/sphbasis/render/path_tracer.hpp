@@ -206,8 +206,7 @@ struct Bsdf {
         const V3 h = normalized(wo + wi, n);
         const double nh = dot(n, h), oh = std::fabs(dot(wo, h));
         double ps = 0;
-        if (nh > 0 && oh > 0)
-            ps = (s + 1) * constants::inv_two_pi * std::pow(nh, s) / (4 * oh);
+        if (nh > 0 && oh > 0) ps = (s + 1) * constants::inv_two_pi * std::pow(nh, s) / (4 * oh);
         return (1 - p_spec) * pd + p_spec * ps;
     }
     /// A direction from three uniform numbers (u0 picks the lobe).
@@ -275,8 +274,7 @@ class PathTracer {
         emitters_ = env_any_ || !lights_.empty();
         if (env_nee_)
             effects_.push_back("environment: importance-sampled (" + std::to_string(env_.width) +
-                               "x" + std::to_string(env_.height) +
-                               " lat-long), MIS with the BRDF");
+                               "x" + std::to_string(env_.height) + " lat-long), MIS with the BRDF");
         else if (env_any_)
             effects_.push_back("environment: constant, sampled by the BRDF (cosine lobe)");
         if (directional)
@@ -292,7 +290,8 @@ class PathTracer {
             effects_.push_back("interreflection: unbounded (Russian roulette from the 4th vertex)");
         const auto [nm, sp] = detail::pt::count_materials(scene_);
         if (nm > 0)
-            effects_.push_back("normal maps: " + std::to_string(nm) + (nm == 1 ? " mesh" : " meshes"));
+            effects_.push_back("normal maps: " + std::to_string(nm) +
+                               (nm == 1 ? " mesh" : " meshes"));
         if (sp > 0)
             effects_.push_back("Blinn-Phong specular: " + std::to_string(sp) +
                                (sp == 1 ? " mesh" : " meshes"));
@@ -347,8 +346,8 @@ class PathTracer {
                     scene_.intersect(rays.data(), n);
                     c.camera_rays += n;
                     for (std::size_t k = 0; k < n; ++k) {
-                        const std::size_t p = (std::size_t(y0) + k / tw) * std::size_t(W) +
-                                              std::size_t(x0) + k % tw;
+                        const std::size_t p =
+                            (std::size_t(y0) + k / tw) * std::size_t(W) + std::size_t(x0) + k % tw;
                         First first;
                         const RGB L = shade(rays[k], p, std::uint64_t(s), c,
                                             settings_.aovs ? &first : nullptr);
@@ -411,8 +410,7 @@ class PathTracer {
         }
         res.spp = spp;
         res.relative_noise = noise;
-        res.seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         {
             std::lock_guard<std::mutex> lock(*mutex_);
             counters_ += res.counters;
@@ -494,8 +492,8 @@ class PathTracer {
     }
 
     /// One path from a traced camera ray (pixel and sample index the random numbers).
-    RGB shade(const RTCRayHit& primary, std::uint64_t pixel, std::uint64_t sample,
-              TraceCounters& c, First* first) const {
+    RGB shade(const RTCRayHit& primary, std::uint64_t pixel, std::uint64_t sample, TraceCounters& c,
+              First* first) const {
         using namespace detail::rt;
         using detail::pt::mul;
         const V3 dir0{primary.ray.dir_x, primary.ray.dir_y, primary.ray.dir_z};
@@ -530,7 +528,8 @@ class PathTracer {
                 ++c.environment_samples;
                 const auto es = sampler_.sample(rnd(d0), rnd(d0 + 1));
                 const double cs = dot(ns, es.w);
-                if (es.pdf > 0 && cs > 0 && dot(ng, es.w) > 0 && !detail::pt::is_zero(es.radiance)) {
+                if (es.pdf > 0 && cs > 0 && dot(ng, es.w) > 0 &&
+                    !detail::pt::is_zero(es.radiance)) {
                     const RGB f = bsdf.eval(wo, es.w, c);
                     const double pb = bsdf.pdf(wo, es.w, c);
                     if (visible(x, ng, es.w, std::numeric_limits<double>::infinity(), c)) {
