@@ -1,8 +1,5 @@
 // sphbasis render tier: baking lighting representations at surface points and free points.
 //
-// CONTRACT (written by the lead; the engine helper implements it and may add members and
-// functions, but keeps these names and meanings: the tool is written against them).
-//
 // Sources: Hill, "Hardware Accelerating Art Production" (Gamasutra 2004), eq. 1-5; Sloan,
 // Lehtinen and Kautz, "Precomputed Radiance Transfer: Theory and Practice" (SIGGRAPH 2005
 // course); Iwanicki and Sloan, "Normal Mapping with Low-Frequency Precomputed Visibility"

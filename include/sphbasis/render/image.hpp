@@ -1,9 +1,5 @@
 // sphbasis render tier: linear HDR images, tiles, tone mapping and image comparison.
 //
-// CONTRACT (written by the lead; the tracer helper implements the bodies and may add members
-// and functions, but keeps these names and meanings: the tool and the representations are
-// written against them).
-//
 // Image: width x height pixels of `channels` floats, row-major from the top row (camera.hpp's
 // image coordinates), linear radiance. for_each_tile() runs a function over square tiles in
 // parallel on oneTBB; a renderer that derives every random number from (seed, pixel, sample)

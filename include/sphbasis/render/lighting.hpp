@@ -1,8 +1,5 @@
 // sphbasis render tier: the distant lighting of a scene (an environment and analytic lights).
 //
-// CONTRACT (written by the lead; the lighting helper implements the bodies and may add members,
-// but keeps these names and meanings): the tool fills these structs from the scene file.
-//
 // What is here, all in double precision, all radiances in linear RGB:
 //   * Environment::radiance(w): a constant, or a lat-long RGB image in the library's lat-long
 //     convention (param/latlong.hpp: u = phi/(2 pi), v = theta/pi, row 0 at +z), bilinear

@@ -1,10 +1,6 @@
 // sphbasis render tier: the ground truth, a Monte Carlo path tracer of exactly the effects a
 // scene enables.
 //
-// CONTRACT (written by the lead; the tracer helper implements it and may add members and
-// functions, but keeps these names and meanings: the tool and the tests are written against
-// them).
-//
 // Light transport (all radiances linear RGB, surfaces two-sided, albedo from render::Hit):
 //   * Primary rays from a PinholeCamera, `spp` jittered samples per pixel (stratified by a
 //     per-pixel scrambled low-discrepancy sequence; every random number is a hash of

@@ -1,9 +1,6 @@
 // sphbasis render tier: the baked lighting representations a game would ship, rendered from
 // the bakes of render/bake.hpp under the same lighting as the ground truth (path_tracer.hpp).
 //
-// CONTRACT (written by the lead; the representations helper implements it and may add members
-// and functions, but keeps these names and meanings: the tool is written against them).
-//
 // Every representation shades a camera hit as albedo(hit) / pi * E, E the irradiance it
 // reconstructs (the diffuse part only; the specular ones below are the exception), with the
 // normal-mapped normal (Scene::normal_mapped) wherever the representation can use a per-pixel
@@ -42,7 +39,7 @@
 // rotated environment therefore re-bakes nothing for PRT and only lightmaps and probes for a
 // changed light.
 //
-// Implementation notes (the representations helper):
+// Implementation notes:
 //   * Distant lighting for the SH-lit representations: project_sh(environment, n) plus
 //     project_sh(light, n, c) for every light (c the centre of the scene's bounding box: sphere
 //     lights are treated as distant from there), then rotated by lighting_rotation. White

@@ -1,9 +1,6 @@
 // sphbasis render tier: Blinn-Phong specular from mipmapped normal maps, with and without
 // Toksvig's factor, and its supersampled reference.
 //
-// CONTRACT (written by the lead; the specular helper implements it and may add members and
-// functions, but keeps these names and meanings: representation.hpp and the tool use them).
-//
 // Source: M. Toksvig, "Mipmapping Normal Maps" (NVIDIA technical brief, 2004); the factor and
 // the widened lobe are shading/toksvig.hpp. A normal map's mip chain averages the decoded
 // tangent-space normals (2c - 1) without renormalising (box filter, 2x2 per level, down to
@@ -16,11 +13,12 @@
 //              widened by f_t (Toksvig eq. 6-8, with the brief's energy scaling);
 //   reference: the finest level, normalised, averaged over ss x ss subpixel camera rays
 //              (render_specular_reference), i.e. what the pixel should show.
-// Lights: the scene's directional lights (radiance `color` from one direction), times the
-// shadow-free n.l; other lights and the environment are not part of the specular comparison.
-// Meshes with shininess 0 contribute 0; without a normal map the shading normal is used.
+// Lights: the scene's directional lights (irradiance `color` on a surface facing it, as
+// lighting.hpp defines), times the shadow-free n.l; other lights and the environment are not part
+// of the specular comparison. Meshes with shininess 0 contribute 0; without a normal map the
+// shading normal is used.
 //
-// Implementation notes (the specular helper):
+// Implementation notes:
 //  - Level of detail: the pixel's footprint (pixel_footprint(): the side of the square with the
 //    area of the pixel's footprint on the surface) times the hit triangle's UV length per world
 //    length (sqrt(UV area / world area), precomputed per triangle) times max(width, height) of
