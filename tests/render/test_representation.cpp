@@ -168,6 +168,15 @@ TEST_CASE("representations: the bake plan reads only what is requested", "[rende
         CHECK(r.bakes()[2].where == render::BakeRequest::Where::vertex);
         CHECK_FALSE(r.bakes()[0].lighting_dependent);
         CHECK(r.bakes()[2].settings.quantities == render::Quantity::transfer);
+        using V = std::vector<std::size_t>;
+        CHECK(r.reads(0) == V{0, 1});  // ao
+        CHECK(r.reads(1) == V{0, 1});  // bent: the same bakes
+        CHECK(r.reads(2) == V{2, 3});  // prt-vertex
+        CHECK_THROWS_AS(r.reads(3), std::invalid_argument);
+    }
+    {
+        render::Representations r(w.desc, *w.rt, s, {"irradiance-sh9"});
+        CHECK(r.reads(0).empty());
     }
     {
         render::Representations r(w.desc, *w.rt, s, {"lightmap-hl2", "volume"});

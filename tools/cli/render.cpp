@@ -440,16 +440,9 @@ int run_render(const RenderOptions& o) {
         b.lighting_dependent = r.lighting_dependent;
         rep.bakes.push_back(b);
     }
-    // Which representation reads which bake: each one's own plan, matched by key.
-    if (!requests.empty())
-        for (const std::string& n : names) {
-            const render::Representations one(desc, rt, rs, {n});
-            for (const render::BakeRequest& r : one.bakes()) {
-                const std::uint64_t k = render::bake_key(desc, r);
-                for (std::size_t i = 0; i < keys.size(); ++i)
-                    if (keys[i] == k) rep.bakes[i].read_by.push_back(n);
-            }
-        }
+    // Which representation reads which bake.
+    for (std::size_t n = 0; n < names.size(); ++n)
+        for (std::size_t i : reps.reads(n)) rep.bakes[i].read_by.push_back(names[n]);
     const bool want_specular = std::any_of(names.begin(), names.end(),
                                            [](const std::string& n) { return is_specular(n); });
     rep.specular_reference = want_specular;
