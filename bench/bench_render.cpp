@@ -376,6 +376,9 @@ void trace_args(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(trace_bare)->Apply(trace_args);
 BENCHMARK(trace)->Apply(trace_args);
+
+}  // namespace
+
 // ---------------------------------------------------------------------------------------------
 // Representation shading (render/representation.hpp): the cost per pixel of each
 // representation's shade() at precomputed camera hits, one thread ("what accuracy costs in
