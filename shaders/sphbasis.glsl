@@ -702,4 +702,161 @@ float sphbasis_toksvig_specular_from_dots(float na_dot_h, float na_dot_na, float
     return sphbasis_toksvig_specular(na_dot_h, l, shininess);
 }
 
+/// sgn with sgn(0) = +1 (also for -0), as the C++ mappings' (t >= 0 ? 1 : -1); GLSL's and HLSL's
+/// sign() give 0 at 0.
+float sphbasis_sign_not_zero(float t)
+{
+    return t >= 0.0 ? 1.0 : -1.0;
+}
+
+/// Octahedral map (Cigolle et al., JCGT 2014), as sphbasis::param::octahedral_to_square: unit
+/// direction (or any non-zero vector) -> [0, 1]^2; the upper half is the inner diamond, the
+/// lower half folds out to the corners.
+vec2 sphbasis_octahedral_to_square(vec3 d)
+{
+    float l1 = abs(d.x) + abs(d.y) + abs(d.z);
+    float inv = l1 > 0.0 ? 1.0 / l1 : 0.0;
+    float a = d.x * inv; float b = d.y * inv;
+    if (d.z < 0.0) {
+        float fa = (1.0 - abs(b)) * sphbasis_sign_not_zero(a);
+        float fb = (1.0 - abs(a)) * sphbasis_sign_not_zero(b);
+        a = fa; b = fb;
+    }
+    return vec2(0.5 * (a + 1.0), 0.5 * (b + 1.0));
+}
+
+/// [0, 1]^2 -> unit direction, as sphbasis::param::square_to_octahedral.
+vec3 sphbasis_square_to_octahedral(vec2 uv)
+{
+    float a = 2.0 * uv.x - 1.0; float b = 2.0 * uv.y - 1.0;
+    float z = 1.0 - abs(a) - abs(b);
+    if (z < 0.0) {
+        float fa = (1.0 - abs(b)) * sphbasis_sign_not_zero(a);
+        float fb = (1.0 - abs(a)) * sphbasis_sign_not_zero(b);
+        a = fa; b = fb;
+    }
+    float inv = 1.0 / sqrt(a * a + b * b + z * z);
+    return vec3(a * inv, b * inv, z * inv);
+}
+
+/// Cube map face selection (OpenGL 4.6, section 8.13, table 8.19; the D3D10 rule), as
+/// sphbasis::param::cube_to_square: unit direction -> face (0..5 = +X, -X, +Y, -Y, +Z, -Z) and
+/// (u, v) in [0, 1]^2. Ties between axes go to x, then y. The zero vector gives +X, (0.5, 0.5).
+vec2 sphbasis_cube_to_square(vec3 d, out int face)
+{
+    float ax = abs(d.x); float ay = abs(d.y); float az = abs(d.z);
+    float ma; float sc; float tc;
+    if (ax >= ay && ax >= az) {
+        face = d.x >= 0.0 ? 0 : 1; ma = ax; sc = d.x >= 0.0 ? -d.z : d.z; tc = -d.y;
+    } else if (ay >= az) {
+        face = d.y >= 0.0 ? 2 : 3; ma = ay; sc = d.x; tc = d.y >= 0.0 ? d.z : -d.z;
+    } else {
+        face = d.z >= 0.0 ? 4 : 5; ma = az; sc = d.z >= 0.0 ? d.x : -d.x; tc = -d.y;
+    }
+    float inv = ma > 0.0 ? 1.0 / ma : 0.0;
+    sc = clamp(sc * inv, -1.0, 1.0); tc = clamp(tc * inv, -1.0, 1.0);
+    return vec2(0.5 * (sc + 1.0), 0.5 * (tc + 1.0));
+}
+
+/// Cube face (0..5) and (u, v) in [0, 1]^2 -> unit direction, as sphbasis::param::square_to_cube.
+vec3 sphbasis_square_to_cube(int face, vec2 uv)
+{
+    float sc = 2.0 * uv.x - 1.0; float tc = 2.0 * uv.y - 1.0;
+    vec3 p;
+    if (face == 0) p = vec3(1.0, -tc, -sc);
+    else if (face == 1) p = vec3(-1.0, -tc, sc);
+    else if (face == 2) p = vec3(sc, 1.0, tc);
+    else if (face == 3) p = vec3(sc, -1.0, -tc);
+    else if (face == 4) p = vec3(sc, -tc, 1.0);
+    else p = vec3(-sc, -tc, -1.0);
+    float inv = 1.0 / sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
+    return vec3(p.x * inv, p.y * inv, p.z * inv);
+}
+
+/// Shirley and Chiu's concentric map (JGT 1997, Mitsuba's single-branch form), as
+/// sphbasis::param::square_to_uniform_disk_concentric: [0, 1]^2 -> unit disk.
+vec2 sphbasis_square_to_uniform_disk_concentric(vec2 uv)
+{
+    float a = 2.0 * uv.x - 1.0; float b = 2.0 * uv.y - 1.0;
+    if (a == 0.0 && b == 0.0) return vec2(0.0, 0.0);
+    if (abs(a) > abs(b)) {
+        float phi = 0.785398185 * (b / a);  // pi/4
+        return vec2(a * cos(phi), a * sin(phi));
+    }
+    float psi = 0.785398185 * (a / b);
+    return vec2(b * sin(psi), b * cos(psi));
+}
+
+/// Inverse concentric map, unit disk -> [0, 1]^2, as
+/// sphbasis::param::uniform_disk_to_square_concentric (points outside the disk are clamped onto
+/// the square's border).
+vec2 sphbasis_uniform_disk_to_square_concentric(vec2 p)
+{
+    float r = sqrt(p.x * p.x + p.y * p.y);
+    if (!(r > 0.0)) return vec2(0.5, 0.5);
+    float a; float b;
+    if (abs(p.x) >= abs(p.y)) {
+        a = p.x < 0.0 ? -r : r;
+        b = a * 1.27323949 * atan(p.y / p.x);  // 4/pi
+    } else {
+        b = p.y < 0.0 ? -r : r;
+        a = b * 1.27323949 * atan(p.x / p.y);
+    }
+    a = clamp(a, -1.0, 1.0); b = clamp(b, -1.0, 1.0);
+    return vec2(0.5 * (a + 1.0), 0.5 * (b + 1.0));
+}
+
+/// Paraboloid map (Heidrich and Seidel 1998) through the concentric map, as
+/// sphbasis::param::square_to_paraboloid: [0, 1]^2 -> upper hemisphere (border = equator).
+vec3 sphbasis_square_to_paraboloid(vec2 uv)
+{
+    vec2 p = sphbasis_square_to_uniform_disk_concentric(uv);
+    float r2 = p.x * p.x + p.y * p.y;
+    float inv = 1.0 / (1.0 + r2);
+    return vec3(2.0 * p.x * inv, 2.0 * p.y * inv, (1.0 - r2) * inv);
+}
+
+/// Unit direction -> [0, 1]^2, as sphbasis::param::paraboloid_to_square (|z| is used: a lower
+/// direction is mirrored through the equator plane, as the back face stores it).
+vec2 sphbasis_paraboloid_to_square(vec3 d)
+{
+    float inv = 1.0 / (1.0 + abs(d.z));
+    return sphbasis_uniform_disk_to_square_concentric(vec2(d.x * inv, d.y * inv));
+}
+
+/// The texture coordinate of s in [0, 1] shrunk so that 0 and 1 fall on the outer texel centres
+/// of an n-texel axis (Iwanicki and Sloan, JGT 2009, appendix A), as param::detail::shrink.
+float sphbasis_shrink(float s, int n)
+{
+    float h = 0.5 / float(n);
+    return h + (1.0 - 2.0 * h) * s;
+}
+
+/// Inverse of sphbasis_shrink, clamped to [0, 1], as param::detail::unshrink.
+float sphbasis_unshrink(float u, int n)
+{
+    float h = 0.5 / float(n);
+    float s = (u - h) / (1.0 - 2.0 * h);
+    return s > 0.0 ? (s < 1.0 ? s : 1.0) : 0.0;
+}
+
+/// The dual paraboloid map of n x n texels per face, as
+/// sphbasis::param::DualParaboloid<float>(n).direction_to_uv for a unit direction: face 0 for
+/// z >= 0, 1 below; (u, v) in [0.5/n, 1 - 0.5/n]^2 (the equator on the outer texel centres).
+vec2 sphbasis_dual_paraboloid_direction_to_uv(vec3 d, int n, out int face)
+{
+    face = d.z >= 0.0 ? 0 : 1;
+    vec2 s = sphbasis_paraboloid_to_square(d);
+    return vec2(sphbasis_shrink(s.x, n), sphbasis_shrink(s.y, n));
+}
+
+/// Face and (u, v) of an n x n dual paraboloid map -> unit direction, as
+/// sphbasis::param::DualParaboloid<float>(n).uv_to_direction.
+vec3 sphbasis_dual_paraboloid_uv_to_direction(int face, vec2 uv, int n)
+{
+    vec3 d = sphbasis_square_to_paraboloid(vec2(sphbasis_unshrink(uv.x, n), sphbasis_unshrink(uv.y, n)));
+    if (face == 1) d.z = -d.z;
+    return d;
+}
+
 #endif  // SPHBASIS_GLSL

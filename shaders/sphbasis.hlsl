@@ -701,4 +701,161 @@ float sphbasis_toksvig_specular_from_dots(float na_dot_h, float na_dot_na, float
     return sphbasis_toksvig_specular(na_dot_h, l, shininess);
 }
 
+/// sgn with sgn(0) = +1 (also for -0), as the C++ mappings' (t >= 0 ? 1 : -1); GLSL's and HLSL's
+/// sign() give 0 at 0.
+float sphbasis_sign_not_zero(float t)
+{
+    return t >= 0.0f ? 1.0f : -1.0f;
+}
+
+/// Octahedral map (Cigolle et al., JCGT 2014), as sphbasis::param::octahedral_to_square: unit
+/// direction (or any non-zero vector) -> [0, 1]^2; the upper half is the inner diamond, the
+/// lower half folds out to the corners.
+float2 sphbasis_octahedral_to_square(float3 d)
+{
+    float l1 = abs(d.x) + abs(d.y) + abs(d.z);
+    float inv = l1 > 0.0f ? 1.0f / l1 : 0.0f;
+    float a = d.x * inv; float b = d.y * inv;
+    if (d.z < 0.0f) {
+        float fa = (1.0f - abs(b)) * sphbasis_sign_not_zero(a);
+        float fb = (1.0f - abs(a)) * sphbasis_sign_not_zero(b);
+        a = fa; b = fb;
+    }
+    return float2(0.5f * (a + 1.0f), 0.5f * (b + 1.0f));
+}
+
+/// [0, 1]^2 -> unit direction, as sphbasis::param::square_to_octahedral.
+float3 sphbasis_square_to_octahedral(float2 uv)
+{
+    float a = 2.0f * uv.x - 1.0f; float b = 2.0f * uv.y - 1.0f;
+    float z = 1.0f - abs(a) - abs(b);
+    if (z < 0.0f) {
+        float fa = (1.0f - abs(b)) * sphbasis_sign_not_zero(a);
+        float fb = (1.0f - abs(a)) * sphbasis_sign_not_zero(b);
+        a = fa; b = fb;
+    }
+    float inv = 1.0f / sqrt(a * a + b * b + z * z);
+    return float3(a * inv, b * inv, z * inv);
+}
+
+/// Cube map face selection (OpenGL 4.6, section 8.13, table 8.19; the D3D10 rule), as
+/// sphbasis::param::cube_to_square: unit direction -> face (0..5 = +X, -X, +Y, -Y, +Z, -Z) and
+/// (u, v) in [0, 1]^2. Ties between axes go to x, then y. The zero vector gives +X, (0.5, 0.5).
+float2 sphbasis_cube_to_square(float3 d, out int face)
+{
+    float ax = abs(d.x); float ay = abs(d.y); float az = abs(d.z);
+    float ma; float sc; float tc;
+    if (ax >= ay && ax >= az) {
+        face = d.x >= 0.0f ? 0 : 1; ma = ax; sc = d.x >= 0.0f ? -d.z : d.z; tc = -d.y;
+    } else if (ay >= az) {
+        face = d.y >= 0.0f ? 2 : 3; ma = ay; sc = d.x; tc = d.y >= 0.0f ? d.z : -d.z;
+    } else {
+        face = d.z >= 0.0f ? 4 : 5; ma = az; sc = d.z >= 0.0f ? d.x : -d.x; tc = -d.y;
+    }
+    float inv = ma > 0.0f ? 1.0f / ma : 0.0f;
+    sc = clamp(sc * inv, -1.0f, 1.0f); tc = clamp(tc * inv, -1.0f, 1.0f);
+    return float2(0.5f * (sc + 1.0f), 0.5f * (tc + 1.0f));
+}
+
+/// Cube face (0..5) and (u, v) in [0, 1]^2 -> unit direction, as sphbasis::param::square_to_cube.
+float3 sphbasis_square_to_cube(int face, float2 uv)
+{
+    float sc = 2.0f * uv.x - 1.0f; float tc = 2.0f * uv.y - 1.0f;
+    float3 p;
+    if (face == 0) p = float3(1.0f, -tc, -sc);
+    else if (face == 1) p = float3(-1.0f, -tc, sc);
+    else if (face == 2) p = float3(sc, 1.0f, tc);
+    else if (face == 3) p = float3(sc, -1.0f, -tc);
+    else if (face == 4) p = float3(sc, -tc, 1.0f);
+    else p = float3(-sc, -tc, -1.0f);
+    float inv = 1.0f / sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
+    return float3(p.x * inv, p.y * inv, p.z * inv);
+}
+
+/// Shirley and Chiu's concentric map (JGT 1997, Mitsuba's single-branch form), as
+/// sphbasis::param::square_to_uniform_disk_concentric: [0, 1]^2 -> unit disk.
+float2 sphbasis_square_to_uniform_disk_concentric(float2 uv)
+{
+    float a = 2.0f * uv.x - 1.0f; float b = 2.0f * uv.y - 1.0f;
+    if (a == 0.0f && b == 0.0f) return float2(0.0f, 0.0f);
+    if (abs(a) > abs(b)) {
+        float phi = 0.785398185f * (b / a);  // pi/4
+        return float2(a * cos(phi), a * sin(phi));
+    }
+    float psi = 0.785398185f * (a / b);
+    return float2(b * sin(psi), b * cos(psi));
+}
+
+/// Inverse concentric map, unit disk -> [0, 1]^2, as
+/// sphbasis::param::uniform_disk_to_square_concentric (points outside the disk are clamped onto
+/// the square's border).
+float2 sphbasis_uniform_disk_to_square_concentric(float2 p)
+{
+    float r = sqrt(p.x * p.x + p.y * p.y);
+    if (!(r > 0.0f)) return float2(0.5f, 0.5f);
+    float a; float b;
+    if (abs(p.x) >= abs(p.y)) {
+        a = p.x < 0.0f ? -r : r;
+        b = a * 1.27323949f * atan(p.y / p.x);  // 4/pi
+    } else {
+        b = p.y < 0.0f ? -r : r;
+        a = b * 1.27323949f * atan(p.x / p.y);
+    }
+    a = clamp(a, -1.0f, 1.0f); b = clamp(b, -1.0f, 1.0f);
+    return float2(0.5f * (a + 1.0f), 0.5f * (b + 1.0f));
+}
+
+/// Paraboloid map (Heidrich and Seidel 1998) through the concentric map, as
+/// sphbasis::param::square_to_paraboloid: [0, 1]^2 -> upper hemisphere (border = equator).
+float3 sphbasis_square_to_paraboloid(float2 uv)
+{
+    float2 p = sphbasis_square_to_uniform_disk_concentric(uv);
+    float r2 = p.x * p.x + p.y * p.y;
+    float inv = 1.0f / (1.0f + r2);
+    return float3(2.0f * p.x * inv, 2.0f * p.y * inv, (1.0f - r2) * inv);
+}
+
+/// Unit direction -> [0, 1]^2, as sphbasis::param::paraboloid_to_square (|z| is used: a lower
+/// direction is mirrored through the equator plane, as the back face stores it).
+float2 sphbasis_paraboloid_to_square(float3 d)
+{
+    float inv = 1.0f / (1.0f + abs(d.z));
+    return sphbasis_uniform_disk_to_square_concentric(float2(d.x * inv, d.y * inv));
+}
+
+/// The texture coordinate of s in [0, 1] shrunk so that 0 and 1 fall on the outer texel centres
+/// of an n-texel axis (Iwanicki and Sloan, JGT 2009, appendix A), as param::detail::shrink.
+float sphbasis_shrink(float s, int n)
+{
+    float h = 0.5f / float(n);
+    return h + (1.0f - 2.0f * h) * s;
+}
+
+/// Inverse of sphbasis_shrink, clamped to [0, 1], as param::detail::unshrink.
+float sphbasis_unshrink(float u, int n)
+{
+    float h = 0.5f / float(n);
+    float s = (u - h) / (1.0f - 2.0f * h);
+    return s > 0.0f ? (s < 1.0f ? s : 1.0f) : 0.0f;
+}
+
+/// The dual paraboloid map of n x n texels per face, as
+/// sphbasis::param::DualParaboloid<float>(n).direction_to_uv for a unit direction: face 0 for
+/// z >= 0, 1 below; (u, v) in [0.5/n, 1 - 0.5/n]^2 (the equator on the outer texel centres).
+float2 sphbasis_dual_paraboloid_direction_to_uv(float3 d, int n, out int face)
+{
+    face = d.z >= 0.0f ? 0 : 1;
+    float2 s = sphbasis_paraboloid_to_square(d);
+    return float2(sphbasis_shrink(s.x, n), sphbasis_shrink(s.y, n));
+}
+
+/// Face and (u, v) of an n x n dual paraboloid map -> unit direction, as
+/// sphbasis::param::DualParaboloid<float>(n).uv_to_direction.
+float3 sphbasis_dual_paraboloid_uv_to_direction(int face, float2 uv, int n)
+{
+    float3 d = sphbasis_square_to_paraboloid(float2(sphbasis_unshrink(uv.x, n), sphbasis_unshrink(uv.y, n)));
+    if (face == 1) d.z = -d.z;
+    return d;
+}
+
 #endif  // SPHBASIS_HLSL

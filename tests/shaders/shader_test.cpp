@@ -3,7 +3,8 @@
 // directions including the poles, the horizon and x = y = 0, reads the values back and compares
 // them with the C++ kernels in float: sh::eval_unit<N>, sh::irradiance, the H-basis, modified
 // H-basis and HL2 kernels and expansion sums (basis/hbasis.hpp, basis/hl2.hpp), clamped_cosine,
-// toksvig::factor / specular / specular_from_dots; and Ishmukhametov's Listing 2.1/2.2 shader
+// toksvig::factor / specular / specular_from_dots; the param/ direction <-> texture mappings
+// (octahedral, cube map, concentric, paraboloid, the dual paraboloid layout); and Ishmukhametov's Listing 2.1/2.2 shader
 // functions against a double reference from ops/projection.hpp.
 //
 // Error measure: |gpu - cpu| in units of the float ulp of max(|cpu|, scale), where scale is the
@@ -38,6 +39,10 @@
 #include "sphbasis/core/quadrature.hpp"
 #include "sphbasis/ops/projection.hpp"
 #include "sphbasis/ops/sh_convolution.hpp"
+#include "sphbasis/param/concentric.hpp"
+#include "sphbasis/param/cubemap.hpp"
+#include "sphbasis/param/dual_paraboloid.hpp"
+#include "sphbasis/param/octahedral.hpp"
 #include "sphbasis/shading/toksvig.hpp"
 
 namespace {
@@ -66,6 +71,18 @@ constexpr double max_ulps_hbasis_sum = 2.0;
 constexpr double max_ulps_listing22 = 4.0;
 constexpr double max_ulps_toksvig_factor = 3.0;
 constexpr double max_ulps_toksvig_specular = 64.0;
+//  - The param/ mappings, every component (in [-1, 1]) in ulps of 1 (2^-23), over the directions
+//    above plus the cube-face edges and corners, and a 17 x 17 grid of texture points on each face
+//    (corners, edges, centre) plus random ones; faces must agree exactly (0 of 5308 differ):
+//    octahedral and cube map both ways: bit-identical (0 ulps; bound 1 for one fused
+//    multiply-add). square_to_uniform_disk_concentric 0.5, square_to_paraboloid 1.5, the dual
+//    paraboloid uv_to_direction 1.25 ulps (llvmpipe's sin/cos; bound 4).
+//    uniform_disk_to_square_concentric 18, paraboloid_to_square 18, the dual paraboloid
+//    direction_to_uv 17 ulps (llvmpipe's atan, a polynomial: ~2e-6 absolute in the texture
+//    coordinate, 3e-5 of a texel of a 16-texel face; bound 32).
+constexpr double max_ulps_map_rational = 1.0;
+constexpr double max_ulps_map_sincos = 4.0;
+constexpr double max_ulps_map_atan = 32.0;
 
 constexpr int max_n = 8;
 constexpr int sh_values = 204;  // sum_{n=1..8} n^2
@@ -78,7 +95,14 @@ constexpr int l22_at = sum_at + 15;  // mod6 irradiance, mod4 irradiance, SH -> 
                                      // irradiance (3 each), SH -> modH coefficients (18)
 constexpr int tk_at = l22_at + 27;   // factor, specular, specular_from_dots
 constexpr int cc_at = tk_at + 3;     // a_0..a_7
-constexpr int stride = cc_at + 8;
+// The param/ mappings: octahedral_to_square (2), square_to_octahedral (3), cube_to_square (u, v,
+// face), square_to_cube (3), square_to_uniform_disk_concentric (2),
+// uniform_disk_to_square_concentric (2), paraboloid_to_square (2), square_to_paraboloid (3),
+// the dual paraboloid layout's direction_to_uv (u, v, face) and uv_to_direction (3).
+constexpr int map_at = cc_at + 8;
+constexpr int map_values = 26;
+constexpr int dual_paraboloid_n = 16;
+constexpr int stride = map_at + map_values;
 constexpr int hb_sizes[5] = {4, 6, 4, 6, 3};
 const char* const hb_names[5] = {"hbasis4", "hbasis6", "hbasis_mod4", "hbasis_mod6", "hl2"};
 
@@ -216,6 +240,7 @@ std::string compute_source(const std::string& library) {
          "layout(std430, binding = 1) readonly buffer Coef { vec4 coef[]; };\n"
          "layout(std430, binding = 2) writeonly buffer Vals { float vals[]; };\n"
          "layout(std430, binding = 3) readonly buffer Tk { vec4 tk[]; };\n"
+         "layout(std430, binding = 4) readonly buffer Uv { vec4 uvs[]; };\n"
          "uniform uint count;\n"
          "void main() {\n"
          "    uint i = gl_GlobalInvocationID.x;\n"
@@ -264,6 +289,32 @@ std::string compute_source(const std::string& library) {
          "    vals[o + 2u] = sphbasis_toksvig_specular_from_dots(t.x, t.w, t.z);\n"
          "    o += 3u;\n"
          "    for (int l = 0; l < 8; ++l) vals[o + uint(l)] = sphbasis_clamped_cosine(l);\n"
+         "    o += 8u;\n"
+         "    vec2 uv = uvs[i].xy; int uvface = int(uvs[i].z);\n"
+         "    int face;\n"
+         "    vec2 q; vec3 r;\n"
+         "    q = sphbasis_octahedral_to_square(d); vals[o] = q.x; vals[o + 1u] = q.y;\n"
+         "    r = sphbasis_square_to_octahedral(uv);\n"
+         "    vals[o + 2u] = r.x; vals[o + 3u] = r.y; vals[o + 4u] = r.z;\n"
+         "    q = sphbasis_cube_to_square(d, face);\n"
+         "    vals[o + 5u] = q.x; vals[o + 6u] = q.y; vals[o + 7u] = float(face);\n"
+         "    r = sphbasis_square_to_cube(uvface, uv);\n"
+         "    vals[o + 8u] = r.x; vals[o + 9u] = r.y; vals[o + 10u] = r.z;\n"
+         "    q = sphbasis_square_to_uniform_disk_concentric(uv); vals[o + 11u] = q.x;\n"
+         "    vals[o + 12u] = q.y;\n"
+         "    q = sphbasis_uniform_disk_to_square_concentric(d.xy); vals[o + 13u] = q.x;\n"
+         "    vals[o + 14u] = q.y;\n"
+         "    q = sphbasis_paraboloid_to_square(d); vals[o + 15u] = q.x; vals[o + 16u] = q.y;\n"
+         "    r = sphbasis_square_to_paraboloid(uv);\n"
+         "    vals[o + 17u] = r.x; vals[o + 18u] = r.y; vals[o + 19u] = r.z;\n"
+         "    q = sphbasis_dual_paraboloid_direction_to_uv(d, "
+      << dual_paraboloid_n
+      << ", face);\n"
+         "    vals[o + 20u] = q.x; vals[o + 21u] = q.y; vals[o + 22u] = float(face);\n"
+         "    r = sphbasis_dual_paraboloid_uv_to_direction(uvface % 2, uv, "
+      << dual_paraboloid_n
+      << ");\n"
+         "    vals[o + 23u] = r.x; vals[o + 24u] = r.y; vals[o + 25u] = r.z;\n"
          "}\n";
     return s.str();
 }
@@ -335,6 +386,16 @@ std::vector<float> directions() {
     push(-1, 0, 0);
     push(0, 1, 0);
     push(0, -1, 0);
+    // Cube-face edges and corners (ties between the axes: |x| = |y| = |z| rounds to equal floats),
+    // and directions one float step off them.
+    for (int i = -1; i <= 1; ++i)
+        for (int j = -1; j <= 1; ++j)
+            for (int k = -1; k <= 1; ++k) {
+                if (std::abs(i) + std::abs(j) + std::abs(k) < 2) continue;
+                const double r = std::sqrt(double(i * i + j * j + k * k));
+                push(i / r, j / r, k / r);
+                push(i / r * (1 + 0x1p-22), j / r, k / r * (1 - 0x1p-22));
+            }
     std::mt19937 rng(20260530u);
     std::normal_distribution<double> g;
     for (int i = 0; i < 1024; ++i) {
@@ -343,6 +404,23 @@ std::vector<float> directions() {
         push(x / r, y / r, z / r);
     }
     return d;
+}
+
+// Texture coordinates for the inverse mappings, with a face (0..5) each: a 17 x 17 grid on every
+// face (corners, edges and the centre on it), then random points (fixed seed).
+std::vector<float> texture_points(unsigned count) {
+    std::vector<float> uv;
+    for (int f = 0; f < 6; ++f)
+        for (int j = 0; j <= 16; ++j)
+            for (int i = 0; i <= 16; ++i) uv.insert(uv.end(), {float(i) / 16.0f, float(j) / 16.0f, float(f), 0});
+    std::mt19937 rng(1234u);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    while (uv.size() < std::size_t(count) * 4) {
+        const float a = u(rng), b = u(rng);
+        uv.insert(uv.end(), {a, b, float(uv.size() / 4 % 6), 0});
+    }
+    uv.resize(std::size_t(count) * 4);
+    return uv;
 }
 
 // Worst error of a family of values, in float ulps of max(|reference|, scale).
@@ -496,6 +574,65 @@ bool check_clamped_cosine(const std::vector<float>& gpu) {
     return w.report("sphbasis_clamped_cosine a_0..a_7", 0.0);
 }
 
+// The param/ mappings against the C++ free functions (and the DualParaboloid<float> class) in
+// float: every component in ulps of 1 (2^-23; the components lie in [-1, 1]), faces exactly.
+bool check_maps(const std::vector<float>& dirs, const std::vector<float>& uvs,
+                const std::vector<float>& gpu) {
+    using namespace sphbasis::param;
+    const unsigned count = unsigned(dirs.size() / 4);
+    const DualParaboloid<float> dual(dual_paraboloid_n);
+    Worst oct_f, oct_i, cube_f, cube_i, disk_f, disk_i, par_f, par_i, dual_f, dual_i;
+    std::size_t face_mismatch = 0;
+    auto add2 = [](Worst& w, const float* g, float a, float b) {
+        w.add(g[0], a, 1.0);
+        w.add(g[1], b, 1.0);
+    };
+    auto add3 = [](Worst& w, const float* g, const sphbasis::vec3<float>& v) {
+        w.add(g[0], v.x, 1.0);
+        w.add(g[1], v.y, 1.0);
+        w.add(g[2], v.z, 1.0);
+    };
+    for (unsigned i = 0; i < count; ++i) {
+        const float* g = &gpu[std::size_t(i) * stride + map_at];
+        const float x = dirs[4 * i], y = dirs[4 * i + 1], z = dirs[4 * i + 2];
+        const float u = uvs[4 * i], v = uvs[4 * i + 1];
+        const int face = int(uvs[4 * i + 2]);
+        const Point2<float> o = octahedral_to_square(x, y, z);
+        add2(oct_f, g, o.x, o.y);
+        add3(oct_i, g + 2, square_to_octahedral(u, v));
+        const FaceUV<float> c = cube_to_square(x, y, z);
+        if (int(g[7]) != c.face) ++face_mismatch;
+        add2(cube_f, g + 5, c.u, c.v);
+        add3(cube_i, g + 8, square_to_cube(face, u, v));
+        const Point2<float> dk = square_to_uniform_disk_concentric(u, v);
+        add2(disk_i, g + 11, dk.x, dk.y);
+        const Point2<float> sq = uniform_disk_to_square_concentric(x, y);
+        add2(disk_f, g + 13, sq.x, sq.y);
+        const Point2<float> p = paraboloid_to_square(x, y, z);
+        add2(par_f, g + 15, p.x, p.y);
+        add3(par_i, g + 17, square_to_paraboloid(u, v));
+        const FaceUV<float> du = dual.direction_to_uv(x, y, z);
+        if (int(g[22]) != du.face) ++face_mismatch;
+        add2(dual_f, g + 20, du.u, du.v);
+        add3(dual_i, g + 23, dual.uv_to_direction(face % 2, u, v));
+    }
+    bool ok = oct_f.report("sphbasis_octahedral_to_square", max_ulps_map_rational);
+    ok = oct_i.report("sphbasis_square_to_octahedral", max_ulps_map_rational) && ok;
+    ok = cube_f.report("sphbasis_cube_to_square", max_ulps_map_rational) && ok;
+    ok = cube_i.report("sphbasis_square_to_cube", max_ulps_map_rational) && ok;
+    ok = disk_i.report("sphbasis_square_to_uniform_disk_concentric", max_ulps_map_sincos) && ok;
+    ok = disk_f.report("sphbasis_uniform_disk_to_square_concentric", max_ulps_map_atan) && ok;
+    ok = par_f.report("sphbasis_paraboloid_to_square", max_ulps_map_atan) && ok;
+    ok = par_i.report("sphbasis_square_to_paraboloid", max_ulps_map_sincos) && ok;
+    ok = dual_f.report("sphbasis_dual_paraboloid_direction_to_uv (n = 16)", max_ulps_map_atan) &&
+         ok;
+    ok = dual_i.report("sphbasis_dual_paraboloid_uv_to_direction (n = 16)", max_ulps_map_sincos) &&
+         ok;
+    std::printf("  cube and dual paraboloid faces: %zu of %u directions differ  %s\n",
+                face_mismatch, 2 * count, face_mismatch ? "FAIL" : "ok");
+    return ok && face_mismatch == 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -540,8 +677,9 @@ int main(int argc, char** argv) {
             tk[4 * i + 3] = u(rng);
         }
     }
-    unsigned buf[4];
-    gl.GenBuffers(4, buf);
+    const std::vector<float> uvs = texture_points(count);
+    unsigned buf[5];
+    gl.GenBuffers(5, buf);
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buf[0]);
     gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(dirs.size() * sizeof(float)), dirs.data(),
                   GL_STATIC_DRAW);
@@ -556,7 +694,10 @@ int main(int argc, char** argv) {
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buf[3]);
     gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(tk.size() * sizeof(float)), tk.data(),
                   GL_STATIC_DRAW);
-    for (unsigned i = 0; i < 4; ++i) gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buf[i]);
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buf[4]);
+    gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(uvs.size() * sizeof(float)), uvs.data(),
+                  GL_STATIC_DRAW);
+    for (unsigned i = 0; i < 5; ++i) gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buf[i]);
     gl.UseProgram(prog);
     gl.Uniform1ui(gl.GetUniformLocation(prog, "count"), count);
     gl.DispatchCompute((count + 63) / 64, 1, 1);
@@ -666,6 +807,7 @@ int main(int argc, char** argv) {
     ok = check_listing22(dirs, coef, gpu) && ok;
     ok = check_toksvig(tk, gpu) && ok;
     ok = check_clamped_cosine(gpu) && ok;
+    ok = check_maps(dirs, uvs, gpu) && ok;
     std::printf("sphbasis_shader_test: %s\n", ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
 }

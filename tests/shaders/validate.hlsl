@@ -41,4 +41,13 @@ void main()
     out_buf[16] = f.x + f.y + f.z;
     out_buf[17] = sphbasis_toksvig_factor(0.9f, 32.0f) + sphbasis_toksvig_specular(0.8f, 0.9f, 32.0f)
         + sphbasis_toksvig_specular_from_dots(0.8f, 0.81f, 32.0f);
+    float2 q0 = float2(0.3f, 0.8f);
+    int face;
+    float2 q = sphbasis_octahedral_to_square(d) + sphbasis_cube_to_square(d, face)
+        + sphbasis_paraboloid_to_square(d) + sphbasis_dual_paraboloid_direction_to_uv(d, 16, face)
+        + sphbasis_square_to_uniform_disk_concentric(q0)
+        + sphbasis_uniform_disk_to_square_concentric(d.xy);
+    float3 r = sphbasis_square_to_octahedral(q0) + sphbasis_square_to_cube(face, q0)
+        + sphbasis_square_to_paraboloid(q0) + sphbasis_dual_paraboloid_uv_to_direction(1, q0, 16);
+    out_buf[18] = q.x + q.y + r.x + r.y + r.z + float(face);
 }

@@ -40,4 +40,13 @@ void main()
     out_buf.v[16] = f.x + f.y + f.z;
     out_buf.v[17] = sphbasis_toksvig_factor(0.9, 32.0) + sphbasis_toksvig_specular(0.8, 0.9, 32.0)
         + sphbasis_toksvig_specular_from_dots(0.8, 0.81, 32.0);
+    vec2 q0 = vec2(0.3, 0.8);
+    int face;
+    vec2 q = sphbasis_octahedral_to_square(d) + sphbasis_cube_to_square(d, face)
+        + sphbasis_paraboloid_to_square(d) + sphbasis_dual_paraboloid_direction_to_uv(d, 16, face)
+        + sphbasis_square_to_uniform_disk_concentric(q0)
+        + sphbasis_uniform_disk_to_square_concentric(d.xy);
+    vec3 r = sphbasis_square_to_octahedral(q0) + sphbasis_square_to_cube(face, q0)
+        + sphbasis_square_to_paraboloid(q0) + sphbasis_dual_paraboloid_uv_to_direction(1, q0, 16);
+    out_buf.v[18] = q.x + q.y + r.x + r.y + r.z + float(face);
 }
