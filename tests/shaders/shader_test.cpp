@@ -45,6 +45,10 @@
 #include "sphbasis/param/octahedral.hpp"
 #include "sphbasis/shading/toksvig.hpp"
 
+// The example's C++ mirror (examples/shader_mirror/) and its procedural textures.
+#include "irradiance_normal_map.hpp"
+#include "procedural_textures.hpp"
+
 namespace {
 
 // Stated bound. Measured on Mesa 22.3.6 llvmpipe (LLVM 15, x86-64) against g++ 12 -O3
@@ -83,6 +87,10 @@ constexpr double max_ulps_toksvig_specular = 64.0;
 constexpr double max_ulps_map_rational = 1.0;
 constexpr double max_ulps_map_sincos = 4.0;
 constexpr double max_ulps_map_atan = 32.0;
+//  - The example's fragment shader against its GLM mirror (check_example), 16 x 16 pixels x 3
+//    channels in ulps of the sum of the terms' magnitudes: max 1 ulp (642/768 bit-identical;
+//    GLSL normalize vs glm::normalize then normalize_or_pole); bound 4.
+constexpr double max_ulps_example = 4.0;
 
 constexpr int max_n = 8;
 constexpr int sh_values = 204;  // sum_{n=1..8} n^2
@@ -141,6 +149,22 @@ struct Gl {
     PFNGLGETUNIFORMLOCATIONPROC GetUniformLocation;
     PFNGLUNIFORM1UIPROC Uniform1ui;
     PFNGLFINISHPROC Finish;
+    // The example's fragment pass.
+    PFNGLGENTEXTURESPROC GenTextures;
+    PFNGLBINDTEXTUREPROC BindTexture;
+    PFNGLACTIVETEXTUREPROC ActiveTexture;
+    PFNGLTEXIMAGE2DPROC TexImage2D;
+    PFNGLTEXPARAMETERIPROC TexParameteri;
+    PFNGLGENFRAMEBUFFERSPROC GenFramebuffers;
+    PFNGLBINDFRAMEBUFFERPROC BindFramebuffer;
+    PFNGLFRAMEBUFFERTEXTURE2DPROC FramebufferTexture2D;
+    PFNGLCHECKFRAMEBUFFERSTATUSPROC CheckFramebufferStatus;
+    PFNGLGENVERTEXARRAYSPROC GenVertexArrays;
+    PFNGLBINDVERTEXARRAYPROC BindVertexArray;
+    PFNGLVIEWPORTPROC Viewport;
+    PFNGLDRAWARRAYSPROC DrawArrays;
+    PFNGLREADPIXELSPROC ReadPixels;
+    PFNGLPIXELSTOREIPROC PixelStorei;
 };
 
 template <class F>
@@ -174,6 +198,21 @@ Gl load_gl() {
     load(g.GetUniformLocation, "glGetUniformLocation");
     load(g.Uniform1ui, "glUniform1ui");
     load(g.Finish, "glFinish");
+    load(g.GenTextures, "glGenTextures");
+    load(g.BindTexture, "glBindTexture");
+    load(g.ActiveTexture, "glActiveTexture");
+    load(g.TexImage2D, "glTexImage2D");
+    load(g.TexParameteri, "glTexParameteri");
+    load(g.GenFramebuffers, "glGenFramebuffers");
+    load(g.BindFramebuffer, "glBindFramebuffer");
+    load(g.FramebufferTexture2D, "glFramebufferTexture2D");
+    load(g.CheckFramebufferStatus, "glCheckFramebufferStatus");
+    load(g.GenVertexArrays, "glGenVertexArrays");
+    load(g.BindVertexArray, "glBindVertexArray");
+    load(g.Viewport, "glViewport");
+    load(g.DrawArrays, "glDrawArrays");
+    load(g.ReadPixels, "glReadPixels");
+    load(g.PixelStorei, "glPixelStorei");
     return g;
 }
 
@@ -319,8 +358,8 @@ std::string compute_source(const std::string& library) {
     return s.str();
 }
 
-unsigned compile_program(const Gl& gl, const std::string& src) {
-    const unsigned sh = gl.CreateShader(GL_COMPUTE_SHADER);
+unsigned compile_stage(const Gl& gl, unsigned stage, const std::string& src, const char* what) {
+    const unsigned sh = gl.CreateShader(stage);
     const char* p = src.c_str();
     gl.ShaderSource(sh, 1, &p, nullptr);
     gl.CompileShader(sh);
@@ -329,16 +368,27 @@ unsigned compile_program(const Gl& gl, const std::string& src) {
     if (!ok) {
         char log[8192] = {};
         gl.GetShaderInfoLog(sh, sizeof log, nullptr, log);
-        fail(std::string("the compute shader did not compile:\n") + log);
+        fail(std::string("the ") + what + " did not compile:\n" + log);
     }
+    return sh;
+}
+
+// A program of the given shader stages (compute; or vertex + fragment).
+unsigned compile_program(const Gl& gl, const std::string& src, const std::string& fragment = "") {
+    int ok = 0;
     const unsigned prog = gl.CreateProgram();
-    gl.AttachShader(prog, sh);
+    if (fragment.empty()) {
+        gl.AttachShader(prog, compile_stage(gl, GL_COMPUTE_SHADER, src, "compute shader"));
+    } else {
+        gl.AttachShader(prog, compile_stage(gl, GL_VERTEX_SHADER, src, "vertex shader"));
+        gl.AttachShader(prog, compile_stage(gl, GL_FRAGMENT_SHADER, fragment, "fragment shader"));
+    }
     gl.LinkProgram(prog);
     gl.GetProgramiv(prog, GL_LINK_STATUS, &ok);
     if (!ok) {
         char log[8192] = {};
         gl.GetProgramInfoLog(prog, sizeof log, nullptr, log);
-        fail(std::string("the compute program did not link:\n") + log);
+        fail(std::string("the program did not link:\n") + log);
     }
     return prog;
 }
@@ -633,6 +683,89 @@ bool check_maps(const std::vector<float>& dirs, const std::vector<float>& uvs,
     return ok && face_mismatch == 0;
 }
 
+// The shader-mirror example: examples/shader_mirror/irradiance_normal_map.frag drawn on llvmpipe
+// over a 16 x 16 float target (pixel (i, j) reads texel (i, j), nearest filtering) against its
+// C++ mirror irradiance_normal_map.hpp. Error per channel in ulps of the sum of the expansion's
+// terms' magnitudes, sum_k |c_k H_k(n)|. The #include of sphbasis.glsl is pasted in, as an
+// engine's includer would (the GL driver has no GL_GOOGLE_include_directive).
+bool check_example(const Gl& gl, const std::string& library) {
+    const std::string dir = std::string(SPHBASIS_SOURCE_DIR) + "/examples/shader_mirror/";
+    std::string frag = read_file(dir + "irradiance_normal_map.frag");
+    auto replace_line = [&frag](const std::string& line, const std::string& with) {
+        const std::size_t at = frag.find(line);
+        if (at == std::string::npos) fail("irradiance_normal_map.frag has no line \"" + line + "\"");
+        frag.replace(at, line.size(), with);
+    };
+    replace_line("#extension GL_GOOGLE_include_directive : require", "");
+    replace_line("#include \"sphbasis.glsl\"", library);
+    const std::string vert =
+        "#version 450\n"
+        "layout(location = 0) out vec2 uv;\n"
+        "void main() {\n"
+        "    vec2 p = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);\n"
+        "    uv = 0.5 * p + 0.5;\n"
+        "    gl_Position = vec4(p, 0.0, 1.0);\n"
+        "}\n";
+    const unsigned prog = compile_program(gl, vert, frag);
+
+    constexpr int n = 16;
+    const shader_mirror::Textures t = shader_mirror::procedural_textures(n, n);
+    unsigned tex[5];
+    gl.GenTextures(5, tex);
+    auto upload = [&](int unit, const float* data, unsigned format) {
+        gl.ActiveTexture(GL_TEXTURE0 + unsigned(unit));
+        gl.BindTexture(GL_TEXTURE_2D, tex[unit]);
+        gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        gl.TexImage2D(GL_TEXTURE_2D, 0, format == GL_RGB ? GL_RGB32F : GL_RGBA32F, n, n, 0, format,
+                      GL_FLOAT, data);
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    };
+    upload(0, &t.lightmap_r[0].x, GL_RGBA);
+    upload(1, &t.lightmap_g[0].x, GL_RGBA);
+    upload(2, &t.lightmap_b[0].x, GL_RGBA);
+    upload(3, &t.normal_map[0].x, GL_RGB);
+    upload(4, nullptr, GL_RGBA);  // the target
+    unsigned fbo = 0, vao = 0;
+    gl.GenFramebuffers(1, &fbo);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex[4], 0);
+    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        fail("the RGBA32F framebuffer of the example is not complete");
+    gl.GenVertexArrays(1, &vao);
+    gl.BindVertexArray(vao);
+    gl.Viewport(0, 0, n, n);
+    gl.UseProgram(prog);
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    std::vector<float> img(std::size_t(n * n * 4), std::nanf(""));
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.ReadPixels(0, 0, n, n, GL_RGBA, GL_FLOAT, img.data());
+    gl.Finish();
+    if (const unsigned err = gl.GetError(); err != GL_NO_ERROR) {
+        char b[64];
+        std::snprintf(b, sizeof b, "OpenGL error 0x%x in the example pass", err);
+        fail(b);
+    }
+    Worst w;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const std::size_t k = std::size_t(j * n + i);
+            const glm::vec3 ref = shader_mirror::shade_pixel(t, i, j);
+            const glm::vec3 nn = glm::normalize(t.normal_map[k] * 2.0f - 1.0f);
+            double h[4];
+            sphbasis::basis_eval<sphbasis::HBasis>(4, double(nn.x), double(nn.y), double(nn.z), h);
+            const glm::vec4* lm[3] = {&t.lightmap_r[k], &t.lightmap_g[k], &t.lightmap_b[k]};
+            for (int ch = 0; ch < 3; ++ch) {
+                double scale = 0;
+                for (int q = 0; q < 4; ++q) scale += std::abs(double((*lm[ch])[q]) * h[q]);
+                w.add(img[4 * k + std::size_t(ch)], ref[ch], scale);
+            }
+        }
+    return w.report("examples/shader_mirror (16 x 16, vs the GLM mirror)", max_ulps_example);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -808,6 +941,7 @@ int main(int argc, char** argv) {
     ok = check_toksvig(tk, gpu) && ok;
     ok = check_clamped_cosine(gpu) && ok;
     ok = check_maps(dirs, uvs, gpu) && ok;
+    ok = check_example(gl, read_file(glsl_path)) && ok;
     std::printf("sphbasis_shader_test: %s\n", ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
 }
