@@ -87,6 +87,9 @@ constexpr double max_ulps_toksvig_specular = 64.0;
 constexpr double max_ulps_map_rational = 1.0;
 constexpr double max_ulps_map_sincos = 4.0;
 constexpr double max_ulps_map_atan = 32.0;
+//    The same six with the driver's atan/sin/cos substituted on the C++ side
+//    (check_maps_same_libm): bound 1.
+constexpr double max_ulps_map_same_libm = 1.0;
 //  - The example's fragment shader against its GLM mirror (check_example), 16 x 16 pixels x 3
 //    channels in ulps of the sum of the terms' magnitudes: max 1 ulp (642/768 bit-identical;
 //    GLSL normalize vs glm::normalize then normalize_or_pole); bound 4.
@@ -110,7 +113,9 @@ constexpr int cc_at = tk_at + 3;     // a_0..a_7
 constexpr int map_at = cc_at + 8;
 constexpr int map_values = 26;
 constexpr int dual_paraboloid_n = 16;
-constexpr int stride = map_at + map_values;
+// The driver's own atan, sin, cos at arguments the CPU computed (see check_maps_same_libm).
+constexpr int libm_at = map_at + map_values;
+constexpr int stride = libm_at + 6;
 constexpr int hb_sizes[5] = {4, 6, 4, 6, 3};
 const char* const hb_names[5] = {"hbasis4", "hbasis6", "hbasis_mod4", "hbasis_mod6", "hl2"};
 
@@ -280,6 +285,7 @@ std::string compute_source(const std::string& library) {
          "layout(std430, binding = 2) writeonly buffer Vals { float vals[]; };\n"
          "layout(std430, binding = 3) readonly buffer Tk { vec4 tk[]; };\n"
          "layout(std430, binding = 4) readonly buffer Uv { vec4 uvs[]; };\n"
+         "layout(std430, binding = 5) readonly buffer Args { vec4 args[]; };\n"
          "uniform uint count;\n"
          "void main() {\n"
          "    uint i = gl_GlobalInvocationID.x;\n"
@@ -354,6 +360,11 @@ std::string compute_source(const std::string& library) {
       << dual_paraboloid_n
       << ");\n"
          "    vals[o + 23u] = r.x; vals[o + 24u] = r.y; vals[o + 25u] = r.z;\n"
+         "    o += 26u;\n"
+         "    vec4 a = args[i];\n"
+         "    vals[o] = atan(a.x); vals[o + 1u] = atan(a.y);\n"
+         "    vals[o + 2u] = sin(a.z); vals[o + 3u] = cos(a.z);\n"
+         "    vals[o + 4u] = sin(a.w); vals[o + 5u] = cos(a.w);\n"
          "}\n";
     return s.str();
 }
@@ -766,6 +777,104 @@ bool check_example(const Gl& gl, const std::string& library) {
     return w.report("examples/shader_mirror (16 x 16, vs the GLM mirror)", max_ulps_example);
 }
 
+// The arguments of the transcendental functions inside the trigonometric mappings, computed on the
+// CPU with the C++ side's operations (the concentric map's branches): per direction and texture
+// point, the atan argument of uniform_disk_to_square_concentric(x, y) and of
+// paraboloid_to_square(d), the sin/cos argument of square_to_uniform_disk_concentric(u, v) and of
+// the dual paraboloid's uv_to_direction (after unshrink).
+float atan_argument(float px, float py) {
+    const float r = std::sqrt(px * px + py * py);
+    if (!(r > 0.0f)) return 0.0f;
+    return std::fabs(px) >= std::fabs(py) ? py / px : px / py;
+}
+float sincos_argument(float u, float v) {
+    const float qp = 0.78539816339744831f;  // pi/4, the float of the C++ literal
+    const float a = 2.0f * u - 1.0f, b = 2.0f * v - 1.0f;
+    if (a == 0.0f && b == 0.0f) return 0.0f;
+    return std::fabs(a) > std::fabs(b) ? qp * (b / a) : qp * (a / b);
+}
+std::vector<float> transcendental_arguments(const std::vector<float>& dirs,
+                                            const std::vector<float>& uvs) {
+    using sphbasis::param::detail::unshrink;
+    std::vector<float> args(dirs.size());
+    for (std::size_t i = 0; i < dirs.size() / 4; ++i) {
+        const float x = dirs[4 * i], y = dirs[4 * i + 1], z = dirs[4 * i + 2];
+        const float inv = 1.0f / (1.0f + std::fabs(z));
+        const float u = uvs[4 * i], v = uvs[4 * i + 1];
+        args[4 * i] = atan_argument(x, y);
+        args[4 * i + 1] = atan_argument(x * inv, y * inv);
+        args[4 * i + 2] = sincos_argument(u, v);
+        args[4 * i + 3] = sincos_argument(unshrink(u, dual_paraboloid_n), unshrink(v, dual_paraboloid_n));
+    }
+    return args;
+}
+
+// The trigonometric mappings with the C++ operations but the DRIVER's atan, sin and cos (read
+// back at the CPU's arguments): what is left is the shader's arithmetic and constants (pi/4,
+// 4/pi), so the bound is 1 ulp of 1 where the plain comparison needs 4 (sin/cos) and 32 (atan).
+// Measured: bit-identical (0 ulps) at every point. Perturbed constants fail here: 4/pi written
+// 1.27324 and pi/4 written 0.785398 in the GLSL give 2 and 1.5 ulps (the plain comparison above
+// passes them: llvmpipe's atan error is larger).
+bool check_maps_same_libm(const std::vector<float>& dirs, const std::vector<float>& uvs,
+                          const std::vector<float>& gpu) {
+    using namespace sphbasis::param;
+    const unsigned count = unsigned(dirs.size() / 4);
+    // The concentric maps of concentric.hpp with given transcendental values.
+    auto disk_to_square = [](float px, float py, float at) {
+        const float r = std::sqrt(px * px + py * py);
+        if (!(r > 0.0f)) return Point2<float>{0.5f, 0.5f};
+        float a, b;
+        const float four_over_pi = 1.2732395447351627f;
+        if (std::fabs(px) >= std::fabs(py)) {
+            a = std::copysign(r, px);
+            b = a * four_over_pi * at;
+        } else {
+            b = std::copysign(r, py);
+            a = b * four_over_pi * at;
+        }
+        auto clamp1 = [](float t) { return t > 1.0f ? 1.0f : (t < -1.0f ? -1.0f : t); };
+        return Point2<float>{0.5f * (clamp1(a) + 1.0f), 0.5f * (clamp1(b) + 1.0f)};
+    };
+    auto square_to_disk = [](float u, float v, float sn, float cs) {
+        const float a = 2.0f * u - 1.0f, b = 2.0f * v - 1.0f;
+        if (a == 0.0f && b == 0.0f) return Point2<float>{0.0f, 0.0f};
+        if (std::fabs(a) > std::fabs(b)) return Point2<float>{a * cs, a * sn};
+        return Point2<float>{b * sn, b * cs};
+    };
+    Worst disk_f, disk_i, par_f, par_i, dual_f, dual_i;
+    for (unsigned i = 0; i < count; ++i) {
+        const float* g = &gpu[std::size_t(i) * stride + map_at];
+        const float* t = &gpu[std::size_t(i) * stride + libm_at];
+        const float x = dirs[4 * i], y = dirs[4 * i + 1], z = dirs[4 * i + 2];
+        const float u = uvs[4 * i], v = uvs[4 * i + 1];
+        const int face = int(uvs[4 * i + 2]);
+        Point2<float> q = disk_to_square(x, y, t[0]);
+        disk_f.add(g[13], q.x, 1.0), disk_f.add(g[14], q.y, 1.0);
+        const float inv = 1.0f / (1.0f + std::fabs(z));
+        q = disk_to_square(x * inv, y * inv, t[1]);
+        par_f.add(g[15], q.x, 1.0), par_f.add(g[16], q.y, 1.0);
+        dual_f.add(g[20], detail::shrink(q.x, dual_paraboloid_n), 1.0);
+        dual_f.add(g[21], detail::shrink(q.y, dual_paraboloid_n), 1.0);
+        Point2<float> p = square_to_disk(u, v, t[2], t[3]);
+        disk_i.add(g[11], p.x, 1.0), disk_i.add(g[12], p.y, 1.0);
+        sphbasis::vec3<float> d = ParaboloidProjection::direction(p.x, p.y);
+        par_i.add(g[17], d.x, 1.0), par_i.add(g[18], d.y, 1.0), par_i.add(g[19], d.z, 1.0);
+        p = square_to_disk(detail::unshrink(u, dual_paraboloid_n),
+                           detail::unshrink(v, dual_paraboloid_n), t[4], t[5]);
+        d = ParaboloidProjection::direction(p.x, p.y);
+        if (face % 2 == 1) d.z = -d.z;
+        dual_i.add(g[23], d.x, 1.0), dual_i.add(g[24], d.y, 1.0), dual_i.add(g[25], d.z, 1.0);
+    }
+    const double b = max_ulps_map_same_libm;
+    bool ok = disk_i.report("sphbasis_square_to_uniform_disk_concentric (driver's sin/cos)", b);
+    ok = disk_f.report("sphbasis_uniform_disk_to_square_concentric (driver's atan)", b) && ok;
+    ok = par_f.report("sphbasis_paraboloid_to_square (driver's atan)", b) && ok;
+    ok = par_i.report("sphbasis_square_to_paraboloid (driver's sin/cos)", b) && ok;
+    ok = dual_f.report("sphbasis_dual_paraboloid_direction_to_uv (driver's atan)", b) && ok;
+    ok = dual_i.report("sphbasis_dual_paraboloid_uv_to_direction (driver's sin/cos)", b) && ok;
+    return ok;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -811,8 +920,9 @@ int main(int argc, char** argv) {
         }
     }
     const std::vector<float> uvs = texture_points(count);
-    unsigned buf[5];
-    gl.GenBuffers(5, buf);
+    const std::vector<float> args = transcendental_arguments(dirs, uvs);
+    unsigned buf[6];
+    gl.GenBuffers(6, buf);
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buf[0]);
     gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(dirs.size() * sizeof(float)), dirs.data(),
                   GL_STATIC_DRAW);
@@ -830,7 +940,10 @@ int main(int argc, char** argv) {
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buf[4]);
     gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(uvs.size() * sizeof(float)), uvs.data(),
                   GL_STATIC_DRAW);
-    for (unsigned i = 0; i < 5; ++i) gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buf[i]);
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buf[5]);
+    gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(args.size() * sizeof(float)), args.data(),
+                  GL_STATIC_DRAW);
+    for (unsigned i = 0; i < 6; ++i) gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buf[i]);
     gl.UseProgram(prog);
     gl.Uniform1ui(gl.GetUniformLocation(prog, "count"), count);
     gl.DispatchCompute((count + 63) / 64, 1, 1);
@@ -941,6 +1054,7 @@ int main(int argc, char** argv) {
     ok = check_toksvig(tk, gpu) && ok;
     ok = check_clamped_cosine(gpu) && ok;
     ok = check_maps(dirs, uvs, gpu) && ok;
+    ok = check_maps_same_libm(dirs, uvs, gpu) && ok;
     ok = check_example(gl, read_file(glsl_path)) && ok;
     std::printf("sphbasis_shader_test: %s\n", ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
