@@ -7,10 +7,9 @@
 // H-basis light map evaluated at the normal-map normal).
 #pragma once
 
+#include <glm/glm.hpp>
 #include <sphbasis/basis/hbasis.hpp>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 namespace shader_mirror {
 
@@ -19,8 +18,8 @@ namespace shader_mirror {
 /// sphbasis::basis_eval_sum<HBasis>(4, ...) (same kernel, same constants, same order of the sum).
 inline glm::vec3 shade_texel(glm::vec4 lr, glm::vec4 lg, glm::vec4 lb, glm::vec3 encoded_normal) {
     const glm::vec3 n = glm::normalize(encoded_normal * 2.0f - 1.0f);
-    const glm::vec3 c[4] = {{lr.x, lg.x, lb.x}, {lr.y, lg.y, lb.y}, {lr.z, lg.z, lb.z},
-                            {lr.w, lg.w, lb.w}};
+    const glm::vec3 c[4] = {
+        {lr.x, lg.x, lb.x}, {lr.y, lg.y, lb.y}, {lr.z, lg.z, lb.z}, {lr.w, lg.w, lb.w}};
     const glm::vec3 e = sphbasis::basis_eval_sum<sphbasis::HBasis>(4, c, n);
     return glm::max(e, glm::vec3(0.0f));
 }

@@ -11,7 +11,8 @@ int main() {
     const shader_mirror::Textures t = shader_mirror::procedural_textures(n, n);
     std::printf("exit radiance, red channel, %d x %d (top row is v = 1):\n", n, n);
     for (int j = n - 1; j >= 0; --j) {
-        for (int i = 0; i < n; ++i) std::printf(" %.2f", double(shader_mirror::shade_pixel(t, i, j).x));
+        for (int i = 0; i < n; ++i)
+            std::printf(" %.2f", double(shader_mirror::shade_pixel(t, i, j).x));
         std::printf("\n");
     }
     return 0;

@@ -18,8 +18,10 @@ inline Textures procedural_textures(int w, int h) {
             const double u = (i + 0.5) / w, v = (j + 0.5) / h;
             // Height field 0.25 sin(2 pi 2u) sin(2 pi 2v): the normal (-dh/du, -dh/dv, 1), steep
             // (up to ~70 degrees) at the bumps' flanks, the flat tangent-space z axis between them.
-            const double du = 0.25 * 2 * two_pi * std::cos(2 * two_pi * u) * std::sin(2 * two_pi * v);
-            const double dv = 0.25 * 2 * two_pi * std::sin(2 * two_pi * u) * std::cos(2 * two_pi * v);
+            const double du =
+                0.25 * 2 * two_pi * std::cos(2 * two_pi * u) * std::sin(2 * two_pi * v);
+            const double dv =
+                0.25 * 2 * two_pi * std::sin(2 * two_pi * u) * std::cos(2 * two_pi * v);
             const double r = std::sqrt(du * du + dv * dv + 1);
             auto q8 = [](double c) {  // n/2 + 1/2 in 8 bits, read back as k/255
                 return float(std::lround((0.5 * c + 0.5) * 255)) / 255.0f;

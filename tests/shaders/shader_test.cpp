@@ -4,8 +4,8 @@
 // them with the C++ kernels in float: sh::eval_unit<N>, sh::irradiance, the H-basis, modified
 // H-basis and HL2 kernels and expansion sums (basis/hbasis.hpp, basis/hl2.hpp), clamped_cosine,
 // toksvig::factor / specular / specular_from_dots; the param/ direction <-> texture mappings
-// (octahedral, cube map, concentric, paraboloid, the dual paraboloid layout); and Ishmukhametov's Listing 2.1/2.2 shader
-// functions against a double reference from ops/projection.hpp.
+// (octahedral, cube map, concentric, paraboloid, the dual paraboloid layout); and Ishmukhametov's
+// Listing 2.1/2.2 shader functions against a double reference from ops/projection.hpp.
 //
 // Error measure: |gpu - cpu| in units of the float ulp of max(|cpu|, scale), where scale is the
 // largest magnitude the function reaches in its band (sqrt((2l+1)/(4 pi)) for y_lm; for the
@@ -473,7 +473,8 @@ std::vector<float> texture_points(unsigned count) {
     std::vector<float> uv;
     for (int f = 0; f < 6; ++f)
         for (int j = 0; j <= 16; ++j)
-            for (int i = 0; i <= 16; ++i) uv.insert(uv.end(), {float(i) / 16.0f, float(j) / 16.0f, float(f), 0});
+            for (int i = 0; i <= 16; ++i)
+                uv.insert(uv.end(), {float(i) / 16.0f, float(j) / 16.0f, float(f), 0});
     std::mt19937 rng(1234u);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     while (uv.size() < std::size_t(count) * 4) {
@@ -685,8 +686,8 @@ bool check_maps(const std::vector<float>& dirs, const std::vector<float>& uvs,
     ok = disk_f.report("sphbasis_uniform_disk_to_square_concentric", max_ulps_map_atan) && ok;
     ok = par_f.report("sphbasis_paraboloid_to_square", max_ulps_map_atan) && ok;
     ok = par_i.report("sphbasis_square_to_paraboloid", max_ulps_map_sincos) && ok;
-    ok = dual_f.report("sphbasis_dual_paraboloid_direction_to_uv (n = 16)", max_ulps_map_atan) &&
-         ok;
+    ok =
+        dual_f.report("sphbasis_dual_paraboloid_direction_to_uv (n = 16)", max_ulps_map_atan) && ok;
     ok = dual_i.report("sphbasis_dual_paraboloid_uv_to_direction (n = 16)", max_ulps_map_sincos) &&
          ok;
     std::printf("  cube and dual paraboloid faces: %zu of %u directions differ  %s\n",
@@ -704,7 +705,8 @@ bool check_example(const Gl& gl, const std::string& library) {
     std::string frag = read_file(dir + "irradiance_normal_map.frag");
     auto replace_line = [&frag](const std::string& line, const std::string& with) {
         const std::size_t at = frag.find(line);
-        if (at == std::string::npos) fail("irradiance_normal_map.frag has no line \"" + line + "\"");
+        if (at == std::string::npos)
+            fail("irradiance_normal_map.frag has no line \"" + line + "\"");
         frag.replace(at, line.size(), with);
     };
     replace_line("#extension GL_GOOGLE_include_directive : require", "");
@@ -804,7 +806,8 @@ std::vector<float> transcendental_arguments(const std::vector<float>& dirs,
         args[4 * i] = atan_argument(x, y);
         args[4 * i + 1] = atan_argument(x * inv, y * inv);
         args[4 * i + 2] = sincos_argument(u, v);
-        args[4 * i + 3] = sincos_argument(unshrink(u, dual_paraboloid_n), unshrink(v, dual_paraboloid_n));
+        args[4 * i + 3] =
+            sincos_argument(unshrink(u, dual_paraboloid_n), unshrink(v, dual_paraboloid_n));
     }
     return args;
 }
