@@ -6,13 +6,16 @@
 One panel per protocol (paper, hdri): the (relative) IMSE on a log axis against the evaluation
 cost in ns per normal (one call at a time, float; log axis), one labelled marker per row, one
 colour per basis. Rows that fit the signal exactly have no place on a log axis: SH 9/16/25
-span the paper protocol's SH-9 irradiance, so their IMSE is 0 in closed form and the computed
-one is cancellation in double (|IMSE| < 1e-13, which the CLI reports as 0; about 1e-16 at seed
-1). They are drawn with a downward triangle and "(exact)" on a dotted line at a quarter of the
-smallest non-zero IMSE of the panel (about 1e-5 in the paper panel): that height is a place to
-draw them, not a value, and the legend says so. It is neither Monte Carlo nor quadrature
-error (the sample mean is an average of closed forms c^T Q c, and Q is zero to rounding for
-these rows on any rule).
+span the paper protocol's SH-9 irradiance, so their IMSE is 0. What the CLI computes is
+rounding in double: at seed 1 with 10,000 signals the sample means are 1e-28 to 2e-25 (the
+fit misses each signal by 1e-14 to 1e-12 rms) and the closed form tr(Q)/3 is 2.5e-17 (SH 9) and
+-1.9e-15 (SH 16, 25; cancellation in Q = A (Y - C^T G^-1 C) A); the CLI reports |IMSE| <= 1e-13
+as 0. They are drawn with a downward triangle and "(exact)" on a dotted line at a quarter of
+the smallest non-zero IMSE of the panel (1.1e-5 in the paper panel, below Zernike 15's 4.2e-5):
+that height is a place to draw them, not a value, and the legend says so. It is neither
+Monte Carlo nor quadrature error of a reference: the paper IMSE is the fit's residual
+integrated by the rule, and for a basis that spans the signal that residual is zero on any
+rule (the 1e-5 of an earlier plot was this drawing height, a quarter of Zernike 15's 4.2e-5).
 
 Labels are placed without collisions: after the layout is fixed, each label tries a list of
 positions around its marker (right, left, above, below, then farther out with a leader line)
@@ -130,9 +133,9 @@ def panel(ax, p):
     handles, names = ax.get_legend_handles_labels()
     if any_exact:
         handles.append(Line2D([], [], marker="v", color="grey", linestyle="None", markersize=6))
-        names.append("exact fit: the basis spans the SH-9 signal, IMSE = 0 (computed < %g, "
-                     "double rounding); drawn on the dotted line at %.1e, not its value"
-                     % (FLOOR, bottom))
+        names.append("exact fit: the basis spans the SH-9 signal, so IMSE = 0 (computed: double "
+                     "rounding, |IMSE| < %g).\nDrawn on the dotted line at %.1e, a quarter of the "
+                     "smallest IMSE above: a place, not a value" % (FLOOR, bottom))
         ax.axhline(bottom, color="grey", lw=0.6, ls=":", zorder=1)
     ax.legend(handles, names, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12),
               ncol=4, frameon=False)
