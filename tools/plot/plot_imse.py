@@ -11,9 +11,10 @@ rounding in double: at seed 1 with 10,000 signals the sample means are 1e-28 to 
 fit misses each signal by 1e-14 to 1e-12 rms) and the closed form tr(Q)/3 is 2.5e-17 (SH 9) and
 -1.9e-15 (SH 16, 25; cancellation in Q = A (Y - C^T G^-1 C) A), measured with ops/imse.hpp
 unclamped; the CLI reports |IMSE| <= 1e-13 as 0 (its JSON stderr of these rows, 1e-30 to
-2e-27, shows the scale). They are drawn with a downward triangle and "(exact)" on a dotted line at a quarter of
-the smallest non-zero IMSE of the panel (1.1e-5 in the paper panel, below Zernike 15's 4.2e-5):
-that height is a place to draw them, not a value, and the legend says so. It is neither
+2e-27, shows the scale). They are drawn with a downward triangle and "(exact)" on a dotted
+line at a quarter of the smallest non-zero IMSE of the panel (1.1e-5 in the paper panel,
+below Zernike 15's 4.2e-5): that height is a place to draw them, not a value, and the legend
+says so. It is neither
 Monte Carlo nor quadrature error of a reference: the paper IMSE is the fit's residual
 integrated by the rule, and for a basis that spans the signal that residual is zero on any
 rule (the 1e-5 of an earlier plot was this drawing height, a quarter of Zernike 15's 4.2e-5).
