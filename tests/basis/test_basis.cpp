@@ -200,12 +200,12 @@ void check_hemi_entry_points() {
 
     const std::vector<float> xs{float(dx)}, ys{float(dy)}, zs{float(dz)};
     std::vector<float> out(static_cast<std::size_t>(n));
-    Ns::eval_batch(bands, 1, xs, ys, zs, out, 1);
+    Ns::eval_batch(bands, std::size_t(1), xs, ys, zs, out, std::size_t(1));
     check_close(out, want, std::size_t(n), 1e-5);
     basis_eval_batch<B>(n, 1, xs, ys, zs, out, 1);
     check_close(out, want, std::size_t(n), 1e-5);
     std::vector<float> cf(c.begin(), c.end()), sum(1);
-    Ns::eval_sum_batch(bands, cf, 1, xs, ys, zs, sum);
+    Ns::eval_sum_batch(bands, cf, std::size_t(1), xs, ys, zs, sum);
     CHECK(sum[0] == Approx(expect).margin(1e-5));
     basis_eval_sum_batch<B>(n, cf, 1, xs.data(), ys.data(), zs.data(), sum.data());
     CHECK(sum[0] == Approx(expect).margin(1e-5));
