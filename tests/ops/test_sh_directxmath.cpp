@@ -135,3 +135,26 @@ TEST_CASE("dxmath: the hemisphere light differs beyond sign and scale (1.25 agai
     CHECK(exit_radiance(theirs) == Approx(1.25).margin(5e-5));
     CHECK(exit_radiance(ours) == Approx(1.00).margin(5e-6));
 }
+
+TEST_CASE("dxmath: sphere light = ours x 1; XMSHEvalDirection = to_condon_shortley(eval_unit)",
+          "[ops][dxmath]") {
+    // XMSHEvalSphericalLight(3, 4 d, radius 1, colour 1): no rescale (checker factor 1; exit
+    // radiance 0.0660 for both, exact 1/16).
+    const std::array<float, 9> dx_sphere = {0.0562828816f,  0.0197902732f,  0.0890562236f,
+                                            -0.0296854097f, -0.0132580632f, 0.0397741869f,
+                                            0.09504392f,    -0.0596612841f, 0.0055241934f};
+    std::array<float, 9> ours{};
+    sh::spherical_light(3, 4 * dx, 4 * dy, 4 * dz, 1.0f, 1.0f, ours.data());
+    const auto want = sh::from_condon_shortley(dx_sphere);
+    for (std::size_t k = 0; k < 9; ++k) CHECK(ours[k] == Approx(want[k]).margin(5e-7));
+    CHECK(exit_radiance(ours) == Approx(0.0660).margin(5e-5));
+    // XMSHEvalDirection(out, 4, d), d unit.
+    const std::array<float, 16> dx_y = {
+        0.282094806f,  0.100791007f,   0.453559518f,  -0.151186511f, -0.0697371438f, 0.209211424f,
+        0.4999291f,    -0.313817143f,  0.0290571451f, 0.0297817532f, -0.171274111f,  0.311930835f,
+        0.453283399f,  -0.467896253f,  0.0713642165f, 0.00582686253f};
+    std::array<float, 16> y{};
+    sh::eval_unit<4>(dx, dy, dz, y.data());
+    const auto ycs = sh::to_condon_shortley(y);
+    for (std::size_t k = 0; k < 16; ++k) CHECK(ycs[k] == Approx(dx_y[k]).margin(5e-7));
+}
