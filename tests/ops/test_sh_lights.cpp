@@ -497,4 +497,11 @@ TEST_CASE("lights: the colour's type and the output's are deduced separately", "
     sh::directional_light(3, 0.2, -0.3, 0.9, 2.0f, rgb);
     sh::directional_light(3, 0.2, -0.3, 0.9, 2.0, mono);
     for (int k = 0; k < 9; ++k) CHECK(rgb[k].b == Approx(mono[k]).margin(1e-15));
+    // A braced colour still takes the output's type (the colour type defaults to it).
+    sh::directional_light(3, 0.2, -0.3, 0.9, {1.0, 1.0, 2.0}, rgb);
+    for (int k = 0; k < 9; ++k) CHECK(rgb[k].b == Approx(mono[k]).margin(1e-15));
+    sh::hemisphere_light(3, 0.0, 0.0, 1.0, {1.0, 1.0, 1.0}, {0.0, 0.0, 0.0}, rgb);
+    sh::hemisphere_light<3>(0.0, 0.0, 1.0, {1.0, 1.0, 1.0}, {0.0, 0.0, 0.0}, rgb);
+    sh::cone_light<3>(0.0, 0.0, 1.0, 0.3, {1.0, 1.0, 1.0}, rgb);
+    CHECK(rgb[0].r > 0);
 }

@@ -170,7 +170,7 @@ std::vector<T> cap_kernel(int bands, double one_minus_cos) {
 /// A zonal radiance distribution about d (normalised; must be finite and non-zero) with
 /// Funk-Hecke factors kernel[0..bands) (e.g. phong_kernel, zonal_kernel), times colour:
 /// out_lm = colour * kernel[l] * y_lm(d).
-template <class T, class K, class C0, class C>
+template <class T, class K, class C, class C0 = C>
 void zonal_light(int bands, T x, T y, T z, const K* kernel, const C0& colour_in, C* out) {
     const C colour = detail::light_colour<C>(colour_in);
     detail::check_light(bands, x, y, z, out, "sh::zonal_light");
@@ -186,7 +186,7 @@ void zonal_light(int bands, T x, T y, T z, const K* kernel, const C0& colour_in,
 /// irradiance * y_lm(d). Throws std::invalid_argument for bad bands, a null out, or a zero or
 /// non-finite direction. The colour may be of another type than the output's coefficients
 /// (a double 1.0 with float out): it is converted to the output's type (all the lights do this).
-template <class T, class C0, class C>
+template <class T, class C, class C0 = C>
 void directional_light(int bands, T x, T y, T z, const C0& irradiance_in, C* out) {
     const C irradiance = detail::light_colour<C>(irradiance_in);
     detail::check_light(bands, x, y, z, out, "sh::directional_light");
@@ -213,7 +213,7 @@ inline double directional_light_peak(int bands) {
 /// A cone light: uniform radiance `radiance` within angular radius half_angle (radians, in
 /// [0, pi]) of direction (x, y, z). Throws std::invalid_argument for bad bands, out, direction
 /// or angle.
-template <class T, class C0, class C>
+template <class T, class C, class C0 = C>
 void cone_light(int bands, T x, T y, T z, T half_angle, const C0& radiance_in, C* out) {
     const C radiance = detail::light_colour<C>(radiance_in);
     detail::check_light(bands, x, y, z, out, "sh::cone_light");
@@ -231,7 +231,7 @@ void cone_light(int bands, T x, T y, T z, T half_angle, const C0& radiance_in, C
 /// receiver, of uniform radiance `radiance`; it covers the cap of sin(a) = radius/|p| (the
 /// whole sphere when |p| <= radius). Throws std::invalid_argument for bad bands, out, a zero or
 /// non-finite position, or radius < 0.
-template <class T, class C0, class C>
+template <class T, class C, class C0 = C>
 void spherical_light(int bands, T px, T py, T pz, T radius, const C0& radiance_in, C* out) {
     const C radiance = detail::light_colour<C>(radiance_in);
     detail::check_light(bands, px, py, pz, out, "sh::spherical_light");
@@ -255,7 +255,7 @@ void spherical_light(int bands, T px, T py, T pz, T radius, const C0& radiance_i
 
 /// A cap light given by its solid angle in [0, 4 pi] about direction (x, y, z), uniform
 /// radiance `radiance` (a spherical light seen from outside, by solid angle).
-template <class T, class C0, class C>
+template <class T, class C, class C0 = C>
 void spherical_light_solid_angle(int bands, T x, T y, T z, T solid_angle, const C0& radiance_in,
                                  C* out) {
     const C radiance = detail::light_colour<C>(radiance_in);
@@ -271,7 +271,7 @@ void spherical_light_solid_angle(int bands, T x, T y, T z, T solid_angle, const 
 
 /// A hemisphere light: radiance `sky` in the hemisphere around (x, y, z) (the "up" direction),
 /// `ground` in the opposite one.
-template <class T, class C0, class C1, class C>
+template <class T, class C, class C0 = C, class C1 = C>
 void hemisphere_light(int bands, T x, T y, T z, const C0& sky_in, const C1& ground_in, C* out) {
     const C sky = detail::light_colour<C>(sky_in);
     const C ground = detail::light_colour<C>(ground_in);
@@ -341,7 +341,7 @@ void spherical_light_solid_angle(int bands, const D& dir, A solid_angle, const C
                                 detail::light_out(bands, out, "sh::spherical_light_solid_angle"));
 }
 /// hemisphere_light() with an up direction of any 3-vector type and out as C* or a range.
-template <class D, class C, class C1, class Out, SPHBASIS_LIGHT_DIRECTION_OVERLOAD_REQUIRES(D)>
+template <class D, class C, class Out, class C1 = C, SPHBASIS_LIGHT_DIRECTION_OVERLOAD_REQUIRES(D)>
 void hemisphere_light(int bands, const D& up, const C& sky, const C1& ground, Out&& out) {
     using T = direction_scalar_t<D>;
     hemisphere_light(bands, T(component<0>(up)), T(component<1>(up)), T(component<2>(up)), sky,
@@ -415,7 +415,7 @@ SPHBASIS_FORCEINLINE void zonal_out_fixed(T x, T y, T z, const E* a, const C& co
 
 /// directional_light() for a compile-time band count N: out_lm = irradiance * y_lm(d), N^2
 /// values. Unchecked (see above).
-template <int N, class T, class C0, class C>
+template <int N, class T, class C, class C0 = C>
 SPHBASIS_FORCEINLINE void directional_light(T x, T y, T z, const C0& irradiance_in,
                                             C* out) noexcept {
     const C irradiance = detail::light_colour<C>(irradiance_in);
@@ -429,7 +429,7 @@ SPHBASIS_FORCEINLINE void directional_light(T x, T y, T z, const C0& irradiance_
 }
 
 /// cone_light() for a compile-time band count N (half_angle in radians, clamped to [0, pi]).
-template <int N, class T, class C0, class C>
+template <int N, class T, class C, class C0 = C>
 SPHBASIS_FORCEINLINE void cone_light(T x, T y, T z, T half_angle, const C0& radiance_in,
                                      C* out) noexcept {
     const C radiance = detail::light_colour<C>(radiance_in);
@@ -445,7 +445,7 @@ SPHBASIS_FORCEINLINE void cone_light(T x, T y, T z, T half_angle, const C0& radi
 
 /// spherical_light() for a compile-time band count N (a ball of radius `radius` at (px, py, pz)
 /// relative to the receiver; the whole sphere when |p| <= radius).
-template <int N, class T, class C0, class C>
+template <int N, class T, class C, class C0 = C>
 SPHBASIS_FORCEINLINE void spherical_light(T px, T py, T pz, T radius, const C0& radiance_in,
                                           C* out) noexcept {
     const C radiance = detail::light_colour<C>(radiance_in);
@@ -467,7 +467,7 @@ SPHBASIS_FORCEINLINE void spherical_light(T px, T py, T pz, T radius, const C0& 
 
 /// hemisphere_light() for a compile-time band count N: `sky` around the up direction (x, y,
 /// z), `ground` opposite; the factors are compile-time constants.
-template <int N, class T, class C0, class C1, class C>
+template <int N, class T, class C, class C0 = C, class C1 = C>
 SPHBASIS_FORCEINLINE void hemisphere_light(T x, T y, T z, const C0& sky_in, const C1& ground_in,
                                            C* out) noexcept {
     const C sky = detail::light_colour<C>(sky_in);
