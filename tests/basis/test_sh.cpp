@@ -435,9 +435,10 @@ TEMPLATE_TEST_CASE("sh: eval_batch_aos (interleaved x y z) equals eval_batch (So
                    double) {
     using T = TestType;
     const int W = sphbasis::native_width<T>;
-    // Counts around the SIMD width (tails of every length) and a few whole batches plus a tail;
+    // Counts around the SIMD width (tails of every length), a few whole batches plus a tail, and
+    // more than two blocks of the deinterleaving (sh::detail::aos_block);
     // inputs * 3: not unit length, both paths normalise.
-    for (const int n : {0, 1, W - 1, W, W + 1, 3 * W + 5}) {
+    for (const int n : {0, 1, W - 1, W, W + 1, 3 * W + 5, 2 * 256 + 7}) {
         const auto in = test::scaled_inputs<T>(random_dirs(std::max(n, 1), 11), 3);
         const std::size_t nd = static_cast<std::size_t>(n);
         std::vector<T> xyz(3 * nd);
