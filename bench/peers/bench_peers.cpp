@@ -14,7 +14,10 @@
 // Conventions (README, "Coming from DirectXMath"): DirectXMath and google use the
 // Condon-Shortley phase (not needed for timing); XMSHRotate takes row-vector matrices, so it is
 // given R^T for our R; sphericart takes AoS directions (x y z x y z ...).
+#include <DirectXMath.h>
+#include <DirectXSH.h>
 #include <benchmark/benchmark.h>
+#include <sh/spherical_harmonics.h>  // google's namespace is ::sh
 
 #include <array>
 #include <cmath>
@@ -22,13 +25,9 @@
 #include <cstdint>
 #include <memory>
 #include <random>
+#include <sphericart.hpp>
 #include <string>
 #include <vector>
-
-#include <DirectXMath.h>
-#include <DirectXSH.h>
-#include <sh/spherical_harmonics.h>  // google's namespace is ::sh
-#include <sphericart.hpp>
 #ifdef SPHBASIS_PEERS_GSL
 #include <gsl/gsl_sf_legendre.h>
 #endif
@@ -95,14 +94,16 @@ void gsl_eval(int bands, double x, double y, double z, double* work, double* out
     gsl_sf_legendre_array_e(GSL_SF_LEGENDRE_SPHARM, lmax, z, 1.0, work);
     const double rho = std::hypot(x, y);
     const double c1 = rho > 0 ? x / rho : 1.0, s1 = rho > 0 ? y / rho : 0.0;
-    for (std::size_t l = 0; l <= lmax; ++l) out[l * (l + 1)] = work[gsl_sf_legendre_array_index(l, 0)];
+    for (std::size_t l = 0; l <= lmax; ++l)
+        out[l * (l + 1)] = work[gsl_sf_legendre_array_index(l, 0)];
     double cm = 1, sm = 0;
     for (std::size_t m = 1; m <= lmax; ++m) {
         const double c = cm * c1 - sm * s1;
         sm = sm * c1 + cm * s1;
         cm = c;
         for (std::size_t l = m; l <= lmax; ++l) {
-            const double p = 1.4142135623730951 * work[gsl_sf_legendre_array_index(l, m)];  // sqrt(2)
+            const double p =
+                1.4142135623730951 * work[gsl_sf_legendre_array_index(l, m)];  // sqrt(2)
             out[l * (l + 1) + m] = p * cm;
             out[l * (l + 1) - m] = p * sm;
         }
@@ -119,7 +120,8 @@ void eval1(benchmark::State& st) {
     const Directions& d = dirs();
     alignas(64) float out[N * N];
     std::unique_ptr<sphericart::SphericalHarmonics<float>> sc;
-    if constexpr (K == Eval1::sphericart) sc.reset(new sphericart::SphericalHarmonics<float>(N - 1));
+    if constexpr (K == Eval1::sphericart)
+        sc.reset(new sphericart::SphericalHarmonics<float>(N - 1));
     for (auto _ : st) {
         for (std::size_t i = 0; i < kDirs; ++i) {
             if constexpr (K == Eval1::sb_eval)
@@ -148,7 +150,8 @@ void batch(benchmark::State& st) {
     const std::size_t stride = kBatch + 16;
     std::vector<float> out(stride * B * B);
     std::unique_ptr<sphericart::SphericalHarmonics<float>> sc;
-    if constexpr (K == Batch::sphericart) sc.reset(new sphericart::SphericalHarmonics<float>(B - 1));
+    if constexpr (K == Batch::sphericart)
+        sc.reset(new sphericart::SphericalHarmonics<float>(B - 1));
     for (auto _ : st) {
         if constexpr (K == Batch::sb_soa)
             sb::eval_batch(B, kBatch, d.x.data(), d.y.data(), d.z.data(), out.data(), stride);
@@ -172,7 +175,8 @@ void deg31(benchmark::State& st) {
     const Directions& d = dirs();
     std::vector<double> out(B * B);
     std::unique_ptr<sphericart::SphericalHarmonics<double>> sc;
-    if constexpr (K == Deg31::sphericart) sc.reset(new sphericart::SphericalHarmonics<double>(B - 1));
+    if constexpr (K == Deg31::sphericart)
+        sc.reset(new sphericart::SphericalHarmonics<double>(B - 1));
 #ifdef SPHBASIS_PEERS_GSL
     std::vector<double> work(gsl_sf_legendre_array_n(B - 1));
 #endif
@@ -198,8 +202,8 @@ void deg31(benchmark::State& st) {
 
 // ---- 4. Rotation from a 3x3 matrix (or quaternion), build + apply to one vector, float.
 struct RotData {
-    std::vector<std::array<float, 4>> q;  // w, x, y, z
-    std::vector<DirectX::XMFLOAT4> qxm;   // x, y, z, w
+    std::vector<std::array<float, 4>> q;   // w, x, y, z
+    std::vector<DirectX::XMFLOAT4> qxm;    // x, y, z, w
     std::vector<sphbasis::Mat3<float>> m;  // row-major, column vectors: v' = R v
     std::vector<DirectX::XMMATRIX> xm;     // R^T: DirectXMath's row vectors
     std::vector<Eigen::Quaterniond> qe;
@@ -213,9 +217,10 @@ struct RotData {
             q.push_back({float(w), float(x), float(y), float(z)});
             qxm.emplace_back(float(x), float(y), float(z), float(w));
             qe.emplace_back(w, x, y, z);
-            const double R[9] = {1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),
-                                 2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
-                                 2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)};
+            const double R[9] = {
+                1 - 2 * (y * y + z * z), 2 * (x * y - w * z),     2 * (x * z + w * y),
+                2 * (x * y + w * z),     1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
+                2 * (x * z - w * y),     2 * (y * z + w * x),     1 - 2 * (x * x + y * y)};
             sphbasis::Mat3<float> f;
             for (std::size_t k = 0; k < 9; ++k) f[k] = float(R[k]);
             m.push_back(f);
@@ -225,8 +230,16 @@ struct RotData {
     }
 };
 
-enum class Rot { sb_rotate_n, sb_fixed_build_apply, sb_fixed_quaternion, sb_fixed_apply_prebuilt,
-                 sb_runtime, dx_matrix, dx_quaternion, google_quaternion };
+enum class Rot {
+    sb_rotate_n,
+    sb_fixed_build_apply,
+    sb_fixed_quaternion,
+    sb_fixed_apply_prebuilt,
+    sb_runtime,
+    dx_matrix,
+    dx_quaternion,
+    google_quaternion
+};
 
 template <int N, Rot K>
 void rotation(benchmark::State& st) {
@@ -253,9 +266,10 @@ void rotation(benchmark::State& st) {
             } else if constexpr (K == Rot::dx_matrix) {
                 DirectX::XMSHRotate(out.data(), N, r.xm[i], in.data());
             } else if constexpr (K == Rot::dx_quaternion) {
-                DirectX::XMSHRotate(out.data(), N,
-                                    DirectX::XMMatrixRotationQuaternion(DirectX::XMLoadFloat4(&r.qxm[i])),
-                                    in.data());
+                DirectX::XMSHRotate(
+                    out.data(), N,
+                    DirectX::XMMatrixRotationQuaternion(DirectX::XMLoadFloat4(&r.qxm[i])),
+                    in.data());
             } else {
                 ::sh::Rotation::Create(N - 1, r.qe[i])->Apply(in, &out);
             }
@@ -376,7 +390,8 @@ void light_dx(benchmark::State& st) {
             else if constexpr (L == Light::cone)
                 DirectX::XMSHEvalConeLight(3, v, 0.3f, c, r, gg, b);
             else if constexpr (L == Light::sphere)
-                DirectX::XMSHEvalSphericalLight(3, DirectX::XMVectorScale(v, 4.f), 1.0f, c, r, gg, b);
+                DirectX::XMSHEvalSphericalLight(3, DirectX::XMVectorScale(v, 4.f), 1.0f, c, r, gg,
+                                                b);
             else
                 DirectX::XMSHEvalHemisphereLight(3, v, c, g, r, gg, b);
             benchmark::DoNotOptimize(r);

@@ -18,8 +18,8 @@ TEST_CASE("README example: the namespace alias next to a top-level ::sh", "[ops]
     const Eigen::VectorXd L = sb::project(sb::evaluator<sb::SH>(9), sky, sb::sphere_rule(16));
     Eigen::VectorXd E(9);
     sb::sh::convolve(3, sb::sh::clamped_cosine_kernel(3, sb::sh::KernelScale::normalized), L, E);
-    const Eigen::MatrixXd T = sb::conversion(sb::evaluator<sb::SH>(9),
-                                             sb::evaluator<sb::HBasisMod>(6), sb::hemisphere_rule(8));
+    const Eigen::MatrixXd T = sb::conversion(
+        sb::evaluator<sb::SH>(9), sb::evaluator<sb::HBasisMod>(6), sb::hemisphere_rule(8));
     const Eigen::VectorXd H = T * E;
     const double n[3] = {0.3, 0.1, 0.95};
     double e_sh = sb::sh::eval_sum(3, E.data(), n[0], n[1], n[2]);

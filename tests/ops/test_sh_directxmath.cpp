@@ -29,16 +29,16 @@ double exit_radiance(const std::array<float, 9>& L) {
 }
 }  // namespace
 
-TEST_CASE("dxmath: a rotation matrix R here is R^T for XMSHRotate (row vectors)",
-          "[ops][dxmath]") {
+TEST_CASE("dxmath: a rotation matrix R here is R^T for XMSHRotate (row vectors)", "[ops][dxmath]") {
     // R row-major for column vectors (v' = R v), from the unit quaternion (0.9, 0.1, 0.2, 0.3)/|q|.
     const std::array<float, 9> R = {0.726315796f,  -0.526315808f, 0.442105263f,
                                     0.610526323f,  0.789473712f,  -0.0631578937f,
                                     -0.315789461f, 0.315789461f,  0.894736826f};
-    const std::array<float, 9> f = {0.5f, -0.25f, 0.75f, 0.125f, -0.5f, 0.375f, 0.25f, -0.625f, 0.875f};
+    const std::array<float, 9> f = {0.5f,   -0.25f, 0.75f,   0.125f, -0.5f,
+                                    0.375f, 0.25f,  -0.625f, 0.875f};
     // XMSHRotate(out, 3, M, to_condon_shortley(f)) with M's stored rows = the rows of R^T, and
     // with M = R (what a user gets by passing the same matrix).
-    const std::array<float, 9> dx_rt = {0.5f,         0.16842106f,  0.552631617f,
+    const std::array<float, 9> dx_rt = {0.5f,          0.16842106f,  0.552631617f,
                                         -0.553947389f, 0.616773546f, 0.479524821f,
                                         0.750958681f,  0.524905205f, 0.399445832f};
     const std::array<float, 9> dx_r = {0.5f,          0.0263158083f, 0.742105246f,
@@ -85,11 +85,12 @@ TEST_CASE("dxmath: directional light = ours x pi / directional_light_peak", "[op
     // measured by the peer harness), the same in every band.
     const double f = pi / sh::directional_light_peak(3);
     CHECK(f == Approx(2.95679).margin(5e-6));
-    const std::array<float, 9> dx_light = {0.834095955f, 0.298018157f, 1.34108162f,
+    const std::array<float, 9> dx_light = {0.834095955f,  0.298018157f,  1.34108162f,
                                            -0.447027236f, -0.206198305f, 0.618594885f,
-                                           1.47818685f,  -0.927892327f, 0.0859159678f};
+                                           1.47818685f,   -0.927892327f, 0.0859159678f};
     std::array<float, 9> ours{};
-    sh::directional_light(3, dx, dy, dz, f, ours.data());  // a double colour into float coefficients
+    sh::directional_light(3, dx, dy, dz, f,
+                          ours.data());  // a double colour into float coefficients
     const auto want = sh::from_condon_shortley(dx_light);
     for (std::size_t k = 0; k < 9; ++k) CHECK(ours[k] == Approx(want[k]).margin(2e-6));
     // Exit radiance facing the light: DirectXMath 1.0000 (its documented target), ours at unit
@@ -122,8 +123,8 @@ TEST_CASE("dxmath: the hemisphere light differs beyond sign and scale (1.25 agai
           "[ops][dxmath]") {
     // XMSHEvalHemisphereLight(3, d, top 1, bottom 0): band 0 is 1.5 x ours, band 1 equal,
     // band 2 zero in both (the checker's fitted factors 1.5, 1, -).
-    const std::array<float, 9> dx_hemi = {2.65868115f, 0.316644311f, 1.42489934f, -0.474966437f,
-                                          0, 0, 0, 0, 0};
+    const std::array<float, 9> dx_hemi = {
+        2.65868115f, 0.316644311f, 1.42489934f, -0.474966437f, 0, 0, 0, 0, 0};
     std::array<float, 9> ours{};
     sh::hemisphere_light(3, dx, dy, dz, 1.0, 0.0, ours.data());
     const auto theirs = sh::from_condon_shortley(dx_hemi);
@@ -150,9 +151,9 @@ TEST_CASE("dxmath: sphere light = ours x 1; XMSHEvalDirection = to_condon_shortl
     CHECK(exit_radiance(ours) == Approx(0.0660).margin(5e-5));
     // XMSHEvalDirection(out, 4, d), d unit.
     const std::array<float, 16> dx_y = {
-        0.282094806f,  0.100791007f,   0.453559518f,  -0.151186511f, -0.0697371438f, 0.209211424f,
-        0.4999291f,    -0.313817143f,  0.0290571451f, 0.0297817532f, -0.171274111f,  0.311930835f,
-        0.453283399f,  -0.467896253f,  0.0713642165f, 0.00582686253f};
+        0.282094806f, 0.100791007f,  0.453559518f,  -0.151186511f, -0.0697371438f, 0.209211424f,
+        0.4999291f,   -0.313817143f, 0.0290571451f, 0.0297817532f, -0.171274111f,  0.311930835f,
+        0.453283399f, -0.467896253f, 0.0713642165f, 0.00582686253f};
     std::array<float, 16> y{};
     sh::eval_unit<4>(dx, dy, dz, y.data());
     const auto ycs = sh::to_condon_shortley(y);

@@ -587,10 +587,10 @@ SPHBASIS_FORCEINLINE N aos_component(N a, N b, N c, std::index_sequence<I...>) n
     constexpr int W = static_cast<int>(sizeof...(I));
     const N ab = __builtin_shufflevector(
         a, b, (3 * static_cast<int>(I) + Off < 2 * W ? 3 * static_cast<int>(I) + Off : 0)...);
-    return __builtin_shufflevector(ab, c,
-                                   (3 * static_cast<int>(I) + Off < 2 * W
-                                        ? static_cast<int>(I)
-                                        : W + 3 * static_cast<int>(I) + Off - 2 * W)...);
+    return __builtin_shufflevector(
+        ab, c,
+        (3 * static_cast<int>(I) + Off < 2 * W ? static_cast<int>(I)
+                                               : W + 3 * static_cast<int>(I) + Off - 2 * W)...);
 }
 #endif
 
@@ -647,9 +647,8 @@ void eval_batch_aos_at(int bands, std::size_t directions, const T* xyz, T* out,
                 load_aos(xyz + 3 * i, x, y, z);
                 normalize_or_pole(x, y, z);
                 if constexpr (W == 1)
-                    kernel(x, y, z, [&](int k, T v) {
-                        out[static_cast<std::size_t>(k) * stride + i] = v;
-                    });
+                    kernel(x, y, z,
+                           [&](int k, T v) { out[static_cast<std::size_t>(k) * stride + i] = v; });
                 else
                     kernel(x, y, z, sphbasis::detail::SoaStore<T>{out, stride, i});
             }
@@ -657,9 +656,8 @@ void eval_batch_aos_at(int bands, std::size_t directions, const T* xyz, T* out,
                 const std::size_t i = full + j;
                 T x = xyz[3 * i], y = xyz[3 * i + 1], z = xyz[3 * i + 2];
                 normalize_or_pole(x, y, z);
-                kernel(x, y, z, [&](int k, T v) {
-                    out[static_cast<std::size_t>(k) * stride + i] = v;
-                });
+                kernel(x, y, z,
+                       [&](int k, T v) { out[static_cast<std::size_t>(k) * stride + i] = v; });
             }
         });
         return;
@@ -721,8 +719,7 @@ void eval_batch_aos(int bands, std::size_t directions, const XYZ& xyz, Out&& out
     static_assert(sphbasis::detail::is_buffer_v<const XYZ&>,
                   "sphbasis::sh::eval_batch_aos: directions are a const T* or a contiguous range "
                   "of T (x y z x y z ...), T the output's scalar.");
-    if constexpr (sphbasis::detail::output_ok_v<Out> &&
-                  sphbasis::detail::is_buffer_v<const XYZ&>) {
+    if constexpr (sphbasis::detail::output_ok_v<Out> && sphbasis::detail::is_buffer_v<const XYZ&>) {
         using T = sphbasis::detail::output_scalar_t<Out>;
         static_assert(std::is_same_v<sphbasis::detail::input_element_t<const XYZ&>, T>,
                       "sphbasis::sh::eval_batch_aos: the directions are of the output's scalar "
@@ -730,14 +727,13 @@ void eval_batch_aos(int bands, std::size_t directions, const XYZ& xyz, Out&& out
         if constexpr (std::is_same_v<sphbasis::detail::input_element_t<const XYZ&>, T>) {
             check_bands(bands, fn);
             if (stride < directions)
-                sphbasis::detail::throw_invalid(
-                    fn, "stride >= directions, got stride " + std::to_string(stride) + " and " +
-                            std::to_string(directions) + " directions");
+                sphbasis::detail::throw_invalid(fn, "stride >= directions, got stride " +
+                                                        std::to_string(stride) + " and " +
+                                                        std::to_string(directions) + " directions");
             sphbasis::detail::check_buffer_size(fn, "direction", xyz, 3 * directions);
             const int n = count(bands);
             const std::size_t need =
-                n > 0 && directions > 0 ? static_cast<std::size_t>(n - 1) * stride + directions
-                                        : 0;
+                n > 0 && directions > 0 ? static_cast<std::size_t>(n - 1) * stride + directions : 0;
             sphbasis::detail::check_buffer_size(fn, "output", out, need);
             if (n == 0 || directions == 0) return;
             detail::eval_batch_aos_at(bands, directions, sphbasis::detail::buffer_data(xyz),
@@ -788,10 +784,10 @@ namespace detail {
 template <class R>
 int bands_of_range(const char* fn, const R& coeffs) {
     const auto size = static_cast<long long>(coeffs.size());
-    const int b = size > 0 && size <= static_cast<long long>(max_countable_bands) *
-                                          max_countable_bands
-                      ? bands_of_count(static_cast<int>(size))
-                      : (size == 0 ? 0 : -1);
+    const int b =
+        size > 0 && size <= static_cast<long long>(max_countable_bands) * max_countable_bands
+            ? bands_of_count(static_cast<int>(size))
+            : (size == 0 ? 0 : -1);
     if (b < 0)
         sphbasis::detail::throw_invalid(
             fn, "a coefficient range of bands^2 elements, got " + std::to_string(size));
@@ -805,10 +801,9 @@ int bands_of_range(const char* fn, const R& coeffs) {
 /// DirectXMath or google/spherical-harmonics without a copy by hand:
 ///   auto cs = sh::to_condon_shortley(coeffs);
 /// Throws std::invalid_argument unless the size is a square (bands^2, bands <= max_bands).
-template <class R,
-          std::enable_if_t<sphbasis::detail::is_contiguous_range_v<R> &&
-                               !std::is_pointer_v<std::decay_t<R>>,
-                           int> = 0>
+template <class R, std::enable_if_t<sphbasis::detail::is_contiguous_range_v<R> &&
+                                        !std::is_pointer_v<std::decay_t<R>>,
+                                    int> = 0>
 std::decay_t<R> to_condon_shortley(R&& coeffs) {
     std::decay_t<R> r(std::forward<R>(coeffs));
     const int bands = detail::bands_of_range("sh::to_condon_shortley", r);
@@ -816,10 +811,9 @@ std::decay_t<R> to_condon_shortley(R&& coeffs) {
     return r;
 }
 /// Value-returning from_condon_shortley (the same sign flip, named from_condon_shortley).
-template <class R,
-          std::enable_if_t<sphbasis::detail::is_contiguous_range_v<R> &&
-                               !std::is_pointer_v<std::decay_t<R>>,
-                           int> = 0>
+template <class R, std::enable_if_t<sphbasis::detail::is_contiguous_range_v<R> &&
+                                        !std::is_pointer_v<std::decay_t<R>>,
+                                    int> = 0>
 std::decay_t<R> from_condon_shortley(R&& coeffs) {
     std::decay_t<R> r(std::forward<R>(coeffs));
     const int bands = detail::bands_of_range("sh::from_condon_shortley", r);
