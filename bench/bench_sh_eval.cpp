@@ -4,6 +4,8 @@
 //   runtime:    sh::eval(bands, ...) with the band count known only at run time
 //   columns:    the column recurrence (above 256 bands) at 31 and 100 bands, for the ratio
 //   batch:      sh::eval_batch over 512 (in cache) or 1M directions (SoA in and out, SIMD)
+//   batch_aos:  sh::eval_batch_aos, the same directions interleaved (x y z x y z ...), the same
+//               output: its ratio to batch in one run is the cost of the interleaved input
 //   memory_floor: the loads and stores of batch, in its order, with no arithmetic
 //   sum_batch:  sh::eval_sum_batch over 4096 (in cache) or 1M directions (sum c_i y_i, the y_i
 //               not stored)
@@ -134,6 +136,27 @@ void batch(benchmark::State& st) {
     st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * n));
 }
 
+// batch() with the directions interleaved (AoS), deinterleaved by sh::eval_batch_aos.
+template <class T>
+void batch_aos(benchmark::State& st) {
+    const int bands = static_cast<int>(st.range(0));
+    const std::size_t n = static_cast<std::size_t>(st.range(1));
+    const std::size_t stride = n + 16;
+    const Dirs<T> d(n);
+    vec<T> xyz(3 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+        xyz[3 * i] = d.x[i];
+        xyz[3 * i + 1] = d.y[i];
+        xyz[3 * i + 2] = d.z[i];
+    }
+    vec<T> out(stride * static_cast<std::size_t>(bands * bands));
+    for (auto _ : st) {
+        sphbasis::sh::eval_batch_aos(bands, n, xyz.data(), out.data(), stride);
+        benchmark::DoNotOptimize(out.data());
+    }
+    st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * n));
+}
+
 // The memory reference for batch(): the same loads and stores in the same order (one SIMD batch
 // of directions read, then one vector store per function row), with no arithmetic. Over 1M
 // directions batch() runs at about this speed; it is a reference, not a strict bound (at 8
@@ -184,6 +207,7 @@ BENCHMARK_TEMPLATE(runtime, float)->Arg(3)->Arg(8);
 BENCHMARK_TEMPLATE(runtime, double)->Arg(31)->Arg(100);
 BENCHMARK(columns)->Arg(31)->Arg(100);
 BENCHMARK_TEMPLATE(batch, float)->ArgsProduct({{3, 8, 16}, {512, 1 << 20}});
+BENCHMARK_TEMPLATE(batch_aos, float)->ArgsProduct({{3, 8, 16}, {512, 1 << 20}});
 BENCHMARK_TEMPLATE(memory_floor, 3, float);
 BENCHMARK_TEMPLATE(memory_floor, 8, float);
 BENCHMARK_TEMPLATE(memory_floor, 16, float);

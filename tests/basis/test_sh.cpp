@@ -430,3 +430,86 @@ TEST_CASE("sh: counts near the int range are refused, never wrapped or looped on
         CHECK_THROWS_AS(basis_eval<Makhotkin>(n, 0.0, 0.0, 1.0, y.data()), std::invalid_argument);
     }
 }
+
+TEMPLATE_TEST_CASE("sh: eval_batch_aos (interleaved x y z) equals eval_batch (SoA)", "[sh]", float,
+                   double) {
+    using T = TestType;
+    const int W = sphbasis::native_width<T>;
+    // Counts around the SIMD width (tails of every length), a few whole batches plus a tail, and
+    // more than two blocks of the deinterleaving (sh::detail::aos_block);
+    // inputs * 3: not unit length, both paths normalise.
+    for (const int n : {0, 1, W - 1, W, W + 1, 3 * W + 5, 2 * 256 + 7}) {
+        const auto in = test::scaled_inputs<T>(random_dirs(std::max(n, 1), 11), 3);
+        const std::size_t nd = static_cast<std::size_t>(n);
+        std::vector<T> xyz(3 * nd);
+        for (std::size_t i = 0; i < nd; ++i) {
+            xyz[3 * i] = in.xs[i];
+            xyz[3 * i + 1] = in.ys[i];
+            xyz[3 * i + 2] = in.zs[i];
+        }
+        for (int bands : {1, 3, 6, 8, 9, 17}) {
+            const std::size_t nf = static_cast<std::size_t>(bands * bands);
+            const std::size_t stride = nd + 3;
+            std::vector<T> soa(nf * stride, T(-7)), aos(nf * stride, T(-7));
+            sh::eval_batch(bands, nd, in.xs.data(), in.ys.data(), in.zs.data(), soa.data(), stride);
+            sh::eval_batch_aos(bands, nd, xyz, aos, stride);  // ranges: sizes checked
+            for (std::size_t k = 0; k < nf; ++k)
+                for (std::size_t i = 0; i < stride; ++i) {
+                    const T tol = T(4) * std::numeric_limits<T>::epsilon() *
+                                  T(norm_s(sh::degree_of(static_cast<int>(k))));
+                    REQUIRE(std::fabs(aos[k * stride + i] - soa[k * stride + i]) <= tol);
+                }
+        }
+    }
+    // The pole for zero and non-finite directions, as eval_batch.
+    const T inf = std::numeric_limits<T>::infinity();
+    std::vector<T> bad = {0, 0, 0, inf, 1, 2, 0, 0, 5}, out(9 * 3);
+    sh::eval_batch_aos(3, 3, bad.data(), out.data(), 3);
+    T pole[9];
+    sh::eval<3>(T(0), T(0), T(1), pole);
+    for (std::size_t k = 0; k < 9; ++k)
+        for (std::size_t i = 0; i < 3; ++i) CHECK(out[k * 3 + i] == Approx(pole[k]).margin(1e-6));
+}
+
+TEST_CASE("sh: eval_batch_aos checks its buffers and stride", "[sh]") {
+    std::vector<float> xyz(3 * 5), out(9 * 5);
+    REQUIRE_THROWS_WITH(sh::eval_batch_aos(3, 5, xyz, out, 4),
+                        Catch::Contains("sphbasis::sh::eval_batch_aos(): expected stride >= "
+                                        "directions"));
+    REQUIRE_THROWS_WITH(sh::eval_batch_aos(3, 6, xyz, out, 6),
+                        Catch::Contains("sphbasis::sh::eval_batch_aos(): expected direction "
+                                        "buffer of at least 18 elements, got 15"));
+    REQUIRE_THROWS_WITH(sh::eval_batch_aos(4, 5, xyz, out, 5),
+                        Catch::Contains("expected output buffer of at least 80 elements, got 45"));
+    REQUIRE_THROWS_WITH(sh::eval_batch_aos(-1, 5, xyz, out, 5),
+                        Catch::Contains("sphbasis::sh::eval_batch_aos()"));
+    const float* null = nullptr;
+    REQUIRE_THROWS_WITH(sh::eval_batch_aos(3, 5, null, out, 5),
+                        Catch::Contains("non-null direction buffer"));
+    REQUIRE_NOTHROW(sh::eval_batch_aos(3, 0, null, out, 0));
+}
+
+TEST_CASE("sh: value-returning Condon-Shortley conversions", "[sh]") {
+    std::vector<double> c(16);
+    for (std::size_t k = 0; k < 16; ++k) c[k] = 0.1 * double(k + 1);
+    std::vector<double> in_place = c;
+    sh::to_condon_shortley(4, in_place);
+    const std::vector<double> cs = sh::to_condon_shortley(c);  // c is left as it was
+    CHECK(cs == in_place);
+    CHECK(c[3] == Approx(0.4));
+    CHECK(cs[3] == -c[3]);  // (l, m) = (1, 1): odd m flips
+    CHECK(cs[4] == c[4]);   // (2, -2): even m stays
+    CHECK(sh::from_condon_shortley(cs) == c);
+    CHECK(sh::from_condon_shortley(sh::to_condon_shortley(std::vector<double>(c))) == c);
+    // std::array: the band count from the size.
+    const std::array<float, 9> a{1, 2, 3, 4, 5, 6, 7, 8, 9};
+    const std::array<float, 9> b = sh::to_condon_shortley(a);
+    const std::array<float, 9> want{1, -2, 3, -4, 5, -6, 7, -8, 9};
+    CHECK(b == want);
+    REQUIRE_THROWS_WITH(sh::to_condon_shortley(std::vector<double>(10)),
+                        "sphbasis::sh::to_condon_shortley(): expected a coefficient range of "
+                        "bands^2 elements, got 10");
+    REQUIRE_THROWS_WITH(sh::from_condon_shortley(std::vector<double>(3)),
+                        Catch::Contains("sphbasis::sh::from_condon_shortley()"));
+    CHECK(sh::to_condon_shortley(std::vector<double>{}).empty());
+}

@@ -435,3 +435,73 @@ TEST_CASE("fixed-band lights: RGB in one pass, hemisphere constants, clamped arg
     sh::directional_light(4, 0.0, 0.0, 1.0, 1.0, w);
     for (int k = 0; k < 16; ++k) CHECK(o[k] == Approx(w[k]).margin(1e-15));
 }
+
+namespace {
+/// An RGB type that can be made from one grey value (as glm::vec3(1.0f) can).
+struct Grey3 {
+    double r = 0, g = 0, b = 0;
+    Grey3() = default;
+    Grey3(double r_, double g_, double b_) : r(r_), g(g_), b(b_) {}
+    explicit Grey3(double v) : r(v), g(v), b(v) {}
+};
+Grey3 operator+(const Grey3& a, const Grey3& b) { return {a.r + b.r, a.g + b.g, a.b + b.b}; }
+Grey3 operator*(const Grey3& a, double s) { return {a.r * s, a.g * s, a.b * s}; }
+}  // namespace
+
+TEST_CASE("lights: the colour's type and the output's are deduced separately", "[ops][lights]") {
+    // directional_light(3, x, y, z, 1.0, float_out): a double colour writes float coefficients,
+    // the same as a float colour would.
+    float a[9], b[9];
+    sh::directional_light(3, 0.2f, -0.3f, 0.9f, 1.0, a);
+    sh::directional_light(3, 0.2f, -0.3f, 0.9f, 1.0f, b);
+    for (int k = 0; k < 9; ++k) CHECK(a[k] == b[k]);
+    sh::cone_light(3, 0.2f, -0.3f, 0.9f, 0.3f, 2.0, a);
+    sh::cone_light(3, 0.2f, -0.3f, 0.9f, 0.3f, 2.0f, b);
+    for (int k = 0; k < 9; ++k) CHECK(a[k] == b[k]);
+    sh::spherical_light(3, 0.2f, -0.3f, 4.0f, 1.0f, 0.5, a);
+    sh::spherical_light(3, 0.2f, -0.3f, 4.0f, 1.0f, 0.5f, b);
+    for (int k = 0; k < 9; ++k) CHECK(a[k] == b[k]);
+    sh::spherical_light_solid_angle(3, 0.2f, -0.3f, 0.9f, 0.5f, 3, a);  // an int colour too
+    sh::spherical_light_solid_angle(3, 0.2f, -0.3f, 0.9f, 0.5f, 3.0f, b);
+    for (int k = 0; k < 9; ++k) CHECK(a[k] == b[k]);
+    sh::hemisphere_light(3, 0.0f, 0.0f, 1.0f, 1.0, 0.25f, a);  // sky double, ground float
+    sh::hemisphere_light(3, 0.0f, 0.0f, 1.0f, 1.0f, 0.25f, b);
+    for (int k = 0; k < 9; ++k) CHECK(a[k] == b[k]);
+    const double kern[3] = {1, 0.5, 0.25};
+    sh::zonal_light(3, 0.2f, -0.3f, 0.9f, kern, 1.0, a);
+    sh::zonal_light(3, 0.2f, -0.3f, 0.9f, kern, 1.0f, b);
+    for (int k = 0; k < 9; ++k) CHECK(a[k] == b[k]);
+    // The direction overloads with a range out, and the compile-time forms.
+    std::vector<float> v(9);
+    sh::directional_light(3, vec3<float>{0.2f, -0.3f, 0.9f}, 1.0, v);
+    sh::directional_light(3, 0.2f, -0.3f, 0.9f, 1.0f, b);
+    for (int k = 0; k < 9; ++k) CHECK(v[std::size_t(k)] == b[k]);
+    sh::hemisphere_light(3, vec3<float>{0, 0, 1}, 1.0, 0.25, v);
+    sh::hemisphere_light(3, 0.0f, 0.0f, 1.0f, 1.0f, 0.25f, b);
+    for (int k = 0; k < 9; ++k) CHECK(v[std::size_t(k)] == b[k]);
+    sh::directional_light<3>(0.2f, -0.3f, 0.9f, 1.0, a);
+    sh::directional_light<3>(0.2f, -0.3f, 0.9f, 1.0f, b);
+    for (int k = 0; k < 9; ++k) CHECK(a[k] == b[k]);
+    sh::cone_light<3>(0.2f, -0.3f, 0.9f, 0.3f, 2.0, a);
+    sh::cone_light<3>(0.2f, -0.3f, 0.9f, 0.3f, 2.0f, b);
+    for (int k = 0; k < 9; ++k) CHECK(a[k] == b[k]);
+    sh::spherical_light<3>(0.2f, -0.3f, 4.0f, 1.0f, 0.5, a);
+    sh::spherical_light<3>(0.2f, -0.3f, 4.0f, 1.0f, 0.5f, b);
+    for (int k = 0; k < 9; ++k) CHECK(a[k] == b[k]);
+    sh::hemisphere_light<3>(0.0f, 0.0f, 1.0f, 1.0, 0.25, a);
+    sh::hemisphere_light<3>(0.0f, 0.0f, 1.0f, 1.0f, 0.25f, b);
+    for (int k = 0; k < 9; ++k) CHECK(a[k] == b[k]);
+    // A float colour into an RGB output that is constructible from it (broadcast).
+    Grey3 rgb[9];
+    double mono[9];
+    sh::directional_light(3, 0.2, -0.3, 0.9, 2.0f, rgb);
+    sh::directional_light(3, 0.2, -0.3, 0.9, 2.0, mono);
+    for (int k = 0; k < 9; ++k) CHECK(rgb[k].b == Approx(mono[k]).margin(1e-15));
+    // A braced colour still takes the output's type (the colour type defaults to it).
+    sh::directional_light(3, 0.2, -0.3, 0.9, {1.0, 1.0, 2.0}, rgb);
+    for (int k = 0; k < 9; ++k) CHECK(rgb[k].b == Approx(mono[k]).margin(1e-15));
+    sh::hemisphere_light(3, 0.0, 0.0, 1.0, {1.0, 1.0, 1.0}, {0.0, 0.0, 0.0}, rgb);
+    sh::hemisphere_light<3>(0.0, 0.0, 1.0, {1.0, 1.0, 1.0}, {0.0, 0.0, 0.0}, rgb);
+    sh::cone_light<3>(0.0, 0.0, 1.0, 0.3, {1.0, 1.0, 1.0}, rgb);
+    CHECK(rgb[0].r > 0);
+}

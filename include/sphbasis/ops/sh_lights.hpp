@@ -137,6 +137,20 @@ C dot_accumulate(std::size_t n, const C* v, const S* w) {
     return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
 }
 
+/// A light's colour in the output's coefficient type O: the lights deduce the colour type and
+/// the output type separately, so directional_light(3, x, y, z, 1.0, float_out) writes floats.
+template <class O, class C>
+SPHBASIS_FORCEINLINE O light_colour(const C& colour) {
+    static_assert(std::is_constructible_v<O, const C&>,
+                  "sphbasis::sh lights: the colour must convert to the output's coefficient type "
+                  "(a double colour with float outputs converts; an RGB type needs a constructor "
+                  "from the colour type).");
+    if constexpr (std::is_same_v<O, C>)
+        return colour;
+    else
+        return static_cast<O>(colour);
+}
+
 }  // namespace detail
 
 /// Funk-Hecke factors Lambda_l (l < bands) of the indicator of a cap with 1 - cos(a) =
@@ -156,8 +170,9 @@ std::vector<T> cap_kernel(int bands, double one_minus_cos) {
 /// A zonal radiance distribution about d (normalised; must be finite and non-zero) with
 /// Funk-Hecke factors kernel[0..bands) (e.g. phong_kernel, zonal_kernel), times colour:
 /// out_lm = colour * kernel[l] * y_lm(d).
-template <class T, class K, class C>
-void zonal_light(int bands, T x, T y, T z, const K* kernel, const C& colour, C* out) {
+template <class T, class K, class C, class C0 = C>
+void zonal_light(int bands, T x, T y, T z, const K* kernel, const C0& colour_in, C* out) {
+    const C colour = detail::light_colour<C>(colour_in);
     detail::check_light(bands, x, y, z, out, "sh::zonal_light");
     sphbasis::detail::check_buffer("sh::zonal_light", "kernel", kernel,
                                    static_cast<std::size_t>(bands));
@@ -169,9 +184,11 @@ void zonal_light(int bands, T x, T y, T z, const K* kernel, const C& colour, C* 
 /// A directional light from direction (x, y, z) (towards the light; normalised) delivering
 /// irradiance `irradiance` to a surface facing it: L = irradiance * delta(w - d), coefficients
 /// irradiance * y_lm(d). Throws std::invalid_argument for bad bands, a null out, or a zero or
-/// non-finite direction.
-template <class T, class C>
-void directional_light(int bands, T x, T y, T z, const C& irradiance, C* out) {
+/// non-finite direction. The colour may be of another type than the output's coefficients
+/// (a double 1.0 with float out): it is converted to the output's type (all the lights do this).
+template <class T, class C, class C0 = C>
+void directional_light(int bands, T x, T y, T z, const C0& irradiance_in, C* out) {
+    const C irradiance = detail::light_colour<C>(irradiance_in);
     detail::check_light(bands, x, y, z, out, "sh::directional_light");
     detail::LightScratch a(static_cast<std::size_t>(bands));
     for (int l = 0; l < bands; ++l) a[static_cast<std::size_t>(l)] = 1.0;
@@ -196,8 +213,9 @@ inline double directional_light_peak(int bands) {
 /// A cone light: uniform radiance `radiance` within angular radius half_angle (radians, in
 /// [0, pi]) of direction (x, y, z). Throws std::invalid_argument for bad bands, out, direction
 /// or angle.
-template <class T, class C>
-void cone_light(int bands, T x, T y, T z, T half_angle, const C& radiance, C* out) {
+template <class T, class C, class C0 = C>
+void cone_light(int bands, T x, T y, T z, T half_angle, const C0& radiance_in, C* out) {
+    const C radiance = detail::light_colour<C>(radiance_in);
     detail::check_light(bands, x, y, z, out, "sh::cone_light");
     const double a = static_cast<double>(half_angle);
     if (!(a >= 0 && a <= constants::pi))
@@ -213,8 +231,9 @@ void cone_light(int bands, T x, T y, T z, T half_angle, const C& radiance, C* ou
 /// receiver, of uniform radiance `radiance`; it covers the cap of sin(a) = radius/|p| (the
 /// whole sphere when |p| <= radius). Throws std::invalid_argument for bad bands, out, a zero or
 /// non-finite position, or radius < 0.
-template <class T, class C>
-void spherical_light(int bands, T px, T py, T pz, T radius, const C& radiance, C* out) {
+template <class T, class C, class C0 = C>
+void spherical_light(int bands, T px, T py, T pz, T radius, const C0& radiance_in, C* out) {
+    const C radiance = detail::light_colour<C>(radiance_in);
     detail::check_light(bands, px, py, pz, out, "sh::spherical_light");
     const double r = static_cast<double>(radius);
     if (!(r >= 0) || !std::isfinite(r))
@@ -236,9 +255,10 @@ void spherical_light(int bands, T px, T py, T pz, T radius, const C& radiance, C
 
 /// A cap light given by its solid angle in [0, 4 pi] about direction (x, y, z), uniform
 /// radiance `radiance` (a spherical light seen from outside, by solid angle).
-template <class T, class C>
-void spherical_light_solid_angle(int bands, T x, T y, T z, T solid_angle, const C& radiance,
+template <class T, class C, class C0 = C>
+void spherical_light_solid_angle(int bands, T x, T y, T z, T solid_angle, const C0& radiance_in,
                                  C* out) {
+    const C radiance = detail::light_colour<C>(radiance_in);
     detail::check_light(bands, x, y, z, out, "sh::spherical_light_solid_angle");
     const double om = static_cast<double>(solid_angle);
     if (!(om >= 0 && om <= constants::four_pi))
@@ -251,8 +271,10 @@ void spherical_light_solid_angle(int bands, T x, T y, T z, T solid_angle, const 
 
 /// A hemisphere light: radiance `sky` in the hemisphere around (x, y, z) (the "up" direction),
 /// `ground` in the opposite one.
-template <class T, class C>
-void hemisphere_light(int bands, T x, T y, T z, const C& sky, const C& ground, C* out) {
+template <class T, class C, class C0 = C, class C1 = C>
+void hemisphere_light(int bands, T x, T y, T z, const C0& sky_in, const C1& ground_in, C* out) {
+    const C sky = detail::light_colour<C>(sky_in);
+    const C ground = detail::light_colour<C>(ground_in);
     detail::check_light(bands, x, y, z, out, "sh::hemisphere_light");
     using S = coefficient_scalar_t<C>;
     detail::LightScratch f(static_cast<std::size_t>(bands));
@@ -319,8 +341,8 @@ void spherical_light_solid_angle(int bands, const D& dir, A solid_angle, const C
                                 detail::light_out(bands, out, "sh::spherical_light_solid_angle"));
 }
 /// hemisphere_light() with an up direction of any 3-vector type and out as C* or a range.
-template <class D, class C, class Out, SPHBASIS_LIGHT_DIRECTION_OVERLOAD_REQUIRES(D)>
-void hemisphere_light(int bands, const D& up, const C& sky, const C& ground, Out&& out) {
+template <class D, class C, class Out, class C1 = C, SPHBASIS_LIGHT_DIRECTION_OVERLOAD_REQUIRES(D)>
+void hemisphere_light(int bands, const D& up, const C& sky, const C1& ground, Out&& out) {
     using T = direction_scalar_t<D>;
     hemisphere_light(bands, T(component<0>(up)), T(component<1>(up)), T(component<2>(up)), sky,
                      ground, detail::light_out(bands, out, "sh::hemisphere_light"));
@@ -393,8 +415,10 @@ SPHBASIS_FORCEINLINE void zonal_out_fixed(T x, T y, T z, const E* a, const C& co
 
 /// directional_light() for a compile-time band count N: out_lm = irradiance * y_lm(d), N^2
 /// values. Unchecked (see above).
-template <int N, class T, class C>
-SPHBASIS_FORCEINLINE void directional_light(T x, T y, T z, const C& irradiance, C* out) noexcept {
+template <int N, class T, class C, class C0 = C>
+SPHBASIS_FORCEINLINE void directional_light(T x, T y, T z, const C0& irradiance_in,
+                                            C* out) noexcept {
+    const C irradiance = detail::light_colour<C>(irradiance_in);
     static_assert(N >= 1 && N <= 8, "sphbasis::sh::directional_light<N>: N is in 1..8.");
     SPHBASIS_ASSERT(out != nullptr);
     using E = detail::light_eval_t<C>;
@@ -405,9 +429,10 @@ SPHBASIS_FORCEINLINE void directional_light(T x, T y, T z, const C& irradiance, 
 }
 
 /// cone_light() for a compile-time band count N (half_angle in radians, clamped to [0, pi]).
-template <int N, class T, class C>
-SPHBASIS_FORCEINLINE void cone_light(T x, T y, T z, T half_angle, const C& radiance,
+template <int N, class T, class C, class C0 = C>
+SPHBASIS_FORCEINLINE void cone_light(T x, T y, T z, T half_angle, const C0& radiance_in,
                                      C* out) noexcept {
+    const C radiance = detail::light_colour<C>(radiance_in);
     static_assert(N >= 1 && N <= 8, "sphbasis::sh::cone_light<N>: N is in 1..8.");
     SPHBASIS_ASSERT(out != nullptr);
     using E = detail::light_eval_t<C>;
@@ -420,9 +445,10 @@ SPHBASIS_FORCEINLINE void cone_light(T x, T y, T z, T half_angle, const C& radia
 
 /// spherical_light() for a compile-time band count N (a ball of radius `radius` at (px, py, pz)
 /// relative to the receiver; the whole sphere when |p| <= radius).
-template <int N, class T, class C>
-SPHBASIS_FORCEINLINE void spherical_light(T px, T py, T pz, T radius, const C& radiance,
+template <int N, class T, class C, class C0 = C>
+SPHBASIS_FORCEINLINE void spherical_light(T px, T py, T pz, T radius, const C0& radiance_in,
                                           C* out) noexcept {
+    const C radiance = detail::light_colour<C>(radiance_in);
     static_assert(N >= 1 && N <= 8, "sphbasis::sh::spherical_light<N>: N is in 1..8.");
     SPHBASIS_ASSERT(out != nullptr);
     using E = detail::light_eval_t<C>;
@@ -441,9 +467,11 @@ SPHBASIS_FORCEINLINE void spherical_light(T px, T py, T pz, T radius, const C& r
 
 /// hemisphere_light() for a compile-time band count N: `sky` around the up direction (x, y,
 /// z), `ground` opposite; the factors are compile-time constants.
-template <int N, class T, class C>
-SPHBASIS_FORCEINLINE void hemisphere_light(T x, T y, T z, const C& sky, const C& ground,
+template <int N, class T, class C, class C0 = C, class C1 = C>
+SPHBASIS_FORCEINLINE void hemisphere_light(T x, T y, T z, const C0& sky_in, const C1& ground_in,
                                            C* out) noexcept {
+    const C sky = detail::light_colour<C>(sky_in);
+    const C ground = detail::light_colour<C>(ground_in);
     static_assert(N >= 1 && N <= 8, "sphbasis::sh::hemisphere_light<N>: N is in 1..8.");
     SPHBASIS_ASSERT(out != nullptr);
     using E = detail::light_eval_t<C>;
