@@ -5,21 +5,23 @@
 #include <cstdio>
 #include <sphbasis/sphbasis.hpp>
 
+namespace sb = sphbasis;  // an alias, not `using namespace`: see the README
+
 int main() {
-    using namespace sphbasis;
     // Radiance: a sky brighter towards +z and +x.
     auto sky = [](double x, double, double z) { return 1.0 + 0.8 * z + 0.3 * x; };
-    const auto rule = sphere_rule(16);                               // exact for degree <= 16
-    const Eigen::VectorXd L = project(evaluator<SH>(9), sky, rule);  // 3 bands, 9 coefficients
+    const auto rule = sb::sphere_rule(16);  // exact for degree <= 16
+    const Eigen::VectorXd L =
+        sb::project(sb::evaluator<sb::SH>(9), sky, rule);  // 3 bands, 9 coefficients
     // Irradiance / pi: the normalised clamped-cosine factors a_l = 1, 2/3, 1/4 per band.
     Eigen::VectorXd E(9);
-    sh::convolve(3, sh::clamped_cosine_kernel(3, sh::KernelScale::normalized), L, E);
-    const Eigen::MatrixXd T =
-        conversion(evaluator<SH>(9), evaluator<HBasisMod>(6), hemisphere_rule(8));
+    sb::sh::convolve(3, sb::sh::clamped_cosine_kernel(3, sb::sh::KernelScale::normalized), L, E);
+    const Eigen::MatrixXd T = sb::conversion(
+        sb::evaluator<sb::SH>(9), sb::evaluator<sb::HBasisMod>(6), sb::hemisphere_rule(8));
     const Eigen::VectorXd H = T * E;       // 6 modified H-basis coefficients
     const double n[3] = {0.3, 0.1, 0.95};  // a tangent-space normal
     std::printf("SH-9 irradiance %.6f, modified H-basis-6 %.6f\n",
-                sh::eval_sum(3, E.data(), n[0], n[1], n[2]),
-                basis_eval_sum<HBasisMod>(6, H.data(), n[0], n[1], n[2]));
+                sb::sh::eval_sum(3, E.data(), n[0], n[1], n[2]),
+                sb::basis_eval_sum<sb::HBasisMod>(6, H.data(), n[0], n[1], n[2]));
     return 0;
 }
