@@ -78,7 +78,7 @@ bool is_specular(const std::string& name) { return name.rfind("specular-", 0) ==
 /// RepresentationSettings::lighting_rotation).
 bool follows_rotation(const std::string& name) {
     return name.rfind("irradiance-sh9", 0) == 0 || name == "ao" || name == "bent" ||
-           name.rfind("prt-", 0) == 0;
+           name.rfind("prt-", 0) == 0 || name.rfind("lxh-", 0) == 0;
 }
 
 /// "all" or a comma-separated list of render::representation_names(), in the order given.
@@ -560,7 +560,8 @@ int run_render(const RenderOptions& o) {
         row.judged = e.judged;
         row.total = e.total;
         const render::RepresentationStats st = reps.stats(i);
-        row.bake_seconds = st.bake_seconds;
+        // Bake + compress: the bakes read and what is built from them after (L x H tables, PCA).
+        row.bake_seconds = st.bake_seconds + st.build_seconds;
         row.bake_rays = st.bake_rays;
         row.cached = st.cached;
         row.element = st.element;

@@ -84,7 +84,10 @@
 #include "../core/constants.hpp"
 #include "../core/error.hpp"
 #include "../core/frame.hpp"
+#include "../ops/compression.hpp"
+#include "../ops/lxh_table.hpp"
 #include "../ops/sh_rotation.hpp"
+#include "../param/cubemap.hpp"
 #include "../ops/sh_windowing.hpp"
 #include "bake.hpp"
 #include "camera.hpp"
@@ -116,7 +119,15 @@ inline const std::vector<std::string>& representation_names() {
                                                 "lightmap-hsh9",
                                                 "volume",
                                                 "specular-toksvig",
-                                                "specular-aliased"};
+                                                "specular-aliased",
+                                                "lxh-unc3",
+                                                "lxh-unc4",
+                                                "lxh-unc6",
+                                                "lxh-pca4",
+                                                "lxh-pca8",
+                                                "lxh-pca12",
+                                                "lxh-pca16",
+                                                "lxh-pca24"};
     return names;
 }
 
@@ -131,6 +142,10 @@ struct RepresentationSettings {
     /// Render-time rotation of the distant lighting (environment and lights) for the
     /// SH-lit representations (irradiance-sh9*, ao, bent, prt-*): world = R * baked world.
     Mat3<double> lighting_rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};
+    /// lxh-*: texels per cube-map face edge of the L x H tables, and the SH bands of the
+    /// lighting in them (0: as many as the visibility has).
+    int lxh_table_size = 32;
+    int lxh_lighting_bands = 0;
 };
 
 /// One bake a representation reads.
@@ -577,6 +592,9 @@ struct RepresentationStats {
     std::string element;                // "texel", "vertex", "probe" or "none"
     std::size_t bytes_per_element = 0;  // at the stored precision (float)
     std::size_t elements = 0;
+    /// Seconds spent after the bakes on what the representation reads: L x H tables,
+    /// compression, per-basis-vector tables (shared work counted for each reader).
+    double build_seconds = 0;
     std::string cannot_show;  // e.g. "no shadows; no interreflection"
 };
 
@@ -657,7 +675,18 @@ class Representations {
         }
         fields_.clear();
         for (const BakeData& d : data_) fields_.push_back(make_field(d));
+        build_derived();
         prepared_ = true;
+    }
+    /// L x H tables and visibility compressions built by prepare() (only those a requested
+    /// lxh-* reads; each distinct one once).
+    std::size_t lxh_tables_built() const noexcept { return lxh_.size(); }
+    std::size_t compressions_built() const noexcept { return pcas_.size(); }
+    /// The numerical rank of the visibility that lxh-pca representation `index` compressed
+    /// (after prepare()); 0 for other representations.
+    int compressed_rank(std::size_t index) const {
+        const Rep& r = rep(index, "render::Representations::compressed_rank");
+        return r.model >= 0 ? pcas_[std::size_t(r.model)].rank : 0;
     }
     /// Bakes run and bakes loaded from the cache by prepare().
     std::size_t bakes_run() const noexcept { return bakes_run_; }
@@ -747,6 +776,44 @@ class Representations {
                     for (std::size_t k = 0; k < 9; ++k) cc[c][k] = cosine9_[k] * v[c * 9 + k];
                 return sh_shade(cc, Scene::normal_mapped(hit), hit.albedo);
             }
+            case Kind::lxh_unc: {
+                const int b = r.mesh_bake[hit.mesh];
+                if (b < 0) return {0, 0, 0};
+                std::array<double, 64> v;
+                lookup(fields_[std::size_t(b)], hit, v.data());
+                const LxhTable<LxhParam>& tab = *lxh_[std::size_t(r.table)].table;
+                const vec3<double> n = Scene::normal_mapped(hit);
+                std::array<float, 3 * 64> t;
+                tab.lookup(float(n.x), float(n.y), float(n.z), t.data());
+                const std::size_t kk = std::size_t(r.vis_bands * r.vis_bands);
+                RGB out{0, 0, 0};
+                for (std::size_t c = 0; c < 3; ++c) {
+                    double e = 0;
+                    for (std::size_t k = 0; k < kk; ++k) e += v[k] * double(t[3 * k + c]);
+                    out[c] = hit.albedo[c] * e * constants::inv_pi;
+                }
+                return out;
+            }
+            case Kind::lxh_pca: {
+                const PcaBuilt& pb = pcas_[std::size_t(r.model)];
+                const int f = pb.mesh_field[hit.mesh];
+                if (f < 0) return {0, 0, 0};
+                std::array<double, 64> w;
+                lookup(fields_[std::size_t(f)], hit, w.data());
+                const LxhParam& param = lxh_[std::size_t(r.table)].table->param;
+                const vec3<double> n = Scene::normal_mapped(hit);
+                const std::size_t m = std::size_t(r.vectors);
+                std::array<float, 3 * 65> t;
+                param::lookup(param, pb.tables.data(), 3 * (m + 1), float(n.x), float(n.y),
+                              float(n.z), t.data());
+                RGB out{0, 0, 0};
+                for (std::size_t c = 0; c < 3; ++c) {
+                    double e = t[c];
+                    for (std::size_t j = 0; j < m; ++j) e += w[j] * double(t[3 * (j + 1) + c]);
+                    out[c] = hit.albedo[c] * e * constants::inv_pi;
+                }
+                return out;
+            }
             case Kind::specular_toksvig:
                 return spec_->shade(SpecularShading::Mode::toksvig, hit, view, footprint);
             case Kind::specular_aliased:
@@ -822,6 +889,8 @@ class Representations {
             s.elements += d.results.size();
         }
         s.cached = prepared_ && any && all_cached;
+        if (prepared_ && r.table >= 0) s.build_seconds += lxh_[std::size_t(r.table)].seconds;
+        if (prepared_ && r.model >= 0) s.build_seconds += pcas_[std::size_t(r.model)].seconds;
         s.element = r.element;
         s.bytes_per_element = r.bytes_per_element;
         if (r.kind == Kind::prt_vertex || r.kind == Kind::prt_texel) {
@@ -860,7 +929,9 @@ class Representations {
         lightmap,
         volume,
         specular_toksvig,
-        specular_aliased
+        specular_aliased,
+        lxh_unc,
+        lxh_pca
     };
     struct Rep {
         std::string name;
@@ -872,6 +943,9 @@ class Representations {
         bool reads_bakes = false;
         std::string element = "none", cannot_show;
         std::size_t bytes_per_element = 0;
+        int vis_bands = 0, vectors = 0;  // lxh-*: visibility bands, PCA vectors
+        int table = -1;                  // lxh-*: index into lxh_ (after prepare())
+        int model = -1;                  // lxh-pca*: index into pcas_ (after prepare())
     };
     /// Baked values laid out for lookups at float precision (probes: double).
     struct Field {
@@ -883,6 +957,156 @@ class Representations {
         ProbeGrid grid;
     };
     static constexpr int gutter = 4;  // texels dilated around each chart
+
+    using LxhParam = param::CubeMap<float>;
+    /// An L x H table (visibility bands, lighting bands), shared by the lxh-* that read it.
+    struct LxhBuilt {
+        int vis_bands = 0, lighting_bands = 0;
+        std::shared_ptr<const LxhTable<LxhParam>> table;
+        double seconds = 0;
+    };
+    /// A PCA of the visibility of one lxh-pca*: per-mesh weight fields and, per texel of the
+    /// L x H table's cube map, the RGB integrals of L, H and the mean and each basis vector.
+    struct PcaBuilt {
+        std::vector<int> mesh_field;  // per mesh: index into fields_, -1: none
+        std::vector<float> tables;    // texel x (M + 1) x 3: mean, then basis vector j
+        int rank = 0;
+        double seconds = 0;
+    };
+
+    /// The SH of the distant lighting on `bands` bands, rotated by lighting_rotation,
+    /// interleaved (coefficient i, channel c at [3 i + c]) as lxh_matrix() reads it.
+    std::vector<double> lxh_lighting(int bands) const {
+        std::vector<RGB> L = project_sh(scene_.environment, bands);
+        const vec3<double> centre{0.5 * (rt_.bounds_min().x + rt_.bounds_max().x),
+                                  0.5 * (rt_.bounds_min().y + rt_.bounds_max().y),
+                                  0.5 * (rt_.bounds_min().z + rt_.bounds_max().z)};
+        const std::size_t n = std::size_t(bands) * std::size_t(bands);
+        for (const Light& l : scene_.lights) {
+            const std::vector<RGB> s = project_sh(l, bands, centre);
+            for (std::size_t k = 0; k < n; ++k)
+                for (std::size_t c = 0; c < 3; ++c) L[k][c] += s[k][c];
+        }
+        std::vector<double> out(3 * n), ch(n), rot(n);
+        for (std::size_t c = 0; c < 3; ++c) {
+            for (std::size_t k = 0; k < n; ++k) ch[k] = L[k][c];
+            sh::rotate(bands, settings_.lighting_rotation, ch, rot);
+            for (std::size_t k = 0; k < n; ++k) out[3 * k + c] = rot[k];
+        }
+        return out;
+    }
+
+    /// After the bakes: the L x H tables and compressions the requested lxh-* read, each
+    /// built once.
+    void build_derived() {
+        lxh_.clear();
+        pcas_.clear();
+        for (Rep& r : reps_) {
+            if (r.kind != Kind::lxh_unc && r.kind != Kind::lxh_pca) continue;
+            const int nl =
+                settings_.lxh_lighting_bands > 0 ? settings_.lxh_lighting_bands : r.vis_bands;
+            r.table = -1;
+            for (std::size_t i = 0; i < lxh_.size(); ++i)
+                if (lxh_[i].vis_bands == r.vis_bands && lxh_[i].lighting_bands == nl)
+                    r.table = int(i);
+            if (r.table < 0) {
+                const auto t0 = std::chrono::steady_clock::now();
+                const std::vector<double> L = lxh_lighting(nl);
+                LxhBuilt b;
+                b.vis_bands = r.vis_bands;
+                b.lighting_bands = nl;
+                const LxhParam p(settings_.lxh_table_size);
+                b.table = std::make_shared<const LxhTable<LxhParam>>(build_lxh_table(
+                    p, lxh_matrix(nl, L.data(), r.vis_bands), LxhConstruction::symmetric));
+                b.seconds =
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                lxh_.push_back(std::move(b));
+                r.table = int(lxh_.size() - 1);
+            }
+            if (r.kind == Kind::lxh_pca) {
+                build_pca(r);
+                r.model = int(pcas_.size() - 1);
+            }
+        }
+    }
+
+    /// PCA (mean + M vectors, compress::pca) of the visibility of every point r reads (one
+    /// basis for all meshes), its weights as fields, and the per-vector RGB tables
+    /// T_j(n) = b_j . (L x H)(n) (Iwanicki and Sloan, eq. 6).
+    void build_pca(const Rep& r) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const std::size_t kk = std::size_t(r.vis_bands * r.vis_bands);
+        std::vector<std::size_t> offset(data_.size(), 0);
+        std::size_t rows = 0;
+        for (std::size_t b : reads_of(r)) {
+            offset[b] = rows;
+            rows += data_[b].results.size();
+        }
+        compress::MatrixX<double> x(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(kk));
+        for (std::size_t b : reads_of(r))
+            for (std::size_t i = 0; i < data_[b].results.size(); ++i) {
+                const std::vector<double>& v = data_[b].results[i].visibility;
+                for (std::size_t k = 0; k < kk; ++k)
+                    x(Eigen::Index(offset[b] + i), Eigen::Index(k)) = k < v.size() ? v[k] : 0.0;
+            }
+        compress::Pca<double> model;
+        try {
+            model = compress::pca(x, r.vectors);
+        } catch (const std::invalid_argument& e) {
+            sphbasis::detail::throw_invalid(
+                "render::Representations::prepare",
+                "no more PCA vectors for '" + r.name + "' than the baked visibility supports (" +
+                    e.what() + ")");
+        }
+        PcaBuilt pb;
+        pb.rank = model.rank;
+        pb.mesh_field.assign(scene_.meshes.size(), -1);
+        const std::size_t m = std::size_t(r.vectors);
+        for (std::size_t mesh = 0; mesh < scene_.meshes.size(); ++mesh) {
+            const int b = r.mesh_bake[mesh];
+            if (b < 0) continue;
+            const std::size_t off = offset[std::size_t(b)];
+            fields_.push_back(make_field(data_[std::size_t(b)], r.vectors,
+                                         [&](std::size_t i, float* out) {
+                                             for (std::size_t j = 0; j < m; ++j)
+                                                 out[j] = float(model.weights(
+                                                     Eigen::Index(off + i), Eigen::Index(j)));
+                                         }));
+            pb.mesh_field[mesh] = int(fields_.size() - 1);
+        }
+        const LxhTable<LxhParam>& tab = *lxh_[std::size_t(r.table)].table;
+        const std::size_t texels = tab.param.texel_count(), e = 3 * kk, o = 3 * (m + 1);
+        pb.tables.assign(texels * o, 0.f);
+        for (std::size_t t = 0; t < texels; ++t) {
+            const float* src = tab.data.data() + t * e;
+            float* dst = pb.tables.data() + t * o;
+            for (std::size_t c = 0; c < 3; ++c) {
+                double s = 0;
+                for (std::size_t k = 0; k < kk; ++k)
+                    s += model.mean(Eigen::Index(k)) * double(src[3 * k + c]);
+                dst[c] = float(s);
+                for (std::size_t j = 0; j < m; ++j) {
+                    double sj = 0;
+                    for (std::size_t k = 0; k < kk; ++k)
+                        sj += model.basis(Eigen::Index(k), Eigen::Index(j)) *
+                              double(src[3 * k + c]);
+                    dst[3 * (j + 1) + c] = float(sj);
+                }
+            }
+        }
+        pb.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        pcas_.push_back(std::move(pb));
+    }
+    /// The distinct bakes r reads, ascending.
+    static std::vector<std::size_t> reads_of(const Rep& r) {
+        std::vector<std::size_t> out;
+        for (int b : r.mesh_bake)
+            if (b >= 0) out.push_back(std::size_t(b));
+        if (r.probe_bake >= 0) out.push_back(std::size_t(r.probe_bake));
+        std::sort(out.begin(), out.end());
+        out.erase(std::unique(out.begin(), out.end()), out.end());
+        return out;
+    }
 
     /// Representation `index`; with `ready`, also that its bakes are prepared.
     const Rep& rep(std::size_t index, const char* fn, bool ready = true) const {
@@ -917,15 +1141,36 @@ class Representations {
             known += (known.empty() ? "" : ", ") + n;
         for (std::size_t i = 0; i < names_.size(); ++i) {
             const auto& all = representation_names();
-            if (std::find(all.begin(), all.end(), names_[i]) == all.end())
+            if (std::find(all.begin(), all.end(), names_[i]) == all.end() &&
+                !family_member(names_[i]))
                 sphbasis::detail::throw_invalid(
-                    fn, "representations from: " + known + "; got unknown '" + names_[i] + "'");
+                    fn, "representations from: " + known +
+                            " (and lxh-pcaM for 1 <= M <= 36); got unknown '" + names_[i] + "'");
             for (std::size_t j = 0; j < i; ++j)
                 if (names_[j] == names_[i])
                     sphbasis::detail::throw_invalid(fn, "distinct representations (from: " + known +
                                                             "), got '" + names_[i] + "' twice");
         }
     }
+
+    /// The decimal number after `prefix` in `name` (digits only, at most 4), else -1.
+    static int number_after(const std::string& name, const std::string& prefix) {
+        if (name.size() <= prefix.size() || name.size() > prefix.size() + 4 ||
+            name.compare(0, prefix.size(), prefix) != 0)
+            return -1;
+        int v = 0;
+        for (std::size_t i = prefix.size(); i < name.size(); ++i) {
+            if (name[i] < '0' || name[i] > '9') return -1;
+            v = 10 * v + (name[i] - '0');
+        }
+        return name[prefix.size()] == '0' ? -1 : v;
+    }
+    /// Names of a family beyond the listed ones: lxh-pcaM (1 <= M <= 36).
+    static bool family_member(const std::string& name) {
+        const int m = number_after(name, "lxh-pca");
+        return m >= 1 && m <= lxh_pca_bands * lxh_pca_bands;
+    }
+    static constexpr int lxh_pca_bands = 6;  // the visibility lxh-pca* compresses
 
     static bool has_uvs(const MeshView& m) noexcept {
         return m.uvs != nullptr && m.triangle_count > 0;
@@ -1010,6 +1255,36 @@ class Representations {
                 "static lighting (ignores the render-time rotation); shadows and occlusion finer "
                 "than the probe spacing; light leaks where probes straddle walls" +
                 std::string(no_bounce);
+        } else if (name.rfind("lxh-", 0) == 0) {
+            const int k = number_after(name, "lxh-unc"), m = number_after(name, "lxh-pca");
+            if (k == 3 || k == 4 || k == 6) {
+                r.kind = Kind::lxh_unc;
+                r.vis_bands = k;
+                r.bytes_per_element = std::size_t(k * k) * sizeof(float);
+            } else if (m >= 1) {
+                r.kind = Kind::lxh_pca;
+                r.vis_bands = lxh_pca_bands;
+                r.vectors = m;
+                r.bytes_per_element = std::size_t(m) * sizeof(float);
+            } else {  // representation_names() and this parser disagree
+                sphbasis::detail::throw_invalid("render::Representations",
+                                                "an lxh representation, got '" + name + "'");
+            }
+            r.element = "texel";
+            const int nl = settings_.lxh_lighting_bands > 0 ? settings_.lxh_lighting_bands
+                                                             : r.vis_bands;
+            r.cannot_show = "no interreflection; visibility beyond " +
+                            std::to_string(r.vis_bands) + " SH bands (sharp shadows), lighting " +
+                            "beyond " + std::to_string(nl) + " bands";
+            if (r.kind == Kind::lxh_pca)
+                r.cannot_show += "; visibility beyond " + std::to_string(r.vectors) +
+                                 " principal components";
+            for (const MeshView& mv : scene_.meshes)
+                if (!has_uvs(mv)) {
+                    r.element = "vertex";
+                    r.cannot_show += "; meshes without UVs store visibility per vertex";
+                    break;
+                }
         } else if (name == "specular-toksvig" || name == "specular-aliased") {
             r.kind = name == "specular-toksvig" ? Kind::specular_toksvig : Kind::specular_aliased;
             r.cannot_show =
@@ -1111,6 +1386,22 @@ class Representations {
                     r.probe_bake = add_request(q);
                     break;
                 }
+                case Kind::lxh_unc:
+                case Kind::lxh_pca:
+                    r.mesh_bake.assign(nm, -1);
+                    for (std::size_t m = 0; m < nm; ++m) {
+                        if (scene_.meshes[m].triangle_count == 0) continue;
+                        BakeRequest q;
+                        q.mesh = m;
+                        q.settings = base_settings(Quantity::visibility, 0);
+                        q.settings.bands = r.vis_bands;
+                        if (has_uvs(scene_.meshes[m])) {
+                            q.where = BakeRequest::Where::texel;
+                            q.lightmap_size = settings_.lightmap_size;
+                        }
+                        r.mesh_bake[m] = add_request(q);
+                    }
+                    break;
                 case Kind::specular_toksvig:
                 case Kind::specular_aliased:
                     break;
@@ -1289,6 +1580,7 @@ class Representations {
     static int channels_of(const BakeSettings& s) noexcept {
         if (s.quantities & Quantity::transfer) return 3 * s.bands * s.bands;
         if (s.quantities & Quantity::irradiance) return 3 * s.coeffs;
+        if (s.quantities & Quantity::visibility) return s.bands * s.bands;
         return 4;
     }
     static void pack(const BakeSettings& s, const PointResult& r, float* out) noexcept {
@@ -1302,6 +1594,10 @@ class Representations {
             for (std::size_t c = 0; c < 3; ++c)
                 for (std::size_t k = 0; k < n; ++k)
                     out[c * n + k] = k < r.irradiance[c].size() ? float(r.irradiance[c][k]) : 0.f;
+        } else if (s.quantities & Quantity::visibility) {
+            const std::size_t n = std::size_t(s.bands * s.bands);
+            for (std::size_t k = 0; k < n; ++k)
+                out[k] = k < r.visibility.size() ? float(r.visibility[k]) : 0.f;
         } else {
             out[0] = float(r.ao);
             out[1] = float(r.bent.x);
@@ -1330,12 +1626,22 @@ class Representations {
                 std::fill(f.inside.begin(), f.inside.end(), 0);
             return f;
         }
-        f.channels = channels_of(q.settings);
+        return make_field(d, channels_of(q.settings), [&](std::size_t i, float* out) {
+            pack(q.settings, d.results[i], out);
+        });
+    }
+    /// A vertex or texel field of `channels` values per point of bake d, point i's written by
+    /// pack_point(i, out) (texel gutters dilated).
+    template <class PackPoint>
+    static Field make_field(const BakeData& d, int channels, PackPoint&& pack_point) {
+        Field f;
+        f.where = d.request.where;
+        f.channels = channels;
         const std::size_t ch = std::size_t(f.channels);
-        if (q.where == BakeRequest::Where::vertex) {
+        if (f.where == BakeRequest::Where::vertex) {
             f.data.assign(d.results.size() * ch, 0.f);
             for (std::size_t v = 0; v < d.results.size(); ++v)
-                pack(q.settings, d.results[v], f.data.data() + v * ch);
+                pack_point(v, f.data.data() + v * ch);
             return f;
         }
         f.width = d.layout.width;
@@ -1343,8 +1649,8 @@ class Representations {
         f.data.assign(std::size_t(f.width) * std::size_t(f.height) * ch, 0.f);
         for (std::size_t i = 0; i < d.results.size(); ++i) {
             const LightmapSample& s = d.layout.samples[i];
-            pack(q.settings, d.results[i],
-                 f.data.data() + (std::size_t(s.y) * std::size_t(f.width) + std::size_t(s.x)) * ch);
+            pack_point(i, f.data.data() +
+                              (std::size_t(s.y) * std::size_t(f.width) + std::size_t(s.x)) * ch);
         }
         dilate(f.data.data(), f.width, f.height, f.channels, d.layout.covered, gutter);
         return f;
@@ -1398,6 +1704,8 @@ class Representations {
     std::array<std::vector<double>, 3> prt_light_;
     double window_lambda_ = 0;
     std::unique_ptr<SpecularShading> spec_;
+    std::vector<LxhBuilt> lxh_;
+    std::vector<PcaBuilt> pcas_;
 };
 
 }  // namespace sphbasis::render
