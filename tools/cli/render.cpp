@@ -419,7 +419,7 @@ int run_render(const RenderOptions& o) {
         }
         rep.plan.push_back(
             {"lighting rotation",
-             "the reference's lighting rotated; irradiance-sh9*, ao, bent and prt-* rotate their "
+             "the reference's lighting rotated; irradiance-sh9*, ao, bent, prt-* and lxh-* rotate their "
              "SH at render time (no bake); lightmaps, volume and specular keep the baked "
              "lighting"});
     }
