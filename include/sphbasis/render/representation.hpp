@@ -86,6 +86,7 @@
 #include "../core/frame.hpp"
 #include "../ops/compression.hpp"
 #include "../ops/lxh_table.hpp"
+#include "../ops/normal_basis.hpp"
 #include "../ops/sh_rotation.hpp"
 #include "../param/cubemap.hpp"
 #include "../ops/sh_windowing.hpp"
@@ -127,7 +128,11 @@ inline const std::vector<std::string>& representation_names() {
                                                 "lxh-pca8",
                                                 "lxh-pca12",
                                                 "lxh-pca16",
-                                                "lxh-pca24"};
+                                                "lxh-pca24",
+                                                "prt-normalmap",
+                                                "prt-normalmap-svd4",
+                                                "prt-normalmap-svd6",
+                                                "prt-ratio"};
     return names;
 }
 
@@ -370,7 +375,7 @@ inline std::vector<std::uint8_t> settings_bytes(const BakeSettings& s) {
 }
 
 constexpr char magic[8] = {'S', 'P', 'H', 'B', 'B', 'A', 'K', 'E'};
-constexpr std::uint32_t format_version = 1;
+constexpr std::uint32_t format_version = 2;  // 2: transfer_matrix
 
 }  // namespace repr_detail
 
@@ -472,6 +477,7 @@ inline std::vector<std::uint8_t> serialize(const BakeData& data) {
         w.u8(r.transfer_rgb ? 1 : 0);
         for (const auto& v : r.irradiance) w.vec(v);
         for (const auto& v : r.radiance) w.vec(v);
+        for (const auto& v : r.transfer_matrix) w.vec(v);
         w.u8(r.inside ? 1 : 0);
     }
     w.u64(data.plan.size());
@@ -525,7 +531,7 @@ inline BakeData deserialize(const std::vector<std::uint8_t>& bytes) {
     r.pos += nc;
     L.skipped_triangles = static_cast<std::size_t>(r.u64());
     L.degenerate_triangles = static_cast<std::size_t>(r.u64());
-    d.results.resize(r.count(8 * 5 + 8 * 12 + 2));
+    d.results.resize(r.count(8 * 5 + 8 * 15 + 2));
     for (PointResult& p : d.results) {
         p.ao = r.f64();
         p.ao_stderr = r.f64();
@@ -537,6 +543,7 @@ inline BakeData deserialize(const std::vector<std::uint8_t>& bytes) {
         p.transfer_rgb = r.u8() != 0;
         for (auto& v : p.irradiance) v = r.vec();
         for (auto& v : p.radiance) v = r.vec();
+        for (auto& v : p.transfer_matrix) v = r.vec();
         p.inside = r.u8() != 0;
     }
     d.plan.resize(r.count(32));
@@ -676,6 +683,7 @@ class Representations {
         fields_.clear();
         for (const BakeData& d : data_) fields_.push_back(make_field(d));
         build_derived();
+        build_svd_fields();
         prepared_ = true;
     }
     /// L x H tables and visibility compressions built by prepare() (only those a requested
@@ -814,6 +822,24 @@ class Representations {
                 }
                 return out;
             }
+            case Kind::prt_ratio: {
+                const int b = r.mesh_bake[hit.mesh];
+                if (b < 0) return {0, 0, 0};
+                std::array<double, 3 * 64> t;
+                lookup(fields_[std::size_t(b)], hit, t.data());
+                const std::size_t n = std::size_t(settings_.prt_bands * settings_.prt_bands);
+                const RGB u0 = sh_shade(irr_, hit.shading_normal, {1, 1, 1});
+                const RGB um = sh_shade(irr_, Scene::normal_mapped(hit), hit.albedo);
+                RGB out{0, 0, 0};
+                for (std::size_t c = 0; c < 3; ++c) {
+                    double sh = 0;
+                    for (std::size_t k = 0; k < n; ++k) sh += t[c * n + k] * prt_light_[c][k];
+                    out[c] = u0[c] > 1e-12 ? std::max(sh, 0.0) / u0[c] * um[c] : 0.0;
+                }
+                return out;
+            }
+            case Kind::prt_normalmap:
+                return r.svd_vectors > 0 ? shade_svd(r, hit) : shade_normalmap(r, hit);
             case Kind::specular_toksvig:
                 return spec_->shade(SpecularShading::Mode::toksvig, hit, view, footprint);
             case Kind::specular_aliased:
@@ -891,9 +917,10 @@ class Representations {
         s.cached = prepared_ && any && all_cached;
         if (prepared_ && r.table >= 0) s.build_seconds += lxh_[std::size_t(r.table)].seconds;
         if (prepared_ && r.model >= 0) s.build_seconds += pcas_[std::size_t(r.model)].seconds;
+        if (prepared_) s.build_seconds += r.build_seconds;
         s.element = r.element;
         s.bytes_per_element = r.bytes_per_element;
-        if (r.kind == Kind::prt_vertex || r.kind == Kind::prt_texel) {
+        if (r.kind == Kind::prt_vertex || r.kind == Kind::prt_texel || r.kind == Kind::prt_ratio) {
             bool rgb = false;
             if (prepared_)
                 for (int b : used)
@@ -931,7 +958,9 @@ class Representations {
         specular_toksvig,
         specular_aliased,
         lxh_unc,
-        lxh_pca
+        lxh_pca,
+        prt_ratio,
+        prt_normalmap
     };
     struct Rep {
         std::string name;
@@ -946,6 +975,9 @@ class Representations {
         int vis_bands = 0, vectors = 0;  // lxh-*: visibility bands, PCA vectors
         int table = -1;                  // lxh-*: index into lxh_ (after prepare())
         int model = -1;                  // lxh-pca*: index into pcas_ (after prepare())
+        int svd_vectors = 0;             // prt-normalmap-svd*: normal-basis functions kept
+        double build_seconds = 0;        // prt-normalmap-svd*: projecting the bakes
+        std::vector<int> mesh_field;     // prt-normalmap-svd*: per mesh, index into fields_
     };
     /// Baked values laid out for lookups at float precision (probes: double).
     struct Field {
@@ -957,6 +989,156 @@ class Representations {
         ProbeGrid grid;
     };
     static constexpr int gutter = 4;  // texels dilated around each chart
+
+    /// prt-normalmap: L_in = M l (3 bands, world frame) per channel, shaded at the mapped
+    /// normal: e(n) = y(n)^T C M l (the tangent rotation R is the identity in world frame).
+    RGB shade_normalmap(const Rep& r, const Hit& hit) const {
+        const int b = r.mesh_bake[hit.mesh];
+        if (b < 0) return {0, 0, 0};
+        const std::size_t n = std::size_t(settings_.prt_bands * settings_.prt_bands);
+        std::array<double, 27 * 64> m;
+        lookup(fields_[std::size_t(b)], hit, m.data());
+        const vec3<double> nm = Scene::normal_mapped(hit);
+        double y[9];
+        sh::eval_unit(3, nm.x, nm.y, nm.z, y);
+        RGB out{0, 0, 0};
+        for (std::size_t c = 0; c < 3; ++c) {
+            double e = 0;
+            for (std::size_t i = 0; i < 9; ++i) {
+                const double* row = m.data() + c * 9 * n + i * n;
+                double li = 0;
+                for (std::size_t k = 0; k < n; ++k) li += row[k] * prt_light_[c][k];
+                e += cosine9_[i] * li * y[i];
+            }
+            out[c] = hit.albedo[c] * e;
+        }
+        return out;
+    }
+    /// The tangent frame a hit reads a prt-normalmap-svd field in: the texel's (tangent,
+    /// bitangent, normal) as the lightmaps, Frame(normal) for per-vertex fields.
+    static Frame<double> svd_frame(const Field& f, const Hit& hit) {
+        using namespace detail::rt;
+        const V3 ns = hit.shading_normal;
+        if (f.where == BakeRequest::Where::vertex || !(length(hit.tangent) > 0.5))
+            return Frame<double>(ns);
+        return Frame<double>(hit.tangent, cross(ns, hit.tangent) * hit.bitangent_sign, ns);
+    }
+    /// prt-normalmap-svdM: per texel G = V_M^T R M (M x N^2 per channel), e(n) =
+    /// (a(n)^T V_M) (G l) with a(n) = pi a_l y_lm(n) in the tangent frame.
+    RGB shade_svd(const Rep& r, const Hit& hit) const {
+        const int fi = r.mesh_field[hit.mesh];
+        if (fi < 0) return {0, 0, 0};
+        const Field& f = fields_[std::size_t(fi)];
+        const std::size_t n = std::size_t(settings_.prt_bands * settings_.prt_bands);
+        const std::size_t mv = std::size_t(r.svd_vectors);
+        std::array<double, 3 * 6 * 64> g;
+        lookup(f, hit, g.data());
+        const Frame<double> fr = svd_frame(f, hit);
+        using namespace detail::rt;
+        const V3 nm = Scene::normal_mapped(hit);
+        V3 u{dot(nm, fr.s), dot(nm, fr.t), std::max(dot(nm, fr.n), 0.0)};
+        u = normalized(u, {0, 0, 1});
+        double y[9], p[9];
+        sh::eval_unit(3, u.x, u.y, u.z, y);
+        for (std::size_t k = 0; k < mv; ++k) {
+            p[k] = 0;
+            for (std::size_t i = 0; i < 9; ++i)
+                p[k] += constants::pi * cosine9_[i] * y[i] *
+                        normal_v_(Eigen::Index(i), Eigen::Index(k));
+        }
+        RGB out{0, 0, 0};
+        for (std::size_t c = 0; c < 3; ++c) {
+            double e = 0;
+            for (std::size_t k = 0; k < mv; ++k) {
+                const double* row = g.data() + (c * mv + k) * n;
+                double h = 0;
+                for (std::size_t j = 0; j < n; ++j) h += row[j] * prt_light_[c][j];
+                e += p[k] * h;
+            }
+            out[c] = hit.albedo[c] * e * constants::inv_pi;
+        }
+        return out;
+    }
+    /// The fields of each prt-normalmap-svd*: G = V_M^T R M per point, R the SH rotation of
+    /// 3 bands from world to the point's tangent frame (by least squares on 25 directions:
+    /// exact for 3-band functions, mirrored frames included).
+    void build_svd_fields() {
+        bool any = false;
+        for (const Rep& r : reps_) any = any || (r.kind == Kind::prt_normalmap && r.svd_vectors);
+        if (!any) return;
+        for (Rep& r : reps_) r.build_seconds = 0;
+        NormalBasisSettings nbs;
+        nbs.bands = 3;
+        nbs.clamped = false;
+        nbs.weighting = NormalWeighting::cosine;
+        normal_v_ = normal_basis(nbs).v;
+        constexpr int S = 25;
+        std::array<vec3<double>, S> u;
+        Eigen::MatrixXd yl(S, 9);
+        for (int s = 0; s < S; ++s) {
+            const double z = 1 - (2 * s + 1) / double(S), rr = std::sqrt(1 - z * z);
+            const double ph = 2.399963229728653 * s;  // the golden angle
+            u[std::size_t(s)] = {rr * std::cos(ph), rr * std::sin(ph), z};
+            double y[9];
+            sh::eval_unit(3, u[std::size_t(s)].x, u[std::size_t(s)].y, u[std::size_t(s)].z, y);
+            for (int i = 0; i < 9; ++i) yl(s, i) = y[i];
+        }
+        const Eigen::MatrixXd pinv = (yl.transpose() * yl).inverse() * yl.transpose();
+        const std::size_t n = std::size_t(settings_.prt_bands * settings_.prt_bands);
+        for (Rep& r : reps_) {
+            if (r.kind != Kind::prt_normalmap || r.svd_vectors == 0) continue;
+            const std::size_t mv = std::size_t(r.svd_vectors);
+            const Eigen::MatrixXd vt = normal_v_.leftCols(Eigen::Index(mv)).transpose();
+            r.mesh_field.assign(scene_.meshes.size(), -1);
+            for (std::size_t mesh = 0; mesh < scene_.meshes.size(); ++mesh) {
+                const int b = r.mesh_bake[mesh];
+                if (b < 0) continue;
+                const BakeData& d = data_[std::size_t(b)];
+                std::vector<double> vn;
+                if (d.request.where == BakeRequest::Where::vertex)
+                    vn = vertex_normals(scene_.meshes[mesh]);
+                const auto t0 = std::chrono::steady_clock::now();
+                fields_.push_back(make_field(d, int(3 * mv * n), [&](std::size_t i, float* out) {
+                    using namespace detail::rt;
+                    Frame<double> fr;
+                    if (d.request.where == BakeRequest::Where::vertex) {
+                        fr = Frame<double>(
+                            normalized(V3{vn[3 * i], vn[3 * i + 1], vn[3 * i + 2]}, {0, 0, 1}));
+                    } else {
+                        const BakePoint& bp = d.layout.samples[i].point;
+                        const V3 nn = normalized(bp.n, {0, 0, 1});
+                        fr = length(bp.tangent) > 0.5
+                                 ? Frame<double>(bp.tangent,
+                                                 cross(nn, bp.tangent) * bp.bitangent_sign, nn)
+                                 : Frame<double>(nn);
+                    }
+                    Eigen::MatrixXd yw(S, 9);
+                    for (int s2 = 0; s2 < S; ++s2) {
+                        const vec3<double>& q = u[std::size_t(s2)];
+                        const V3 w = fr.s * q.x + fr.t * q.y + fr.n * q.z;
+                        double y[9];
+                        sh::eval_unit(3, w.x, w.y, w.z, y);
+                        for (int k = 0; k < 9; ++k) yw(s2, k) = y[k];
+                    }
+                    const Eigen::MatrixXd vr = vt * (pinv * yw);  // mv x 9
+                    const PointResult& pr = d.results[i];
+                    for (std::size_t c = 0; c < 3; ++c)
+                        for (std::size_t k = 0; k < mv; ++k)
+                            for (std::size_t j = 0; j < n; ++j) {
+                                double v = 0;
+                                for (std::size_t q = 0; q < 9; ++q)
+                                    if (q * n + j < pr.transfer_matrix[c].size())
+                                        v += vr(Eigen::Index(k), Eigen::Index(q)) *
+                                             pr.transfer_matrix[c][q * n + j];
+                                out[(c * mv + k) * n + j] = float(v);
+                            }
+                }));
+                r.mesh_field[mesh] = int(fields_.size() - 1);
+                r.build_seconds +=
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            }
+        }
+    }
 
     using LxhParam = param::CubeMap<float>;
     /// An L x H table (visibility bands, lighting bands), shared by the lxh-* that read it.
@@ -1129,6 +1311,10 @@ class Representations {
         sphbasis::detail::check_range(fn, "settings.lightmap_size", settings_.lightmap_size, 1,
                                       16384);
         sphbasis::detail::check_orthonormal(settings_.lighting_rotation, 1e-6, fn);
+        sphbasis::detail::check_range(fn, "settings.lxh_table_size", settings_.lxh_table_size, 1,
+                                      1024);
+        sphbasis::detail::check_range(fn, "settings.lxh_lighting_bands",
+                                      settings_.lxh_lighting_bands, 0, max_lxh_bands);
         if (settings_.has_probes) settings_.probes.validate();
         if (rt_.mesh_count() != scene_.meshes.size())
             sphbasis::detail::throw_invalid(
@@ -1216,6 +1402,30 @@ class Representations {
                         r.cannot_show += "; meshes without UVs read per-vertex transfer";
                         break;
                     }
+        } else if (name == "prt-ratio") {
+            r.kind = Kind::prt_ratio;
+            r.element = "texel";
+            r.cannot_show = "shadowing of the tilted normal taken from the surface normal's "
+                            "(one ratio per texel)" + std::string(no_bounce);
+            for (const MeshView& m : scene_.meshes)
+                if (!has_uvs(m)) r.element = "vertex";
+        } else if (name.rfind("prt-normalmap", 0) == 0) {
+            r.kind = Kind::prt_normalmap;
+            const int nb = settings_.prt_bands;
+            if (name != "prt-normalmap") {
+                r.svd_vectors = name == "prt-normalmap-svd4" ? 4 : 6;
+                r.bytes_per_element = 3 * std::size_t(r.svd_vectors * nb * nb) * sizeof(float);
+            } else {
+                r.bytes_per_element = 3 * std::size_t(9 * nb * nb) * sizeof(float);
+            }
+            r.element = "texel";
+            r.cannot_show = "lighting above " + std::to_string(nb) +
+                            " SH bands; incident light above 3 bands" + std::string(no_bounce);
+            if (r.svd_vectors > 0)
+                r.cannot_show += "; normal variation beyond " + std::to_string(r.svd_vectors) +
+                                 " normal-basis functions";
+            for (const MeshView& m : scene_.meshes)
+                if (!has_uvs(m)) r.element = "vertex";
         } else if (name.rfind("lightmap-", 0) == 0) {
             r.kind = Kind::lightmap;
             const std::string b = name.substr(9);
@@ -1404,7 +1614,27 @@ class Representations {
                     break;
                 case Kind::specular_toksvig:
                 case Kind::specular_aliased:
+                case Kind::prt_ratio:
+                case Kind::prt_normalmap:
                     break;
+            }
+            if (r.kind == Kind::prt_ratio || r.kind == Kind::prt_normalmap) {
+                needs_sh_ = true;
+                r.mesh_bake.assign(nm, -1);
+                for (std::size_t m = 0; m < nm; ++m) {
+                    if (scene_.meshes[m].triangle_count == 0) continue;
+                    BakeRequest q;
+                    q.mesh = m;
+                    q.settings = base_settings(r.kind == Kind::prt_ratio ? Quantity::transfer
+                                                                         : Quantity::transfer_matrix,
+                                               settings_.bounces);
+                    q.settings.bands = settings_.prt_bands;
+                    if (has_uvs(scene_.meshes[m])) {
+                        q.where = BakeRequest::Where::texel;
+                        q.lightmap_size = settings_.lightmap_size;
+                    }
+                    r.mesh_bake[m] = add_request(q);
+                }
             }
             r.reads_bakes = r.probe_bake >= 0;
             for (int b : r.mesh_bake) r.reads_bakes = r.reads_bakes || b >= 0;
@@ -1578,13 +1808,20 @@ class Representations {
 
     /// Channels of a result: ao + bent (4), transfer (3 bands^2) or irradiance (3 coeffs).
     static int channels_of(const BakeSettings& s) noexcept {
+        if (s.quantities & Quantity::transfer_matrix) return 27 * s.bands * s.bands;
         if (s.quantities & Quantity::transfer) return 3 * s.bands * s.bands;
         if (s.quantities & Quantity::irradiance) return 3 * s.coeffs;
         if (s.quantities & Quantity::visibility) return s.bands * s.bands;
         return 4;
     }
     static void pack(const BakeSettings& s, const PointResult& r, float* out) noexcept {
-        if (s.quantities & Quantity::transfer) {
+        if (s.quantities & Quantity::transfer_matrix) {
+            const std::size_t n = 9 * std::size_t(s.bands * s.bands);
+            for (std::size_t c = 0; c < 3; ++c)
+                for (std::size_t k = 0; k < n; ++k)
+                    out[c * n + k] =
+                        k < r.transfer_matrix[c].size() ? float(r.transfer_matrix[c][k]) : 0.f;
+        } else if (s.quantities & Quantity::transfer) {
             const std::size_t n = std::size_t(s.bands * s.bands);
             for (std::size_t c = 0; c < 3; ++c)
                 for (std::size_t k = 0; k < n; ++k)
@@ -1706,6 +1943,7 @@ class Representations {
     std::unique_ptr<SpecularShading> spec_;
     std::vector<LxhBuilt> lxh_;
     std::vector<PcaBuilt> pcas_;
+    Eigen::MatrixXd normal_v_;  // prt-normalmap-svd*: V of the normal basis (9 x 9)
 };
 
 }  // namespace sphbasis::render
