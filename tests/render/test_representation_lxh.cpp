@@ -295,3 +295,36 @@ TEST_CASE("prt-normalmap under a shadowing sphere: darker than unshadowed, close
         CHECK(e < 0.5 * rel_rms(prt, irr));
     }
 }
+
+TEST_CASE("prt-cpca: one cluster at full rank equals prt-texel; more clusters and vectors help",
+          "[render][cpca]") {
+    {
+        // A convex sphere's transfer a_l y_lm(n) has rank 8 after centring (bands 1 and 2).
+        World w = lone_sphere();
+        render::RepresentationSettings s = small_settings();
+        render::Representations r(w.desc, *w.rt, s, {"prt-texel", "prt-cpca-1-8"});
+        r.prepare(nullptr);
+        CHECK(r.bakes().size() == 1);
+        const Camera cam = sphbasis_test::camera_at({0, -4, 1}, {0, 0, 0}, 16, 16);
+        const Image prt = r.render(0, cam, 1), cp = r.render(1, cam, 1);
+        // Nearest-texel weights against bilinear transfer: equal at the texel level only.
+        CHECK(rel_rms(cp, prt) < 2e-2);
+        CHECK(r.stats(1).bytes_per_element == 8 * 4 + 2);
+        render::Representations bad(w.desc, *w.rt, s, {"prt-cpca-1-9"});
+        CHECK_THROWS_WITH(bad.prepare(nullptr),
+                          Catch::Contains("prt-cpca-1-9") && Catch::Contains("rank"));
+        render::Representations many(w.desc, *w.rt, s, {"prt-cpca-4000-1"});
+        CHECK_THROWS_WITH(many.prepare(nullptr), Catch::Contains("number of points"));
+    }
+    World w = sphere_on_plane();
+    render::RepresentationSettings s = small_settings();
+    const std::vector<std::string> names{"prt-texel", "prt-cpca-1-1", "prt-cpca-8-4"};
+    render::Representations r(w.desc, *w.rt, s, names);
+    r.prepare(nullptr);
+    const Camera cam = sphbasis_test::camera_at({0, -3, 1.5}, {0, 0, 0.3}, 24, 24);
+    const Image prt = r.render(0, cam, 1);
+    const double e1 = rel_rms(r.render(1, cam, 1), prt), e8 = rel_rms(r.render(2, cam, 1), prt);
+    std::printf("prt-cpca: rel rms to prt-texel: 1-1 %.3g, 8-4 %.3g\n", e1, e8);
+    CHECK(e8 < e1);
+    CHECK(r.stats(2).build_seconds > 0);
+}

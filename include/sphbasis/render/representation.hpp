@@ -132,7 +132,10 @@ inline const std::vector<std::string>& representation_names() {
                                                 "prt-normalmap",
                                                 "prt-normalmap-svd4",
                                                 "prt-normalmap-svd6",
-                                                "prt-ratio"};
+                                                "prt-ratio",
+                                                "prt-cpca-4-2",
+                                                "prt-cpca-8-4",
+                                                "prt-cpca-16-4"};
     return names;
 }
 
@@ -684,6 +687,7 @@ class Representations {
         for (const BakeData& d : data_) fields_.push_back(make_field(d));
         build_derived();
         build_svd_fields();
+        build_cpca();
         prepared_ = true;
     }
     /// L x H tables and visibility compressions built by prepare() (only those a requested
@@ -840,6 +844,22 @@ class Representations {
             }
             case Kind::prt_normalmap:
                 return r.svd_vectors > 0 ? shade_svd(r, hit) : shade_normalmap(r, hit);
+            case Kind::prt_cpca: {
+                const int fi = r.mesh_field[hit.mesh];
+                if (fi < 0) return {0, 0, 0};
+                std::array<double, 65> w;
+                lookup_nearest(fields_[std::size_t(fi)], hit, w.data());
+                const std::size_t m = std::size_t(r.vectors);
+                const std::size_t cl = std::size_t(std::clamp(w[0], 0.0, double(r.clusters - 1)));
+                const double* e = r.cpca_exit.data() + cl * (m + 1) * 3;
+                RGB out{0, 0, 0};
+                for (std::size_t c = 0; c < 3; ++c) {
+                    double s = e[c];
+                    for (std::size_t j = 0; j < m; ++j) s += w[j + 1] * e[3 * (j + 1) + c];
+                    out[c] = hit.albedo[c] * s;
+                }
+                return out;
+            }
             case Kind::specular_toksvig:
                 return spec_->shade(SpecularShading::Mode::toksvig, hit, view, footprint);
             case Kind::specular_aliased:
@@ -960,7 +980,8 @@ class Representations {
         lxh_unc,
         lxh_pca,
         prt_ratio,
-        prt_normalmap
+        prt_normalmap,
+        prt_cpca
     };
     struct Rep {
         std::string name;
@@ -976,6 +997,8 @@ class Representations {
         int table = -1;                  // lxh-*: index into lxh_ (after prepare())
         int model = -1;                  // lxh-pca*: index into pcas_ (after prepare())
         int svd_vectors = 0;             // prt-normalmap-svd*: normal-basis functions kept
+        int clusters = 0;                // prt-cpca-C-M: C (vectors: M)
+        std::vector<double> cpca_exit;   // prt-cpca: per cluster, (M + 1) x 3 exit values
         double build_seconds = 0;        // prt-normalmap-svd*: projecting the bakes
         std::vector<int> mesh_field;     // prt-normalmap-svd*: per mesh, index into fields_
     };
@@ -1137,6 +1160,96 @@ class Representations {
                 r.build_seconds +=
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             }
+        }
+    }
+
+    /// The field value at the nearest texel, or the vertex of the largest barycentric weight.
+    static void lookup_nearest(const Field& f, const Hit& h, double* out) noexcept {
+        const std::size_t ch = std::size_t(f.channels);
+        const float* p = nullptr;
+        if (f.where == BakeRequest::Where::vertex) {
+            const double w[3] = {1 - h.u - h.v, h.u, h.v};
+            const int k = w[0] >= w[1] && w[0] >= w[2] ? 0 : (w[1] >= w[2] ? 1 : 2);
+            const std::size_t v = h.vertices[std::size_t(k)];
+            if ((v + 1) * ch <= f.data.size()) p = f.data.data() + v * ch;
+        } else {
+            double x = h.uv[0] * f.width, y = (1 - h.uv[1]) * f.height;
+            if (!std::isfinite(x)) x = 0;
+            if (!std::isfinite(y)) y = 0;
+            const int xi = std::clamp(int(std::floor(x)), 0, f.width - 1);
+            const int yi = std::clamp(int(std::floor(y)), 0, f.height - 1);
+            p = f.data.data() + (std::size_t(yi) * std::size_t(f.width) + std::size_t(xi)) * ch;
+        }
+        for (std::size_t c = 0; c < ch; ++c) out[c] = p ? double(p[c]) : 0.0;
+    }
+    /// prt-cpca-C-M: iterative CPCA (compress::cpca_iterative) of the transfer of every point
+    /// read (3 N^2 numbers, RGB), fields of (cluster, M weights), and the per-cluster exit
+    /// values mu_c . l and b_cj . l for the current lighting (the course's CPCA rendering).
+    void build_cpca() {
+        const std::size_t n = std::size_t(settings_.prt_bands * settings_.prt_bands);
+        for (Rep& r : reps_) {
+            if (r.kind != Kind::prt_cpca) continue;
+            const auto t0 = std::chrono::steady_clock::now();
+            std::vector<std::size_t> offset(data_.size(), 0);
+            std::size_t rows = 0;
+            for (std::size_t b : reads_of(r)) {
+                offset[b] = rows;
+                rows += data_[b].results.size();
+            }
+            compress::MatrixX<double> x(static_cast<Eigen::Index>(rows),
+                                        static_cast<Eigen::Index>(3 * n));
+            for (std::size_t b : reads_of(r))
+                for (std::size_t i = 0; i < data_[b].results.size(); ++i)
+                    for (std::size_t c = 0; c < 3; ++c)
+                        for (std::size_t k = 0; k < n; ++k) {
+                            const auto& t = data_[b].results[i].transfer[c];
+                            x(Eigen::Index(offset[b] + i), Eigen::Index(c * n + k)) =
+                                k < t.size() ? t[k] : 0.0;
+                        }
+            compress::CpcaSettings cs;
+            cs.clusters = r.clusters;
+            cs.vectors = r.vectors;
+            cs.seed = settings_.seed + 1;
+            compress::Cpca<double> model;
+            try {
+                model = compress::cpca_iterative(x, cs);
+            } catch (const std::invalid_argument& e) {
+                sphbasis::detail::throw_invalid(
+                    "render::Representations::prepare",
+                    "clusters and vectors the baked transfer supports for '" + r.name + "' (" +
+                        e.what() + ")");
+            }
+            const std::size_t m = std::size_t(r.vectors);
+            r.mesh_field.assign(scene_.meshes.size(), -1);
+            for (std::size_t mesh = 0; mesh < scene_.meshes.size(); ++mesh) {
+                const int b = r.mesh_bake[mesh];
+                if (b < 0) continue;
+                const std::size_t off = offset[std::size_t(b)];
+                fields_.push_back(make_field(data_[std::size_t(b)], int(m + 1),
+                                             [&](std::size_t i, float* out) {
+                                                 out[0] = float(model.cluster[off + i]);
+                                                 for (std::size_t j = 0; j < m; ++j)
+                                                     out[j + 1] = float(model.weights(
+                                                         Eigen::Index(off + i), Eigen::Index(j)));
+                                             }));
+                r.mesh_field[mesh] = int(fields_.size() - 1);
+            }
+            // Exit values: the lighting matrix (3 N^2 x 3), channel c's lighting in rows c N^2..
+            compress::MatrixX<double> light = compress::MatrixX<double>::Zero(Eigen::Index(3 * n), 3);
+            for (std::size_t c = 0; c < 3; ++c)
+                for (std::size_t k = 0; k < n; ++k)
+                    light(Eigen::Index(c * n + k), Eigen::Index(c)) = prt_light_[c][k];
+            const compress::ExitValues<double> ev = compress::exit_values(model, light);
+            r.cpca_exit.assign(std::size_t(r.clusters) * (m + 1) * 3, 0.0);
+            for (std::size_t cl = 0; cl < std::size_t(model.clusters()); ++cl)
+                for (std::size_t c = 0; c < 3; ++c) {
+                    double* e = r.cpca_exit.data() + cl * (m + 1) * 3;
+                    e[c] = ev.mean(Eigen::Index(cl), Eigen::Index(c));
+                    for (std::size_t j = 0; j < m; ++j)
+                        e[3 * (j + 1) + c] = ev.basis[cl](Eigen::Index(j), Eigen::Index(c));
+                }
+            r.build_seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         }
     }
 
@@ -1354,7 +1467,18 @@ class Representations {
     /// Names of a family beyond the listed ones: lxh-pcaM (1 <= M <= 36).
     static bool family_member(const std::string& name) {
         const int m = number_after(name, "lxh-pca");
-        return m >= 1 && m <= lxh_pca_bands * lxh_pca_bands;
+        int c = 0, v = 0;
+        return (m >= 1 && m <= lxh_pca_bands * lxh_pca_bands) || cpca_name(name, c, v);
+    }
+    /// prt-cpca-C-M: C clusters (1..4096) of M vectors (1..64).
+    static bool cpca_name(const std::string& name, int& c, int& m) {
+        const std::string pre = "prt-cpca-";
+        if (name.compare(0, pre.size(), pre) != 0) return false;
+        const std::size_t dash = name.find('-', pre.size());
+        if (dash == std::string::npos) return false;
+        c = number_after(name.substr(0, dash), pre);
+        m = number_after(name.substr(dash), "-");
+        return c >= 1 && c <= 4096 && m >= 1 && m <= 64;
     }
     static constexpr int lxh_pca_bands = 6;  // the visibility lxh-pca* compresses
 
@@ -1402,6 +1526,21 @@ class Representations {
                         r.cannot_show += "; meshes without UVs read per-vertex transfer";
                         break;
                     }
+        } else if (name.rfind("prt-cpca-", 0) == 0) {
+            r.kind = Kind::prt_cpca;
+            if (!cpca_name(name, r.clusters, r.vectors))
+                sphbasis::detail::throw_invalid("render::Representations",
+                                                "prt-cpca-C-M, got '" + name + "'");
+            r.element = "texel";
+            r.bytes_per_element = std::size_t(r.vectors) * sizeof(float) + 2;  // + cluster index
+            r.cannot_show = "lighting above " + std::to_string(settings_.prt_bands) +
+                            " SH bands; no normal-map detail; transfer beyond " +
+                            std::to_string(r.vectors) + " vectors in each of " +
+                            std::to_string(r.clusters) +
+                            " clusters (read nearest: clusters cannot be filtered)" +
+                            std::string(no_bounce);
+            for (const MeshView& m : scene_.meshes)
+                if (!has_uvs(m)) r.element = "vertex";
         } else if (name == "prt-ratio") {
             r.kind = Kind::prt_ratio;
             r.element = "texel";
@@ -1616,17 +1755,20 @@ class Representations {
                 case Kind::specular_aliased:
                 case Kind::prt_ratio:
                 case Kind::prt_normalmap:
+                case Kind::prt_cpca:
                     break;
             }
-            if (r.kind == Kind::prt_ratio || r.kind == Kind::prt_normalmap) {
+            if (r.kind == Kind::prt_ratio || r.kind == Kind::prt_normalmap ||
+                r.kind == Kind::prt_cpca) {
                 needs_sh_ = true;
                 r.mesh_bake.assign(nm, -1);
                 for (std::size_t m = 0; m < nm; ++m) {
                     if (scene_.meshes[m].triangle_count == 0) continue;
                     BakeRequest q;
                     q.mesh = m;
-                    q.settings = base_settings(r.kind == Kind::prt_ratio ? Quantity::transfer
-                                                                         : Quantity::transfer_matrix,
+                    q.settings = base_settings(r.kind == Kind::prt_normalmap
+                                                   ? Quantity::transfer_matrix
+                                                   : Quantity::transfer,
                                                settings_.bounces);
                     q.settings.bands = settings_.prt_bands;
                     if (has_uvs(scene_.meshes[m])) {
