@@ -155,7 +155,8 @@ TEST_CASE("lxh representations: the plan bakes visibility only for lxh-*, tables
         r.prepare(nullptr);
         CHECK(r.lxh_tables_built() == 0);
         CHECK(r.compressions_built() == 0);
-        for (const auto& q : r.bakes()) CHECK_FALSE(q.settings.quantities & render::Quantity::visibility);
+        for (const auto& q : r.bakes())
+            CHECK_FALSE(q.settings.quantities & render::Quantity::visibility);
     }
     {
         // unc6 and pca4 read the same 6-band visibility; unc3 its own; one table per bands.
@@ -218,16 +219,15 @@ TEST_CASE("lxh representations: a convex sphere converges to the irradiance of t
     // One vector more than the rank: a clear error at prepare().
     render::Representations bad(w.desc, *w.rt, s, {"lxh-pca22"});
     CHECK_THROWS_WITH(bad.prepare(nullptr), Catch::Contains("lxh-pca22") &&
-                                                Catch::Contains("rank") &&
-                                                Catch::Contains("21"));
+                                                Catch::Contains("rank") && Catch::Contains("21"));
     CHECK_THROWS_AS(bad.prepare(nullptr), std::invalid_argument);
 }
 
 TEST_CASE("lxh representations: PCA error falls with the number of vectors", "[render][lxh]") {
     World w = sphere_on_plane();
     render::RepresentationSettings s = small_settings();
-    const std::vector<std::string> names{"lxh-unc6", "lxh-pca4", "lxh-pca8", "lxh-pca16",
-                                         "lxh-pca24", "lxh-pca36"};
+    const std::vector<std::string> names{"lxh-unc6",  "lxh-pca4",  "lxh-pca8",
+                                         "lxh-pca16", "lxh-pca24", "lxh-pca36"};
     render::Representations r(w.desc, *w.rt, s, names);
     r.prepare(nullptr);
     CHECK(r.bakes().size() == 2);
@@ -248,7 +248,7 @@ TEST_CASE("prt-normalmap, -svd and -ratio on a convex sphere equal the unshadowe
           "[render][prt-normalmap]") {
     World w = lone_sphere();
     render::RepresentationSettings s = small_settings();
-    const std::vector<std::string> names{"irradiance-sh9", "prt-normalmap", "prt-ratio",
+    const std::vector<std::string> names{"irradiance-sh9",     "prt-normalmap",      "prt-ratio",
                                          "prt-normalmap-svd4", "prt-normalmap-svd6", "prt-texel"};
     render::Representations r(w.desc, *w.rt, s, names);
     // prt-ratio reads prt-texel's transfer; prt-normalmap and its SVD forms one M bake.
@@ -288,8 +288,7 @@ TEST_CASE("prt-normalmap under a shadowing sphere: darker than unshadowed, close
     for (std::size_t i = 1; i < 4; ++i) {
         const Image img = r.render(i, cam, 1);
         const double e = rel_rms(img, prt), eu = rel_rms(img, irr);
-        std::printf("%s: rel rms to prt-texel %.3g, to unshadowed %.3g\n", names[i].c_str(), e,
-                    eu);
+        std::printf("%s: rel rms to prt-texel %.3g, to unshadowed %.3g\n", names[i].c_str(), e, eu);
         // Without a normal map every form reads the shadowed transfer at the surface normal:
         // within the 3-band truncation of the incident light of prt-texel, far from unshadowed.
         CHECK(e < 0.5 * rel_rms(prt, irr));

@@ -160,9 +160,8 @@ std::string where_text(render::BakeRequest::Where w) {
 std::string request_details(const render::BakeRequest& r) {
     const render::BakeSettings& s = r.settings;
     std::string d;
-    if (s.quantities &
-        (render::Quantity::visibility | render::Quantity::transfer | render::Quantity::radiance |
-         render::Quantity::transfer_matrix))
+    if (s.quantities & (render::Quantity::visibility | render::Quantity::transfer |
+                        render::Quantity::radiance | render::Quantity::transfer_matrix))
         d += "bands " + std::to_string(s.bands) + ", ";
     if (s.quantities & render::Quantity::irradiance)
         d += "basis " + s.basis + " (" + std::to_string(s.coeffs) + "), ";
@@ -424,7 +423,8 @@ int run_render(const RenderOptions& o) {
         }
         rep.plan.push_back(
             {"lighting rotation",
-             "the reference's lighting rotated; irradiance-sh9*, ao, bent, prt-* and lxh-* rotate their "
+             "the reference's lighting rotated; irradiance-sh9*, ao, bent, prt-* and lxh-* rotate "
+             "their "
              "SH at render time (no bake); lightmaps, volume and specular keep the baked "
              "lighting"});
     }

@@ -501,9 +501,9 @@ class Baker {
     void check_points(const std::vector<BakePoint>& pts) const {
         const char* fn = "render::Baker::bake";
         using namespace detail::rt;
-        const bool surface_q = wants(Quantity::ao | Quantity::bent | Quantity::transfer |
-                                     Quantity::visibility | Quantity::irradiance |
-                                     Quantity::transfer_matrix);
+        const bool surface_q =
+            wants(Quantity::ao | Quantity::bent | Quantity::transfer | Quantity::visibility |
+                  Quantity::irradiance | Quantity::transfer_matrix);
         for (std::size_t i = 0; i < pts.size(); ++i) {
             const BakePoint& p = pts[i];
             if (!finite(p.p) || !finite(p.n) || !finite(p.tangent))
@@ -1201,8 +1201,7 @@ class Baker {
                 const RTCRayHit& r = L.rayhit[j];
                 if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
                 occluded[j] = 1;
-                if (bounces_ > 0)
-                    paths.push_back({std::uint32_t(j), RGB{1, 1, 1}, scene_.hit(r)});
+                if (bounces_ > 0) paths.push_back({std::uint32_t(j), RGB{1, 1, 1}, scene_.hit(r)});
             }
         }
         std::array<std::vector<double>, 3>& M = res.transfer_matrix;

@@ -30,6 +30,35 @@
 //                             mipmapped normal map with and without the Toksvig factor
 //                             (render/specular.hpp); compared with render_specular_reference()
 //                             of specular.hpp, not with the path tracer.
+//   lxh-unc3, -unc4, -unc6    per-texel SH visibility of 3/4/6 bands (bake quantity visibility,
+//                             world frame), shaded as V . (L x H)(n) at the mapped normal with an
+//                             L x H cube-map table (ops/lxh_table.hpp; lxh_table_size texels a
+//                             face edge, symmetric construction) of the rotated lighting on
+//                             lxh_lighting_bands bands (0: the visibility's). Iwanicki and Sloan,
+//                             "Normal Mapping with Low-Frequency Precomputed Visibility" (JGT
+//                             2009), sec. 3.
+//   lxh-pcaM                  M = 4, 8, 12, 16, 24 listed (any 1..36 accepted): PCA (ops/
+//                             compression.hpp) of the 6-band visibility of every point, per-texel
+//                             weights, one RGB table per basis vector and the mean, T_j(n) =
+//                             b_j . (L x H)(n) (ibid., eq. 5-6). M above the data's rank throws
+//                             at prepare().
+//   prt-normalmap             the incident-transfer matrix M (bake quantity transfer_matrix:
+//                             9 x prt_bands^2 RGB per texel) shaded as e(n) = y(n)^T C M l at the
+//                             mapped normal in world frame (R = I there); Sloan, Lehtinen and
+//                             Kautz, "Precomputed Radiance Transfer: Theory and Practice"
+//                             (SIGGRAPH 2005 course), normal mapping for PRT.
+//   prt-normalmap-svd4, -svd6 the same through the normal basis (ops/normal_basis.hpp, unclamped,
+//                             cosine-weighted): per texel G = V_k^T R M (R: world to the texel's
+//                             tangent frame), e(n) = (a(n)^T V_k) G l with a(n) = pi a_l y(n).
+//   prt-ratio                 unshadowed irradiance at the mapped normal times the ratio of the
+//                             shadowed (PRT transfer) to the unshadowed irradiance at the
+//                             surface normal; reads prt-texel's bake.
+//   prt-cpca-C-M              4-2, 8-4, 16-4 listed (any C <= 4096, M <= 64 accepted): iterative
+//                             CPCA of the PRT transfer (3 prt_bands^2 numbers a point), the
+//                             cluster and weights read from the nearest texel (clusters cannot
+//                             be filtered), per-cluster exit values computed once.
+//   Only what a requested representation reads is built (tables per distinct (K, N), one PCA
+//   per lxh-pca, fields per prt-*); lxh_tables_built() and compressions_built() count them.
 //
 // Bakes: each representation declares the bakes it reads (BakeRequest); prepare() runs each
 // distinct request once, or loads it from a BakeCache under bake_key(), a hash of everything the
@@ -88,8 +117,8 @@
 #include "../ops/lxh_table.hpp"
 #include "../ops/normal_basis.hpp"
 #include "../ops/sh_rotation.hpp"
-#include "../param/cubemap.hpp"
 #include "../ops/sh_windowing.hpp"
+#include "../param/cubemap.hpp"
 #include "bake.hpp"
 #include "camera.hpp"
 #include "detail/rt_math.hpp"
@@ -1225,17 +1254,18 @@ class Representations {
                 const int b = r.mesh_bake[mesh];
                 if (b < 0) continue;
                 const std::size_t off = offset[std::size_t(b)];
-                fields_.push_back(make_field(data_[std::size_t(b)], int(m + 1),
-                                             [&](std::size_t i, float* out) {
-                                                 out[0] = float(model.cluster[off + i]);
-                                                 for (std::size_t j = 0; j < m; ++j)
-                                                     out[j + 1] = float(model.weights(
-                                                         Eigen::Index(off + i), Eigen::Index(j)));
-                                             }));
+                fields_.push_back(
+                    make_field(data_[std::size_t(b)], int(m + 1), [&](std::size_t i, float* out) {
+                        out[0] = float(model.cluster[off + i]);
+                        for (std::size_t j = 0; j < m; ++j)
+                            out[j + 1] =
+                                float(model.weights(Eigen::Index(off + i), Eigen::Index(j)));
+                    }));
                 r.mesh_field[mesh] = int(fields_.size() - 1);
             }
             // Exit values: the lighting matrix (3 N^2 x 3), channel c's lighting in rows c N^2..
-            compress::MatrixX<double> light = compress::MatrixX<double>::Zero(Eigen::Index(3 * n), 3);
+            compress::MatrixX<double> light =
+                compress::MatrixX<double>::Zero(Eigen::Index(3 * n), 3);
             for (std::size_t c = 0; c < 3; ++c)
                 for (std::size_t k = 0; k < n; ++k)
                     light(Eigen::Index(c * n + k), Eigen::Index(c)) = prt_light_[c][k];
@@ -1348,10 +1378,10 @@ class Representations {
         try {
             model = compress::pca(x, r.vectors);
         } catch (const std::invalid_argument& e) {
-            sphbasis::detail::throw_invalid(
-                "render::Representations::prepare",
-                "no more PCA vectors for '" + r.name + "' than the baked visibility supports (" +
-                    e.what() + ")");
+            sphbasis::detail::throw_invalid("render::Representations::prepare",
+                                            "no more PCA vectors for '" + r.name +
+                                                "' than the baked visibility supports (" +
+                                                e.what() + ")");
         }
         PcaBuilt pb;
         pb.rank = model.rank;
@@ -1361,12 +1391,11 @@ class Representations {
             const int b = r.mesh_bake[mesh];
             if (b < 0) continue;
             const std::size_t off = offset[std::size_t(b)];
-            fields_.push_back(make_field(data_[std::size_t(b)], r.vectors,
-                                         [&](std::size_t i, float* out) {
-                                             for (std::size_t j = 0; j < m; ++j)
-                                                 out[j] = float(model.weights(
-                                                     Eigen::Index(off + i), Eigen::Index(j)));
-                                         }));
+            fields_.push_back(
+                make_field(data_[std::size_t(b)], r.vectors, [&](std::size_t i, float* out) {
+                    for (std::size_t j = 0; j < m; ++j)
+                        out[j] = float(model.weights(Eigen::Index(off + i), Eigen::Index(j)));
+                }));
             pb.mesh_field[mesh] = int(fields_.size() - 1);
         }
         const LxhTable<LxhParam>& tab = *lxh_[std::size_t(r.table)].table;
@@ -1383,8 +1412,8 @@ class Representations {
                 for (std::size_t j = 0; j < m; ++j) {
                     double sj = 0;
                     for (std::size_t k = 0; k < kk; ++k)
-                        sj += model.basis(Eigen::Index(k), Eigen::Index(j)) *
-                              double(src[3 * k + c]);
+                        sj +=
+                            model.basis(Eigen::Index(k), Eigen::Index(j)) * double(src[3 * k + c]);
                     dst[3 * (j + 1) + c] = float(sj);
                 }
             }
@@ -1533,19 +1562,20 @@ class Representations {
                                                 "prt-cpca-C-M, got '" + name + "'");
             r.element = "texel";
             r.bytes_per_element = std::size_t(r.vectors) * sizeof(float) + 2;  // + cluster index
-            r.cannot_show = "lighting above " + std::to_string(settings_.prt_bands) +
-                            " SH bands; no normal-map detail; transfer beyond " +
-                            std::to_string(r.vectors) + " vectors in each of " +
-                            std::to_string(r.clusters) +
-                            " clusters (read nearest: clusters cannot be filtered)" +
-                            std::string(no_bounce);
+            r.cannot_show =
+                "lighting above " + std::to_string(settings_.prt_bands) +
+                " SH bands; no normal-map detail; transfer beyond " + std::to_string(r.vectors) +
+                " vectors in each of " + std::to_string(r.clusters) +
+                " clusters (read nearest: clusters cannot be filtered)" + std::string(no_bounce);
             for (const MeshView& m : scene_.meshes)
                 if (!has_uvs(m)) r.element = "vertex";
         } else if (name == "prt-ratio") {
             r.kind = Kind::prt_ratio;
             r.element = "texel";
-            r.cannot_show = "shadowing of the tilted normal taken from the surface normal's "
-                            "(one ratio per texel)" + std::string(no_bounce);
+            r.cannot_show =
+                "shadowing of the tilted normal taken from the surface normal's "
+                "(one ratio per texel)" +
+                std::string(no_bounce);
             for (const MeshView& m : scene_.meshes)
                 if (!has_uvs(m)) r.element = "vertex";
         } else if (name.rfind("prt-normalmap", 0) == 0) {
@@ -1620,14 +1650,14 @@ class Representations {
                                                 "an lxh representation, got '" + name + "'");
             }
             r.element = "texel";
-            const int nl = settings_.lxh_lighting_bands > 0 ? settings_.lxh_lighting_bands
-                                                             : r.vis_bands;
-            r.cannot_show = "no interreflection; visibility beyond " +
-                            std::to_string(r.vis_bands) + " SH bands (sharp shadows), lighting " +
-                            "beyond " + std::to_string(nl) + " bands";
+            const int nl =
+                settings_.lxh_lighting_bands > 0 ? settings_.lxh_lighting_bands : r.vis_bands;
+            r.cannot_show = "no interreflection; visibility beyond " + std::to_string(r.vis_bands) +
+                            " SH bands (sharp shadows), lighting " + "beyond " +
+                            std::to_string(nl) + " bands";
             if (r.kind == Kind::lxh_pca)
-                r.cannot_show += "; visibility beyond " + std::to_string(r.vectors) +
-                                 " principal components";
+                r.cannot_show +=
+                    "; visibility beyond " + std::to_string(r.vectors) + " principal components";
             for (const MeshView& mv : scene_.meshes)
                 if (!has_uvs(mv)) {
                     r.element = "vertex";
@@ -1766,10 +1796,10 @@ class Representations {
                     if (scene_.meshes[m].triangle_count == 0) continue;
                     BakeRequest q;
                     q.mesh = m;
-                    q.settings = base_settings(r.kind == Kind::prt_normalmap
-                                                   ? Quantity::transfer_matrix
-                                                   : Quantity::transfer,
-                                               settings_.bounces);
+                    q.settings =
+                        base_settings(r.kind == Kind::prt_normalmap ? Quantity::transfer_matrix
+                                                                    : Quantity::transfer,
+                                      settings_.bounces);
                     q.settings.bands = settings_.prt_bands;
                     if (has_uvs(scene_.meshes[m])) {
                         q.where = BakeRequest::Where::texel;
@@ -2005,9 +2035,8 @@ class Representations {
                 std::fill(f.inside.begin(), f.inside.end(), 0);
             return f;
         }
-        return make_field(d, channels_of(q.settings), [&](std::size_t i, float* out) {
-            pack(q.settings, d.results[i], out);
-        });
+        return make_field(d, channels_of(q.settings),
+                          [&](std::size_t i, float* out) { pack(q.settings, d.results[i], out); });
     }
     /// A vertex or texel field of `channels` values per point of bake d, point i's written by
     /// pack_point(i, out) (texel gutters dilated).
