@@ -658,3 +658,60 @@ TEST_CASE("bake: a NaN environment texel or a zero-angle cone is refused", "[ren
     d.lights = {cone};
     CHECK_THROWS_AS(Baker(d, s), std::invalid_argument);
 }
+
+TEST_CASE("render::Baker: transfer_matrix under a sphere is I minus the cap's product integral",
+          "[render][bake]") {
+    SphereOverPlane sc;
+    BakeSettings s;
+    s.quantities = Quantity::transfer_matrix | Quantity::visibility;
+    s.bands = 3;
+    s.rays = 1024;
+    Baker b(sc.desc(), s);
+    const auto pts = plane_points();
+    const auto res = b.bake(pts);
+    for (std::size_t p = 0; p < pts.size(); ++p) {
+        const double rho = pts[p].p.x, D = std::sqrt(rho * rho + sc.h * sc.h);
+        const V ax{-rho / D, 0, sc.h / D};
+        const double alpha = std::asin(sc.r / D);
+        std::vector<double> cap(81, 0.0);
+        cap_integral(ax, alpha, 48, 96, [&](const V& d, double wt) {
+            const auto y = sh_at(3, d);
+            for (std::size_t i = 0; i < 9; ++i)
+                for (std::size_t j = 0; j < 9; ++j) cap[i * 9 + j] += wt * y[i] * y[j];
+        });
+        INFO("rho = " << rho);
+        REQUIRE(res[p].transfer_matrix[0].size() == 81);
+        double worst = 0;
+        for (std::size_t i = 0; i < 9; ++i)
+            for (std::size_t j = 0; j < 9; ++j) {
+                const double expect = (i == j ? 1.0 : 0.0) - cap[i * 9 + j];
+                worst = std::max(worst, std::fabs(res[p].transfer_matrix[1][i * 9 + j] - expect));
+            }
+        CHECK(worst < 0.01);
+        // Same directions as the visibility: column 0 is the visibility plus the lower
+        // hemisphere, (delta_i0 - M_i0) / y_00 + v_i = the QMC integral of y_i over the hemisphere.
+        const double y00 = 0.28209479177387814;
+        const auto yn = sh_at(3, V{0, 0, 1});
+        for (std::size_t i = 0; i < 4; ++i) {
+            const double hemi = 2 * pi * yn[i] * (i == 0 ? 1.0 : 0.5);
+            const double got = ((i == 0 ? 1.0 : 0.0) - res[p].transfer_matrix[0][i * 9]) / y00 +
+                               res[p].visibility[i];
+            CHECK(got == Approx(hemi).margin(2e-2));  // the QMC error of 1024 directions
+        }
+        CHECK(res[p].transfer_matrix[0] == res[p].transfer_matrix[2]);  // no bounces: grey
+    }
+    // A lone convex mesh: M = I without rays.
+    Mesh ball = sphbasis_test::uv_sphere(0, 0, 0, 1, 8, 16);
+    SceneDesc lone;
+    lone.meshes = {ball.view()};
+    lone.environment.kind = Environment::Kind::constant;
+    Baker bl(lone, s);
+    BakePoint q;
+    q.p = {0, 0, 1};
+    q.n = {0, 0, 1};
+    const auto r1 = bl.bake({q});
+    for (std::size_t i = 0; i < 9; ++i)
+        for (std::size_t j = 0; j < 9; ++j)
+            CHECK(r1[0].transfer_matrix[0][i * 9 + j] == (i == j ? 1.0 : 0.0));
+    CHECK(bl.rays_traced() == 0);
+}

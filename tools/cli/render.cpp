@@ -65,7 +65,8 @@ double seconds_since(Clock::time_point t0) {
 struct RenderOptions {
     std::string scene, representations = "all", out = ".", exposure, tonemap, rotate, noise;
     long long spp = 0, max_spp = 4096, width = 0, height = 0, threads = 0, seed = 0, rays = 256,
-              lightmap_size = 128, prt_bands = 3, specular_ss = 4;
+              lightmap_size = 128, prt_bands = 3, specular_ss = 4, lxh_lighting_bands = 0,
+              lxh_table_size = 32;
     std::string noise_limit_text;
     bool no_cache = false, aovs = false;
     CLI::Option *spp_opt = nullptr, *noise_opt = nullptr, *width_opt = nullptr,
@@ -78,7 +79,7 @@ bool is_specular(const std::string& name) { return name.rfind("specular-", 0) ==
 /// RepresentationSettings::lighting_rotation).
 bool follows_rotation(const std::string& name) {
     return name.rfind("irradiance-sh9", 0) == 0 || name == "ao" || name == "bent" ||
-           name.rfind("prt-", 0) == 0;
+           name.rfind("prt-", 0) == 0 || name.rfind("lxh-", 0) == 0;
 }
 
 /// "all" or a comma-separated list of render::representation_names(), in the order given.
@@ -136,7 +137,8 @@ std::string quantity_text(unsigned q) {
         {"visibility", render::Quantity::visibility},
         {"transfer", render::Quantity::transfer},
         {"irradiance", render::Quantity::irradiance},
-        {"radiance", render::Quantity::radiance}};
+        {"radiance", render::Quantity::radiance},
+        {"transfer_matrix", render::Quantity::transfer_matrix}};
     std::string s;
     for (const auto& [n, bit] : names)
         if (q & bit) s += (s.empty() ? "" : ",") + std::string(n);
@@ -158,8 +160,8 @@ std::string where_text(render::BakeRequest::Where w) {
 std::string request_details(const render::BakeRequest& r) {
     const render::BakeSettings& s = r.settings;
     std::string d;
-    if (s.quantities &
-        (render::Quantity::visibility | render::Quantity::transfer | render::Quantity::radiance))
+    if (s.quantities & (render::Quantity::visibility | render::Quantity::transfer |
+                        render::Quantity::radiance | render::Quantity::transfer_matrix))
         d += "bands " + std::to_string(s.bands) + ", ";
     if (s.quantities & render::Quantity::irradiance)
         d += "basis " + s.basis + " (" + std::to_string(s.coeffs) + "), ";
@@ -384,6 +386,8 @@ int run_render(const RenderOptions& o) {
     rs.rays = int(o.rays);
     rs.bounces = scene.render.bounces < 0 ? 64 : scene.render.bounces;
     rs.prt_bands = int(o.prt_bands);
+    rs.lxh_lighting_bands = int(o.lxh_lighting_bands);
+    rs.lxh_table_size = int(o.lxh_table_size);
     rs.lightmap_size = int(o.lightmap_size);
     rs.seed = static_cast<std::uint64_t>(o.seed);
     rs.has_probes = scene.has_probes;
@@ -419,7 +423,8 @@ int run_render(const RenderOptions& o) {
         }
         rep.plan.push_back(
             {"lighting rotation",
-             "the reference's lighting rotated; irradiance-sh9*, ao, bent and prt-* rotate their "
+             "the reference's lighting rotated; irradiance-sh9*, ao, bent, prt-* and lxh-* rotate "
+             "their "
              "SH at render time (no bake); lightmaps, volume and specular keep the baked "
              "lighting"});
     }
@@ -560,7 +565,8 @@ int run_render(const RenderOptions& o) {
         row.judged = e.judged;
         row.total = e.total;
         const render::RepresentationStats st = reps.stats(i);
-        row.bake_seconds = st.bake_seconds;
+        // Bake + compress: the bakes read and what is built from them after (L x H tables, PCA).
+        row.bake_seconds = st.bake_seconds + st.build_seconds;
         row.bake_rays = st.bake_rays;
         row.cached = st.cached;
         row.element = st.element;
@@ -649,6 +655,10 @@ Run setup_render(CLI::App& app) {
     add_integer(app, "--rays", o->rays, 1, 1 << 24, "bake rays per point and pass");
     add_integer(app, "--lightmap-size", o->lightmap_size, 1, 8192, "lightmap texels per side");
     add_integer(app, "--prt-bands", o->prt_bands, 1, 16, "PRT transfer bands", "B");
+    add_integer(app, "--lxh-lighting-bands", o->lxh_lighting_bands, 0, 16,
+                "lxh-*: SH bands of the lighting in the L x H tables (0: the visibility's)", "B");
+    add_integer(app, "--lxh-table-size", o->lxh_table_size, 1, 1024,
+                "lxh-*: texels per cube-map face edge of the L x H tables", "N");
     add_integer(app, "--specular-ss", o->specular_ss, 1, 64,
                 "specular reference: S x S camera rays per pixel", "S");
     o->rotate_opt = app.add_option("--rotate-lighting-deg", o->rotate,

@@ -36,6 +36,15 @@
 //                occludes, L_in is integrated by quadrature (hemisphere_rule(48)) instead of
 //                rays: exact for the environment's smooth part, approximate at the edge of a
 //                small cone or sphere light.
+//   transfer_matrix = the incident-transfer matrix of normal-mapped PRT (Sloan, Lehtinen and
+//                Kautz, the normal-mapping slides): the 3-band SH (world frame) of the incident
+//                radiance, L_in,i = sum_j M_ij l_j for distant radiance sum_j l_j y_j (bands
+//                bands), RGB. Directions below the tangent plane see the distant lighting
+//                (they matter only to a normal-mapped normal tilting there: the surface's own
+//                occluders are what the bake adds), so an unoccluded point has M = I (the
+//                analytic pass): M_ij = delta_ij - int_{n.w > 0} (1 - V) y_i y_j dw + the
+//                bounce paths of occluded directions (as transfer's, continued from the hit).
+//                Directions uniform on the hemisphere.
 //   radiance   = r_i = int L_in(w) y_i(w) dw at any point, RGB, directions uniform on the
 //                sphere: r_i = 4pi/N sum L_in(w_j) y_i(w_j); directional lights add
 //                V(l) color y_i(l). `inside`: more than half the rays hit back faces
@@ -110,11 +119,12 @@ enum Quantity : unsigned {
     transfer = 1u << 3,
     irradiance = 1u << 4,
     radiance = 1u << 5,
+    transfer_matrix = 1u << 6,
 };
 
 struct BakeSettings {
     unsigned quantities = Quantity::ao;
-    int bands = 3;             // SH bands of visibility, transfer and radiance
+    int bands = 3;  // SH bands of visibility, transfer, radiance; transfer_matrix: of the lighting
     std::string basis = "sh";  // basis of `irradiance` (a name of find_basis())
     int coeffs = 9;            // its coefficient count
     int rays = 256;            // rays per point and pass
@@ -149,6 +159,8 @@ struct PointResult {
     bool transfer_rgb = false;  // false: the three channels are equal (print one list)
     std::array<std::vector<double>, 3> irradiance;  // R, G, B (coeffs each)
     std::array<std::vector<double>, 3> radiance;    // R, G, B (bands^2 each)
+    /// R, G, B: 9 x bands^2, row-major (row i: incident coefficient i, column j: lighting j).
+    std::array<std::vector<double>, 3> transfer_matrix;
     bool inside = false;  // the point is inside closed geometry (probes leak)
 };
 
@@ -234,6 +246,7 @@ class Baker {
         if (s.quantities & Quantity::transfer) b += 4 * n * d;
         if (s.quantities & Quantity::irradiance) b += 3 * std::size_t(std::max(s.coeffs, 0)) * d;
         if (s.quantities & Quantity::radiance) b += 3 * n * d;
+        if (s.quantities & Quantity::transfer_matrix) b += 27 * n * d;
         return b;
     }
     /// The ray-tracing scene.
@@ -318,12 +331,13 @@ class Baker {
     static BakeSettings validated(const BakeSettings& s) {
         const char* fn = "render::Baker";
         const unsigned all = Quantity::ao | Quantity::bent | Quantity::visibility |
-                             Quantity::transfer | Quantity::irradiance | Quantity::radiance;
+                             Quantity::transfer | Quantity::irradiance | Quantity::radiance |
+                             Quantity::transfer_matrix;
         if (s.quantities == 0 || (s.quantities & ~all))
             sphbasis::detail::throw_invalid(
                 fn,
                 "quantities: a non-empty set of ao, bent, visibility, transfer, irradiance, "
-                "radiance, got the bit set " +
+                "radiance, transfer_matrix, got the bit set " +
                     std::to_string(s.quantities));
         sphbasis::detail::check_range(fn, "bands", s.bands, 1, 16);
         sphbasis::detail::check_range(fn, "rays", s.rays, 1, 1 << 24);
@@ -408,9 +422,11 @@ class Baker {
             stats_[cosine].planned = true;
             stats_[cosine].reason = "ao/bent/transfer, cosine-weighted: " + why_rays;
         }
-        if (wants(Quantity::visibility | Quantity::irradiance) && (occl || force)) {
+        if (wants(Quantity::visibility | Quantity::irradiance | Quantity::transfer_matrix) &&
+            (occl || force)) {
             stats_[hemisphere].planned = true;
-            stats_[hemisphere].reason = "visibility/irradiance, uniform hemisphere: " + why_rays;
+            stats_[hemisphere].reason =
+                "visibility/irradiance/transfer_matrix, uniform hemisphere: " + why_rays;
         }
         if (wants(Quantity::radiance) && (scene_.triangle_count() > 0 || force)) {
             stats_[sphere].planned = true;
@@ -422,7 +438,8 @@ class Baker {
             stats_[shadow].reason = "directional lights: one shadow ray per point and light";
         }
         // Bounces.
-        const bool bounce_q = wants(Quantity::transfer | Quantity::irradiance | Quantity::radiance);
+        const bool bounce_q = wants(Quantity::transfer | Quantity::irradiance | Quantity::radiance |
+                                    Quantity::transfer_matrix);
         const double rho = scene_.max_albedo();
         bounces_ = 0;
         if (!bounce_q || settings_.bounces == 0) return;
@@ -484,8 +501,9 @@ class Baker {
     void check_points(const std::vector<BakePoint>& pts) const {
         const char* fn = "render::Baker::bake";
         using namespace detail::rt;
-        const bool surface_q = wants(Quantity::ao | Quantity::bent | Quantity::transfer |
-                                     Quantity::visibility | Quantity::irradiance);
+        const bool surface_q =
+            wants(Quantity::ao | Quantity::bent | Quantity::transfer | Quantity::visibility |
+                  Quantity::irradiance | Quantity::transfer_matrix);
         for (std::size_t i = 0; i < pts.size(); ++i) {
             const BakePoint& p = pts[i];
             if (!finite(p.p) || !finite(p.n) || !finite(p.tangent))
@@ -562,6 +580,7 @@ class Baker {
                 cosine_pass(bp, n, f, key, cu, cv, res, L);
             if (wants(Quantity::visibility | Quantity::irradiance))
                 hemisphere_pass(bp, n, f, key, cu, cv, res, L);
+            if (wants(Quantity::transfer_matrix)) matrix_pass(bp, n, f, key, cu, cv, res, L);
         }
         if (wants(Quantity::radiance)) {
             if (scene_.triangle_count() == 0 && !settings_.force_all_passes) {
@@ -608,6 +627,11 @@ class Baker {
             res.transfer = {t, t, t};
             res.transfer_stderr.assign(nsh(), 0.0);
             res.transfer_rgb = false;
+        }
+        if (wants(Quantity::transfer_matrix)) {
+            std::vector<double> m(9 * nsh(), 0.0);
+            for (std::size_t i = 0; i < 9 && i < nsh(); ++i) m[i * nsh() + i] = 1;
+            res.transfer_matrix = {m, m, m};
         }
         if (wants(Quantity::visibility)) {
             res.visibility.assign(nsh(), 0.0);
@@ -1153,6 +1177,64 @@ class Baker {
                 if (visible) dl.push_back({f.to_local(light->direction), light->color});
             finish_irradiance(Llm, dl, res);
         }
+    }
+
+    /// transfer_matrix (header comment): M = I + 2pi/N sum over occluded hemisphere samples j
+    /// of y3(w_j) (T y(w_esc) - y(w_j))^T, the sum over each escape of its bounce path.
+    void matrix_pass(const BakePoint& bp, const detail::rt::V3& n, const Frame<double>& f,
+                     std::uint64_t key, double cu, double cv, PointResult& res, Local& L) const {
+        using namespace detail::rt;
+        const std::size_t N = std::size_t(settings_.rays), nl = nsh();
+        const bool run = !dropped_.count("hemisphere");
+        const V3 o = bp.p + n * scene_.epsilon();
+        std::vector<V3> dirs(N);
+        qmc_.directions(Warp::uniform_hemisphere, f, cu, cv, dirs.data());
+        std::vector<PathState> paths;
+        std::vector<char> occluded(N, 0);
+        if (run) {
+            Timer t{L, hemisphere};
+            L.rayhit.resize(N);
+            for (std::size_t j = 0; j < N; ++j) Scene::set_ray(L.rayhit[j], o, dirs[j]);
+            scene_.intersect(L.rayhit.data(), N);
+            L.rays[hemisphere] += N;
+            for (std::size_t j = 0; j < N; ++j) {
+                const RTCRayHit& r = L.rayhit[j];
+                if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+                occluded[j] = 1;
+                if (bounces_ > 0) paths.push_back({std::uint32_t(j), RGB{1, 1, 1}, scene_.hit(r)});
+            }
+        }
+        std::array<std::vector<double>, 3>& M = res.transfer_matrix;
+        for (auto& m : M) m.assign(9 * nl, 0.0);
+        std::vector<double> yi(9), yj(nl);
+        const double scale = constants::two_pi / double(N);
+        auto add = [&](std::size_t sample, const V3& d, const RGB& w) {
+            const V3& ws = dirs[sample];
+            sh::eval_unit(3, ws.x, ws.y, ws.z, yi.data());
+            sh::eval_unit(settings_.bands, d.x, d.y, d.z, yj.data());
+            for (std::size_t c = 0; c < 3; ++c) {
+                if (w[c] == 0) continue;
+                for (std::size_t i = 0; i < 9; ++i) {
+                    const double a = scale * w[c] * yi[i];
+                    double* row = M[c].data() + i * nl;
+                    for (std::size_t k = 0; k < nl; ++k) row[k] += a * yj[k];
+                }
+            }
+        };
+        {
+            Timer t{L, hemisphere};
+            for (std::size_t j = 0; j < N; ++j)
+                if (occluded[j]) add(j, dirs[j], RGB{-1, -1, -1});
+        }
+        continue_paths(
+            paths, N, hash(key, 0x6d74ull), false, L,
+            [&](std::uint32_t sample, const V3& d, const RGB& T, const V3&, double tmax) {
+                if (tmax < std::numeric_limits<double>::infinity()) return;
+                add(sample, d, T);
+            },
+            [](std::uint32_t, const RGB&) {});
+        for (auto& m : M)
+            for (std::size_t i = 0; i < 9 && i < nl; ++i) m[i * nl + i] += 1;
     }
 
     void sphere_pass(const BakePoint& bp, const detail::rt::V3& n, std::uint64_t key, double cu,

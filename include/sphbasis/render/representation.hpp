@@ -30,6 +30,35 @@
 //                             mipmapped normal map with and without the Toksvig factor
 //                             (render/specular.hpp); compared with render_specular_reference()
 //                             of specular.hpp, not with the path tracer.
+//   lxh-unc3, -unc4, -unc6    per-texel SH visibility of 3/4/6 bands (bake quantity visibility,
+//                             world frame), shaded as V . (L x H)(n) at the mapped normal with an
+//                             L x H cube-map table (ops/lxh_table.hpp; lxh_table_size texels a
+//                             face edge, symmetric construction) of the rotated lighting on
+//                             lxh_lighting_bands bands (0: the visibility's). Iwanicki and Sloan,
+//                             "Normal Mapping with Low-Frequency Precomputed Visibility" (JGT
+//                             2009), sec. 3.
+//   lxh-pcaM                  M = 4, 8, 12, 16, 24 listed (any 1..36 accepted): PCA (ops/
+//                             compression.hpp) of the 6-band visibility of every point, per-texel
+//                             weights, one RGB table per basis vector and the mean, T_j(n) =
+//                             b_j . (L x H)(n) (ibid., eq. 5-6). M above the data's rank throws
+//                             at prepare().
+//   prt-normalmap             the incident-transfer matrix M (bake quantity transfer_matrix:
+//                             9 x prt_bands^2 RGB per texel) shaded as e(n) = y(n)^T C M l at the
+//                             mapped normal in world frame (R = I there); Sloan, Lehtinen and
+//                             Kautz, "Precomputed Radiance Transfer: Theory and Practice"
+//                             (SIGGRAPH 2005 course), normal mapping for PRT.
+//   prt-normalmap-svd4, -svd6 the same through the normal basis (ops/normal_basis.hpp, unclamped,
+//                             cosine-weighted): per texel G = V_k^T R M (R: world to the texel's
+//                             tangent frame), e(n) = (a(n)^T V_k) G l with a(n) = pi a_l y(n).
+//   prt-ratio                 unshadowed irradiance at the mapped normal times the ratio of the
+//                             shadowed (PRT transfer) to the unshadowed irradiance at the
+//                             surface normal; reads prt-texel's bake.
+//   prt-cpca-C-M              4-2, 8-4, 16-4 listed (any C <= 4096, M <= 64 accepted): iterative
+//                             CPCA of the PRT transfer (3 prt_bands^2 numbers a point), the
+//                             cluster and weights read from the nearest texel (clusters cannot
+//                             be filtered), per-cluster exit values computed once.
+//   Only what a requested representation reads is built (tables per distinct (K, N), one PCA
+//   per lxh-pca, fields per prt-*); lxh_tables_built() and compressions_built() count them.
 //
 // Bakes: each representation declares the bakes it reads (BakeRequest); prepare() runs each
 // distinct request once, or loads it from a BakeCache under bake_key(), a hash of everything the
@@ -84,8 +113,12 @@
 #include "../core/constants.hpp"
 #include "../core/error.hpp"
 #include "../core/frame.hpp"
+#include "../ops/compression.hpp"
+#include "../ops/lxh_table.hpp"
+#include "../ops/normal_basis.hpp"
 #include "../ops/sh_rotation.hpp"
 #include "../ops/sh_windowing.hpp"
+#include "../param/cubemap.hpp"
 #include "bake.hpp"
 #include "camera.hpp"
 #include "detail/rt_math.hpp"
@@ -116,7 +149,22 @@ inline const std::vector<std::string>& representation_names() {
                                                 "lightmap-hsh9",
                                                 "volume",
                                                 "specular-toksvig",
-                                                "specular-aliased"};
+                                                "specular-aliased",
+                                                "lxh-unc3",
+                                                "lxh-unc4",
+                                                "lxh-unc6",
+                                                "lxh-pca4",
+                                                "lxh-pca8",
+                                                "lxh-pca12",
+                                                "lxh-pca16",
+                                                "lxh-pca24",
+                                                "prt-normalmap",
+                                                "prt-normalmap-svd4",
+                                                "prt-normalmap-svd6",
+                                                "prt-ratio",
+                                                "prt-cpca-4-2",
+                                                "prt-cpca-8-4",
+                                                "prt-cpca-16-4"};
     return names;
 }
 
@@ -131,6 +179,10 @@ struct RepresentationSettings {
     /// Render-time rotation of the distant lighting (environment and lights) for the
     /// SH-lit representations (irradiance-sh9*, ao, bent, prt-*): world = R * baked world.
     Mat3<double> lighting_rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};
+    /// lxh-*: texels per cube-map face edge of the L x H tables, and the SH bands of the
+    /// lighting in them (0: as many as the visibility has).
+    int lxh_table_size = 32;
+    int lxh_lighting_bands = 0;
 };
 
 /// One bake a representation reads.
@@ -355,7 +407,7 @@ inline std::vector<std::uint8_t> settings_bytes(const BakeSettings& s) {
 }
 
 constexpr char magic[8] = {'S', 'P', 'H', 'B', 'B', 'A', 'K', 'E'};
-constexpr std::uint32_t format_version = 1;
+constexpr std::uint32_t format_version = 2;  // 2: transfer_matrix
 
 }  // namespace repr_detail
 
@@ -457,6 +509,7 @@ inline std::vector<std::uint8_t> serialize(const BakeData& data) {
         w.u8(r.transfer_rgb ? 1 : 0);
         for (const auto& v : r.irradiance) w.vec(v);
         for (const auto& v : r.radiance) w.vec(v);
+        for (const auto& v : r.transfer_matrix) w.vec(v);
         w.u8(r.inside ? 1 : 0);
     }
     w.u64(data.plan.size());
@@ -510,7 +563,7 @@ inline BakeData deserialize(const std::vector<std::uint8_t>& bytes) {
     r.pos += nc;
     L.skipped_triangles = static_cast<std::size_t>(r.u64());
     L.degenerate_triangles = static_cast<std::size_t>(r.u64());
-    d.results.resize(r.count(8 * 5 + 8 * 12 + 2));
+    d.results.resize(r.count(8 * 5 + 8 * 15 + 2));
     for (PointResult& p : d.results) {
         p.ao = r.f64();
         p.ao_stderr = r.f64();
@@ -522,6 +575,7 @@ inline BakeData deserialize(const std::vector<std::uint8_t>& bytes) {
         p.transfer_rgb = r.u8() != 0;
         for (auto& v : p.irradiance) v = r.vec();
         for (auto& v : p.radiance) v = r.vec();
+        for (auto& v : p.transfer_matrix) v = r.vec();
         p.inside = r.u8() != 0;
     }
     d.plan.resize(r.count(32));
@@ -577,6 +631,9 @@ struct RepresentationStats {
     std::string element;                // "texel", "vertex", "probe" or "none"
     std::size_t bytes_per_element = 0;  // at the stored precision (float)
     std::size_t elements = 0;
+    /// Seconds spent after the bakes on what the representation reads: L x H tables,
+    /// compression, per-basis-vector tables (shared work counted for each reader).
+    double build_seconds = 0;
     std::string cannot_show;  // e.g. "no shadows; no interreflection"
 };
 
@@ -657,7 +714,20 @@ class Representations {
         }
         fields_.clear();
         for (const BakeData& d : data_) fields_.push_back(make_field(d));
+        build_derived();
+        build_svd_fields();
+        build_cpca();
         prepared_ = true;
+    }
+    /// L x H tables and visibility compressions built by prepare() (only those a requested
+    /// lxh-* reads; each distinct one once).
+    std::size_t lxh_tables_built() const noexcept { return lxh_.size(); }
+    std::size_t compressions_built() const noexcept { return pcas_.size(); }
+    /// The numerical rank of the visibility that lxh-pca representation `index` compressed
+    /// (after prepare()); 0 for other representations.
+    int compressed_rank(std::size_t index) const {
+        const Rep& r = rep(index, "render::Representations::compressed_rank");
+        return r.model >= 0 ? pcas_[std::size_t(r.model)].rank : 0;
     }
     /// Bakes run and bakes loaded from the cache by prepare().
     std::size_t bakes_run() const noexcept { return bakes_run_; }
@@ -747,6 +817,78 @@ class Representations {
                     for (std::size_t k = 0; k < 9; ++k) cc[c][k] = cosine9_[k] * v[c * 9 + k];
                 return sh_shade(cc, Scene::normal_mapped(hit), hit.albedo);
             }
+            case Kind::lxh_unc: {
+                const int b = r.mesh_bake[hit.mesh];
+                if (b < 0) return {0, 0, 0};
+                std::array<double, 64> v;
+                lookup(fields_[std::size_t(b)], hit, v.data());
+                const LxhTable<LxhParam>& tab = *lxh_[std::size_t(r.table)].table;
+                const vec3<double> n = Scene::normal_mapped(hit);
+                std::array<float, 3 * 64> t;
+                tab.lookup(float(n.x), float(n.y), float(n.z), t.data());
+                const std::size_t kk = std::size_t(r.vis_bands * r.vis_bands);
+                RGB out{0, 0, 0};
+                for (std::size_t c = 0; c < 3; ++c) {
+                    double e = 0;
+                    for (std::size_t k = 0; k < kk; ++k) e += v[k] * double(t[3 * k + c]);
+                    out[c] = hit.albedo[c] * e * constants::inv_pi;
+                }
+                return out;
+            }
+            case Kind::lxh_pca: {
+                const PcaBuilt& pb = pcas_[std::size_t(r.model)];
+                const int f = pb.mesh_field[hit.mesh];
+                if (f < 0) return {0, 0, 0};
+                std::array<double, 64> w;
+                lookup(fields_[std::size_t(f)], hit, w.data());
+                const LxhParam& param = lxh_[std::size_t(r.table)].table->param;
+                const vec3<double> n = Scene::normal_mapped(hit);
+                const std::size_t m = std::size_t(r.vectors);
+                std::array<float, 3 * 65> t;
+                param::lookup(param, pb.tables.data(), 3 * (m + 1), float(n.x), float(n.y),
+                              float(n.z), t.data());
+                RGB out{0, 0, 0};
+                for (std::size_t c = 0; c < 3; ++c) {
+                    double e = t[c];
+                    for (std::size_t j = 0; j < m; ++j) e += w[j] * double(t[3 * (j + 1) + c]);
+                    out[c] = hit.albedo[c] * e * constants::inv_pi;
+                }
+                return out;
+            }
+            case Kind::prt_ratio: {
+                const int b = r.mesh_bake[hit.mesh];
+                if (b < 0) return {0, 0, 0};
+                std::array<double, 3 * 64> t;
+                lookup(fields_[std::size_t(b)], hit, t.data());
+                const std::size_t n = std::size_t(settings_.prt_bands * settings_.prt_bands);
+                const RGB u0 = sh_shade(irr_, hit.shading_normal, {1, 1, 1});
+                const RGB um = sh_shade(irr_, Scene::normal_mapped(hit), hit.albedo);
+                RGB out{0, 0, 0};
+                for (std::size_t c = 0; c < 3; ++c) {
+                    double sh = 0;
+                    for (std::size_t k = 0; k < n; ++k) sh += t[c * n + k] * prt_light_[c][k];
+                    out[c] = u0[c] > 1e-12 ? std::max(sh, 0.0) / u0[c] * um[c] : 0.0;
+                }
+                return out;
+            }
+            case Kind::prt_normalmap:
+                return r.svd_vectors > 0 ? shade_svd(r, hit) : shade_normalmap(r, hit);
+            case Kind::prt_cpca: {
+                const int fi = r.mesh_field[hit.mesh];
+                if (fi < 0) return {0, 0, 0};
+                std::array<double, 65> w;
+                lookup_nearest(fields_[std::size_t(fi)], hit, w.data());
+                const std::size_t m = std::size_t(r.vectors);
+                const std::size_t cl = std::size_t(std::clamp(w[0], 0.0, double(r.clusters - 1)));
+                const double* e = r.cpca_exit.data() + cl * (m + 1) * 3;
+                RGB out{0, 0, 0};
+                for (std::size_t c = 0; c < 3; ++c) {
+                    double s = e[c];
+                    for (std::size_t j = 0; j < m; ++j) s += w[j + 1] * e[3 * (j + 1) + c];
+                    out[c] = hit.albedo[c] * s;
+                }
+                return out;
+            }
             case Kind::specular_toksvig:
                 return spec_->shade(SpecularShading::Mode::toksvig, hit, view, footprint);
             case Kind::specular_aliased:
@@ -822,9 +964,12 @@ class Representations {
             s.elements += d.results.size();
         }
         s.cached = prepared_ && any && all_cached;
+        if (prepared_ && r.table >= 0) s.build_seconds += lxh_[std::size_t(r.table)].seconds;
+        if (prepared_ && r.model >= 0) s.build_seconds += pcas_[std::size_t(r.model)].seconds;
+        if (prepared_) s.build_seconds += r.build_seconds;
         s.element = r.element;
         s.bytes_per_element = r.bytes_per_element;
-        if (r.kind == Kind::prt_vertex || r.kind == Kind::prt_texel) {
+        if (r.kind == Kind::prt_vertex || r.kind == Kind::prt_texel || r.kind == Kind::prt_ratio) {
             bool rgb = false;
             if (prepared_)
                 for (int b : used)
@@ -860,7 +1005,12 @@ class Representations {
         lightmap,
         volume,
         specular_toksvig,
-        specular_aliased
+        specular_aliased,
+        lxh_unc,
+        lxh_pca,
+        prt_ratio,
+        prt_normalmap,
+        prt_cpca
     };
     struct Rep {
         std::string name;
@@ -872,6 +1022,14 @@ class Representations {
         bool reads_bakes = false;
         std::string element = "none", cannot_show;
         std::size_t bytes_per_element = 0;
+        int vis_bands = 0, vectors = 0;  // lxh-*: visibility bands, PCA vectors
+        int table = -1;                  // lxh-*: index into lxh_ (after prepare())
+        int model = -1;                  // lxh-pca*: index into pcas_ (after prepare())
+        int svd_vectors = 0;             // prt-normalmap-svd*: normal-basis functions kept
+        int clusters = 0;                // prt-cpca-C-M: C (vectors: M)
+        std::vector<double> cpca_exit;   // prt-cpca: per cluster, (M + 1) x 3 exit values
+        double build_seconds = 0;        // prt-normalmap-svd*: projecting the bakes
+        std::vector<int> mesh_field;     // prt-normalmap-svd*: per mesh, index into fields_
     };
     /// Baked values laid out for lookups at float precision (probes: double).
     struct Field {
@@ -883,6 +1041,396 @@ class Representations {
         ProbeGrid grid;
     };
     static constexpr int gutter = 4;  // texels dilated around each chart
+
+    /// prt-normalmap: L_in = M l (3 bands, world frame) per channel, shaded at the mapped
+    /// normal: e(n) = y(n)^T C M l (the tangent rotation R is the identity in world frame).
+    RGB shade_normalmap(const Rep& r, const Hit& hit) const {
+        const int b = r.mesh_bake[hit.mesh];
+        if (b < 0) return {0, 0, 0};
+        const std::size_t n = std::size_t(settings_.prt_bands * settings_.prt_bands);
+        std::array<double, 27 * 64> m;
+        lookup(fields_[std::size_t(b)], hit, m.data());
+        const vec3<double> nm = Scene::normal_mapped(hit);
+        double y[9];
+        sh::eval_unit(3, nm.x, nm.y, nm.z, y);
+        RGB out{0, 0, 0};
+        for (std::size_t c = 0; c < 3; ++c) {
+            double e = 0;
+            for (std::size_t i = 0; i < 9; ++i) {
+                const double* row = m.data() + c * 9 * n + i * n;
+                double li = 0;
+                for (std::size_t k = 0; k < n; ++k) li += row[k] * prt_light_[c][k];
+                e += cosine9_[i] * li * y[i];
+            }
+            out[c] = hit.albedo[c] * e;
+        }
+        return out;
+    }
+    /// The tangent frame a hit reads a prt-normalmap-svd field in: the texel's (tangent,
+    /// bitangent, normal) as the lightmaps, Frame(normal) for per-vertex fields.
+    static Frame<double> svd_frame(const Field& f, const Hit& hit) {
+        using namespace detail::rt;
+        const V3 ns = hit.shading_normal;
+        if (f.where == BakeRequest::Where::vertex || !(length(hit.tangent) > 0.5))
+            return Frame<double>(ns);
+        return Frame<double>(hit.tangent, cross(ns, hit.tangent) * hit.bitangent_sign, ns);
+    }
+    /// prt-normalmap-svdM: per texel G = V_M^T R M (M x N^2 per channel), e(n) =
+    /// (a(n)^T V_M) (G l) with a(n) = pi a_l y_lm(n) in the tangent frame.
+    RGB shade_svd(const Rep& r, const Hit& hit) const {
+        const int fi = r.mesh_field[hit.mesh];
+        if (fi < 0) return {0, 0, 0};
+        const Field& f = fields_[std::size_t(fi)];
+        const std::size_t n = std::size_t(settings_.prt_bands * settings_.prt_bands);
+        const std::size_t mv = std::size_t(r.svd_vectors);
+        std::array<double, 3 * 6 * 64> g;
+        lookup(f, hit, g.data());
+        const Frame<double> fr = svd_frame(f, hit);
+        using namespace detail::rt;
+        const V3 nm = Scene::normal_mapped(hit);
+        V3 u{dot(nm, fr.s), dot(nm, fr.t), std::max(dot(nm, fr.n), 0.0)};
+        u = normalized(u, {0, 0, 1});
+        double y[9], p[9];
+        sh::eval_unit(3, u.x, u.y, u.z, y);
+        for (std::size_t k = 0; k < mv; ++k) {
+            p[k] = 0;
+            for (std::size_t i = 0; i < 9; ++i)
+                p[k] += constants::pi * cosine9_[i] * y[i] *
+                        normal_v_(Eigen::Index(i), Eigen::Index(k));
+        }
+        RGB out{0, 0, 0};
+        for (std::size_t c = 0; c < 3; ++c) {
+            double e = 0;
+            for (std::size_t k = 0; k < mv; ++k) {
+                const double* row = g.data() + (c * mv + k) * n;
+                double h = 0;
+                for (std::size_t j = 0; j < n; ++j) h += row[j] * prt_light_[c][j];
+                e += p[k] * h;
+            }
+            out[c] = hit.albedo[c] * e * constants::inv_pi;
+        }
+        return out;
+    }
+    /// The fields of each prt-normalmap-svd*: G = V_M^T R M per point, R the SH rotation of
+    /// 3 bands from world to the point's tangent frame (by least squares on 25 directions:
+    /// exact for 3-band functions, mirrored frames included).
+    void build_svd_fields() {
+        bool any = false;
+        for (const Rep& r : reps_) any = any || (r.kind == Kind::prt_normalmap && r.svd_vectors);
+        if (!any) return;
+        for (Rep& r : reps_) r.build_seconds = 0;
+        NormalBasisSettings nbs;
+        nbs.bands = 3;
+        nbs.clamped = false;
+        nbs.weighting = NormalWeighting::cosine;
+        normal_v_ = normal_basis(nbs).v;
+        constexpr int S = 25;
+        std::array<vec3<double>, S> u;
+        Eigen::MatrixXd yl(S, 9);
+        for (int s = 0; s < S; ++s) {
+            const double z = 1 - (2 * s + 1) / double(S), rr = std::sqrt(1 - z * z);
+            const double ph = 2.399963229728653 * s;  // the golden angle
+            u[std::size_t(s)] = {rr * std::cos(ph), rr * std::sin(ph), z};
+            double y[9];
+            sh::eval_unit(3, u[std::size_t(s)].x, u[std::size_t(s)].y, u[std::size_t(s)].z, y);
+            for (int i = 0; i < 9; ++i) yl(s, i) = y[i];
+        }
+        const Eigen::MatrixXd pinv = (yl.transpose() * yl).inverse() * yl.transpose();
+        const std::size_t n = std::size_t(settings_.prt_bands * settings_.prt_bands);
+        for (Rep& r : reps_) {
+            if (r.kind != Kind::prt_normalmap || r.svd_vectors == 0) continue;
+            const std::size_t mv = std::size_t(r.svd_vectors);
+            const Eigen::MatrixXd vt = normal_v_.leftCols(Eigen::Index(mv)).transpose();
+            r.mesh_field.assign(scene_.meshes.size(), -1);
+            for (std::size_t mesh = 0; mesh < scene_.meshes.size(); ++mesh) {
+                const int b = r.mesh_bake[mesh];
+                if (b < 0) continue;
+                const BakeData& d = data_[std::size_t(b)];
+                std::vector<double> vn;
+                if (d.request.where == BakeRequest::Where::vertex)
+                    vn = vertex_normals(scene_.meshes[mesh]);
+                const auto t0 = std::chrono::steady_clock::now();
+                fields_.push_back(make_field(d, int(3 * mv * n), [&](std::size_t i, float* out) {
+                    using namespace detail::rt;
+                    Frame<double> fr;
+                    if (d.request.where == BakeRequest::Where::vertex) {
+                        fr = Frame<double>(
+                            normalized(V3{vn[3 * i], vn[3 * i + 1], vn[3 * i + 2]}, {0, 0, 1}));
+                    } else {
+                        const BakePoint& bp = d.layout.samples[i].point;
+                        const V3 nn = normalized(bp.n, {0, 0, 1});
+                        fr = length(bp.tangent) > 0.5
+                                 ? Frame<double>(bp.tangent,
+                                                 cross(nn, bp.tangent) * bp.bitangent_sign, nn)
+                                 : Frame<double>(nn);
+                    }
+                    Eigen::MatrixXd yw(S, 9);
+                    for (int s2 = 0; s2 < S; ++s2) {
+                        const vec3<double>& q = u[std::size_t(s2)];
+                        const V3 w = fr.s * q.x + fr.t * q.y + fr.n * q.z;
+                        double y[9];
+                        sh::eval_unit(3, w.x, w.y, w.z, y);
+                        for (int k = 0; k < 9; ++k) yw(s2, k) = y[k];
+                    }
+                    const Eigen::MatrixXd vr = vt * (pinv * yw);  // mv x 9
+                    const PointResult& pr = d.results[i];
+                    for (std::size_t c = 0; c < 3; ++c)
+                        for (std::size_t k = 0; k < mv; ++k)
+                            for (std::size_t j = 0; j < n; ++j) {
+                                double v = 0;
+                                for (std::size_t q = 0; q < 9; ++q)
+                                    if (q * n + j < pr.transfer_matrix[c].size())
+                                        v += vr(Eigen::Index(k), Eigen::Index(q)) *
+                                             pr.transfer_matrix[c][q * n + j];
+                                out[(c * mv + k) * n + j] = float(v);
+                            }
+                }));
+                r.mesh_field[mesh] = int(fields_.size() - 1);
+                r.build_seconds +=
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            }
+        }
+    }
+
+    /// The field value at the nearest texel, or the vertex of the largest barycentric weight.
+    static void lookup_nearest(const Field& f, const Hit& h, double* out) noexcept {
+        const std::size_t ch = std::size_t(f.channels);
+        const float* p = nullptr;
+        if (f.where == BakeRequest::Where::vertex) {
+            const double w[3] = {1 - h.u - h.v, h.u, h.v};
+            const int k = w[0] >= w[1] && w[0] >= w[2] ? 0 : (w[1] >= w[2] ? 1 : 2);
+            const std::size_t v = h.vertices[std::size_t(k)];
+            if ((v + 1) * ch <= f.data.size()) p = f.data.data() + v * ch;
+        } else {
+            double x = h.uv[0] * f.width, y = (1 - h.uv[1]) * f.height;
+            if (!std::isfinite(x)) x = 0;
+            if (!std::isfinite(y)) y = 0;
+            const int xi = std::clamp(int(std::floor(x)), 0, f.width - 1);
+            const int yi = std::clamp(int(std::floor(y)), 0, f.height - 1);
+            p = f.data.data() + (std::size_t(yi) * std::size_t(f.width) + std::size_t(xi)) * ch;
+        }
+        for (std::size_t c = 0; c < ch; ++c) out[c] = p ? double(p[c]) : 0.0;
+    }
+    /// prt-cpca-C-M: iterative CPCA (compress::cpca_iterative) of the transfer of every point
+    /// read (3 N^2 numbers, RGB), fields of (cluster, M weights), and the per-cluster exit
+    /// values mu_c . l and b_cj . l for the current lighting (the course's CPCA rendering).
+    void build_cpca() {
+        const std::size_t n = std::size_t(settings_.prt_bands * settings_.prt_bands);
+        for (Rep& r : reps_) {
+            if (r.kind != Kind::prt_cpca) continue;
+            const auto t0 = std::chrono::steady_clock::now();
+            std::vector<std::size_t> offset(data_.size(), 0);
+            std::size_t rows = 0;
+            for (std::size_t b : reads_of(r)) {
+                offset[b] = rows;
+                rows += data_[b].results.size();
+            }
+            compress::MatrixX<double> x(static_cast<Eigen::Index>(rows),
+                                        static_cast<Eigen::Index>(3 * n));
+            for (std::size_t b : reads_of(r))
+                for (std::size_t i = 0; i < data_[b].results.size(); ++i)
+                    for (std::size_t c = 0; c < 3; ++c)
+                        for (std::size_t k = 0; k < n; ++k) {
+                            const auto& t = data_[b].results[i].transfer[c];
+                            x(Eigen::Index(offset[b] + i), Eigen::Index(c * n + k)) =
+                                k < t.size() ? t[k] : 0.0;
+                        }
+            compress::CpcaSettings cs;
+            cs.clusters = r.clusters;
+            cs.vectors = r.vectors;
+            cs.seed = settings_.seed + 1;
+            compress::Cpca<double> model;
+            try {
+                model = compress::cpca_iterative(x, cs);
+            } catch (const std::invalid_argument& e) {
+                sphbasis::detail::throw_invalid(
+                    "render::Representations::prepare",
+                    "clusters and vectors the baked transfer supports for '" + r.name + "' (" +
+                        e.what() + ")");
+            }
+            const std::size_t m = std::size_t(r.vectors);
+            r.mesh_field.assign(scene_.meshes.size(), -1);
+            for (std::size_t mesh = 0; mesh < scene_.meshes.size(); ++mesh) {
+                const int b = r.mesh_bake[mesh];
+                if (b < 0) continue;
+                const std::size_t off = offset[std::size_t(b)];
+                fields_.push_back(
+                    make_field(data_[std::size_t(b)], int(m + 1), [&](std::size_t i, float* out) {
+                        out[0] = float(model.cluster[off + i]);
+                        for (std::size_t j = 0; j < m; ++j)
+                            out[j + 1] =
+                                float(model.weights(Eigen::Index(off + i), Eigen::Index(j)));
+                    }));
+                r.mesh_field[mesh] = int(fields_.size() - 1);
+            }
+            // Exit values: the lighting matrix (3 N^2 x 3), channel c's lighting in rows c N^2..
+            compress::MatrixX<double> light =
+                compress::MatrixX<double>::Zero(Eigen::Index(3 * n), 3);
+            for (std::size_t c = 0; c < 3; ++c)
+                for (std::size_t k = 0; k < n; ++k)
+                    light(Eigen::Index(c * n + k), Eigen::Index(c)) = prt_light_[c][k];
+            const compress::ExitValues<double> ev = compress::exit_values(model, light);
+            r.cpca_exit.assign(std::size_t(r.clusters) * (m + 1) * 3, 0.0);
+            for (std::size_t cl = 0; cl < std::size_t(model.clusters()); ++cl)
+                for (std::size_t c = 0; c < 3; ++c) {
+                    double* e = r.cpca_exit.data() + cl * (m + 1) * 3;
+                    e[c] = ev.mean(Eigen::Index(cl), Eigen::Index(c));
+                    for (std::size_t j = 0; j < m; ++j)
+                        e[3 * (j + 1) + c] = ev.basis[cl](Eigen::Index(j), Eigen::Index(c));
+                }
+            r.build_seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        }
+    }
+
+    using LxhParam = param::CubeMap<float>;
+    /// An L x H table (visibility bands, lighting bands), shared by the lxh-* that read it.
+    struct LxhBuilt {
+        int vis_bands = 0, lighting_bands = 0;
+        std::shared_ptr<const LxhTable<LxhParam>> table;
+        double seconds = 0;
+    };
+    /// A PCA of the visibility of one lxh-pca*: per-mesh weight fields and, per texel of the
+    /// L x H table's cube map, the RGB integrals of L, H and the mean and each basis vector.
+    struct PcaBuilt {
+        std::vector<int> mesh_field;  // per mesh: index into fields_, -1: none
+        std::vector<float> tables;    // texel x (M + 1) x 3: mean, then basis vector j
+        int rank = 0;
+        double seconds = 0;
+    };
+
+    /// The SH of the distant lighting on `bands` bands, rotated by lighting_rotation,
+    /// interleaved (coefficient i, channel c at [3 i + c]) as lxh_matrix() reads it.
+    std::vector<double> lxh_lighting(int bands) const {
+        std::vector<RGB> L = project_sh(scene_.environment, bands);
+        const vec3<double> centre{0.5 * (rt_.bounds_min().x + rt_.bounds_max().x),
+                                  0.5 * (rt_.bounds_min().y + rt_.bounds_max().y),
+                                  0.5 * (rt_.bounds_min().z + rt_.bounds_max().z)};
+        const std::size_t n = std::size_t(bands) * std::size_t(bands);
+        for (const Light& l : scene_.lights) {
+            const std::vector<RGB> s = project_sh(l, bands, centre);
+            for (std::size_t k = 0; k < n; ++k)
+                for (std::size_t c = 0; c < 3; ++c) L[k][c] += s[k][c];
+        }
+        std::vector<double> out(3 * n), ch(n), rot(n);
+        for (std::size_t c = 0; c < 3; ++c) {
+            for (std::size_t k = 0; k < n; ++k) ch[k] = L[k][c];
+            sh::rotate(bands, settings_.lighting_rotation, ch, rot);
+            for (std::size_t k = 0; k < n; ++k) out[3 * k + c] = rot[k];
+        }
+        return out;
+    }
+
+    /// After the bakes: the L x H tables and compressions the requested lxh-* read, each
+    /// built once.
+    void build_derived() {
+        lxh_.clear();
+        pcas_.clear();
+        for (Rep& r : reps_) {
+            if (r.kind != Kind::lxh_unc && r.kind != Kind::lxh_pca) continue;
+            const int nl =
+                settings_.lxh_lighting_bands > 0 ? settings_.lxh_lighting_bands : r.vis_bands;
+            r.table = -1;
+            for (std::size_t i = 0; i < lxh_.size(); ++i)
+                if (lxh_[i].vis_bands == r.vis_bands && lxh_[i].lighting_bands == nl)
+                    r.table = int(i);
+            if (r.table < 0) {
+                const auto t0 = std::chrono::steady_clock::now();
+                const std::vector<double> L = lxh_lighting(nl);
+                LxhBuilt b;
+                b.vis_bands = r.vis_bands;
+                b.lighting_bands = nl;
+                const LxhParam p(settings_.lxh_table_size);
+                b.table = std::make_shared<const LxhTable<LxhParam>>(build_lxh_table(
+                    p, lxh_matrix(nl, L.data(), r.vis_bands), LxhConstruction::symmetric));
+                b.seconds =
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                lxh_.push_back(std::move(b));
+                r.table = int(lxh_.size() - 1);
+            }
+            if (r.kind == Kind::lxh_pca) {
+                build_pca(r);
+                r.model = int(pcas_.size() - 1);
+            }
+        }
+    }
+
+    /// PCA (mean + M vectors, compress::pca) of the visibility of every point r reads (one
+    /// basis for all meshes), its weights as fields, and the per-vector RGB tables
+    /// T_j(n) = b_j . (L x H)(n) (Iwanicki and Sloan, eq. 6).
+    void build_pca(const Rep& r) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const std::size_t kk = std::size_t(r.vis_bands * r.vis_bands);
+        std::vector<std::size_t> offset(data_.size(), 0);
+        std::size_t rows = 0;
+        for (std::size_t b : reads_of(r)) {
+            offset[b] = rows;
+            rows += data_[b].results.size();
+        }
+        compress::MatrixX<double> x(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(kk));
+        for (std::size_t b : reads_of(r))
+            for (std::size_t i = 0; i < data_[b].results.size(); ++i) {
+                const std::vector<double>& v = data_[b].results[i].visibility;
+                for (std::size_t k = 0; k < kk; ++k)
+                    x(Eigen::Index(offset[b] + i), Eigen::Index(k)) = k < v.size() ? v[k] : 0.0;
+            }
+        compress::Pca<double> model;
+        try {
+            model = compress::pca(x, r.vectors);
+        } catch (const std::invalid_argument& e) {
+            sphbasis::detail::throw_invalid("render::Representations::prepare",
+                                            "no more PCA vectors for '" + r.name +
+                                                "' than the baked visibility supports (" +
+                                                e.what() + ")");
+        }
+        PcaBuilt pb;
+        pb.rank = model.rank;
+        pb.mesh_field.assign(scene_.meshes.size(), -1);
+        const std::size_t m = std::size_t(r.vectors);
+        for (std::size_t mesh = 0; mesh < scene_.meshes.size(); ++mesh) {
+            const int b = r.mesh_bake[mesh];
+            if (b < 0) continue;
+            const std::size_t off = offset[std::size_t(b)];
+            fields_.push_back(
+                make_field(data_[std::size_t(b)], r.vectors, [&](std::size_t i, float* out) {
+                    for (std::size_t j = 0; j < m; ++j)
+                        out[j] = float(model.weights(Eigen::Index(off + i), Eigen::Index(j)));
+                }));
+            pb.mesh_field[mesh] = int(fields_.size() - 1);
+        }
+        const LxhTable<LxhParam>& tab = *lxh_[std::size_t(r.table)].table;
+        const std::size_t texels = tab.param.texel_count(), e = 3 * kk, o = 3 * (m + 1);
+        pb.tables.assign(texels * o, 0.f);
+        for (std::size_t t = 0; t < texels; ++t) {
+            const float* src = tab.data.data() + t * e;
+            float* dst = pb.tables.data() + t * o;
+            for (std::size_t c = 0; c < 3; ++c) {
+                double s = 0;
+                for (std::size_t k = 0; k < kk; ++k)
+                    s += model.mean(Eigen::Index(k)) * double(src[3 * k + c]);
+                dst[c] = float(s);
+                for (std::size_t j = 0; j < m; ++j) {
+                    double sj = 0;
+                    for (std::size_t k = 0; k < kk; ++k)
+                        sj +=
+                            model.basis(Eigen::Index(k), Eigen::Index(j)) * double(src[3 * k + c]);
+                    dst[3 * (j + 1) + c] = float(sj);
+                }
+            }
+        }
+        pb.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        pcas_.push_back(std::move(pb));
+    }
+    /// The distinct bakes r reads, ascending.
+    static std::vector<std::size_t> reads_of(const Rep& r) {
+        std::vector<std::size_t> out;
+        for (int b : r.mesh_bake)
+            if (b >= 0) out.push_back(std::size_t(b));
+        if (r.probe_bake >= 0) out.push_back(std::size_t(r.probe_bake));
+        std::sort(out.begin(), out.end());
+        out.erase(std::unique(out.begin(), out.end()), out.end());
+        return out;
+    }
 
     /// Representation `index`; with `ready`, also that its bakes are prepared.
     const Rep& rep(std::size_t index, const char* fn, bool ready = true) const {
@@ -905,6 +1453,10 @@ class Representations {
         sphbasis::detail::check_range(fn, "settings.lightmap_size", settings_.lightmap_size, 1,
                                       16384);
         sphbasis::detail::check_orthonormal(settings_.lighting_rotation, 1e-6, fn);
+        sphbasis::detail::check_range(fn, "settings.lxh_table_size", settings_.lxh_table_size, 1,
+                                      1024);
+        sphbasis::detail::check_range(fn, "settings.lxh_lighting_bands",
+                                      settings_.lxh_lighting_bands, 0, max_lxh_bands);
         if (settings_.has_probes) settings_.probes.validate();
         if (rt_.mesh_count() != scene_.meshes.size())
             sphbasis::detail::throw_invalid(
@@ -917,15 +1469,47 @@ class Representations {
             known += (known.empty() ? "" : ", ") + n;
         for (std::size_t i = 0; i < names_.size(); ++i) {
             const auto& all = representation_names();
-            if (std::find(all.begin(), all.end(), names_[i]) == all.end())
+            if (std::find(all.begin(), all.end(), names_[i]) == all.end() &&
+                !family_member(names_[i]))
                 sphbasis::detail::throw_invalid(
-                    fn, "representations from: " + known + "; got unknown '" + names_[i] + "'");
+                    fn, "representations from: " + known +
+                            " (and lxh-pcaM for 1 <= M <= 36); got unknown '" + names_[i] + "'");
             for (std::size_t j = 0; j < i; ++j)
                 if (names_[j] == names_[i])
                     sphbasis::detail::throw_invalid(fn, "distinct representations (from: " + known +
                                                             "), got '" + names_[i] + "' twice");
         }
     }
+
+    /// The decimal number after `prefix` in `name` (digits only, at most 4), else -1.
+    static int number_after(const std::string& name, const std::string& prefix) {
+        if (name.size() <= prefix.size() || name.size() > prefix.size() + 4 ||
+            name.compare(0, prefix.size(), prefix) != 0)
+            return -1;
+        int v = 0;
+        for (std::size_t i = prefix.size(); i < name.size(); ++i) {
+            if (name[i] < '0' || name[i] > '9') return -1;
+            v = 10 * v + (name[i] - '0');
+        }
+        return name[prefix.size()] == '0' ? -1 : v;
+    }
+    /// Names of a family beyond the listed ones: lxh-pcaM (1 <= M <= 36).
+    static bool family_member(const std::string& name) {
+        const int m = number_after(name, "lxh-pca");
+        int c = 0, v = 0;
+        return (m >= 1 && m <= lxh_pca_bands * lxh_pca_bands) || cpca_name(name, c, v);
+    }
+    /// prt-cpca-C-M: C clusters (1..4096) of M vectors (1..64).
+    static bool cpca_name(const std::string& name, int& c, int& m) {
+        const std::string pre = "prt-cpca-";
+        if (name.compare(0, pre.size(), pre) != 0) return false;
+        const std::size_t dash = name.find('-', pre.size());
+        if (dash == std::string::npos) return false;
+        c = number_after(name.substr(0, dash), pre);
+        m = number_after(name.substr(dash), "-");
+        return c >= 1 && c <= 4096 && m >= 1 && m <= 64;
+    }
+    static constexpr int lxh_pca_bands = 6;  // the visibility lxh-pca* compresses
 
     static bool has_uvs(const MeshView& m) noexcept {
         return m.uvs != nullptr && m.triangle_count > 0;
@@ -971,6 +1555,46 @@ class Representations {
                         r.cannot_show += "; meshes without UVs read per-vertex transfer";
                         break;
                     }
+        } else if (name.rfind("prt-cpca-", 0) == 0) {
+            r.kind = Kind::prt_cpca;
+            if (!cpca_name(name, r.clusters, r.vectors))
+                sphbasis::detail::throw_invalid("render::Representations",
+                                                "prt-cpca-C-M, got '" + name + "'");
+            r.element = "texel";
+            r.bytes_per_element = std::size_t(r.vectors) * sizeof(float) + 2;  // + cluster index
+            r.cannot_show =
+                "lighting above " + std::to_string(settings_.prt_bands) +
+                " SH bands; no normal-map detail; transfer beyond " + std::to_string(r.vectors) +
+                " vectors in each of " + std::to_string(r.clusters) +
+                " clusters (read nearest: clusters cannot be filtered)" + std::string(no_bounce);
+            for (const MeshView& m : scene_.meshes)
+                if (!has_uvs(m)) r.element = "vertex";
+        } else if (name == "prt-ratio") {
+            r.kind = Kind::prt_ratio;
+            r.element = "texel";
+            r.cannot_show =
+                "shadowing of the tilted normal taken from the surface normal's "
+                "(one ratio per texel)" +
+                std::string(no_bounce);
+            for (const MeshView& m : scene_.meshes)
+                if (!has_uvs(m)) r.element = "vertex";
+        } else if (name.rfind("prt-normalmap", 0) == 0) {
+            r.kind = Kind::prt_normalmap;
+            const int nb = settings_.prt_bands;
+            if (name != "prt-normalmap") {
+                r.svd_vectors = name == "prt-normalmap-svd4" ? 4 : 6;
+                r.bytes_per_element = 3 * std::size_t(r.svd_vectors * nb * nb) * sizeof(float);
+            } else {
+                r.bytes_per_element = 3 * std::size_t(9 * nb * nb) * sizeof(float);
+            }
+            r.element = "texel";
+            r.cannot_show = "lighting above " + std::to_string(nb) +
+                            " SH bands; incident light above 3 bands" + std::string(no_bounce);
+            if (r.svd_vectors > 0)
+                r.cannot_show += "; normal variation beyond " + std::to_string(r.svd_vectors) +
+                                 " normal-basis functions";
+            for (const MeshView& m : scene_.meshes)
+                if (!has_uvs(m)) r.element = "vertex";
         } else if (name.rfind("lightmap-", 0) == 0) {
             r.kind = Kind::lightmap;
             const std::string b = name.substr(9);
@@ -1010,6 +1634,36 @@ class Representations {
                 "static lighting (ignores the render-time rotation); shadows and occlusion finer "
                 "than the probe spacing; light leaks where probes straddle walls" +
                 std::string(no_bounce);
+        } else if (name.rfind("lxh-", 0) == 0) {
+            const int k = number_after(name, "lxh-unc"), m = number_after(name, "lxh-pca");
+            if (k == 3 || k == 4 || k == 6) {
+                r.kind = Kind::lxh_unc;
+                r.vis_bands = k;
+                r.bytes_per_element = std::size_t(k * k) * sizeof(float);
+            } else if (m >= 1) {
+                r.kind = Kind::lxh_pca;
+                r.vis_bands = lxh_pca_bands;
+                r.vectors = m;
+                r.bytes_per_element = std::size_t(m) * sizeof(float);
+            } else {  // representation_names() and this parser disagree
+                sphbasis::detail::throw_invalid("render::Representations",
+                                                "an lxh representation, got '" + name + "'");
+            }
+            r.element = "texel";
+            const int nl =
+                settings_.lxh_lighting_bands > 0 ? settings_.lxh_lighting_bands : r.vis_bands;
+            r.cannot_show = "no interreflection; visibility beyond " + std::to_string(r.vis_bands) +
+                            " SH bands (sharp shadows), lighting " + "beyond " +
+                            std::to_string(nl) + " bands";
+            if (r.kind == Kind::lxh_pca)
+                r.cannot_show +=
+                    "; visibility beyond " + std::to_string(r.vectors) + " principal components";
+            for (const MeshView& mv : scene_.meshes)
+                if (!has_uvs(mv)) {
+                    r.element = "vertex";
+                    r.cannot_show += "; meshes without UVs store visibility per vertex";
+                    break;
+                }
         } else if (name == "specular-toksvig" || name == "specular-aliased") {
             r.kind = name == "specular-toksvig" ? Kind::specular_toksvig : Kind::specular_aliased;
             r.cannot_show =
@@ -1111,9 +1765,48 @@ class Representations {
                     r.probe_bake = add_request(q);
                     break;
                 }
+                case Kind::lxh_unc:
+                case Kind::lxh_pca:
+                    r.mesh_bake.assign(nm, -1);
+                    for (std::size_t m = 0; m < nm; ++m) {
+                        if (scene_.meshes[m].triangle_count == 0) continue;
+                        BakeRequest q;
+                        q.mesh = m;
+                        q.settings = base_settings(Quantity::visibility, 0);
+                        q.settings.bands = r.vis_bands;
+                        if (has_uvs(scene_.meshes[m])) {
+                            q.where = BakeRequest::Where::texel;
+                            q.lightmap_size = settings_.lightmap_size;
+                        }
+                        r.mesh_bake[m] = add_request(q);
+                    }
+                    break;
                 case Kind::specular_toksvig:
                 case Kind::specular_aliased:
+                case Kind::prt_ratio:
+                case Kind::prt_normalmap:
+                case Kind::prt_cpca:
                     break;
+            }
+            if (r.kind == Kind::prt_ratio || r.kind == Kind::prt_normalmap ||
+                r.kind == Kind::prt_cpca) {
+                needs_sh_ = true;
+                r.mesh_bake.assign(nm, -1);
+                for (std::size_t m = 0; m < nm; ++m) {
+                    if (scene_.meshes[m].triangle_count == 0) continue;
+                    BakeRequest q;
+                    q.mesh = m;
+                    q.settings =
+                        base_settings(r.kind == Kind::prt_normalmap ? Quantity::transfer_matrix
+                                                                    : Quantity::transfer,
+                                      settings_.bounces);
+                    q.settings.bands = settings_.prt_bands;
+                    if (has_uvs(scene_.meshes[m])) {
+                        q.where = BakeRequest::Where::texel;
+                        q.lightmap_size = settings_.lightmap_size;
+                    }
+                    r.mesh_bake[m] = add_request(q);
+                }
             }
             r.reads_bakes = r.probe_bake >= 0;
             for (int b : r.mesh_bake) r.reads_bakes = r.reads_bakes || b >= 0;
@@ -1287,12 +1980,20 @@ class Representations {
 
     /// Channels of a result: ao + bent (4), transfer (3 bands^2) or irradiance (3 coeffs).
     static int channels_of(const BakeSettings& s) noexcept {
+        if (s.quantities & Quantity::transfer_matrix) return 27 * s.bands * s.bands;
         if (s.quantities & Quantity::transfer) return 3 * s.bands * s.bands;
         if (s.quantities & Quantity::irradiance) return 3 * s.coeffs;
+        if (s.quantities & Quantity::visibility) return s.bands * s.bands;
         return 4;
     }
     static void pack(const BakeSettings& s, const PointResult& r, float* out) noexcept {
-        if (s.quantities & Quantity::transfer) {
+        if (s.quantities & Quantity::transfer_matrix) {
+            const std::size_t n = 9 * std::size_t(s.bands * s.bands);
+            for (std::size_t c = 0; c < 3; ++c)
+                for (std::size_t k = 0; k < n; ++k)
+                    out[c * n + k] =
+                        k < r.transfer_matrix[c].size() ? float(r.transfer_matrix[c][k]) : 0.f;
+        } else if (s.quantities & Quantity::transfer) {
             const std::size_t n = std::size_t(s.bands * s.bands);
             for (std::size_t c = 0; c < 3; ++c)
                 for (std::size_t k = 0; k < n; ++k)
@@ -1302,6 +2003,10 @@ class Representations {
             for (std::size_t c = 0; c < 3; ++c)
                 for (std::size_t k = 0; k < n; ++k)
                     out[c * n + k] = k < r.irradiance[c].size() ? float(r.irradiance[c][k]) : 0.f;
+        } else if (s.quantities & Quantity::visibility) {
+            const std::size_t n = std::size_t(s.bands * s.bands);
+            for (std::size_t k = 0; k < n; ++k)
+                out[k] = k < r.visibility.size() ? float(r.visibility[k]) : 0.f;
         } else {
             out[0] = float(r.ao);
             out[1] = float(r.bent.x);
@@ -1330,12 +2035,21 @@ class Representations {
                 std::fill(f.inside.begin(), f.inside.end(), 0);
             return f;
         }
-        f.channels = channels_of(q.settings);
+        return make_field(d, channels_of(q.settings),
+                          [&](std::size_t i, float* out) { pack(q.settings, d.results[i], out); });
+    }
+    /// A vertex or texel field of `channels` values per point of bake d, point i's written by
+    /// pack_point(i, out) (texel gutters dilated).
+    template <class PackPoint>
+    static Field make_field(const BakeData& d, int channels, PackPoint&& pack_point) {
+        Field f;
+        f.where = d.request.where;
+        f.channels = channels;
         const std::size_t ch = std::size_t(f.channels);
-        if (q.where == BakeRequest::Where::vertex) {
+        if (f.where == BakeRequest::Where::vertex) {
             f.data.assign(d.results.size() * ch, 0.f);
             for (std::size_t v = 0; v < d.results.size(); ++v)
-                pack(q.settings, d.results[v], f.data.data() + v * ch);
+                pack_point(v, f.data.data() + v * ch);
             return f;
         }
         f.width = d.layout.width;
@@ -1343,8 +2057,8 @@ class Representations {
         f.data.assign(std::size_t(f.width) * std::size_t(f.height) * ch, 0.f);
         for (std::size_t i = 0; i < d.results.size(); ++i) {
             const LightmapSample& s = d.layout.samples[i];
-            pack(q.settings, d.results[i],
-                 f.data.data() + (std::size_t(s.y) * std::size_t(f.width) + std::size_t(s.x)) * ch);
+            pack_point(i, f.data.data() +
+                              (std::size_t(s.y) * std::size_t(f.width) + std::size_t(s.x)) * ch);
         }
         dilate(f.data.data(), f.width, f.height, f.channels, d.layout.covered, gutter);
         return f;
@@ -1398,6 +2112,9 @@ class Representations {
     std::array<std::vector<double>, 3> prt_light_;
     double window_lambda_ = 0;
     std::unique_ptr<SpecularShading> spec_;
+    std::vector<LxhBuilt> lxh_;
+    std::vector<PcaBuilt> pcas_;
+    Eigen::MatrixXd normal_v_;  // prt-normalmap-svd*: V of the normal basis (9 x 9)
 };
 
 }  // namespace sphbasis::render
