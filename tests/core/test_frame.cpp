@@ -194,12 +194,12 @@ TEST_CASE("frame: quaternions of any finite magnitude give their rotation", "[fr
     for (double scale : {1e-310, 1e-300, 1e-150, 1.0, 1e150, 1e300}) {
         const Mat3<double> r =
             matrix_from_quaternion(0.5 * scale, 0.5 * scale, 0.5 * scale, 0.5 * scale);
-        for (int i = 0; i < 9; ++i) CHECK(r[i] == Approx(ref[i]).margin(1e-15));
+        for (std::size_t i = 0; i < 9; ++i) CHECK(r[i] == Approx(ref[i]).margin(1e-15));
     }
     // (1e300, 1e300, 0, 0) is (1, 1, 0, 0) scaled: 90 degrees about x.
     const Mat3<double> rx = matrix_from_quaternion(1e300, 1e300, 0.0, 0.0);
     const Mat3<double> rx_ref{1, 0, 0, 0, 0, -1, 0, 1, 0};
-    for (int i = 0; i < 9; ++i) CHECK(rx[i] == Approx(rx_ref[i]).margin(1e-15));
+    for (std::size_t i = 0; i < 9; ++i) CHECK(rx[i] == Approx(rx_ref[i]).margin(1e-15));
     CHECK_THROWS_AS(matrix_from_quaternion(0.0, 0.0, 0.0, 0.0), std::invalid_argument);
     CHECK_THROWS_AS(matrix_from_quaternion(std::nan(""), 0.0, 0.0, 1.0), std::invalid_argument);
     CHECK_THROWS_AS(matrix_from_quaternion(HUGE_VAL, 0.0, 0.0, 1.0), std::invalid_argument);

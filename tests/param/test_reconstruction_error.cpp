@@ -137,7 +137,7 @@ TEST_CASE("reconstruction: resolutions and texel budgets", "[param][reconstructi
 TEST_CASE("reconstruction: log-log interpolation is exact on a power law",
           "[param][reconstruction]") {
     std::vector<ReconstructionResult> rs;
-    for (std::size_t t : {100, 400, 1600}) {
+    for (std::size_t t : {std::size_t(100), std::size_t(400), std::size_t(1600)}) {
         ReconstructionResult r;
         r.param = "p";
         r.texels = t;

@@ -40,8 +40,10 @@
 // Decomposition (PcaMethod): `svd` runs Eigen's BDCSVD on the centred data (only V is computed):
 // backward stable, small singular values accurate to ~eps * s_max, so the rank and the lossless
 // full-rank reconstruction are exact to rounding; cost O(P c^2) with a larger constant and a
-// P x c copy. `covariance` forms the c x c scatter matrix (one GEMM, O(P c^2), cache friendly) and
-// runs SelfAdjointEigenSolver on it: several times faster for P >> c, but squaring the condition
+// P x c copy. The SVD runs in double for float data too, and its results are rounded: one
+// BDCSVD instantiation per program, which costs 45 s of compiler time per scalar type at -O3.
+// `covariance` forms the c x c scatter matrix (one GEMM, O(P c^2), cache friendly) and runs
+// SelfAdjointEigenSolver on it: several times faster for P >> c, but squaring the condition
 // number makes singular values below ~sqrt(eps) * s_max unreliable (the rank tolerance is
 // raised accordingly). pca() defaults to `svd` (a one-shot call: accuracy first); the CPCA loops
 // use `covariance` for the many small per-cluster fits (speed; the span of the leading
@@ -198,9 +200,10 @@ void decompose(const MatrixX<Scalar>& centred, PcaMethod method, MatrixX<Scalar>
     const double n = static_cast<double>(std::max(p, c));
     double tol;
     if (method == PcaMethod::svd) {
-        Eigen::BDCSVD<MatrixX<Scalar>> svd(centred, Eigen::ComputeThinV);
-        v = svd.matrixV();
-        s = svd.singularValues().transpose();
+        const Eigen::BDCSVD<MatrixX<double>> svd(centred.template cast<double>(),
+                                                 Eigen::ComputeThinV);
+        v = svd.matrixV().template cast<Scalar>();
+        s = svd.singularValues().transpose().template cast<Scalar>();
         tol = n * eps;
     } else {
         const MatrixX<Scalar> scatter = centred.transpose() * centred;
