@@ -12,6 +12,9 @@ with folded constants:
   Q_l^m = a_lm z Q_{l-1}^m - a_lm b_lm Q_{l-2}^m,
   a_lm = sqrt((4l^2-1)/(l^2-m^2)),  b_lm = sqrt(((l-1)^2-m^2)/(4(l-1)^2-1)).
 No Condon-Shortley phase; ACN index l(l+1)+m.
+Q_{m+2}^m and Q_{m+3}^m are written out as polynomials in z^2 (an FMA, or an FMA and a product,
+after one shared z^2, as Sloan's generated code does: 4-8% faster one-call at 4-8 bands than
+the recurrence, measured side by side); the recurrence takes over from Q_{m+4}^m.
 eval_fixed_scaled_N(x, y, z, inv, store) gives the same values at a direction of any length r
 with inv = 1/r (sh::eval<N>'s normalising kernel for N = 4..8): C_m, S_m from the raw x, y,
 then times inv^m; only z is normalised before the z recurrence. The powers of (x + i y) do not
@@ -68,6 +71,32 @@ def b(l, m):
     return sp.sqrt(sp.Rational((l - 1) ** 2 - m * m, 4 * (l - 1) ** 2 - 1))
 
 
+_Z = sp.Symbol("z")
+
+
+def column_poly(l, m):
+    """Q_l^m as an exact polynomial in z (the recurrence of the docstring)."""
+    q = [sectoral(m), sp.sqrt(2 * m + 3) * sectoral(m) * _Z]
+    for k in range(m + 2, l + 1):
+        A = a(k, m)
+        q.append(sp.expand(A * _Z * q[-1] - A * b(k, m) * q[-2]))
+    return sp.Poly(q[l - m], _Z)
+
+
+def short_column(l, m, z, z2):
+    """Q_l^m for l = m + 2 and m + 3 as explicit polynomials in z^2 (one FMA, or an FMA and a
+    multiplication, after the shared z^2, as Sloan's generated code does), else None."""
+    if l - m == 2:
+        p = column_poly(l, m)
+        al, be = p.coeff_monomial(_Z ** 2), p.coeff_monomial(1)
+        return "V(%s) * %s + V(%s);  // %s z^2 + %s" % (lit(al), z2, lit(be), closed(sp.simplify(al)), closed(sp.simplify(be)))
+    if l - m == 3:
+        p = column_poly(l, m)
+        ga, de = p.coeff_monomial(_Z ** 3), p.coeff_monomial(_Z)
+        return "%s * (V(%s) * %s + V(%s));  // z (%s z^2 + %s)" % (z, lit(ga), z2, lit(de), closed(sp.simplify(ga)), closed(sp.simplify(de)))
+    return None
+
+
 def kernel(n):
     out = []
     w = out.append
@@ -81,6 +110,8 @@ def kernel(n):
         w("    const V c1 = x, s1 = y;")
     for m in range(2, n):
         w("    const V c%d = x * c%d - y * s%d, s%d = x * s%d + y * c%d;" % (m, m - 1, m - 1, m, m - 1, m - 1))
+    if n > 2:
+        w("    const V z2 = z * z;")
     for m in range(0, n):
         # Q_m^m constant
         qmm = sectoral(m)
@@ -92,6 +123,8 @@ def kernel(n):
             elif l == m + 1:
                 c = sp.sqrt(2 * m + 3) * qmm
                 w("    const V %s = V(%s) * z;  // %s z" % (name, lit(c), closed(sp.simplify(c))))
+            elif short_column(l, m, "z", "z2"):
+                w("    const V %s = %s" % (name, short_column(l, m, "z", "z2")))
             else:
                 A = a(l, m)
                 B = A * b(l, m)
@@ -122,6 +155,8 @@ def kernel_scaled(n):
     w("    (void)x; (void)y; (void)z; (void)inv;")
     if n > 1:
         w("    const V zn = z * inv;")
+        if n > 2:
+            w("    const V zn2 = zn * zn;")
         w("    const V a1 = x, b1 = y;")
     for m in range(2, n):
         w("    const V a%d = x * a%d - y * b%d, b%d = x * b%d + y * a%d;" % (m, m - 1, m - 1, m, m - 1, m - 1))
@@ -140,6 +175,8 @@ def kernel_scaled(n):
             elif l == m + 1:
                 c = sp.sqrt(2 * m + 3) * qmm
                 w("    const V %s = V(%s) * zn;  // %s z" % (name, lit(c), closed(sp.simplify(c))))
+            elif short_column(l, m, "zn", "zn2"):
+                w("    const V %s = %s" % (name, short_column(l, m, "zn", "zn2")))
             else:
                 A = a(l, m)
                 B = A * b(l, m)
