@@ -12,13 +12,14 @@ with folded constants:
   Q_l^m = a_lm z Q_{l-1}^m - a_lm b_lm Q_{l-2}^m,
   a_lm = sqrt((4l^2-1)/(l^2-m^2)),  b_lm = sqrt(((l-1)^2-m^2)/(4(l-1)^2-1)).
 No Condon-Shortley phase; ACN index l(l+1)+m.
-Q_{m+2}^m and Q_{m+3}^m are written out as polynomials in z^2 (an FMA, or an FMA and a product,
-after one shared z^2, as Sloan's generated code does: 4-8% faster one-call at 4-8 bands than
-the recurrence, measured side by side); the recurrence takes over from Q_{m+4}^m.
 eval_fixed_scaled_N(x, y, z, inv, store) gives the same values at a direction of any length r
 with inv = 1/r (sh::eval<N>'s normalising kernel for N = 4..8): C_m, S_m from the raw x, y,
 then times inv^m; only z is normalised before the z recurrence. The powers of (x + i y) do not
 wait for the square root, which the one-call benchmark measured 1.1-1.5x faster at 4-8 bands.
+There Q_{m+2}^m and Q_{m+3}^m are written out as polynomials in z^2 (an FMA, or an FMA and a
+product, after one shared z^2, as Sloan's generated code does; the recurrence from Q_{m+4}^m):
+another 2-9% at 4-8 bands. eval_fixed_N keeps the recurrence everywhere: the shader twins follow
+its operation order, and the shader test's 4-ulp bound failed (7 ulps) with the short columns.
 
 Usage: /usr/bin/python3 tools/gen/gen_sh_fixed.py > include/sphbasis/basis/sh_fixed.hpp
        /usr/bin/python3 tools/gen/gen_sh_fixed.py --glsl > shaders/sphbasis.glsl
@@ -110,8 +111,6 @@ def kernel(n):
         w("    const V c1 = x, s1 = y;")
     for m in range(2, n):
         w("    const V c%d = x * c%d - y * s%d, s%d = x * s%d + y * c%d;" % (m, m - 1, m - 1, m, m - 1, m - 1))
-    if n > 2:
-        w("    const V z2 = z * z;")
     for m in range(0, n):
         # Q_m^m constant
         qmm = sectoral(m)
@@ -123,8 +122,6 @@ def kernel(n):
             elif l == m + 1:
                 c = sp.sqrt(2 * m + 3) * qmm
                 w("    const V %s = V(%s) * z;  // %s z" % (name, lit(c), closed(sp.simplify(c))))
-            elif short_column(l, m, "z", "z2"):
-                w("    const V %s = %s" % (name, short_column(l, m, "z", "z2")))
             else:
                 A = a(l, m)
                 B = A * b(l, m)
