@@ -133,8 +133,7 @@ void eval1(benchmark::State& st) {
                 float x = d.x[i], y = d.y[i], z = d.z[i];
                 sphbasis::normalize_or_pole(x, y, z);
                 sb::eval_unit<N>(x, y, z, out);
-            }
-            else if constexpr (K == Eval1::dx)
+            } else if constexpr (K == Eval1::dx)
                 DirectX::XMSHEvalDirection(out, N, DirectX::XMLoadFloat4A(&d.dx[i]));
             else if constexpr (K == Eval1::google)
                 google_eval<float>(N, d.x[i], d.y[i], d.z[i], out);
