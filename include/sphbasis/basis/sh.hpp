@@ -380,7 +380,7 @@ struct FixedKernel {
 /// step (within ~2 ulp, as the batch path's vrsqrt), otherwise 1 / std::sqrt.
 template <class T>
 SPHBASIS_FORCEINLINE T inverse_length(T r2) noexcept {
-#if defined(__AVX512F__)
+#if defined(__AVX512F__) && SPHBASIS_HAS_VECTOR_EXT  // core/simd.hpp includes <immintrin.h>
     if constexpr (std::is_same_v<T, float>) {
         const __m128 v = _mm_set_ss(r2);
         const float e = _mm_cvtss_f32(_mm_maskz_rsqrt14_ss(__mmask8(1), v, v));
