@@ -113,7 +113,7 @@ void gsl_eval(int bands, double x, double y, double z, double* work, double* out
 
 // ---- 1. One call, float, N bands, a normalising eval (sphericart normalises too) and the
 // unit-input eval (DirectXMath's XMSHEvalDirection takes unit input).
-enum class Eval1 { sb_eval, sb_eval_unit, dx, google, sphericart };
+enum class Eval1 { sb_eval, sb_eval_unit, sb_normalize_then_unit, dx, google, sphericart };
 
 template <int N, Eval1 K>
 void eval1(benchmark::State& st) {
@@ -128,7 +128,12 @@ void eval1(benchmark::State& st) {
                 sb::eval<N>(d.x[i], d.y[i], d.z[i], out);
             else if constexpr (K == Eval1::sb_eval_unit)
                 sb::eval_unit<N>(d.x[i], d.y[i], d.z[i], out);
-            else if constexpr (K == Eval1::dx)
+            else if constexpr (K == Eval1::sb_normalize_then_unit) {
+                // eval<N>'s path before the normalising kernels (reference row)
+                float x = d.x[i], y = d.y[i], z = d.z[i];
+                sphbasis::normalize_or_pole(x, y, z);
+                sb::eval_unit<N>(x, y, z, out);
+            } else if constexpr (K == Eval1::dx)
                 DirectX::XMSHEvalDirection(out, N, DirectX::XMLoadFloat4A(&d.dx[i]));
             else if constexpr (K == Eval1::google)
                 google_eval<float>(N, d.x[i], d.y[i], d.z[i], out);
@@ -280,7 +285,25 @@ void rotation(benchmark::State& st) {
     per_item(st, kRot);
 }
 
-enum class RotZ { sb, dx };
+enum class RotZ { sb, sb_libm, dx };
+
+/// Reference row: sh::rotate_z as it was with libm's sincos for cos a, sin a (unchecked).
+void rotate_z_libm(int bands, float angle, const float* in, float* out) {
+    for (int l = 0; l < bands; ++l) out[l * (l + 1)] = in[l * (l + 1)];
+    const double c1 = std::cos(double(angle)), s1 = std::sin(double(angle));
+    double cm = 1, sm = 0;
+    for (int m = 1; m < bands; ++m) {
+        const double c = cm * c1 - sm * s1;
+        sm = sm * c1 + cm * s1;
+        cm = c;
+        const float fc = float(cm), fs = float(sm);
+        for (int l = m; l < bands; ++l) {
+            const float cc = in[l * (l + 1) + m], ss = in[l * (l + 1) - m];
+            out[l * (l + 1) + m] = cc * fc + ss * (-fs);
+            out[l * (l + 1) - m] = ss * fc + cc * fs;
+        }
+    }
+}
 
 template <int N, RotZ K>
 void rotate_z(benchmark::State& st) {
@@ -291,6 +314,8 @@ void rotate_z(benchmark::State& st) {
         for (std::size_t i = 0; i < kRot; ++i) {
             if constexpr (K == RotZ::sb)
                 sb::rotate_z(N, a, in.data(), out.data());
+            else if constexpr (K == RotZ::sb_libm)
+                rotate_z_libm(N, a, in.data(), out.data());
             else
                 DirectX::XMSHRotateZ(out.data(), N, a, in.data());
             a = a > 6.f ? 0.1f : a + 0.01f;
@@ -412,6 +437,7 @@ void register_eval1() {
     const std::string g = "eval1/" + std::to_string(N) + "/";
     reg(g + "sphbasis_eval_unit", eval1<N, Eval1::sb_eval_unit>);
     reg(g + "sphbasis_eval", eval1<N, Eval1::sb_eval>);
+    reg(g + "ref_sphbasis_normalize_then_unit", eval1<N, Eval1::sb_normalize_then_unit>);
     if constexpr (N <= 6) reg(g + "dxmath_unit", eval1<N, Eval1::dx>);
     if constexpr (N <= 4) reg(g + "google_unit", eval1<N, Eval1::google>);
     reg(g + "sphericart", eval1<N, Eval1::sphericart>);
@@ -430,6 +456,7 @@ void register_rotation() {
     reg(g + "google_quaternion", rotation<N, Rot::google_quaternion>);
     reg("rotate_z/" + std::to_string(N) + "/sphbasis", rotate_z<N, RotZ::sb>);
     reg("rotate_z/" + std::to_string(N) + "/dxmath", rotate_z<N, RotZ::dx>);
+    reg("rotate_z/" + std::to_string(N) + "/ref_sphbasis_libm_sincos", rotate_z<N, RotZ::sb_libm>);
 }
 
 template <Light L>

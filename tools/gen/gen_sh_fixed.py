@@ -12,6 +12,14 @@ with folded constants:
   Q_l^m = a_lm z Q_{l-1}^m - a_lm b_lm Q_{l-2}^m,
   a_lm = sqrt((4l^2-1)/(l^2-m^2)),  b_lm = sqrt(((l-1)^2-m^2)/(4(l-1)^2-1)).
 No Condon-Shortley phase; ACN index l(l+1)+m.
+eval_fixed_scaled_N(x, y, z, inv, store) gives the same values at a direction of any length r
+with inv = 1/r (sh::eval<N>'s normalising kernel for N = 4..8): C_m, S_m from the raw x, y,
+then times inv^m; only z is normalised before the z recurrence. The powers of (x + i y) do not
+wait for the square root, which the one-call benchmark measured 1.1-1.5x faster at 4-8 bands.
+There Q_{m+2}^m and Q_{m+3}^m are written out as polynomials in z^2 (an FMA, or an FMA and a
+product, after one shared z^2, as Sloan's generated code does; the recurrence from Q_{m+4}^m):
+another 2-9% at 4-8 bands. eval_fixed_N keeps the recurrence everywhere: the shader twins follow
+its operation order, and the shader test's 4-ulp bound failed (7 ulps) with the short columns.
 
 Usage: /usr/bin/python3 tools/gen/gen_sh_fixed.py > include/sphbasis/basis/sh_fixed.hpp
        /usr/bin/python3 tools/gen/gen_sh_fixed.py --glsl > shaders/sphbasis.glsl
@@ -64,6 +72,32 @@ def b(l, m):
     return sp.sqrt(sp.Rational((l - 1) ** 2 - m * m, 4 * (l - 1) ** 2 - 1))
 
 
+_Z = sp.Symbol("z")
+
+
+def column_poly(l, m):
+    """Q_l^m as an exact polynomial in z (the recurrence of the docstring)."""
+    q = [sectoral(m), sp.sqrt(2 * m + 3) * sectoral(m) * _Z]
+    for k in range(m + 2, l + 1):
+        A = a(k, m)
+        q.append(sp.expand(A * _Z * q[-1] - A * b(k, m) * q[-2]))
+    return sp.Poly(q[l - m], _Z)
+
+
+def short_column(l, m, z, z2):
+    """Q_l^m for l = m + 2 and m + 3 as explicit polynomials in z^2 (one FMA, or an FMA and a
+    multiplication, after the shared z^2, as Sloan's generated code does), else None."""
+    if l - m == 2:
+        p = column_poly(l, m)
+        al, be = p.coeff_monomial(_Z ** 2), p.coeff_monomial(1)
+        return "V(%s) * %s + V(%s);  // %s z^2 + %s" % (lit(al), z2, lit(be), closed(sp.simplify(al)), closed(sp.simplify(be)))
+    if l - m == 3:
+        p = column_poly(l, m)
+        ga, de = p.coeff_monomial(_Z ** 3), p.coeff_monomial(_Z)
+        return "%s * (V(%s) * %s + V(%s));  // z (%s z^2 + %s)" % (z, lit(ga), z2, lit(de), closed(sp.simplify(ga)), closed(sp.simplify(de)))
+    return None
+
+
 def kernel(n):
     out = []
     w = out.append
@@ -102,6 +136,58 @@ def kernel(n):
     return "\n".join(out)
 
 
+def kernel_scaled(n):
+    """n bands at a direction (x, y, z) of any length r, given inv = 1/r: the values of kernel(n)
+    at (x, y, z) / r. Only z is normalised before the z recurrence; C_m + i S_m = (x + i y)^m
+    are taken from the raw components and scaled by inv^m afterwards, so the complex powers run
+    while the square root is computed and only the z column waits for it."""
+    out = []
+    w = out.append
+    w("/// %d band%s at (x, y, z) of any length r, inv = 1/r (r^%d neither over- nor underflows): the" % (n, "" if n == 1 else "s", max(n - 1, 1)))
+    w("/// values of eval_fixed_%d at (x, y, z) / r. C_m + i S_m = (x + i y)^m from the raw components," % n)
+    w("/// scaled by inv^m; only z is normalised before its recurrence (the powers need no square root).")
+    w("template <class V, class Store>")
+    w("SPHBASIS_FORCEINLINE void eval_fixed_scaled_%d(const V& x, const V& y, const V& z, const V& inv, Store&& store) noexcept {" % n)
+    w("    using S = scalar_t<V>;")
+    w("    (void)x; (void)y; (void)z; (void)inv;")
+    if n > 1:
+        w("    const V zn = z * inv;")
+        if n > 2:
+            w("    const V zn2 = zn * zn;")
+        w("    const V a1 = x, b1 = y;")
+    for m in range(2, n):
+        w("    const V a%d = x * a%d - y * b%d, b%d = x * b%d + y * a%d;" % (m, m - 1, m - 1, m, m - 1, m - 1))
+    if n > 1:
+        w("    const V p1 = inv;")
+    for m in range(2, n):
+        w("    const V p%d = p%d * p%d;" % (m, m // 2, m - m // 2))
+    for m in range(1, n):
+        w("    const V c%d = a%d * p%d, s%d = b%d * p%d;" % (m, m, m, m, m, m))
+    for m in range(0, n):
+        qmm = sectoral(m)
+        for l in range(m, n):
+            name = "q%d_%d" % (l, m)
+            if l == m:
+                w("    const V %s = V(%s);  // %s" % (name, lit(qmm), closed(qmm)))
+            elif l == m + 1:
+                c = sp.sqrt(2 * m + 3) * qmm
+                w("    const V %s = V(%s) * zn;  // %s z" % (name, lit(c), closed(sp.simplify(c))))
+            elif short_column(l, m, "zn", "zn2"):
+                w("    const V %s = %s" % (name, short_column(l, m, "zn", "zn2")))
+            else:
+                A = a(l, m)
+                B = A * b(l, m)
+                w("    const V %s = V(%s) * zn * q%d_%d - V(%s) * q%d_%d;" % (name, lit(A), l - 1, m, lit(B), l - 2, m))
+            k = l * (l + 1)
+            if m == 0:
+                w("    store(%d, %s);" % (k, name))
+            else:
+                w("    store(%d, %s * c%d);" % (k + m, name, m))
+                w("    store(%d, %s * s%d);" % (k - m, name, m))
+    w("}")
+    return "\n".join(out)
+
+
 def main():
     print("// GENERATED by tools/gen/gen_sh_fixed.py -- do not edit.")
     print("// Regenerate: /usr/bin/python3 tools/gen/gen_sh_fixed.py > include/sphbasis/basis/sh_fixed.hpp")
@@ -109,7 +195,8 @@ def main():
     print("// Unrolled real spherical harmonics for 1..%d bands (graphics convention: no Condon-Shortley" % MAX_BANDS)
     print("// phase, ACN index l(l+1)+m). Each kernel calls store(index, value) once per function, so the")
     print("// caller decides where values go (an array, a strided SoA batch, or a running sum Σ c_i y_i).")
-    print("// The value type V is float, double or sphbasis::batch<T>.")
+    print("// The value type V is float, double or sphbasis::batch<T>. eval_fixed_scaled_N: the same values")
+    print("// at a direction of any length r, given inv = 1/r (the normalising one-call kernels).")
     print("#pragma once")
     print()
     print("// clang-format off")
@@ -123,12 +210,23 @@ def main():
     for n in range(1, MAX_BANDS + 1):
         print(kernel(n))
         print()
+    for n in range(1, MAX_BANDS + 1):
+        print(kernel_scaled(n))
+        print()
     print("/// Dispatch on a compile-time band count.")
     print("template <int N, class V, class Store>")
     print("SPHBASIS_FORCEINLINE void eval_fixed(const V& x, const V& y, const V& z, Store&& store) noexcept {")
     print('    static_assert(N >= 1 && N <= max_fixed_bands, "sphbasis::sh: unrolled kernels exist for 1..%d bands.");' % MAX_BANDS)
     for n in range(1, MAX_BANDS + 1):
         print("    %sif constexpr (N == %d) eval_fixed_%d(x, y, z, store);" % ("" if n == 1 else "else ", n, n))
+    print("}")
+    print()
+    print("/// eval_fixed_scaled_N dispatched on a compile-time band count.")
+    print("template <int N, class V, class Store>")
+    print("SPHBASIS_FORCEINLINE void eval_fixed_scaled(const V& x, const V& y, const V& z, const V& inv, Store&& store) noexcept {")
+    print('    static_assert(N >= 1 && N <= max_fixed_bands, "sphbasis::sh: unrolled kernels exist for 1..%d bands.");' % MAX_BANDS)
+    for n in range(1, MAX_BANDS + 1):
+        print("    %sif constexpr (N == %d) eval_fixed_scaled_%d(x, y, z, inv, store);" % ("" if n == 1 else "else ", n, n))
     print("}")
     print()
     print("}  // namespace sphbasis::sh::detail")

@@ -292,7 +292,16 @@ SPHBASIS_FORCEINLINE void bands_eval_dir(const char* fn, int bands, const D& d, 
         bands_eval<B, Normalize>(fn, bands, component<0>(d), component<1>(d), component<2>(d), out);
 }
 
+/// Whether B has a kernel of exactly N bands that normalises the direction itself
+/// (B::fixed_normalizing_kernel<N>(), called with the raw components).
+template <class B, int N, class = void>
+struct has_fixed_normalizing_kernel : std::false_type {};
+template <class B, int N>
+struct has_fixed_normalizing_kernel<
+    B, N, std::void_t<decltype(B::template fixed_normalizing_kernel<N>())>> : std::true_type {};
+
 /// Compile-time band count N: B's kernel for exactly N bands, no dispatch. Out as bands_eval.
+/// Normalising evaluation goes to B's normalising kernel where it has one (SH, 4..8 bands).
 template <class B, int N, bool Normalize, class X, class Y, class Z, class Out>
 SPHBASIS_FORCEINLINE void fixed_bands_eval(const char* fn, X x, Y y, Z z, Out& out) {
     static_check_components<X, Y, Z>();
@@ -303,6 +312,11 @@ SPHBASIS_FORCEINLINE void fixed_bands_eval(const char* fn, X x, Y y, Z z, Out& o
             check_buffer_size(fn, "output", out, static_cast<std::size_t>(B::count(N)));
         (void)fn;
         T tx = static_cast<T>(x), ty = static_cast<T>(y), tz = static_cast<T>(z);
+        if constexpr (Normalize && has_fixed_normalizing_kernel<B, N>::value) {
+            B::template fixed_normalizing_kernel<N>()(tx, ty, tz,
+                                                      PointerStore<T>{buffer_data(out)});
+            return;
+        }
         if constexpr (Normalize)
             normalize_or_pole(tx, ty, tz);
         else

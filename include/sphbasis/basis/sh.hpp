@@ -376,6 +376,48 @@ struct FixedKernel {
         eval_fixed<N>(x, y, z, s);
     }
 };
+/// 1/sqrt(r2) for a normal r2 > 0: for float on AVX-512 the 14-bit estimate and one Newton
+/// step (within ~2 ulp, as the batch path's vrsqrt), otherwise 1 / std::sqrt.
+template <class T>
+SPHBASIS_FORCEINLINE T inverse_length(T r2) noexcept {
+#if defined(__AVX512F__) && SPHBASIS_HAS_VECTOR_EXT  // core/simd.hpp includes <immintrin.h>
+    if constexpr (std::is_same_v<T, float>) {
+        const __m128 v = _mm_set_ss(r2);
+        const float e = _mm_cvtss_f32(_mm_maskz_rsqrt14_ss(__mmask8(1), v, v));
+        return e * (1.5f - 0.5f * r2 * e * e);
+    }
+#endif
+    return T(1) / std::sqrt(r2);
+}
+
+/// Squared lengths for which the scaled kernels' raw powers r^(N-1) (N <= 8) stay normal and
+/// far from overflow; outside, the direction is normalised first (normalize_or_pole).
+template <class T>
+inline constexpr T scaled_min_r2 = std::is_same_v<T, float> ? T(1e-8) : T(1e-30);
+template <class T>
+inline constexpr T scaled_max_r2 = std::is_same_v<T, float> ? T(1e8) : T(1e30);
+
+template <int N, class T, class Store>
+SPHBASIS_NOINLINE void eval_fixed_normalizing_slow(T x, T y, T z, Store store) noexcept {
+    normalize_or_pole(x, y, z);
+    eval_fixed<N>(x, y, z, store);
+}
+
+/// The normalising one-call kernel of exactly N <= 8 bands at a direction of any length, for
+/// float and double: the squared length, then eval_fixed_scaled with inv = 1/r, so the powers
+/// of (x + i y) are formed while the square root is computed (eval_fixed_scaled_N). Zero,
+/// non-finite, tiny or huge input goes to normalize_or_pole (out of line) and eval_fixed.
+template <int N>
+struct FixedNormalizingKernel {
+    template <class T, class Store>
+    SPHBASIS_FORCEINLINE void operator()(T x, T y, T z, Store&& s) const noexcept {
+        const T r2 = x * x + y * y + z * z;
+        if (r2 > scaled_min_r2<T> && r2 < scaled_max_r2<T>)  // false for NaN
+            eval_fixed_scaled<N>(x, y, z, inverse_length(r2), s);
+        else
+            eval_fixed_normalizing_slow<N>(x, y, z, s);
+    }
+};
 struct RowKernel {
     int bands;
     template <class V, class Store>
@@ -519,6 +561,12 @@ struct SH {
             return sh::detail::FixedKernel<N>{};
         else
             return sh::detail::RowKernel{N};
+    }
+    /// fixed_bands_eval hook for normalising evaluation (eval<N>) of 4..8 bands: the kernel
+    /// takes the direction as given and normalises inside (sh::detail::FixedNormalizingKernel).
+    template <int N, std::enable_if_t<(N >= 4 && N <= sh::detail::max_fixed_bands), int> = 0>
+    static constexpr auto fixed_normalizing_kernel() noexcept {
+        return sh::detail::FixedNormalizingKernel<N>{};
     }
     /// basis_eval_sum_batch hook: 3 bands as one quadratic (sh::detail::QuadraticSum).
     template <class T, class F>

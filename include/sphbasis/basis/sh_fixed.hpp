@@ -4,7 +4,8 @@
 // Unrolled real spherical harmonics for 1..8 bands (graphics convention: no Condon-Shortley
 // phase, ACN index l(l+1)+m). Each kernel calls store(index, value) once per function, so the
 // caller decides where values go (an array, a strided SoA batch, or a running sum Σ c_i y_i).
-// The value type V is float, double or sphbasis::batch<T>.
+// The value type V is float, double or sphbasis::batch<T>. eval_fixed_scaled_N: the same values
+// at a direction of any length r, given inv = 1/r (the normalising one-call kernels).
 #pragma once
 
 // clang-format off
@@ -423,6 +424,499 @@ SPHBASIS_FORCEINLINE void eval_fixed_8(const V& x, const V& y, const V& z, Store
     store(49, q7_7 * s7);
 }
 
+/// 1 band at (x, y, z) of any length r, inv = 1/r (r^1 neither over- nor underflows): the
+/// values of eval_fixed_1 at (x, y, z) / r. C_m + i S_m = (x + i y)^m from the raw components,
+/// scaled by inv^m; only z is normalised before its recurrence (the powers need no square root).
+template <class V, class Store>
+SPHBASIS_FORCEINLINE void eval_fixed_scaled_1(const V& x, const V& y, const V& z, const V& inv, Store&& store) noexcept {
+    using S = scalar_t<V>;
+    (void)x; (void)y; (void)z; (void)inv;
+    const V q0_0 = V(S(0.28209479177387814));  // 1/(2*sqrt(pi))
+    store(0, q0_0);
+}
+
+/// 2 bands at (x, y, z) of any length r, inv = 1/r (r^1 neither over- nor underflows): the
+/// values of eval_fixed_2 at (x, y, z) / r. C_m + i S_m = (x + i y)^m from the raw components,
+/// scaled by inv^m; only z is normalised before its recurrence (the powers need no square root).
+template <class V, class Store>
+SPHBASIS_FORCEINLINE void eval_fixed_scaled_2(const V& x, const V& y, const V& z, const V& inv, Store&& store) noexcept {
+    using S = scalar_t<V>;
+    (void)x; (void)y; (void)z; (void)inv;
+    const V zn = z * inv;
+    const V a1 = x, b1 = y;
+    const V p1 = inv;
+    const V c1 = a1 * p1, s1 = b1 * p1;
+    const V q0_0 = V(S(0.28209479177387814));  // 1/(2*sqrt(pi))
+    store(0, q0_0);
+    const V q1_0 = V(S(0.48860251190291992)) * zn;  // sqrt(3)/(2*sqrt(pi)) z
+    store(2, q1_0);
+    const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
+    store(3, q1_1 * c1);
+    store(1, q1_1 * s1);
+}
+
+/// 3 bands at (x, y, z) of any length r, inv = 1/r (r^2 neither over- nor underflows): the
+/// values of eval_fixed_3 at (x, y, z) / r. C_m + i S_m = (x + i y)^m from the raw components,
+/// scaled by inv^m; only z is normalised before its recurrence (the powers need no square root).
+template <class V, class Store>
+SPHBASIS_FORCEINLINE void eval_fixed_scaled_3(const V& x, const V& y, const V& z, const V& inv, Store&& store) noexcept {
+    using S = scalar_t<V>;
+    (void)x; (void)y; (void)z; (void)inv;
+    const V zn = z * inv;
+    const V zn2 = zn * zn;
+    const V a1 = x, b1 = y;
+    const V a2 = x * a1 - y * b1, b2 = x * b1 + y * a1;
+    const V p1 = inv;
+    const V p2 = p1 * p1;
+    const V c1 = a1 * p1, s1 = b1 * p1;
+    const V c2 = a2 * p2, s2 = b2 * p2;
+    const V q0_0 = V(S(0.28209479177387814));  // 1/(2*sqrt(pi))
+    store(0, q0_0);
+    const V q1_0 = V(S(0.48860251190291992)) * zn;  // sqrt(3)/(2*sqrt(pi)) z
+    store(2, q1_0);
+    const V q2_0 = V(S(0.94617469575755997)) * zn2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
+    store(6, q2_0);
+    const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
+    store(3, q1_1 * c1);
+    store(1, q1_1 * s1);
+    const V q2_1 = V(S(1.0925484305920792)) * zn;  // sqrt(15)/(2*sqrt(pi)) z
+    store(7, q2_1 * c1);
+    store(5, q2_1 * s1);
+    const V q2_2 = V(S(0.54627421529603959));  // sqrt(15)/(4*sqrt(pi))
+    store(8, q2_2 * c2);
+    store(4, q2_2 * s2);
+}
+
+/// 4 bands at (x, y, z) of any length r, inv = 1/r (r^3 neither over- nor underflows): the
+/// values of eval_fixed_4 at (x, y, z) / r. C_m + i S_m = (x + i y)^m from the raw components,
+/// scaled by inv^m; only z is normalised before its recurrence (the powers need no square root).
+template <class V, class Store>
+SPHBASIS_FORCEINLINE void eval_fixed_scaled_4(const V& x, const V& y, const V& z, const V& inv, Store&& store) noexcept {
+    using S = scalar_t<V>;
+    (void)x; (void)y; (void)z; (void)inv;
+    const V zn = z * inv;
+    const V zn2 = zn * zn;
+    const V a1 = x, b1 = y;
+    const V a2 = x * a1 - y * b1, b2 = x * b1 + y * a1;
+    const V a3 = x * a2 - y * b2, b3 = x * b2 + y * a2;
+    const V p1 = inv;
+    const V p2 = p1 * p1;
+    const V p3 = p1 * p2;
+    const V c1 = a1 * p1, s1 = b1 * p1;
+    const V c2 = a2 * p2, s2 = b2 * p2;
+    const V c3 = a3 * p3, s3 = b3 * p3;
+    const V q0_0 = V(S(0.28209479177387814));  // 1/(2*sqrt(pi))
+    store(0, q0_0);
+    const V q1_0 = V(S(0.48860251190291992)) * zn;  // sqrt(3)/(2*sqrt(pi)) z
+    store(2, q1_0);
+    const V q2_0 = V(S(0.94617469575755997)) * zn2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
+    store(6, q2_0);
+    const V q3_0 = zn * (V(S(1.865881662950577)) * zn2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
+    store(12, q3_0);
+    const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
+    store(3, q1_1 * c1);
+    store(1, q1_1 * s1);
+    const V q2_1 = V(S(1.0925484305920792)) * zn;  // sqrt(15)/(2*sqrt(pi)) z
+    store(7, q2_1 * c1);
+    store(5, q2_1 * s1);
+    const V q3_1 = V(S(2.2852289973223288)) * zn2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
+    store(13, q3_1 * c1);
+    store(11, q3_1 * s1);
+    const V q2_2 = V(S(0.54627421529603959));  // sqrt(15)/(4*sqrt(pi))
+    store(8, q2_2 * c2);
+    store(4, q2_2 * s2);
+    const V q3_2 = V(S(1.4453057213202771)) * zn;  // sqrt(105)/(4*sqrt(pi)) z
+    store(14, q3_2 * c2);
+    store(10, q3_2 * s2);
+    const V q3_3 = V(S(0.59004358992664352));  // sqrt(70)/(8*sqrt(pi))
+    store(15, q3_3 * c3);
+    store(9, q3_3 * s3);
+}
+
+/// 5 bands at (x, y, z) of any length r, inv = 1/r (r^4 neither over- nor underflows): the
+/// values of eval_fixed_5 at (x, y, z) / r. C_m + i S_m = (x + i y)^m from the raw components,
+/// scaled by inv^m; only z is normalised before its recurrence (the powers need no square root).
+template <class V, class Store>
+SPHBASIS_FORCEINLINE void eval_fixed_scaled_5(const V& x, const V& y, const V& z, const V& inv, Store&& store) noexcept {
+    using S = scalar_t<V>;
+    (void)x; (void)y; (void)z; (void)inv;
+    const V zn = z * inv;
+    const V zn2 = zn * zn;
+    const V a1 = x, b1 = y;
+    const V a2 = x * a1 - y * b1, b2 = x * b1 + y * a1;
+    const V a3 = x * a2 - y * b2, b3 = x * b2 + y * a2;
+    const V a4 = x * a3 - y * b3, b4 = x * b3 + y * a3;
+    const V p1 = inv;
+    const V p2 = p1 * p1;
+    const V p3 = p1 * p2;
+    const V p4 = p2 * p2;
+    const V c1 = a1 * p1, s1 = b1 * p1;
+    const V c2 = a2 * p2, s2 = b2 * p2;
+    const V c3 = a3 * p3, s3 = b3 * p3;
+    const V c4 = a4 * p4, s4 = b4 * p4;
+    const V q0_0 = V(S(0.28209479177387814));  // 1/(2*sqrt(pi))
+    store(0, q0_0);
+    const V q1_0 = V(S(0.48860251190291992)) * zn;  // sqrt(3)/(2*sqrt(pi)) z
+    store(2, q1_0);
+    const V q2_0 = V(S(0.94617469575755997)) * zn2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
+    store(6, q2_0);
+    const V q3_0 = zn * (V(S(1.865881662950577)) * zn2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
+    store(12, q3_0);
+    const V q4_0 = V(S(1.984313483298443)) * zn * q3_0 - V(S(1.0062305898749053)) * q2_0;
+    store(20, q4_0);
+    const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
+    store(3, q1_1 * c1);
+    store(1, q1_1 * s1);
+    const V q2_1 = V(S(1.0925484305920792)) * zn;  // sqrt(15)/(2*sqrt(pi)) z
+    store(7, q2_1 * c1);
+    store(5, q2_1 * s1);
+    const V q3_1 = V(S(2.2852289973223288)) * zn2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
+    store(13, q3_1 * c1);
+    store(11, q3_1 * s1);
+    const V q4_1 = zn * (V(S(4.683325804901024)) * zn2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
+    store(21, q4_1 * c1);
+    store(19, q4_1 * s1);
+    const V q2_2 = V(S(0.54627421529603959));  // sqrt(15)/(4*sqrt(pi))
+    store(8, q2_2 * c2);
+    store(4, q2_2 * s2);
+    const V q3_2 = V(S(1.4453057213202771)) * zn;  // sqrt(105)/(4*sqrt(pi)) z
+    store(14, q3_2 * c2);
+    store(10, q3_2 * s2);
+    const V q4_2 = V(S(3.3116114351514603)) * zn2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
+    store(22, q4_2 * c2);
+    store(18, q4_2 * s2);
+    const V q3_3 = V(S(0.59004358992664352));  // sqrt(70)/(8*sqrt(pi))
+    store(15, q3_3 * c3);
+    store(9, q3_3 * s3);
+    const V q4_3 = V(S(1.7701307697799304)) * zn;  // 3*sqrt(70)/(8*sqrt(pi)) z
+    store(23, q4_3 * c3);
+    store(17, q4_3 * s3);
+    const V q4_4 = V(S(0.62583573544917614));  // 3*sqrt(35)/(16*sqrt(pi))
+    store(24, q4_4 * c4);
+    store(16, q4_4 * s4);
+}
+
+/// 6 bands at (x, y, z) of any length r, inv = 1/r (r^5 neither over- nor underflows): the
+/// values of eval_fixed_6 at (x, y, z) / r. C_m + i S_m = (x + i y)^m from the raw components,
+/// scaled by inv^m; only z is normalised before its recurrence (the powers need no square root).
+template <class V, class Store>
+SPHBASIS_FORCEINLINE void eval_fixed_scaled_6(const V& x, const V& y, const V& z, const V& inv, Store&& store) noexcept {
+    using S = scalar_t<V>;
+    (void)x; (void)y; (void)z; (void)inv;
+    const V zn = z * inv;
+    const V zn2 = zn * zn;
+    const V a1 = x, b1 = y;
+    const V a2 = x * a1 - y * b1, b2 = x * b1 + y * a1;
+    const V a3 = x * a2 - y * b2, b3 = x * b2 + y * a2;
+    const V a4 = x * a3 - y * b3, b4 = x * b3 + y * a3;
+    const V a5 = x * a4 - y * b4, b5 = x * b4 + y * a4;
+    const V p1 = inv;
+    const V p2 = p1 * p1;
+    const V p3 = p1 * p2;
+    const V p4 = p2 * p2;
+    const V p5 = p2 * p3;
+    const V c1 = a1 * p1, s1 = b1 * p1;
+    const V c2 = a2 * p2, s2 = b2 * p2;
+    const V c3 = a3 * p3, s3 = b3 * p3;
+    const V c4 = a4 * p4, s4 = b4 * p4;
+    const V c5 = a5 * p5, s5 = b5 * p5;
+    const V q0_0 = V(S(0.28209479177387814));  // 1/(2*sqrt(pi))
+    store(0, q0_0);
+    const V q1_0 = V(S(0.48860251190291992)) * zn;  // sqrt(3)/(2*sqrt(pi)) z
+    store(2, q1_0);
+    const V q2_0 = V(S(0.94617469575755997)) * zn2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
+    store(6, q2_0);
+    const V q3_0 = zn * (V(S(1.865881662950577)) * zn2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
+    store(12, q3_0);
+    const V q4_0 = V(S(1.984313483298443)) * zn * q3_0 - V(S(1.0062305898749053)) * q2_0;
+    store(20, q4_0);
+    const V q5_0 = V(S(1.9899748742132399)) * zn * q4_0 - V(S(1.002853072844814)) * q3_0;
+    store(30, q5_0);
+    const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
+    store(3, q1_1 * c1);
+    store(1, q1_1 * s1);
+    const V q2_1 = V(S(1.0925484305920792)) * zn;  // sqrt(15)/(2*sqrt(pi)) z
+    store(7, q2_1 * c1);
+    store(5, q2_1 * s1);
+    const V q3_1 = V(S(2.2852289973223288)) * zn2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
+    store(13, q3_1 * c1);
+    store(11, q3_1 * s1);
+    const V q4_1 = zn * (V(S(4.683325804901024)) * zn2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
+    store(21, q4_1 * c1);
+    store(19, q4_1 * s1);
+    const V q5_1 = V(S(2.0310096011589902)) * zn * q4_1 - V(S(0.99103120896511487)) * q3_1;
+    store(31, q5_1 * c1);
+    store(29, q5_1 * s1);
+    const V q2_2 = V(S(0.54627421529603959));  // sqrt(15)/(4*sqrt(pi))
+    store(8, q2_2 * c2);
+    store(4, q2_2 * s2);
+    const V q3_2 = V(S(1.4453057213202771)) * zn;  // sqrt(105)/(4*sqrt(pi)) z
+    store(14, q3_2 * c2);
+    store(10, q3_2 * s2);
+    const V q4_2 = V(S(3.3116114351514603)) * zn2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
+    store(22, q4_2 * c2);
+    store(18, q4_2 * s2);
+    const V q5_2 = zn * (V(S(7.1903051774599858)) * zn2 + V(S(-2.3967683924866621)));  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
+    store(32, q5_2 * c2);
+    store(28, q5_2 * s2);
+    const V q3_3 = V(S(0.59004358992664352));  // sqrt(70)/(8*sqrt(pi))
+    store(15, q3_3 * c3);
+    store(9, q3_3 * s3);
+    const V q4_3 = V(S(1.7701307697799304)) * zn;  // 3*sqrt(70)/(8*sqrt(pi)) z
+    store(23, q4_3 * c3);
+    store(17, q4_3 * s3);
+    const V q5_3 = V(S(4.4031446949172537)) * zn2 + V(S(-0.48923829943525038));  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
+    store(33, q5_3 * c3);
+    store(27, q5_3 * s3);
+    const V q4_4 = V(S(0.62583573544917614));  // 3*sqrt(35)/(16*sqrt(pi))
+    store(24, q4_4 * c4);
+    store(16, q4_4 * s4);
+    const V q5_4 = V(S(2.0756623148810411)) * zn;  // 3*sqrt(385)/(16*sqrt(pi)) z
+    store(34, q5_4 * c4);
+    store(26, q5_4 * s4);
+    const V q5_5 = V(S(0.65638205684017015));  // 3*sqrt(154)/(32*sqrt(pi))
+    store(35, q5_5 * c5);
+    store(25, q5_5 * s5);
+}
+
+/// 7 bands at (x, y, z) of any length r, inv = 1/r (r^6 neither over- nor underflows): the
+/// values of eval_fixed_7 at (x, y, z) / r. C_m + i S_m = (x + i y)^m from the raw components,
+/// scaled by inv^m; only z is normalised before its recurrence (the powers need no square root).
+template <class V, class Store>
+SPHBASIS_FORCEINLINE void eval_fixed_scaled_7(const V& x, const V& y, const V& z, const V& inv, Store&& store) noexcept {
+    using S = scalar_t<V>;
+    (void)x; (void)y; (void)z; (void)inv;
+    const V zn = z * inv;
+    const V zn2 = zn * zn;
+    const V a1 = x, b1 = y;
+    const V a2 = x * a1 - y * b1, b2 = x * b1 + y * a1;
+    const V a3 = x * a2 - y * b2, b3 = x * b2 + y * a2;
+    const V a4 = x * a3 - y * b3, b4 = x * b3 + y * a3;
+    const V a5 = x * a4 - y * b4, b5 = x * b4 + y * a4;
+    const V a6 = x * a5 - y * b5, b6 = x * b5 + y * a5;
+    const V p1 = inv;
+    const V p2 = p1 * p1;
+    const V p3 = p1 * p2;
+    const V p4 = p2 * p2;
+    const V p5 = p2 * p3;
+    const V p6 = p3 * p3;
+    const V c1 = a1 * p1, s1 = b1 * p1;
+    const V c2 = a2 * p2, s2 = b2 * p2;
+    const V c3 = a3 * p3, s3 = b3 * p3;
+    const V c4 = a4 * p4, s4 = b4 * p4;
+    const V c5 = a5 * p5, s5 = b5 * p5;
+    const V c6 = a6 * p6, s6 = b6 * p6;
+    const V q0_0 = V(S(0.28209479177387814));  // 1/(2*sqrt(pi))
+    store(0, q0_0);
+    const V q1_0 = V(S(0.48860251190291992)) * zn;  // sqrt(3)/(2*sqrt(pi)) z
+    store(2, q1_0);
+    const V q2_0 = V(S(0.94617469575755997)) * zn2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
+    store(6, q2_0);
+    const V q3_0 = zn * (V(S(1.865881662950577)) * zn2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
+    store(12, q3_0);
+    const V q4_0 = V(S(1.984313483298443)) * zn * q3_0 - V(S(1.0062305898749053)) * q2_0;
+    store(20, q4_0);
+    const V q5_0 = V(S(1.9899748742132399)) * zn * q4_0 - V(S(1.002853072844814)) * q3_0;
+    store(30, q5_0);
+    const V q6_0 = V(S(1.9930434571835662)) * zn * q5_0 - V(S(1.0015420209622192)) * q4_0;
+    store(42, q6_0);
+    const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
+    store(3, q1_1 * c1);
+    store(1, q1_1 * s1);
+    const V q2_1 = V(S(1.0925484305920792)) * zn;  // sqrt(15)/(2*sqrt(pi)) z
+    store(7, q2_1 * c1);
+    store(5, q2_1 * s1);
+    const V q3_1 = V(S(2.2852289973223288)) * zn2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
+    store(13, q3_1 * c1);
+    store(11, q3_1 * s1);
+    const V q4_1 = zn * (V(S(4.683325804901024)) * zn2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
+    store(21, q4_1 * c1);
+    store(19, q4_1 * s1);
+    const V q5_1 = V(S(2.0310096011589902)) * zn * q4_1 - V(S(0.99103120896511487)) * q3_1;
+    store(31, q5_1 * c1);
+    store(29, q5_1 * s1);
+    const V q6_1 = V(S(2.0213149892370277)) * zn * q5_1 - V(S(0.99522670305623862)) * q4_1;
+    store(43, q6_1 * c1);
+    store(41, q6_1 * s1);
+    const V q2_2 = V(S(0.54627421529603959));  // sqrt(15)/(4*sqrt(pi))
+    store(8, q2_2 * c2);
+    store(4, q2_2 * s2);
+    const V q3_2 = V(S(1.4453057213202771)) * zn;  // sqrt(105)/(4*sqrt(pi)) z
+    store(14, q3_2 * c2);
+    store(10, q3_2 * s2);
+    const V q4_2 = V(S(3.3116114351514603)) * zn2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
+    store(22, q4_2 * c2);
+    store(18, q4_2 * s2);
+    const V q5_2 = zn * (V(S(7.1903051774599858)) * zn2 + V(S(-2.3967683924866621)));  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
+    store(32, q5_2 * c2);
+    store(28, q5_2 * s2);
+    const V q6_2 = V(S(2.1139418156609704)) * zn * q5_2 - V(S(0.97361012046232687)) * q4_2;
+    store(44, q6_2 * c2);
+    store(40, q6_2 * s2);
+    const V q3_3 = V(S(0.59004358992664352));  // sqrt(70)/(8*sqrt(pi))
+    store(15, q3_3 * c3);
+    store(9, q3_3 * s3);
+    const V q4_3 = V(S(1.7701307697799304)) * zn;  // 3*sqrt(70)/(8*sqrt(pi)) z
+    store(23, q4_3 * c3);
+    store(17, q4_3 * s3);
+    const V q5_3 = V(S(4.4031446949172537)) * zn2 + V(S(-0.48923829943525038));  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
+    store(33, q5_3 * c3);
+    store(27, q5_3 * s3);
+    const V q6_3 = zn * (V(S(10.133257854664159)) * zn2 + V(S(-2.7636157785447706)));  // z (11*sqrt(2730)/(32*sqrt(pi)) z^2 + -3*sqrt(2730)/(32*sqrt(pi)))
+    store(45, q6_3 * c3);
+    store(39, q6_3 * s3);
+    const V q4_4 = V(S(0.62583573544917614));  // 3*sqrt(35)/(16*sqrt(pi))
+    store(24, q4_4 * c4);
+    store(16, q4_4 * s4);
+    const V q5_4 = V(S(2.0756623148810411)) * zn;  // 3*sqrt(385)/(16*sqrt(pi)) z
+    store(34, q5_4 * c4);
+    store(26, q5_4 * s4);
+    const V q6_4 = V(S(5.5502139080159658)) * zn2 + V(S(-0.50456490072872417));  // 33*sqrt(91)/(32*sqrt(pi)) z^2 + -3*sqrt(91)/(32*sqrt(pi))
+    store(46, q6_4 * c4);
+    store(38, q6_4 * s4);
+    const V q5_5 = V(S(0.65638205684017015));  // 3*sqrt(154)/(32*sqrt(pi))
+    store(35, q5_5 * c5);
+    store(25, q5_5 * s5);
+    const V q6_5 = V(S(2.3666191622317521)) * zn;  // 3*sqrt(2002)/(32*sqrt(pi)) z
+    store(47, q6_5 * c5);
+    store(37, q6_5 * s5);
+    const V q6_6 = V(S(0.6831841051919143));  // sqrt(6006)/(64*sqrt(pi))
+    store(48, q6_6 * c6);
+    store(36, q6_6 * s6);
+}
+
+/// 8 bands at (x, y, z) of any length r, inv = 1/r (r^7 neither over- nor underflows): the
+/// values of eval_fixed_8 at (x, y, z) / r. C_m + i S_m = (x + i y)^m from the raw components,
+/// scaled by inv^m; only z is normalised before its recurrence (the powers need no square root).
+template <class V, class Store>
+SPHBASIS_FORCEINLINE void eval_fixed_scaled_8(const V& x, const V& y, const V& z, const V& inv, Store&& store) noexcept {
+    using S = scalar_t<V>;
+    (void)x; (void)y; (void)z; (void)inv;
+    const V zn = z * inv;
+    const V zn2 = zn * zn;
+    const V a1 = x, b1 = y;
+    const V a2 = x * a1 - y * b1, b2 = x * b1 + y * a1;
+    const V a3 = x * a2 - y * b2, b3 = x * b2 + y * a2;
+    const V a4 = x * a3 - y * b3, b4 = x * b3 + y * a3;
+    const V a5 = x * a4 - y * b4, b5 = x * b4 + y * a4;
+    const V a6 = x * a5 - y * b5, b6 = x * b5 + y * a5;
+    const V a7 = x * a6 - y * b6, b7 = x * b6 + y * a6;
+    const V p1 = inv;
+    const V p2 = p1 * p1;
+    const V p3 = p1 * p2;
+    const V p4 = p2 * p2;
+    const V p5 = p2 * p3;
+    const V p6 = p3 * p3;
+    const V p7 = p3 * p4;
+    const V c1 = a1 * p1, s1 = b1 * p1;
+    const V c2 = a2 * p2, s2 = b2 * p2;
+    const V c3 = a3 * p3, s3 = b3 * p3;
+    const V c4 = a4 * p4, s4 = b4 * p4;
+    const V c5 = a5 * p5, s5 = b5 * p5;
+    const V c6 = a6 * p6, s6 = b6 * p6;
+    const V c7 = a7 * p7, s7 = b7 * p7;
+    const V q0_0 = V(S(0.28209479177387814));  // 1/(2*sqrt(pi))
+    store(0, q0_0);
+    const V q1_0 = V(S(0.48860251190291992)) * zn;  // sqrt(3)/(2*sqrt(pi)) z
+    store(2, q1_0);
+    const V q2_0 = V(S(0.94617469575755997)) * zn2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
+    store(6, q2_0);
+    const V q3_0 = zn * (V(S(1.865881662950577)) * zn2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
+    store(12, q3_0);
+    const V q4_0 = V(S(1.984313483298443)) * zn * q3_0 - V(S(1.0062305898749053)) * q2_0;
+    store(20, q4_0);
+    const V q5_0 = V(S(1.9899748742132399)) * zn * q4_0 - V(S(1.002853072844814)) * q3_0;
+    store(30, q5_0);
+    const V q6_0 = V(S(1.9930434571835662)) * zn * q5_0 - V(S(1.0015420209622192)) * q4_0;
+    store(42, q6_0);
+    const V q7_0 = V(S(1.9948914348241344)) * zn * q6_0 - V(S(1.000927213921958)) * q5_0;
+    store(56, q7_0);
+    const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
+    store(3, q1_1 * c1);
+    store(1, q1_1 * s1);
+    const V q2_1 = V(S(1.0925484305920792)) * zn;  // sqrt(15)/(2*sqrt(pi)) z
+    store(7, q2_1 * c1);
+    store(5, q2_1 * s1);
+    const V q3_1 = V(S(2.2852289973223288)) * zn2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
+    store(13, q3_1 * c1);
+    store(11, q3_1 * s1);
+    const V q4_1 = zn * (V(S(4.683325804901024)) * zn2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
+    store(21, q4_1 * c1);
+    store(19, q4_1 * s1);
+    const V q5_1 = V(S(2.0310096011589902)) * zn * q4_1 - V(S(0.99103120896511487)) * q3_1;
+    store(31, q5_1 * c1);
+    store(29, q5_1 * s1);
+    const V q6_1 = V(S(2.0213149892370277)) * zn * q5_1 - V(S(0.99522670305623862)) * q4_1;
+    store(43, q6_1 * c1);
+    store(41, q6_1 * s1);
+    const V q7_1 = V(S(2.0155644370746373)) * zn * q6_1 - V(S(0.99715504402183208)) * q5_1;
+    store(57, q7_1 * c1);
+    store(55, q7_1 * s1);
+    const V q2_2 = V(S(0.54627421529603959));  // sqrt(15)/(4*sqrt(pi))
+    store(8, q2_2 * c2);
+    store(4, q2_2 * s2);
+    const V q3_2 = V(S(1.4453057213202771)) * zn;  // sqrt(105)/(4*sqrt(pi)) z
+    store(14, q3_2 * c2);
+    store(10, q3_2 * s2);
+    const V q4_2 = V(S(3.3116114351514603)) * zn2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
+    store(22, q4_2 * c2);
+    store(18, q4_2 * s2);
+    const V q5_2 = zn * (V(S(7.1903051774599858)) * zn2 + V(S(-2.3967683924866621)));  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
+    store(32, q5_2 * c2);
+    store(28, q5_2 * s2);
+    const V q6_2 = V(S(2.1139418156609704)) * zn * q5_2 - V(S(0.97361012046232687)) * q4_2;
+    store(44, q6_2 * c2);
+    store(40, q6_2 * s2);
+    const V q7_2 = V(S(2.0816659994661326)) * zn * q6_2 - V(S(0.9847319278346619)) * q5_2;
+    store(58, q7_2 * c2);
+    store(54, q7_2 * s2);
+    const V q3_3 = V(S(0.59004358992664352));  // sqrt(70)/(8*sqrt(pi))
+    store(15, q3_3 * c3);
+    store(9, q3_3 * s3);
+    const V q4_3 = V(S(1.7701307697799304)) * zn;  // 3*sqrt(70)/(8*sqrt(pi)) z
+    store(23, q4_3 * c3);
+    store(17, q4_3 * s3);
+    const V q5_3 = V(S(4.4031446949172537)) * zn2 + V(S(-0.48923829943525038));  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
+    store(33, q5_3 * c3);
+    store(27, q5_3 * s3);
+    const V q6_3 = zn * (V(S(10.133257854664159)) * zn2 + V(S(-2.7636157785447706)));  // z (11*sqrt(2730)/(32*sqrt(pi)) z^2 + -3*sqrt(2730)/(32*sqrt(pi)))
+    store(45, q6_3 * c3);
+    store(39, q6_3 * s3);
+    const V q7_3 = V(S(2.2079402165819619)) * zn * q6_3 - V(S(0.95940322360024699)) * q5_3;
+    store(59, q7_3 * c3);
+    store(53, q7_3 * s3);
+    const V q4_4 = V(S(0.62583573544917614));  // 3*sqrt(35)/(16*sqrt(pi))
+    store(24, q4_4 * c4);
+    store(16, q4_4 * s4);
+    const V q5_4 = V(S(2.0756623148810411)) * zn;  // 3*sqrt(385)/(16*sqrt(pi)) z
+    store(34, q5_4 * c4);
+    store(26, q5_4 * s4);
+    const V q6_4 = V(S(5.5502139080159658)) * zn2 + V(S(-0.50456490072872417));  // 33*sqrt(91)/(32*sqrt(pi)) z^2 + -3*sqrt(91)/(32*sqrt(pi))
+    store(46, q6_4 * c4);
+    store(38, q6_4 * s4);
+    const V q7_4 = zn * (V(S(13.491805046726768)) * zn2 + V(S(-3.1134934723215619)));  // z (39*sqrt(385)/(32*sqrt(pi)) z^2 + -9*sqrt(385)/(32*sqrt(pi)))
+    store(60, q7_4 * c4);
+    store(52, q7_4 * s4);
+    const V q5_5 = V(S(0.65638205684017015));  // 3*sqrt(154)/(32*sqrt(pi))
+    store(35, q5_5 * c5);
+    store(25, q5_5 * s5);
+    const V q6_5 = V(S(2.3666191622317521)) * zn;  // 3*sqrt(2002)/(32*sqrt(pi)) z
+    store(47, q6_5 * c5);
+    store(37, q6_5 * s5);
+    const V q7_5 = V(S(6.7459025233633838)) * zn2 + V(S(-0.51891557872026028));  // 39*sqrt(385)/(64*sqrt(pi)) z^2 + -3*sqrt(385)/(64*sqrt(pi))
+    store(61, q7_5 * c5);
+    store(51, q7_5 * s5);
+    const V q6_6 = V(S(0.6831841051919143));  // sqrt(6006)/(64*sqrt(pi))
+    store(48, q6_6 * c6);
+    store(36, q6_6 * s6);
+    const V q7_6 = V(S(2.6459606618019)) * zn;  // 3*sqrt(10010)/(64*sqrt(pi)) z
+    store(62, q7_6 * c6);
+    store(50, q7_6 * s6);
+    const V q7_7 = V(S(0.70716273252459616));  // 3*sqrt(715)/(64*sqrt(pi))
+    store(63, q7_7 * c7);
+    store(49, q7_7 * s7);
+}
+
 /// Dispatch on a compile-time band count.
 template <int N, class V, class Store>
 SPHBASIS_FORCEINLINE void eval_fixed(const V& x, const V& y, const V& z, Store&& store) noexcept {
@@ -435,6 +929,20 @@ SPHBASIS_FORCEINLINE void eval_fixed(const V& x, const V& y, const V& z, Store&&
     else if constexpr (N == 6) eval_fixed_6(x, y, z, store);
     else if constexpr (N == 7) eval_fixed_7(x, y, z, store);
     else if constexpr (N == 8) eval_fixed_8(x, y, z, store);
+}
+
+/// eval_fixed_scaled_N dispatched on a compile-time band count.
+template <int N, class V, class Store>
+SPHBASIS_FORCEINLINE void eval_fixed_scaled(const V& x, const V& y, const V& z, const V& inv, Store&& store) noexcept {
+    static_assert(N >= 1 && N <= max_fixed_bands, "sphbasis::sh: unrolled kernels exist for 1..8 bands.");
+    if constexpr (N == 1) eval_fixed_scaled_1(x, y, z, inv, store);
+    else if constexpr (N == 2) eval_fixed_scaled_2(x, y, z, inv, store);
+    else if constexpr (N == 3) eval_fixed_scaled_3(x, y, z, inv, store);
+    else if constexpr (N == 4) eval_fixed_scaled_4(x, y, z, inv, store);
+    else if constexpr (N == 5) eval_fixed_scaled_5(x, y, z, inv, store);
+    else if constexpr (N == 6) eval_fixed_scaled_6(x, y, z, inv, store);
+    else if constexpr (N == 7) eval_fixed_scaled_7(x, y, z, inv, store);
+    else if constexpr (N == 8) eval_fixed_scaled_8(x, y, z, inv, store);
 }
 
 }  // namespace sphbasis::sh::detail
