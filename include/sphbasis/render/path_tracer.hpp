@@ -741,12 +741,14 @@ class PathTracer {
                     }
                     for (auto& v : P.beta) v /= q;
                 }
-                P.h = scene_.hit(r);
-                if (!P.h.valid) {
-                    kill(P);
-                    continue;
-                }
                 P.wo = -wi;
+            }
+            // The next vertices, in a loop of their own (their loads overlap).
+            for (std::size_t j = 0; j < sc.next.size(); ++j) {
+                PathState& P = sc.paths[sc.next_path[j]];
+                if (!P.alive) continue;
+                P.h = scene_.hit(sc.next[j]);
+                if (!P.h.valid) kill(P);
             }
         }
         for (std::size_t k = 0; k < n; ++k) L[k] = sc.paths[k].L;
