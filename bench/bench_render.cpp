@@ -368,9 +368,9 @@ void trace_bare(benchmark::State& state) {
                                   RTCIntersectContext ctx;
                                   rtcInitIntersectContext(&ctx);
                                   ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-                                  for (std::size_t i = i0; i < i1; i += 256)
+                                  for (std::size_t i = i0; i < i1; i += 1024)
                                       rtcIntersect1M(rt.handle(), &ctx, &work[i],
-                                                     unsigned(std::min<std::size_t>(256, i1 - i)),
+                                                     unsigned(std::min<std::size_t>(1024, i1 - i)),
                                                      sizeof(RTCRayHit));
                               }
                           });

@@ -44,6 +44,13 @@
 //     bounces remain; at the last vertex it is traced only when an emitter can be reached by it
 //     (the environment or a non-delta light) and is then counted as a shadow ray. A constant
 //     environment gets no environment sample: the BRDF sample alone estimates it (weight 1).
+//   * Tracing order (it changes no result): the paths of a tile (one sample each) advance
+//     together a vertex at a time. At each depth the shadow rays of all live paths are traced
+//     as one stream (rtcOccluded1M), their BRDF rays as another (rtcIntersect1M; occlusion
+//     queries at the last vertex when no non-delta light needs the hit distance), and each
+//     path then adds its contributions in the order above. Camera rays are one coherent stream
+//     per tile (RTC_INTERSECT_CONTEXT_FLAG_COHERENT: Embree traces them as packets). Buffers
+//     are per tile, reused across samples.
 //   * Unbounded paths (bounces < 0): Russian roulette at every vertex from the fourth on.
 //   * No emitter at all (no environment, no lights): surfaces are black and no secondary ray
 //     is traced.
@@ -220,6 +227,12 @@ struct Bsdf {
     }
 };
 
+/// rt::hash(a, b) with mix64(a) already computed (mixed_a): a path's random numbers share a.
+/// A test pins it to rt::hash.
+inline std::uint64_t hash_mixed(std::uint64_t mixed_a, std::uint64_t b) noexcept {
+    return rt::mix64(mixed_a ^ (b + 0x632be59bd9b4e019ull));
+}
+
 inline RGB mul(const RGB& a, const RGB& b) noexcept {
     return {a[0] * b[0], a[1] * b[1], a[2] * b[2]};
 }
@@ -267,6 +280,10 @@ class PathTracer {
                 ++other;
         }
         nondelta_ = other > 0;
+        fixed_samples_.resize(lights_.size());
+        for (std::size_t li = 0; li < lights_.size(); ++li)
+            if (lights_[li].type == Light::Type::directional)
+                fixed_samples_[li] = sample_light(lights_[li], {0, 0, 0}, 0.5, 0.5);
         emitters_ = env_any_ || !lights_.empty();
         if (env_nee_)
             effects_.push_back("environment: importance-sampled (" + std::to_string(env_.width) +
@@ -321,7 +338,7 @@ class PathTracer {
                 // Per-tile buffers, reused by every sample of the pass.
                 std::vector<RTCRayHit> rays(n);
                 std::vector<double> jitter(2 * n);
-                std::vector<std::uint64_t> pixel(n);
+                std::vector<std::uint64_t> pixel(n), mixed(n);
                 std::vector<RGB> radiance(n);
                 std::vector<First> first(settings_.aovs ? n : 0);
                 Scratch scratch;
@@ -329,6 +346,7 @@ class PathTracer {
                     const std::size_t px = std::size_t(x0) + k % tw, py = std::size_t(y0) + k / tw;
                     pixel[k] = py * std::size_t(W) + px;
                     const std::uint64_t key = pixel_key(pixel[k]);
+                    mixed[k] = detail::rt::mix64(key);
                     jitter[2 * k] = detail::rt::unit(detail::rt::hash(key, 0x6a09e667u));
                     jitter[2 * k + 1] = detail::rt::unit(detail::rt::hash(key, 0xbb67ae85u));
                 }
@@ -346,7 +364,7 @@ class PathTracer {
                     if (log_) record(rays.data(), n, 0, true);
                     intersect_coherent(rays.data(), n);
                     c.camera_rays += n;
-                    shade(rays.data(), n, pixel.data(), std::uint64_t(s), c,
+                    shade(rays.data(), n, mixed.data(), std::uint64_t(s), c,
                           settings_.aovs ? first.data() : nullptr, radiance.data(), scratch);
                     for (std::size_t k = 0; k < n; ++k) {
                         const std::size_t p = std::size_t(pixel[k]);
@@ -430,7 +448,8 @@ class PathTracer {
         ++c.camera_rays;
         RGB L;
         Scratch scratch;
-        shade(&r, 1, &pixel, sample, c, nullptr, &L, scratch);
+        const std::uint64_t mixed = detail::rt::mix64(pixel_key(pixel));
+        shade(&r, 1, &mixed, sample, c, nullptr, &L, scratch);
         std::lock_guard<std::mutex> lock(*mutex_);
         counters_ += c;
         return L;
@@ -439,13 +458,14 @@ class PathTracer {
     const TraceCounters& counters() const noexcept { return counters_; }
     const EnvironmentSampler& environment_sampler() const noexcept { return sampler_; }
 
-    /// A traced ray as recorded for benchmarks: kind 0 camera, 1 bounce, 2 shadow (an
-    /// occlusion query; only `ray.ray` is meaningful), 3 the last vertex's BRDF ray that only
-    /// looks for emitters (counted as a shadow ray). Rays are traced in streams, in the order
-    /// recorded: `stream` is the length of the stream that starts at this record (0 inside one).
-    /// A stream is one rtcIntersect1M call (kinds 0, 1, 3; at most 256 rays a call for coherent
-    /// camera streams, Scene::intersect's chunks otherwise) or one Scene::occluded call (kind 2);
-    /// `coherent`: traced with RTC_INTERSECT_CONTEXT_FLAG_COHERENT (camera rays of render()).
+    /// A traced ray as recorded for benchmarks: kind 0 camera, 1 bounce, 2 an occlusion query
+    /// (shadow rays, and the last vertex's BRDF rays when no non-delta light needs their hit
+    /// distance; only `ray.ray` is meaningful), 3 the last vertex's BRDF ray traced for its
+    /// hit distance (counted as a shadow ray). Rays are traced in streams, in the order
+    /// recorded: `stream` is the length of the stream that starts at this record (0 inside
+    /// one), traced by rtcIntersect1M (kinds 0, 1, 3) or rtcOccluded1M (kind 2) calls of at
+    /// most 1024 rays; `coherent`: with RTC_INTERSECT_CONTEXT_FLAG_COHERENT (render()'s camera
+    /// rays).
     struct RayRecord {
         RTCRayHit ray;
         int kind = 0;
@@ -504,7 +524,7 @@ class PathTracer {
         RGB L{0, 0, 0}, beta{1, 1, 1}, w{0, 0, 0};
         V3 wo{0, 0, 1}, wi{0, 0, 1}, x{0, 0, 0};
         double pb = 0;
-        std::uint64_t key = 0;
+        std::uint64_t key = 0;  // mix64 of the path's random-number key
         bool alive = false;
     };
     /// A next-event contribution beta f Le (times k) of path `path`, added unless shadow ray
@@ -529,22 +549,38 @@ class PathTracer {
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        for (std::size_t i = 0; i < n; i += 256) {
-            const auto m = static_cast<unsigned>(std::min<std::size_t>(256, n - i));
+        for (std::size_t i = 0; i < n; i += 1024) {
+            const auto m = static_cast<unsigned>(std::min<std::size_t>(1024, n - i));
             rtcIntersect1M(scene_.handle(), &ctx, rays + i, m, sizeof(RTCRayHit));
         }
     }
 
-    /// n paths from traced camera rays (pixel[k] and `sample` index the random numbers), one
-    /// vertex depth at a time: at each depth every live path's shadow rays are traced as one
-    /// stream and its BRDF rays as another (the paths stay independent: every path adds its
-    /// contributions in the order a path-at-a-time tracer would). L[k] receives path k's
-    /// radiance; first (optional) its first-hit AOVs.
-    void shade(const RTCRayHit* primary, std::size_t n, const std::uint64_t* pixel,
+    /// Occlusion queries of n rays of RTCRayHit records (the ray part), as one stream.
+    void occluded(RTCRayHit* rays, std::size_t n) const {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        for (std::size_t i = 0; i < n; i += 1024) {
+            const auto m = static_cast<unsigned>(std::min<std::size_t>(1024, n - i));
+            rtcOccluded1M(scene_.handle(), &ctx, &rays[i].ray, m, sizeof(RTCRayHit));
+        }
+    }
+
+    /// n paths from traced camera rays (mixed[k] = mix64(pixel_key(pixel)) and `sample` index
+    /// the random numbers), one vertex depth at a time: at each depth every live path's shadow
+    /// rays are traced as one stream and its BRDF rays as another (the paths stay independent:
+    /// every path adds its contributions in the order a path-at-a-time tracer would). L[k]
+    /// receives path k's radiance; first (optional) its first-hit AOVs.
+    void shade(const RTCRayHit* primary, std::size_t n, const std::uint64_t* mixed,
                std::uint64_t sample, TraceCounters& c, First* first, RGB* L,
                Scratch& sc) const {
         using namespace detail::rt;
-        if (sc.paths.size() < n) sc.paths.resize(n);
+        if (sc.paths.size() < n) {
+            sc.paths.resize(n);
+            sc.shadow.reserve(n * (1 + lights_.size()));
+            sc.pending.reserve(n * (1 + lights_.size()));
+            sc.next.reserve(n);
+            sc.next_path.reserve(n);
+        }
         std::size_t alive = 0;
         for (std::size_t k = 0; k < n; ++k) {
             PathState& P = sc.paths[k];
@@ -561,7 +597,7 @@ class PathTracer {
             P.L = {0, 0, 0};
             P.beta = {1, 1, 1};
             P.wo = -normalized(dir0);
-            P.key = hash(pixel_key(pixel[k]), sample);
+            P.key = mix64(detail::pt::hash_mixed(mixed[k], sample));
             if (first) {
                 first[k].hit = true;
                 first[k].albedo = {P.h.albedo[0], P.h.albedo[1], P.h.albedo[2]};
@@ -597,7 +633,9 @@ class PathTracer {
                 const Hit& h = P.h;
                 const auto path = static_cast<std::uint32_t>(k);
                 const std::uint64_t key = P.key;
-                auto rnd = [key](std::uint64_t dim) { return unit(hash(key, dim)); };
+                auto rnd = [key](std::uint64_t dim) {
+                    return unit(detail::pt::hash_mixed(key, dim));
+                };
                 V3 ns = h.shading_normal;
                 if (h.normal_map) {
                     ++c.normal_map_lookups;
@@ -634,7 +672,10 @@ class PathTracer {
                     const Light& light = lights_[li];
                     ++c.light_samples;
                     const std::uint64_t dl = d0 + 8 + 2 * li;
-                    const LightSample ls = sample_light(light, x, rnd(dl), rnd(dl + 1));
+                    // A directional light's sample depends on nothing: computed once.
+                    const LightSample ls = light.type == Light::Type::directional
+                                               ? fixed_samples_[li]
+                                               : sample_light(light, x, rnd(dl), rnd(dl + 1));
                     if (!(ls.pdf > 0) || !std::isfinite(ls.pdf) ||
                         detail::pt::is_zero(ls.radiance))
                         continue;
@@ -690,9 +731,15 @@ class PathTracer {
                 if (log_) record(sc.shadow.data(), sc.shadow.size());
                 scene_.occluded(sc.shadow.data(), sc.shadow.size());
             }
+            // The last vertex's BRDF rays need a distance only for sphere lights: without
+            // non-delta lights they are occlusion queries.
+            const bool query = !more && !nondelta_;
             if (!sc.next.empty()) {
-                if (log_) record(sc.next.data(), sc.next.size(), more ? 1 : 3, false);
-                scene_.intersect(sc.next.data(), sc.next.size());
+                if (log_) record(sc.next.data(), sc.next.size(), more ? 1 : query ? 2 : 3, false);
+                if (query)
+                    occluded(sc.next.data(), sc.next.size());
+                else
+                    scene_.intersect(sc.next.data(), sc.next.size());
             }
             for (const Pending& pe : sc.pending) {
                 if (pe.ray != Pending::none && Scene::is_occluded(sc.shadow[pe.ray])) continue;
@@ -705,7 +752,8 @@ class PathTracer {
                 const V3& wi = P.wi;
                 const RGB& w = P.w;
                 const double pb = P.pb;
-                const bool miss = r.hit.geomID == RTC_INVALID_GEOMETRY_ID;
+                const bool miss = query ? !Scene::is_occluded(r.ray)
+                                        : r.hit.geomID == RTC_INVALID_GEOMETRY_ID;
                 const double t = miss ? inf : double(r.ray.tfar);
                 if (miss && env_any_) {
                     const RGB Le = env_.radiance(wi);
@@ -735,7 +783,7 @@ class PathTracer {
                 P.beta = w;
                 if (bounces < 0 && depth >= 3) {
                     const double q = std::min(0.95, std::max({P.beta[0], P.beta[1], P.beta[2]}));
-                    if (!(unit(hash(P.key, d0 + 5)) < q)) {
+                    if (!(unit(detail::pt::hash_mixed(P.key, d0 + 5)) < q)) {
                         kill(P);
                         continue;
                     }
@@ -773,6 +821,7 @@ class PathTracer {
     const Scene& scene_;
     Environment env_;
     std::vector<Light> lights_;
+    std::vector<LightSample> fixed_samples_;  // of the directional lights (by light index)
     TraceSettings settings_;
     EnvironmentSampler sampler_;
     std::vector<std::string> effects_;
