@@ -356,7 +356,8 @@ void trace_bare(benchmark::State& state) {
                                   const auto [i0, i1] = streams[s];
                                   const PathTracer::RayRecord& head = log[i0];
                                   if (head.kind == 2) {
-                                      for (std::size_t i = i0; i < i1; ++i) occl[i] = log[i].ray.ray;
+                                      for (std::size_t i = i0; i < i1; ++i)
+                                          occl[i] = log[i].ray.ray;
                                       rt.occluded(&occl[i0], i1 - i0);
                                       continue;
                                   }

@@ -571,8 +571,7 @@ class PathTracer {
     /// every path adds its contributions in the order a path-at-a-time tracer would). L[k]
     /// receives path k's radiance; first (optional) its first-hit AOVs.
     void shade(const RTCRayHit* primary, std::size_t n, const std::uint64_t* mixed,
-               std::uint64_t sample, TraceCounters& c, First* first, RGB* L,
-               Scratch& sc) const {
+               std::uint64_t sample, TraceCounters& c, First* first, RGB* L, Scratch& sc) const {
         using namespace detail::rt;
         if (sc.paths.size() < n) {
             sc.paths.resize(n);
@@ -676,8 +675,7 @@ class PathTracer {
                     const LightSample ls = light.type == Light::Type::directional
                                                ? fixed_samples_[li]
                                                : sample_light(light, x, rnd(dl), rnd(dl + 1));
-                    if (!(ls.pdf > 0) || !std::isfinite(ls.pdf) ||
-                        detail::pt::is_zero(ls.radiance))
+                    if (!(ls.pdf > 0) || !std::isfinite(ls.pdf) || detail::pt::is_zero(ls.radiance))
                         continue;
                     const double cs = dot(ns, ls.w);
                     if (!(cs > 0) || !(dot(ng, ls.w) > 0)) continue;
@@ -691,8 +689,7 @@ class PathTracer {
                         pe.k = cs / (ls.pdf + pb);
                     }
                     if (ls.distance > 0) pe.ray = shadow_ray(x, ng, ls.w, ls.distance);
-                    for (std::size_t i = 0; i < 3; ++i)
-                        pe.a[i] = P.beta[i] * f[i] * ls.radiance[i];
+                    for (std::size_t i = 0; i < 3; ++i) pe.a[i] = P.beta[i] * f[i] * ls.radiance[i];
                     sc.pending.push_back(pe);
                 }
                 // BRDF sample: continues the path and/or reaches the emitters.
@@ -752,8 +749,8 @@ class PathTracer {
                 const V3& wi = P.wi;
                 const RGB& w = P.w;
                 const double pb = P.pb;
-                const bool miss = query ? !Scene::is_occluded(r.ray)
-                                        : r.hit.geomID == RTC_INVALID_GEOMETRY_ID;
+                const bool miss =
+                    query ? !Scene::is_occluded(r.ray) : r.hit.geomID == RTC_INVALID_GEOMETRY_ID;
                 const double t = miss ? inf : double(r.ray.tfar);
                 if (miss && env_any_) {
                     const RGB Le = env_.radiance(wi);
