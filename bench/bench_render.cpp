@@ -274,7 +274,8 @@ BENCHMARK(transfer6)->Apply(args);
 //                        replayed the way the tracer traces them: the same streams in the same
 //                        order (a tile's camera rays as one coherent stream, then per path depth
 //                        its shadow rays as one rtcOccluded1M stream and its BRDF rays as one
-//                        rtcIntersect1M stream), tbb::parallel_for over the streams.
+//                        rtcIntersect1M stream, or rtcOccluded1M at the last depth when no light
+//                        needs a hit distance), tbb::parallel_for over the streams.
 // The ratio of the two items_per_second is the tracer's efficiency (the goal is >= 70%).
 
 namespace {
