@@ -271,9 +271,11 @@ BENCHMARK(transfer6)->Apply(args);
 //                        2 bounces, 96 x 96 pixels, 8 samples per pixel, fixed), items = every
 //                        ray it traced (camera, bounce and shadow rays: TraceCounters::rays()).
 //   trace_bare/<threads>: the rays of one such render, recorded by PathTracer::record_rays and
-//                        replayed the way the tracer traces them (camera rays as streams of the
-//                        tile's 256, the others one at a time: intersect for bounce rays,
-//                        occluded for shadow rays), tbb::parallel_for over blocks of 1024.
+//                        replayed the way the tracer traces them: the same streams in the same
+//                        order (a tile's camera rays as one coherent stream, then per path depth
+//                        its shadow rays as one rtcOccluded1M stream and its BRDF rays as one
+//                        rtcIntersect1M stream, or rtcOccluded1M at the last depth when no light
+//                        needs a hit distance), tbb::parallel_for over the streams.
 // The ratio of the two items_per_second is the tracer's efficiency (the goal is >= 70%).
 
 namespace {
@@ -333,33 +335,45 @@ void trace_bare(benchmark::State& state) {
         PathTracer t(*b.scene, b.env, b.lights, b.settings);
         t.record_rays(&l);
         t.render(b.camera);
-        // Camera rays first (in tile order they were streamed in), then the rest.
-        std::stable_partition(l.begin(), l.end(),
-                              [](const PathTracer::RayRecord& r) { return r.kind == 0; });
         return l;
     }();
-    std::size_t cameras = 0;
-    while (cameras < log.size() && log[cameras].kind == 0) ++cameras;
+    // The streams: [begin, end) of the log.
+    static const std::vector<std::pair<std::size_t, std::size_t>> streams = [] {
+        std::vector<std::pair<std::size_t, std::size_t>> s;
+        for (std::size_t i = 0; i < log.size(); i += std::max<std::uint32_t>(1, log[i].stream))
+            s.emplace_back(i, i + std::max<std::uint32_t>(1, log[i].stream));
+        return s;
+    }();
     tbb::global_control gc(tbb::global_control::max_allowed_parallelism,
                            std::size_t(state.range(0)));
     const Scene& rt = *b.scene;
     std::vector<RTCRayHit> work(log.size());
+    std::vector<RTCRay> occl(log.size());
     std::uint64_t hits = 0;
     for (auto _ : state) {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cameras, 256),
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, streams.size(), 1),
                           [&](const tbb::blocked_range<std::size_t>& r) {
-                              for (std::size_t i = r.begin(); i != r.end(); ++i)
-                                  work[i] = log[i].ray;
-                              rt.intersect(&work[r.begin()], r.size());
-                          });
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(cameras, log.size(), 1024),
-                          [&](const tbb::blocked_range<std::size_t>& r) {
-                              for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                                  work[i] = log[i].ray;
-                                  if (log[i].kind == 2)
-                                      rt.occluded(&work[i].ray, 1);
-                                  else
-                                      rt.intersect(&work[i], 1);
+                              for (std::size_t s = r.begin(); s != r.end(); ++s) {
+                                  const auto [i0, i1] = streams[s];
+                                  const PathTracer::RayRecord& head = log[i0];
+                                  if (head.kind == 2) {
+                                      for (std::size_t i = i0; i < i1; ++i)
+                                          occl[i] = log[i].ray.ray;
+                                      rt.occluded(&occl[i0], i1 - i0);
+                                      continue;
+                                  }
+                                  for (std::size_t i = i0; i < i1; ++i) work[i] = log[i].ray;
+                                  if (!head.coherent) {
+                                      rt.intersect(&work[i0], i1 - i0);
+                                      continue;
+                                  }
+                                  RTCIntersectContext ctx;
+                                  rtcInitIntersectContext(&ctx);
+                                  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+                                  for (std::size_t i = i0; i < i1; i += 1024)
+                                      rtcIntersect1M(rt.handle(), &ctx, &work[i],
+                                                     unsigned(std::min<std::size_t>(1024, i1 - i)),
+                                                     sizeof(RTCRayHit));
                               }
                           });
         hits += std::size_t(work[0].hit.geomID != RTC_INVALID_GEOMETRY_ID);

@@ -562,3 +562,108 @@ TEST_CASE("PathTracer: furnace and convergence at scale", "[render][path_tracer]
     CHECK(e64 / e256 ==
           Approx(std::sqrt((1 / 64.0 + 1 / 4096.0) / (1 / 256.0 + 1 / 4096.0))).epsilon(0.15));
 }
+
+TEST_CASE("PathTracer: a tile's paths traced together equal paths traced one at a time",
+          "[render][path_tracer]") {
+    // render() advances a tile's paths a vertex at a time with streams of shadow and BRDF rays;
+    // radiance() traces one path. Same ray, pixel and sample: the same estimate. Lat-long map,
+    // a sun and a sphere light, two bounces, 3 x 3 tiles (a partial one at the border).
+    const int W = 8, H = 4;
+    std::vector<float> tex(std::size_t(W * H * 3));
+    for (std::size_t i = 0; i < tex.size(); ++i) tex[i] = 0.2f + 0.1f * float(i % 7);
+    tex[3 * 10] = tex[3 * 10 + 1] = tex[3 * 10 + 2] = 40;
+    Environment env;
+    env.kind = Environment::Kind::latlong;
+    env.texels = tex.data();
+    env.width = W;
+    env.height = H;
+    Light ball;
+    ball.type = Light::Type::sphere;
+    ball.position = {-1, -1, 2};
+    ball.radius = 0.3;
+    ball.color = {4, 4, 4};
+    Mesh sph = render::shapes::sphere({0, 0, 0.6}, 0.6, 12, 24);
+    Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);
+    const auto scene = make_scene({sph, plane});
+    TraceSettings s;
+    s.bounces = 2;
+    s.spp_min = s.spp_max = 1;
+    s.target_noise = 0;
+    s.tile = 3;
+    s.seed = 11;
+    const Camera cam = camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, 7, 5, 40);
+    PathTracer t(*scene, env, {sun(unit({0.5, 0.3, 1}), 2), ball}, s);
+    const render::TraceResult r = t.render(cam);
+    const render::PinholeCamera pc(cam);
+    double r2u, r2v;
+    sphbasis::r2_sequence(0, r2u, r2v);
+    namespace rt = render::detail::rt;
+    int checked = 0;
+    for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x) {
+            const auto p = std::uint64_t(y * cam.width + x);
+            const std::uint64_t key = rt::hash(s.seed, p);
+            const double px = x + rt::rotate01(r2u, rt::unit(rt::hash(key, 0x6a09e667u)));
+            const double py = y + rt::rotate01(r2v, rt::unit(rt::hash(key, 0xbb67ae85u)));
+            const render::CameraRay cr = pc.ray(px, py);
+            const RGB L = t.radiance(cr.origin, cr.direction, p, 0);
+            for (std::size_t c = 0; c < 3; ++c) {
+                const double v = r.color.data[3 * std::size_t(p) + c];
+                CHECK(std::fabs(v - L[c]) <= 1e-5 * std::max(1.0, std::fabs(L[c])));
+            }
+            ++checked;
+        }
+    CHECK(checked == 35);
+    CHECK(r.counters.bounce_rays > 0);
+    CHECK(r.counters.environment_samples > 0);
+    // The shared-key hash of the paths' random numbers is rt::hash.
+    for (std::uint64_t a : {0ull, 1ull, 0x123456789abcdefull})
+        for (std::uint64_t b : {0ull, 7ull, 1ull << 40})
+            CHECK(render::detail::pt::hash_mixed(rt::mix64(a), b) == rt::hash(a, b));
+}
+
+TEST_CASE("PathTracer: recorded rays are the streams it traced, one record per counted ray",
+          "[render][path_tracer]") {
+    Mesh sph = render::shapes::sphere({0, 0, 0.6}, 0.6, 12, 24);
+    Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);
+    const auto scene = make_scene({sph, plane});
+    const Camera cam = camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, 9, 7, 35);
+    TraceSettings s;
+    s.bounces = 1;
+    s.spp_min = s.spp_max = 2;
+    s.target_noise = 0;
+    s.tile = 4;
+    Light ball;
+    ball.type = Light::Type::sphere;
+    ball.position = {-1, -1, 2};
+    ball.radius = 0.3;
+    ball.color = {4, 4, 4};
+    for (int lights = 0; lights < 2; ++lights) {
+        std::vector<Light> ls = {sun(unit({0.5, 0.3, 1}), 2)};
+        if (lights) ls.push_back(ball);
+        PathTracer t(*scene, constant_sky(1), ls, s);
+        std::vector<PathTracer::RayRecord> log;
+        t.record_rays(&log);
+        const render::TraceResult r = t.render(cam);
+        t.record_rays(nullptr);
+        REQUIRE(log.size() == r.counters.rays());
+        std::uint64_t kinds[4] = {0, 0, 0, 0};
+        for (std::size_t i = 0; i < log.size();) {
+            const std::uint32_t len = log[i].stream;
+            REQUIRE(len > 0);
+            REQUIRE(i + len <= log.size());
+            for (std::size_t j = i; j < i + len; ++j) {
+                CHECK(log[j].kind == log[i].kind);
+                CHECK(log[j].coherent == (log[i].kind == 0));
+                CHECK((j == i || log[j].stream == 0));
+                ++kinds[log[j].kind];
+            }
+            i += len;
+        }
+        CHECK(kinds[0] == r.counters.camera_rays);
+        CHECK(kinds[1] == r.counters.bounce_rays);
+        CHECK(kinds[2] + kinds[3] == r.counters.shadow_rays);
+        // The last vertex's BRDF rays need a hit distance only with a sphere light.
+        CHECK((kinds[3] > 0) == (lights == 1));
+    }
+}

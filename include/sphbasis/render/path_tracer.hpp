@@ -44,6 +44,13 @@
 //     bounces remain; at the last vertex it is traced only when an emitter can be reached by it
 //     (the environment or a non-delta light) and is then counted as a shadow ray. A constant
 //     environment gets no environment sample: the BRDF sample alone estimates it (weight 1).
+//   * Tracing order (it changes no result): the paths of a tile (one sample each) advance
+//     together a vertex at a time. At each depth the shadow rays of all live paths are traced
+//     as one stream (rtcOccluded1M), their BRDF rays as another (rtcIntersect1M; occlusion
+//     queries at the last vertex when no non-delta light needs the hit distance), and each
+//     path then adds its contributions in the order above. Camera rays are one coherent stream
+//     per tile (RTC_INTERSECT_CONTEXT_FLAG_COHERENT: Embree traces them as packets). Buffers
+//     are per tile, reused across samples.
 //   * Unbounded paths (bounces < 0): Russian roulette at every vertex from the fourth on.
 //   * No emitter at all (no environment, no lights): surfaces are black and no secondary ray
 //     is traced.
@@ -220,6 +227,12 @@ struct Bsdf {
     }
 };
 
+/// rt::hash(a, b) with mix64(a) already computed (mixed_a): a path's random numbers share a.
+/// A test pins it to rt::hash.
+inline std::uint64_t hash_mixed(std::uint64_t mixed_a, std::uint64_t b) noexcept {
+    return rt::mix64(mixed_a ^ (b + 0x632be59bd9b4e019ull));
+}
+
 inline RGB mul(const RGB& a, const RGB& b) noexcept {
     return {a[0] * b[0], a[1] * b[1], a[2] * b[2]};
 }
@@ -267,6 +280,10 @@ class PathTracer {
                 ++other;
         }
         nondelta_ = other > 0;
+        fixed_samples_.resize(lights_.size());
+        for (std::size_t li = 0; li < lights_.size(); ++li)
+            if (lights_[li].type == Light::Type::directional)
+                fixed_samples_[li] = sample_light(lights_[li], {0, 0, 0}, 0.5, 0.5);
         emitters_ = env_any_ || !lights_.empty();
         if (env_nee_)
             effects_.push_back("environment: importance-sampled (" + std::to_string(env_.width) +
@@ -318,11 +335,18 @@ class PathTracer {
             for_each_tile(W, H, settings_.tile, [&](int x0, int y0, int x1, int y1) {
                 TraceCounters c;
                 const std::size_t tw = std::size_t(x1 - x0), n = tw * std::size_t(y1 - y0);
+                // Per-tile buffers, reused by every sample of the pass.
                 std::vector<RTCRayHit> rays(n);
                 std::vector<double> jitter(2 * n);
+                std::vector<std::uint64_t> pixel(n), mixed(n);
+                std::vector<RGB> radiance(n);
+                std::vector<First> first(settings_.aovs ? n : 0);
+                Scratch scratch;
                 for (std::size_t k = 0; k < n; ++k) {
                     const std::size_t px = std::size_t(x0) + k % tw, py = std::size_t(y0) + k / tw;
-                    const std::uint64_t key = pixel_key(py * std::size_t(W) + px);
+                    pixel[k] = py * std::size_t(W) + px;
+                    const std::uint64_t key = pixel_key(pixel[k]);
+                    mixed[k] = detail::rt::mix64(key);
                     jitter[2 * k] = detail::rt::unit(detail::rt::hash(key, 0x6a09e667u));
                     jitter[2 * k + 1] = detail::rt::unit(detail::rt::hash(key, 0xbb67ae85u));
                 }
@@ -337,25 +361,23 @@ class PathTracer {
                         const CameraRay cr = cam.ray(px, py);
                         Scene::set_ray(rays[k], cr.origin, cr.direction);
                     }
-                    if (log_)
-                        for (std::size_t k = 0; k < n; ++k) record(rays[k], 0);
-                    scene_.intersect(rays.data(), n);
+                    if (log_) record(rays.data(), n, 0, true);
+                    intersect_coherent(rays.data(), n);
                     c.camera_rays += n;
+                    shade(rays.data(), n, mixed.data(), std::uint64_t(s), c,
+                          settings_.aovs ? first.data() : nullptr, radiance.data(), scratch);
                     for (std::size_t k = 0; k < n; ++k) {
-                        const std::size_t p =
-                            (std::size_t(y0) + k / tw) * std::size_t(W) + std::size_t(x0) + k % tw;
-                        First first;
-                        const RGB L = shade(rays[k], p, std::uint64_t(s), c,
-                                            settings_.aovs ? &first : nullptr);
+                        const std::size_t p = std::size_t(pixel[k]);
+                        const RGB& L = radiance[k];
                         for (std::size_t ch = 0; ch < 3; ++ch) {
                             sum[3 * p + ch] += L[ch];
                             sq[3 * p + ch] += L[ch] * L[ch];
                         }
-                        if (first.hit || rays[k].hit.geomID != RTC_INVALID_GEOMETRY_ID)
-                            hits[p] += 1;
-                        if (settings_.aovs && first.hit) {
+                        if (rays[k].hit.geomID != RTC_INVALID_GEOMETRY_ID) hits[p] += 1;
+                        if (settings_.aovs && first[k].hit) {
                             double* o = &aov[9 * p];
-                            const V3* v[3] = {&first.normal, &first.albedo, &first.position};
+                            const V3* v[3] = {&first[k].normal, &first[k].albedo,
+                                              &first[k].position};
                             for (int q = 0; q < 3; ++q) {
                                 o[3 * q] += v[q]->x;
                                 o[3 * q + 1] += v[q]->y;
@@ -421,10 +443,13 @@ class PathTracer {
         TraceCounters c;
         RTCRayHit r;
         Scene::set_ray(r, origin, detail::rt::normalized(direction));
-        if (log_) record(r, 0);
+        if (log_) record(&r, 1, 0, false);
         scene_.intersect(&r, 1);
         ++c.camera_rays;
-        const RGB L = shade(r, pixel, sample, c, nullptr);
+        RGB L;
+        Scratch scratch;
+        const std::uint64_t mixed = detail::rt::mix64(pixel_key(pixel));
+        shade(&r, 1, &mixed, sample, c, nullptr, &L, scratch);
         std::lock_guard<std::mutex> lock(*mutex_);
         counters_ += c;
         return L;
@@ -433,13 +458,19 @@ class PathTracer {
     const TraceCounters& counters() const noexcept { return counters_; }
     const EnvironmentSampler& environment_sampler() const noexcept { return sampler_; }
 
-    /// A traced ray as recorded for benchmarks: kind 0 camera (traced in tile streams by
-    /// Scene::intersect), 1 bounce (one Scene::intersect), 2 shadow (one Scene::occluded; only
-    /// `ray.ray` is meaningful), 3 the last vertex's BRDF ray that only looks for emitters (one
-    /// Scene::intersect, counted as a shadow ray).
+    /// A traced ray as recorded for benchmarks: kind 0 camera, 1 bounce, 2 an occlusion query
+    /// (shadow rays, and the last vertex's BRDF rays when no non-delta light needs their hit
+    /// distance; only `ray.ray` is meaningful), 3 the last vertex's BRDF ray traced for its
+    /// hit distance (counted as a shadow ray). Rays are traced in streams, in the order
+    /// recorded: `stream` is the length of the stream that starts at this record (0 inside
+    /// one), traced by rtcIntersect1M (kinds 0, 1, 3) or rtcOccluded1M (kind 2) calls of at
+    /// most 1024 rays; `coherent`: with RTC_INTERSECT_CONTEXT_FLAG_COHERENT (render()'s camera
+    /// rays).
     struct RayRecord {
         RTCRayHit ray;
         int kind = 0;
+        std::uint32_t stream = 0;
+        bool coherent = false;
     };
     /// While `log` is non-null, every ray render() and radiance() trace is appended to it as it
     /// was before tracing (a lock per ray: for benchmarks that replay the same rays through a
@@ -487,154 +518,307 @@ class PathTracer {
         return std::sqrt(acc / double(N));
     }
 
-    /// One path from a traced camera ray (pixel and sample index the random numbers).
-    RGB shade(const RTCRayHit& primary, std::uint64_t pixel, std::uint64_t sample, TraceCounters& c,
-              First* first) const {
-        using namespace detail::rt;
-        using detail::pt::mul;
-        const V3 dir0{primary.ray.dir_x, primary.ray.dir_y, primary.ray.dir_z};
-        Hit h = scene_.hit(primary);
-        if (!h.valid) return env_.radiance(normalized(dir0));
-        RGB L{0, 0, 0};
-        if (first) {
-            first->hit = true;
-            first->albedo = {h.albedo[0], h.albedo[1], h.albedo[2]};
-            first->position = h.position;
+    /// The state of one path of a batch (shade()).
+    struct PathState {
+        Hit h;
+        RGB L{0, 0, 0}, beta{1, 1, 1}, w{0, 0, 0};
+        V3 wo{0, 0, 1}, wi{0, 0, 1}, x{0, 0, 0};
+        double pb = 0;
+        std::uint64_t key = 0;  // mix64 of the path's random-number key
+        bool alive = false;
+    };
+    /// A next-event contribution beta f Le (times k) of path `path`, added unless shadow ray
+    /// `ray` (none: no shadow test) is occluded.
+    struct Pending {
+        static constexpr std::uint32_t none = 0xFFFFFFFFu;
+        std::uint32_t path = 0, ray = none;
+        RGB a{0, 0, 0};
+        double k = 0;
+    };
+    /// Buffers of shade(), reused across calls (no allocation per sample once grown).
+    struct Scratch {
+        std::vector<PathState> paths;
+        std::vector<RTCRay> shadow;
+        std::vector<Pending> pending;
+        std::vector<RTCRayHit> next;
+        std::vector<std::uint32_t> next_path;
+    };
+
+    /// Camera rays of a tile: one stream with Embree's coherent flag (it traces them as packets).
+    void intersect_coherent(RTCRayHit* rays, std::size_t n) const {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        for (std::size_t i = 0; i < n; i += 1024) {
+            const auto m = static_cast<unsigned>(std::min<std::size_t>(1024, n - i));
+            rtcIntersect1M(scene_.handle(), &ctx, rays + i, m, sizeof(RTCRayHit));
         }
-        const std::uint64_t key = hash(pixel_key(pixel), sample);
-        auto rnd = [key](std::uint64_t dim) { return unit(hash(key, dim)); };
-        const std::uint64_t stride = 8 + 2 * lights_.size();
-        RGB beta{1, 1, 1};
-        V3 wo = -normalized(dir0);
-        detail::pt::Bsdf bsdf;
-        const int bounces = settings_.bounces;
-        for (int depth = 0;; ++depth) {
-            V3 ns = h.shading_normal;
-            if (h.normal_map) {
-                ++c.normal_map_lookups;
-                ns = Scene::normal_mapped(h);
+    }
+
+    /// Occlusion queries of n rays of RTCRayHit records (the ray part), as one stream.
+    void occluded(RTCRayHit* rays, std::size_t n) const {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        for (std::size_t i = 0; i < n; i += 1024) {
+            const auto m = static_cast<unsigned>(std::min<std::size_t>(1024, n - i));
+            rtcOccluded1M(scene_.handle(), &ctx, &rays[i].ray, m, sizeof(RTCRayHit));
+        }
+    }
+
+    /// n paths from traced camera rays (mixed[k] = mix64(pixel_key(pixel)) and `sample` index
+    /// the random numbers), one vertex depth at a time: at each depth every live path's shadow
+    /// rays are traced as one stream and its BRDF rays as another (the paths stay independent:
+    /// every path adds its contributions in the order a path-at-a-time tracer would). L[k]
+    /// receives path k's radiance; first (optional) its first-hit AOVs.
+    void shade(const RTCRayHit* primary, std::size_t n, const std::uint64_t* mixed,
+               std::uint64_t sample, TraceCounters& c, First* first, RGB* L, Scratch& sc) const {
+        using namespace detail::rt;
+        if (sc.paths.size() < n) {
+            sc.paths.resize(n);
+            sc.shadow.reserve(n * (1 + lights_.size()));
+            sc.pending.reserve(n * (1 + lights_.size()));
+            sc.next.reserve(n);
+            sc.next_path.reserve(n);
+        }
+        std::size_t alive = 0;
+        for (std::size_t k = 0; k < n; ++k) {
+            PathState& P = sc.paths[k];
+            const V3 dir0{primary[k].ray.dir_x, primary[k].ray.dir_y, primary[k].ray.dir_z};
+            if (first) first[k] = First{};
+            P.h = scene_.hit(primary[k]);
+            if (!P.h.valid) {
+                P.alive = false;
+                P.L = env_.radiance(normalized(dir0));
+                continue;
             }
-            if (first && depth == 0) first->normal = ns;
-            if (!emitters_) break;
-            const V3 ng = h.geometric_normal, x = h.position;
-            bsdf.init(h, ns);
+            P.alive = true;
+            ++alive;
+            P.L = {0, 0, 0};
+            P.beta = {1, 1, 1};
+            P.wo = -normalized(dir0);
+            P.key = mix64(detail::pt::hash_mixed(mixed[k], sample));
+            if (first) {
+                first[k].hit = true;
+                first[k].albedo = {P.h.albedo[0], P.h.albedo[1], P.h.albedo[2]};
+                first[k].position = P.h.position;
+            }
+        }
+        const std::uint64_t stride = 8 + 2 * lights_.size();
+        const int bounces = settings_.bounces;
+        constexpr double inf = std::numeric_limits<double>::infinity();
+        detail::pt::Bsdf bsdf;
+        for (int depth = 0; alive > 0; ++depth) {
             const std::uint64_t d0 = 2 + stride * std::uint64_t(depth);
-            // Environment: importance sampled, balance heuristic against the BRDF.
-            if (env_nee_) {
-                ++c.environment_samples;
-                const auto es = sampler_.sample(rnd(d0), rnd(d0 + 1));
-                const double cs = dot(ns, es.w);
-                if (es.pdf > 0 && cs > 0 && dot(ng, es.w) > 0 &&
-                    !detail::pt::is_zero(es.radiance)) {
-                    const RGB f = bsdf.eval(wo, es.w, c);
-                    const double pb = bsdf.pdf(wo, es.w, c);
-                    if (visible(x, ng, es.w, std::numeric_limits<double>::infinity(), c)) {
-                        const double k = cs / (es.pdf + pb);
+            const bool more = bounces < 0 || depth < bounces;
+            sc.shadow.clear();
+            sc.pending.clear();
+            sc.next.clear();
+            sc.next_path.clear();
+            auto kill = [&alive](PathState& P) {
+                P.alive = false;
+                --alive;
+            };
+            auto shadow_ray = [&](const V3& x, const V3& ng, const V3& w, double tmax) {
+                RTCRay r;
+                Scene::set_ray(r, scene_.offset_origin(x, ng, w), w, 0, tmax);
+                sc.shadow.push_back(r);
+                ++c.shadow_rays;
+                return static_cast<std::uint32_t>(sc.shadow.size() - 1);
+            };
+            // Next-event estimation and the BRDF sample of every live path.
+            for (std::size_t k = 0; k < n; ++k) {
+                PathState& P = sc.paths[k];
+                if (!P.alive) continue;
+                const Hit& h = P.h;
+                const auto path = static_cast<std::uint32_t>(k);
+                const std::uint64_t key = P.key;
+                auto rnd = [key](std::uint64_t dim) {
+                    return unit(detail::pt::hash_mixed(key, dim));
+                };
+                V3 ns = h.shading_normal;
+                if (h.normal_map) {
+                    ++c.normal_map_lookups;
+                    ns = Scene::normal_mapped(h);
+                }
+                if (first && depth == 0) first[k].normal = ns;
+                if (!emitters_) {
+                    kill(P);
+                    continue;
+                }
+                const V3 ng = h.geometric_normal, x = h.position;
+                P.x = x;
+                bsdf.init(h, ns);
+                // Environment: importance sampled, balance heuristic against the BRDF.
+                if (env_nee_) {
+                    ++c.environment_samples;
+                    const auto es = sampler_.sample(rnd(d0), rnd(d0 + 1));
+                    const double cs = dot(ns, es.w);
+                    if (es.pdf > 0 && cs > 0 && dot(ng, es.w) > 0 &&
+                        !detail::pt::is_zero(es.radiance)) {
+                        const RGB f = bsdf.eval(P.wo, es.w, c);
+                        const double pb = bsdf.pdf(P.wo, es.w, c);
+                        Pending pe;
+                        pe.path = path;
+                        pe.ray = shadow_ray(x, ng, es.w, inf);
                         for (std::size_t i = 0; i < 3; ++i)
-                            L[i] += beta[i] * f[i] * es.radiance[i] * k;
+                            pe.a[i] = P.beta[i] * f[i] * es.radiance[i];
+                        pe.k = cs / (es.pdf + pb);
+                        sc.pending.push_back(pe);
                     }
                 }
-            }
-            // Analytic lights.
-            for (std::size_t li = 0; li < lights_.size(); ++li) {
-                const Light& light = lights_[li];
-                ++c.light_samples;
-                const std::uint64_t dl = d0 + 8 + 2 * li;
-                const LightSample ls = sample_light(light, x, rnd(dl), rnd(dl + 1));
-                if (!(ls.pdf > 0) || !std::isfinite(ls.pdf) || detail::pt::is_zero(ls.radiance))
-                    continue;
-                const double cs = dot(ns, ls.w);
-                if (!(cs > 0) || !(dot(ng, ls.w) > 0)) continue;
-                const RGB f = bsdf.eval(wo, ls.w, c);
-                double k;
-                if (ls.delta) {
-                    k = cs;
-                } else {
-                    const double pb = bsdf.pdf(wo, ls.w, c);
-                    k = cs / (ls.pdf + pb);
+                // Analytic lights.
+                for (std::size_t li = 0; li < lights_.size(); ++li) {
+                    const Light& light = lights_[li];
+                    ++c.light_samples;
+                    const std::uint64_t dl = d0 + 8 + 2 * li;
+                    // A directional light's sample depends on nothing: computed once.
+                    const LightSample ls = light.type == Light::Type::directional
+                                               ? fixed_samples_[li]
+                                               : sample_light(light, x, rnd(dl), rnd(dl + 1));
+                    if (!(ls.pdf > 0) || !std::isfinite(ls.pdf) || detail::pt::is_zero(ls.radiance))
+                        continue;
+                    const double cs = dot(ns, ls.w);
+                    if (!(cs > 0) || !(dot(ng, ls.w) > 0)) continue;
+                    const RGB f = bsdf.eval(P.wo, ls.w, c);
+                    Pending pe;
+                    pe.path = path;
+                    if (ls.delta) {
+                        pe.k = cs;
+                    } else {
+                        const double pb = bsdf.pdf(P.wo, ls.w, c);
+                        pe.k = cs / (ls.pdf + pb);
+                    }
+                    if (ls.distance > 0) pe.ray = shadow_ray(x, ng, ls.w, ls.distance);
+                    for (std::size_t i = 0; i < 3; ++i) pe.a[i] = P.beta[i] * f[i] * ls.radiance[i];
+                    sc.pending.push_back(pe);
                 }
-                if (ls.distance > 0 && !visible(x, ng, ls.w, ls.distance, c)) continue;
-                for (std::size_t i = 0; i < 3; ++i) L[i] += beta[i] * f[i] * ls.radiance[i] * k;
+                // BRDF sample: continues the path and/or reaches the emitters.
+                if (!more && !env_any_ && !nondelta_) {
+                    kill(P);
+                    continue;
+                }
+                const V3 wi = bsdf.sample(P.wo, rnd(d0 + 2), rnd(d0 + 3), rnd(d0 + 4));
+                const double cs = dot(ns, wi);
+                if (!(cs > 0) || !(dot(ng, wi) > 0)) {
+                    kill(P);
+                    continue;
+                }
+                const double pb = bsdf.pdf(P.wo, wi, c);
+                if (!(pb > 0)) {
+                    kill(P);
+                    continue;
+                }
+                const RGB f = bsdf.eval(P.wo, wi, c);
+                RGB w{f[0] * cs / pb, f[1] * cs / pb, f[2] * cs / pb};
+                for (std::size_t i = 0; i < 3; ++i) w[i] *= P.beta[i];
+                P.w = w;
+                P.wi = wi;
+                P.pb = pb;
+                RTCRayHit r;
+                Scene::set_ray(r, scene_.offset_origin(x, ng, wi), wi);
+                sc.next.push_back(r);
+                sc.next_path.push_back(path);
+                if (more)
+                    ++c.bounce_rays;
+                else
+                    ++c.shadow_rays;
             }
-            // BRDF sample: continues the path and/or reaches the emitters.
-            const bool more = bounces < 0 || depth < bounces;
-            if (!more && !env_any_ && !nondelta_) break;
-            const V3 wi = bsdf.sample(wo, rnd(d0 + 2), rnd(d0 + 3), rnd(d0 + 4));
-            const double cs = dot(ns, wi);
-            if (!(cs > 0) || !(dot(ng, wi) > 0)) break;
-            const double pb = bsdf.pdf(wo, wi, c);
-            if (!(pb > 0)) break;
-            const RGB f = bsdf.eval(wo, wi, c);
-            RGB w{f[0] * cs / pb, f[1] * cs / pb, f[2] * cs / pb};
-            for (std::size_t i = 0; i < 3; ++i) w[i] *= beta[i];
-            RTCRayHit r;
-            Scene::set_ray(r, scene_.offset_origin(x, ng, wi), wi);
-            if (log_) record(r, more ? 1 : 3);
-            scene_.intersect(&r, 1);
-            if (more)
-                ++c.bounce_rays;
-            else
-                ++c.shadow_rays;
-            const bool miss = r.hit.geomID == RTC_INVALID_GEOMETRY_ID;
-            const double t = miss ? std::numeric_limits<double>::infinity() : double(r.ray.tfar);
-            if (miss && env_any_) {
-                const RGB Le = env_.radiance(wi);
-                const double k = env_nee_ ? pb / (pb + sampler_.pdf(wi)) : 1.0;
-                for (std::size_t i = 0; i < 3; ++i) L[i] += w[i] * Le[i] * k;
+            // Trace both streams, then add the contributions in each path's order.
+            if (!sc.shadow.empty()) {
+                if (log_) record(sc.shadow.data(), sc.shadow.size());
+                scene_.occluded(sc.shadow.data(), sc.shadow.size());
             }
-            if (nondelta_)
-                for (const Light& light : lights_) {
-                    if (light.type == Light::Type::directional) continue;
-                    const RGB Ll = light_radiance(light, wi, x);
-                    if (detail::pt::is_zero(Ll)) continue;
-                    if (light.type == Light::Type::sphere) {
-                        const double tb = detail::pt::ball_distance(x, wi, light.position,
-                                                                    std::fabs(light.radius));
-                        if (!(tb < t)) continue;
-                    } else if (!miss) {
+            // The last vertex's BRDF rays need a distance only for sphere lights: without
+            // non-delta lights they are occlusion queries.
+            const bool query = !more && !nondelta_;
+            if (!sc.next.empty()) {
+                if (log_) record(sc.next.data(), sc.next.size(), more ? 1 : query ? 2 : 3, false);
+                if (query)
+                    occluded(sc.next.data(), sc.next.size());
+                else
+                    scene_.intersect(sc.next.data(), sc.next.size());
+            }
+            for (const Pending& pe : sc.pending) {
+                if (pe.ray != Pending::none && Scene::is_occluded(sc.shadow[pe.ray])) continue;
+                RGB& Lp = sc.paths[pe.path].L;
+                for (std::size_t i = 0; i < 3; ++i) Lp[i] += pe.a[i] * pe.k;
+            }
+            for (std::size_t j = 0; j < sc.next.size(); ++j) {
+                PathState& P = sc.paths[sc.next_path[j]];
+                const RTCRayHit& r = sc.next[j];
+                const V3& wi = P.wi;
+                const RGB& w = P.w;
+                const double pb = P.pb;
+                const bool miss =
+                    query ? !Scene::is_occluded(r.ray) : r.hit.geomID == RTC_INVALID_GEOMETRY_ID;
+                const double t = miss ? inf : double(r.ray.tfar);
+                if (miss && env_any_) {
+                    const RGB Le = env_.radiance(wi);
+                    const double k = env_nee_ ? pb / (pb + sampler_.pdf(wi)) : 1.0;
+                    for (std::size_t i = 0; i < 3; ++i) P.L[i] += w[i] * Le[i] * k;
+                }
+                if (nondelta_)
+                    for (const Light& light : lights_) {
+                        if (light.type == Light::Type::directional) continue;
+                        const RGB Ll = light_radiance(light, wi, P.x);
+                        if (detail::pt::is_zero(Ll)) continue;
+                        if (light.type == Light::Type::sphere) {
+                            const double tb = detail::pt::ball_distance(P.x, wi, light.position,
+                                                                        std::fabs(light.radius));
+                            if (!(tb < t)) continue;
+                        } else if (!miss) {
+                            continue;
+                        }
+                        const double pl = sample_light_pdf(light, P.x, wi);
+                        const double k = pb / (pb + pl);
+                        for (std::size_t i = 0; i < 3; ++i) P.L[i] += w[i] * Ll[i] * k;
+                    }
+                if (!more || miss) {
+                    kill(P);
+                    continue;
+                }
+                P.beta = w;
+                if (bounces < 0 && depth >= 3) {
+                    const double q = std::min(0.95, std::max({P.beta[0], P.beta[1], P.beta[2]}));
+                    if (!(unit(detail::pt::hash_mixed(P.key, d0 + 5)) < q)) {
+                        kill(P);
                         continue;
                     }
-                    const double pl = sample_light_pdf(light, x, wi);
-                    const double k = pb / (pb + pl);
-                    for (std::size_t i = 0; i < 3; ++i) L[i] += w[i] * Ll[i] * k;
+                    for (auto& v : P.beta) v /= q;
                 }
-            if (!more || miss) break;
-            beta = w;
-            if (bounces < 0 && depth >= 3) {
-                const double q = std::min(0.95, std::max({beta[0], beta[1], beta[2]}));
-                if (!(rnd(d0 + 5) < q)) break;
-                for (auto& v : beta) v /= q;
+                P.wo = -wi;
             }
-            h = scene_.hit(r);
-            if (!h.valid) break;
-            wo = -wi;
+            // The next vertices, in a loop of their own (their loads overlap).
+            for (std::size_t j = 0; j < sc.next.size(); ++j) {
+                PathState& P = sc.paths[sc.next_path[j]];
+                if (!P.alive) continue;
+                P.h = scene_.hit(sc.next[j]);
+                if (!P.h.valid) kill(P);
+            }
         }
-        return L;
+        for (std::size_t k = 0; k < n; ++k) L[k] = sc.paths[k].L;
     }
 
-    void record(const RTCRayHit& r, int kind) const {
+    /// Appends a traced stream (as it was before tracing) to the log under one lock.
+    void record(const RTCRayHit* r, std::size_t n, int kind, bool coherent) const {
         std::lock_guard<std::mutex> lock(*mutex_);
-        log_->push_back(RayRecord{r, kind});
+        for (std::size_t i = 0; i < n; ++i)
+            log_->push_back(RayRecord{r[i], kind, i == 0 ? std::uint32_t(n) : 0u, coherent});
     }
-
-    /// Traces a shadow ray from x (offset along ng) toward w up to distance tmax.
-    bool visible(const V3& x, const V3& ng, const V3& w, double tmax, TraceCounters& c) const {
-        RTCRay r;
-        const V3 o = scene_.offset_origin(x, ng, w);
-        Scene::set_ray(r, o, w, 0, tmax);
-        if (log_) {
+    void record(const RTCRay* r, std::size_t n) const {
+        std::lock_guard<std::mutex> lock(*mutex_);
+        for (std::size_t i = 0; i < n; ++i) {
             RTCRayHit rh;
-            rh.ray = r;
-            record(rh, 2);
+            rh.ray = r[i];
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            log_->push_back(RayRecord{rh, 2, i == 0 ? std::uint32_t(n) : 0u, false});
         }
-        scene_.occluded(&r, 1);
-        ++c.shadow_rays;
-        return !Scene::is_occluded(r);
     }
 
     const Scene& scene_;
     Environment env_;
     std::vector<Light> lights_;
+    std::vector<LightSample> fixed_samples_;  // of the directional lights (by light index)
     TraceSettings settings_;
     EnvironmentSampler sampler_;
     std::vector<std::string> effects_;
