@@ -267,7 +267,7 @@ TEST_CASE("prt-normalmap, -svd and -ratio on a convex sphere equal the unshadowe
     const double e4 = rel_rms(r.render(3, cam, 1), irr), e6 = rel_rms(r.render(4, cam, 1), irr);
     std::printf("prt-normalmap-svd on a convex sphere: rel rms svd4 %.3g, svd6 %.3g\n", e4, e6);
     CHECK(e6 <= e4);
-    CHECK(e6 < 0.05);
+    CHECK(e6 < 0.02);  // measured 0.013
     CHECK(r.stats(1).bytes_per_element == 27 * 9 * 4);
     CHECK(r.stats(3).bytes_per_element == 3 * 4 * 9 * 4);
     CHECK(r.stats(4).bytes_per_element == 3 * 6 * 9 * 4);
@@ -291,7 +291,7 @@ TEST_CASE("prt-normalmap under a shadowing sphere: darker than unshadowed, close
         std::printf("%s: rel rms to prt-texel %.3g, to unshadowed %.3g\n", names[i].c_str(), e, eu);
         // Without a normal map every form reads the shadowed transfer at the surface normal:
         // within the 3-band truncation of the incident light of prt-texel, far from unshadowed.
-        CHECK(e < 0.5 * rel_rms(prt, irr));
+        CHECK(e < 0.2 * rel_rms(prt, irr));  // measured 0.08-0.09 of it
     }
 }
 

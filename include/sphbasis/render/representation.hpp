@@ -984,14 +984,7 @@ class Representations {
     const std::vector<std::string>& names() const noexcept { return names_; }
     /// The bakes representation `index` reads: indices into bakes(), ascending, no repeats.
     std::vector<std::size_t> reads(std::size_t index) const {
-        const Rep& r = rep(index, "render::Representations::reads", false);
-        std::vector<std::size_t> out;
-        for (int b : r.mesh_bake)
-            if (b >= 0) out.push_back(std::size_t(b));
-        if (r.probe_bake >= 0) out.push_back(std::size_t(r.probe_bake));
-        std::sort(out.begin(), out.end());
-        out.erase(std::unique(out.begin(), out.end()), out.end());
-        return out;
+        return reads_of(rep(index, "render::Representations::reads", false));
     }
 
   private:
