@@ -22,8 +22,8 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <atomic>
 #include <assimp/Importer.hpp>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <memory>

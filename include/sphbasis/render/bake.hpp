@@ -942,8 +942,8 @@ class Baker {
         if (!unique && stderr_out) {
             // Entries of one sample summed first (bounce paths): all values at once.
             L.ysh.resize(K * m);
-            sh::eval_batch(settings_.bands, m, L.xs.data(), L.ys.data(), L.zs.data(),
-                           L.ysh.data(), m);
+            sh::eval_batch(settings_.bands, m, L.xs.data(), L.ys.data(), L.zs.data(), L.ysh.data(),
+                           m);
             std::vector<double> acc;
             for (std::size_t k = 0; k < K; ++k) {
                 const double* yk = &L.ysh[k * m];
@@ -988,8 +988,7 @@ class Baker {
                 const double* a = &L.lanes[(k * nc + c) * 2 * lanes];
                 const double* b = a + lanes;
                 const double s = ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
-                const double s2 =
-                    ((b[0] + b[1]) + (b[2] + b[3])) + ((b[4] + b[5]) + (b[6] + b[7]));
+                const double s2 = ((b[0] + b[1]) + (b[2] + b[3])) + ((b[4] + b[5]) + (b[6] + b[7]));
                 finish(k, c, s, s2);
             }
             if (!rgb) out[1][k] = out[2][k] = out[0][k];
