@@ -78,6 +78,49 @@ Estimate estimate(const PathTracer& t, vec3<double> o, vec3<double> d, int n,
 
 using sphbasis_test::camera_at;
 
+/// The scene of the image tests: a ball of radius 0.6 resting on a 10 x 10 plane at z = 0.
+std::unique_ptr<Scene> ball_on_plane(int rings, int segments) {
+    return make_scene({render::shapes::sphere({0, 0, 0.6}, 0.6, rings, segments),
+                       sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1)});
+}
+/// A w x h camera looking down at ball_on_plane().
+Camera ball_camera(int w, int h, double fov = 35) {
+    return camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, w, h, fov);
+}
+
+/// A lat-long environment over W x H RGB texels (borrowed).
+Environment latlong_sky(const std::vector<float>& tex, int W, int H) {
+    Environment env;
+    env.kind = Environment::Kind::latlong;
+    env.texels = tex.data();
+    env.width = W;
+    env.height = H;
+    return env;
+}
+
+/// Integral of g(w) over the hemisphere z > 0 by 256 x 512 midpoint cells, uniform in z = cos
+/// theta and phi.
+template <class G>
+double hemisphere_integral(G&& g) {
+    double sum = 0;
+    const int nt = 256, np = 512;
+    for (int a = 0; a < nt; ++a)
+        for (int b = 0; b < np; ++b) {
+            const double z = (a + 0.5) / nt, phi = 2 * constants::pi * (b + 0.5) / np;
+            const double rr = std::sqrt(1 - z * z);
+            sum += g(vec3<double>{rr * std::cos(phi), rr * std::sin(phi), z});
+        }
+    return sum * (2 * constants::pi / (double(nt) * np));
+}
+
+/// Root mean square of a - ref over all channels.
+double rmse(const render::Image& a, const render::Image& ref) {
+    double e = 0;
+    for (std::size_t i = 0; i < a.data.size(); ++i)
+        e += (double(a.data[i]) - ref.data[i]) * (double(a.data[i]) - ref.data[i]);
+    return std::sqrt(e / double(a.data.size()));
+}
+
 /// Analytic ray-sphere hit: the unit normal at the near intersection (false on a miss).
 bool sphere_normal(vec3<double> o, vec3<double> d, vec3<double> c, double r, vec3<double>& n) {
     const vec3<double> oc{o.x - c.x, o.y - c.y, o.z - c.z};
@@ -283,11 +326,7 @@ TEST_CASE("PathTracer: MIS irradiance of a lat-long map equals quadrature",
             p[2] = 0.1f + 0.05f * float(j);
             if (j == 2 && i == 3) p[0] = p[1] = p[2] = 60;  // a sun
         }
-    Environment env;
-    env.kind = Environment::Kind::latlong;
-    env.texels = tex.data();
-    env.width = W;
-    env.height = H;
+    Environment env = latlong_sky(tex, W, H);
     env.rotation = sphbasis::matrix_from_euler_zyz(0.4, 0.3, 0.0);
     for (const vec3<double> n : {vec3<double>{0, 0, 1}, unit({0.5, 0.2, 0.8})}) {
         // A big quad with normal n through the origin.
@@ -303,17 +342,8 @@ TEST_CASE("PathTracer: MIS irradiance of a lat-long map equals quadrature",
         const Estimate e = estimate(t, o, unit({-o.x, -o.y, -o.z}), 3000);
         // Quadrature of L(w) max(n.w, 0) over the hemisphere of n, 256 x 512 cells in the
         // frame of n (uniform in cos theta and phi).
-        double E = 0;
-        const int nt = 256, np = 512;
-        for (int a = 0; a < nt; ++a)
-            for (int b = 0; b < np; ++b) {
-                const double z = (a + 0.5) / nt, phi = 2 * constants::pi * (b + 0.5) / np;
-                const double rr = std::sqrt(1 - z * z);
-                const vec3<double> w =
-                    f.to_world(vec3<double>{rr * std::cos(phi), rr * std::sin(phi), z});
-                E += env.radiance(w)[0] * z;
-            }
-        E *= 2 * constants::pi / (double(nt) * np);
+        const double E = hemisphere_integral(
+            [&](const vec3<double>& w) { return env.radiance(f.to_world(w))[0] * w.z; });
         CHECK(std::fabs(e.mean - E / constants::pi) < 4 * e.se + 2e-3 * E);
         CHECK(t.counters().environment_samples == 3000);
     }
@@ -329,11 +359,7 @@ TEST_CASE("PathTracer: Blinn-Phong under a lat-long map (MIS with lobe sampling)
             p[0] = p[1] = p[2] = 0.2f + 0.1f * float(i % 3);
             if (j == 1 && i == 9) p[0] = p[1] = p[2] = 30;
         }
-    Environment env;
-    env.kind = Environment::Kind::latlong;
-    env.texels = tex.data();
-    env.width = W;
-    env.height = H;
+    Environment env = latlong_sky(tex, W, H);
     Mesh q = sphbasis_test::quad_grid(-50, 50, -50, 50, 0, 1);
     q.albedo = {0.2f, 0.2f, 0.2f};
     q.shininess = 8;
@@ -346,27 +372,17 @@ TEST_CASE("PathTracer: Blinn-Phong under a lat-long map (MIS with lobe sampling)
     const vec3<double> d = unit({-o.x, -o.y, -o.z});
     const Estimate e = estimate(t, o, d, 4000);
     const vec3<double> wo{-d.x, -d.y, -d.z};
-    double ref = 0;
-    const int nt = 256, np = 512;
-    for (int a = 0; a < nt; ++a)
-        for (int b = 0; b < np; ++b) {
-            const double z = (a + 0.5) / nt, phi = 2 * constants::pi * (b + 0.5) / np;
-            const double rr = std::sqrt(1 - z * z);
-            const vec3<double> w{rr * std::cos(phi), rr * std::sin(phi), z};
-            const vec3<double> h = unit({wo.x + w.x, wo.y + w.y, wo.z + w.z});
-            const double f =
-                0.2 / constants::pi + 0.6 * 16 / (8 * constants::pi) * std::pow(h.z, 8);
-            ref += f * env.radiance(w)[0] * z;
-        }
-    ref *= 2 * constants::pi / (double(nt) * np);
+    const double ref = hemisphere_integral([&](const vec3<double>& w) {
+        const vec3<double> h = unit({wo.x + w.x, wo.y + w.y, wo.z + w.z});
+        const double f = 0.2 / constants::pi + 0.6 * 16 / (8 * constants::pi) * std::pow(h.z, 8);
+        return f * env.radiance(w)[0] * w.z;
+    });
     CHECK(std::fabs(e.mean - ref) < 4 * e.se + 2e-3 * ref);
     CHECK(t.counters().specular_evaluations > 0);
 }
 
 TEST_CASE("PathTracer: error halves when samples quadruple", "[render][path_tracer]") {
-    Mesh ball = render::shapes::sphere({0, 0, 0.6}, 0.6, 16, 32);
-    Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);
-    const auto scene = make_scene({ball, plane});
+    const auto scene = ball_on_plane(16, 32);
     TraceSettings s;
     s.bounces = 1;
     s.target_noise = 0;
@@ -375,16 +391,10 @@ TEST_CASE("PathTracer: error halves when samples quadruple", "[render][path_trac
         q.spp_min = q.spp_max = spp;
         q.seed = seed;
         PathTracer t(*scene, constant_sky(1), {sun(unit({0.5, 0.3, 1}), 2)}, q);
-        return t.render(camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, 8, 8, 35)).color;
+        return t.render(ball_camera(8, 8)).color;
     };
     const auto ref = render_spp(256, 99);
-    auto rmse = [&](const render::Image& a) {
-        double e = 0;
-        for (std::size_t i = 0; i < a.data.size(); ++i)
-            e += (double(a.data[i]) - ref.data[i]) * (double(a.data[i]) - ref.data[i]);
-        return std::sqrt(e / double(a.data.size()));
-    };
-    const double e16 = rmse(render_spp(16, 1)), e64 = rmse(render_spp(64, 2));
+    const double e16 = rmse(render_spp(16, 1), ref), e64 = rmse(render_spp(64, 2), ref);
     // With the reference's own variance: sqrt((1/16 + 1/256) / (1/64 + 1/256)) = 1.84.
     CHECK(e16 / e64 > 1.35);
     CHECK(e16 / e64 < 2.5);
@@ -392,9 +402,7 @@ TEST_CASE("PathTracer: error halves when samples quadruple", "[render][path_trac
 
 TEST_CASE("PathTracer: deterministic for a seed, whatever the thread count",
           "[render][path_tracer]") {
-    Mesh ball = render::shapes::sphere({0, 0, 0.6}, 0.6, 12, 24);
-    Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);
-    const auto scene = make_scene({ball, plane});
+    const auto scene = ball_on_plane(12, 24);
     TraceSettings s;
     s.bounces = 2;
     s.spp_min = 2;
@@ -403,7 +411,7 @@ TEST_CASE("PathTracer: deterministic for a seed, whatever the thread count",
     s.tile = 4;
     s.seed = 5;
     s.aovs = true;
-    const Camera cam = camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, 12, 10, 35);
+    const Camera cam = ball_camera(12, 10);
     PathTracer t(*scene, constant_sky(1), {sun(unit({0.5, 0.3, 1}), 2)}, s);
     render::TraceResult one, all;
     tbb::task_arena(1).execute([&] { one = t.render(cam); });
@@ -424,10 +432,8 @@ TEST_CASE("PathTracer: deterministic for a seed, whatever the thread count",
 }
 
 TEST_CASE("PathTracer: counters of work the scene does not call for", "[render][path_tracer]") {
-    Mesh ball = render::shapes::sphere({0, 0, 0.6}, 0.6, 12, 24);
-    Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);
-    const auto scene = make_scene({ball, plane});
-    const Camera cam = camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, 8, 8, 35);
+    const auto scene = ball_on_plane(12, 24);
+    const Camera cam = ball_camera(8, 8);
     TraceSettings s;
     s.spp_min = s.spp_max = 2;
     s.target_noise = 0;
@@ -472,10 +478,8 @@ TEST_CASE("PathTracer: counters of work the scene does not call for", "[render][
 
 TEST_CASE("PathTracer: progressive passes stop at the target noise; bad settings throw",
           "[render][path_tracer]") {
-    Mesh ball = render::shapes::sphere({0, 0, 0.6}, 0.6, 12, 24);
-    Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);
-    const auto scene = make_scene({ball, plane});
-    const Camera cam = camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, 8, 8, 35);
+    const auto scene = ball_on_plane(12, 24);
+    const Camera cam = ball_camera(8, 8);
     TraceSettings s;
     s.bounces = 1;
     s.spp_min = 4;
@@ -537,9 +541,7 @@ TEST_CASE("PathTracer: furnace and convergence at scale", "[render][path_tracer]
         CHECK(std::fabs(r.color.data[i] - 1) <= 5 * r.stderr_.data[i] + 1e-4);
 
     // Convergence: 64 x 64 pixels, 16 against 64 samples, reference 4096.
-    Mesh ball = render::shapes::sphere({0, 0, 0.6}, 0.6, 16, 32);
-    Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);
-    const auto scene2 = make_scene({ball, plane});
+    const auto scene2 = ball_on_plane(16, 32);
     auto render_spp = [&](int spp, std::uint64_t seed) {
         TraceSettings q;
         q.bounces = 2;
@@ -547,17 +549,11 @@ TEST_CASE("PathTracer: furnace and convergence at scale", "[render][path_tracer]
         q.target_noise = 0;
         q.seed = seed;
         PathTracer tt(*scene2, constant_sky(1), {sun(unit({0.5, 0.3, 1}), 2)}, q);
-        return tt.render(camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, 32, 32, 35)).color;
+        return tt.render(ball_camera(32, 32)).color;
     };
     const auto ref = render_spp(4096, 99);
-    auto rmse = [&](const render::Image& a) {
-        double e = 0;
-        for (std::size_t i = 0; i < a.data.size(); ++i)
-            e += (double(a.data[i]) - ref.data[i]) * (double(a.data[i]) - ref.data[i]);
-        return std::sqrt(e / double(a.data.size()));
-    };
-    const double e16 = rmse(render_spp(16, 1)), e64 = rmse(render_spp(64, 2)),
-                 e256 = rmse(render_spp(256, 3));
+    const double e16 = rmse(render_spp(16, 1), ref), e64 = rmse(render_spp(64, 2), ref),
+                 e256 = rmse(render_spp(256, 3), ref);
     CHECK(e16 / e64 == Approx(2).epsilon(0.15));
     CHECK(e64 / e256 ==
           Approx(std::sqrt((1 / 64.0 + 1 / 4096.0) / (1 / 256.0 + 1 / 4096.0))).epsilon(0.15));
@@ -572,26 +568,20 @@ TEST_CASE("PathTracer: a tile's paths traced together equal paths traced one at 
     std::vector<float> tex(std::size_t(W * H * 3));
     for (std::size_t i = 0; i < tex.size(); ++i) tex[i] = 0.2f + 0.1f * float(i % 7);
     tex[3 * 10] = tex[3 * 10 + 1] = tex[3 * 10 + 2] = 40;
-    Environment env;
-    env.kind = Environment::Kind::latlong;
-    env.texels = tex.data();
-    env.width = W;
-    env.height = H;
+    Environment env = latlong_sky(tex, W, H);
     Light ball;
     ball.type = Light::Type::sphere;
     ball.position = {-1, -1, 2};
     ball.radius = 0.3;
     ball.color = {4, 4, 4};
-    Mesh sph = render::shapes::sphere({0, 0, 0.6}, 0.6, 12, 24);
-    Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);
-    const auto scene = make_scene({sph, plane});
+    const auto scene = ball_on_plane(12, 24);
     TraceSettings s;
     s.bounces = 2;
     s.spp_min = s.spp_max = 1;
     s.target_noise = 0;
     s.tile = 3;
     s.seed = 11;
-    const Camera cam = camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, 7, 5, 40);
+    const Camera cam = ball_camera(7, 5, 40);
     PathTracer t(*scene, env, {sun(unit({0.5, 0.3, 1}), 2), ball}, s);
     const render::TraceResult r = t.render(cam);
     const render::PinholeCamera pc(cam);
@@ -624,10 +614,8 @@ TEST_CASE("PathTracer: a tile's paths traced together equal paths traced one at 
 
 TEST_CASE("PathTracer: recorded rays are the streams it traced, one record per counted ray",
           "[render][path_tracer]") {
-    Mesh sph = render::shapes::sphere({0, 0, 0.6}, 0.6, 12, 24);
-    Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);
-    const auto scene = make_scene({sph, plane});
-    const Camera cam = camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, 9, 7, 35);
+    const auto scene = ball_on_plane(12, 24);
+    const Camera cam = ball_camera(9, 7);
     TraceSettings s;
     s.bounces = 1;
     s.spp_min = s.spp_max = 2;

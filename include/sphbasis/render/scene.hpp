@@ -199,26 +199,18 @@ class Scene {
     }
     /// Occlusion of n rays as one stream: an occluded ray's tfar becomes -inf.
     void occluded(RTCRay* rays, std::size_t n) const {
-        if (n == 0) return;
-        sphbasis::detail::check_buffer("render::Scene::occluded", "rays", rays, n);
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        for (std::size_t i = 0; i < n; i += chunk) {
-            const auto m = static_cast<unsigned>(std::min(chunk, n - i));
-            rtcOccluded1M(scene_, &ctx, rays + i, m, sizeof(RTCRay));
-        }
+        trace_stream("render::Scene::occluded", rays, n,
+                     [this](RTCIntersectContext* ctx, RTCRay* r, unsigned m) {
+                         rtcOccluded1M(scene_, ctx, r, m, sizeof(RTCRay));
+                     });
     }
     static bool is_occluded(const RTCRay& r) noexcept { return !(r.tfar >= 0); }
     /// Closest hits of n rays as one stream (hit.geomID stays RTC_INVALID_GEOMETRY_ID on a miss).
     void intersect(RTCRayHit* rays, std::size_t n) const {
-        if (n == 0) return;
-        sphbasis::detail::check_buffer("render::Scene::intersect", "rays", rays, n);
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        for (std::size_t i = 0; i < n; i += chunk) {
-            const auto m = static_cast<unsigned>(std::min(chunk, n - i));
-            rtcIntersect1M(scene_, &ctx, rays + i, m, sizeof(RTCRayHit));
-        }
+        trace_stream("render::Scene::intersect", rays, n,
+                     [this](RTCIntersectContext* ctx, RTCRayHit* r, unsigned m) {
+                         rtcIntersect1M(scene_, ctx, r, m, sizeof(RTCRayHit));
+                     });
     }
     /// One ray (convenience for tests and tools; the bake uses the streams).
     Hit intersect(const vec3<double>& o, const vec3<double>& d,
@@ -356,6 +348,18 @@ class Scene {
 
   private:
     static constexpr std::size_t chunk = 1024;
+
+    /// Checks the buffer, then traces the n rays as streams of at most `chunk`:
+    /// trace(ctx, first ray, count) per stream.
+    template <class Ray, class Trace>
+    void trace_stream(const char* fn, Ray* rays, std::size_t n, Trace trace) const {
+        if (n == 0) return;
+        sphbasis::detail::check_buffer(fn, "rays", rays, n);
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        for (std::size_t i = 0; i < n; i += chunk)
+            trace(&ctx, rays + i, static_cast<unsigned>(std::min(chunk, n - i)));
+    }
 
     struct MeshData {
         std::vector<float> positions, normals, uvs, tangents;
