@@ -13,7 +13,7 @@
 #include <memory>
 #include <vector>
 
-#include "render_shapes_for_tests.hpp"
+#include "render_test_support.hpp"
 #include "sphbasis/core/constants.hpp"
 #include "sphbasis/render/path_tracer.hpp"
 #include "sphbasis/render/shapes.hpp"
@@ -77,6 +77,7 @@ Estimate estimate(const PathTracer& t, vec3<double> o, vec3<double> d, int n,
 }
 
 using sphbasis_test::camera_at;
+using sphbasis_test::rmse;
 
 /// The scene of the image tests: a ball of radius 0.6 resting on a 10 x 10 plane at z = 0.
 std::unique_ptr<Scene> ball_on_plane(int rings, int segments) {
@@ -113,13 +114,6 @@ double hemisphere_integral(G&& g) {
     return sum * (2 * constants::pi / (double(nt) * np));
 }
 
-/// Root mean square of a - ref over all channels.
-double rmse(const render::Image& a, const render::Image& ref) {
-    double e = 0;
-    for (std::size_t i = 0; i < a.data.size(); ++i)
-        e += (double(a.data[i]) - ref.data[i]) * (double(a.data[i]) - ref.data[i]);
-    return std::sqrt(e / double(a.data.size()));
-}
 
 /// Analytic ray-sphere hit: the unit normal at the near intersection (false on a miss).
 bool sphere_normal(vec3<double> o, vec3<double> d, vec3<double> c, double r, vec3<double>& n) {

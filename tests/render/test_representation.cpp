@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "render_shapes_for_tests.hpp"
+#include "render_test_support.hpp"
 #include "sphbasis/render/representation.hpp"
 #include "sphbasis/render/shapes.hpp"
 
@@ -23,16 +23,9 @@ using render::Light;
 using render::Mesh;
 using render::RGB;
 
-struct World {
-    std::vector<Mesh> meshes;
-    render::SceneDesc desc;
-    std::unique_ptr<render::Scene> rt;
-    void build() {
-        desc.meshes.clear();
-        for (const Mesh& m : meshes) desc.meshes.push_back(m.view());
-        rt = std::make_unique<render::Scene>(desc.meshes);
-    }
-};
+using sphbasis_test::max_abs;
+using sphbasis_test::max_abs_diff;
+using sphbasis_test::World;
 
 Environment constant_env(double r, double g, double b) {
     Environment e;
@@ -42,6 +35,23 @@ Environment constant_env(double r, double g, double b) {
 }
 
 using sphbasis_test::camera_at;
+
+/// Drops every mesh's UVs and tangents (the bakes then run per vertex).
+void strip_uvs(World& w) {
+    for (Mesh& m : w.meshes) {
+        m.uvs.clear();
+        m.tangents.clear();
+    }
+}
+
+/// Settings with the given rays, bounces and lightmap size, the rest defaults.
+render::RepresentationSettings settings(int rays, int bounces, int lightmap_size) {
+    render::RepresentationSettings s;
+    s.rays = rays;
+    s.bounces = bounces;
+    s.lightmap_size = lightmap_size;
+    return s;
+}
 
 /// Sphere of radius 1 at the origin, UVs stripped or kept.
 World lone_sphere(int rings, int segments, float albedo) {
@@ -53,30 +63,11 @@ World lone_sphere(int rings, int segments, float albedo) {
 
 /// A sphere over a plane (both with UVs unless stripped).
 World sphere_on_plane(bool uvs) {
-    World w;
-    w.meshes.push_back(render::shapes::sphere({0, 0, 0.6}, 0.5, 8, 16));
-    w.meshes.push_back(sphbasis_test::quad_grid(-1.5, 1.5, -1.5, 1.5, 0, 4));
-    w.meshes[0].albedo = {0.7f, 0.6f, 0.5f};
-    w.meshes[1].albedo = {0.5f, 0.5f, 0.5f};
-    if (!uvs)
-        for (Mesh& m : w.meshes) {
-            m.uvs.clear();
-            m.tangents.clear();
-        }
+    World w = sphbasis_test::sphere_on_plane_meshes();
+    if (!uvs) strip_uvs(w);
     return w;
 }
 
-double max_abs_diff(const Image& a, const Image& b) {
-    double d = 0;
-    for (std::size_t i = 0; i < a.data.size(); ++i)
-        d = std::max(d, std::fabs(double(a.data[i]) - double(b.data[i])));
-    return d;
-}
-double max_abs(const Image& a) {
-    double d = 0;
-    for (float v : a.data) d = std::max(d, std::fabs(double(v)));
-    return d;
-}
 bool all_finite(const Image& a) {
     for (float v : a.data)
         if (!std::isfinite(v)) return false;
@@ -313,10 +304,7 @@ TEST_CASE("representations: under a constant sky prt equals ao times the sky", "
         World w = sphere_on_plane(uvs);
         w.desc.environment = constant_env(0.9, 0.7, 0.5);
         w.build();
-        render::RepresentationSettings s;
-        s.rays = 64;
-        s.bounces = 0;
-        s.lightmap_size = 16;
+        const render::RepresentationSettings s = settings(64, 0, 16);
         render::Representations r(w.desc, *w.rt, s, {"ao", uvs ? "prt-texel" : "prt-vertex"});
         r.prepare(nullptr);
         CHECK(r.bakes_run() == 4);
@@ -363,10 +351,7 @@ TEST_CASE("representations: render-time rotation of prt equals re-baking with ro
         return w;
     };
     World a = make(false), b = make(true);
-    render::RepresentationSettings s;
-    s.rays = 32;
-    s.bounces = 1;
-    s.lightmap_size = 8;
+    const render::RepresentationSettings s = settings(32, 1, 8);
     render::RepresentationSettings sa = s;
     sa.lighting_rotation = R;
     const std::vector<std::string> names{"prt-vertex", "prt-texel", "irradiance-sh9"};
@@ -409,10 +394,7 @@ TEST_CASE("representations: a changed light re-bakes lightmaps, not the PRT tran
     sun.color = {1.5, 1.2, 1.0};
     w.desc.lights = {sun};
     w.build();
-    render::RepresentationSettings s;
-    s.rays = 8;
-    s.bounces = 1;
-    s.lightmap_size = 4;
+    const render::RepresentationSettings s = settings(8, 1, 4);
     const std::vector<std::string> names{"prt-texel", "lightmap-sh4", "ao"};
     render::MemoryBakeCache cache;
     {
@@ -449,10 +431,7 @@ TEST_CASE("representations: lightmaps of an unoccluded quad under a constant sky
     w.meshes[0].albedo = {0.8f, 0.8f, 0.8f};
     w.desc.environment = constant_env(1.0, 0.5, 0.25);
     w.build();
-    render::RepresentationSettings s;
-    s.rays = 256;
-    s.bounces = 0;
-    s.lightmap_size = 4;
+    const render::RepresentationSettings s = settings(256, 0, 4);
     std::vector<std::string> names;
     for (const auto& n : render::representation_names())
         if (n.rfind("lightmap-", 0) == 0) names.push_back(n);
@@ -492,10 +471,7 @@ TEST_CASE("representations: every representation renders finite values", "[rende
     e.height = 4;
     w.desc.environment = e;
     w.build();
-    render::RepresentationSettings s;
-    s.rays = 8;
-    s.bounces = 1;
-    s.lightmap_size = 4;
+    const render::RepresentationSettings s = settings(8, 1, 4);
     std::vector<std::string> names;
     for (const auto& n : render::representation_names())
         if (n.rfind("specular", 0) != 0) names.push_back(n);
@@ -529,10 +505,7 @@ TEST_CASE("representations: bake records round-trip and reject bad bytes", "[ren
     World w = sphere_on_plane(true);
     w.desc.environment = constant_env(1, 1, 1);
     w.build();
-    render::RepresentationSettings s;
-    s.rays = 8;
-    s.lightmap_size = 4;
-    s.bounces = 1;
+    const render::RepresentationSettings s = settings(8, 1, 4);
     render::Representations r(w.desc, *w.rt, s,
                               {"bent", "prt-vertex", "lightmap-hbasis6", "volume"});
     r.prepare(nullptr);
@@ -644,20 +617,13 @@ TEST_CASE("representations: lightmap texels sit where the UVs say (texel ao agai
         World w;
         w.meshes.push_back(render::shapes::sphere({0.5, 0.3, 0.55}, 0.5, 8, 16));
         w.meshes.push_back(sphbasis_test::quad_grid(-1.5, 1.5, -1.5, 1.5, 0, 24));
-        if (!uvs)
-            for (Mesh& m : w.meshes) {
-                m.uvs.clear();
-                m.tangents.clear();
-            }
+        if (!uvs) strip_uvs(w);
         w.desc.environment = constant_env(1, 1, 1);
         w.build();
         return w;
     };
     World a = make(true), b = make(false);
-    render::RepresentationSettings s;
-    s.rays = 64;
-    s.bounces = 0;
-    s.lightmap_size = 32;
+    const render::RepresentationSettings s = settings(64, 0, 32);
     render::Representations ra(a.desc, *a.rt, s, {"ao"}), rb(b.desc, *b.rt, s, {"ao"});
     ra.prepare(nullptr);
     rb.prepare(nullptr);

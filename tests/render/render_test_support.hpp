@@ -1,0 +1,68 @@
+// Shared pieces of the render tests: image comparisons, and the World (meshes, scene
+// description, Embree scene) that the representation tests bake and shade.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "render_shapes_for_tests.hpp"
+#include "sphbasis/render/bake.hpp"
+#include "sphbasis/render/image.hpp"
+#include "sphbasis/render/scene.hpp"
+#include "sphbasis/render/shapes.hpp"
+
+namespace sphbasis_test {
+
+using sphbasis::render::Image;
+
+/// Largest |a - b| over all pixels and channels (same sizes).
+inline double max_abs_diff(const Image& a, const Image& b) {
+    double d = 0;
+    for (std::size_t i = 0; i < a.data.size(); ++i)
+        d = std::max(d, std::fabs(double(a.data[i]) - double(b.data[i])));
+    return d;
+}
+/// Largest |a| over all pixels and channels.
+inline double max_abs(const Image& a) {
+    double d = 0;
+    for (float v : a.data) d = std::max(d, std::fabs(double(v)));
+    return d;
+}
+/// Root mean square of a - ref over all pixels and channels (same sizes).
+inline double rmse(const Image& a, const Image& ref) {
+    double e = 0;
+    for (std::size_t i = 0; i < a.data.size(); ++i)
+        e += (double(a.data[i]) - ref.data[i]) * (double(a.data[i]) - ref.data[i]);
+    return std::sqrt(e / double(a.data.size()));
+}
+
+/// Meshes, the scene description over them and the Embree scene; build() after the meshes and
+/// the description's lighting are set (the views point into `meshes`, so do not copy a World
+/// after build()).
+struct World {
+    std::vector<sphbasis::render::Mesh> meshes;
+    std::vector<float> env_texels;  // the lat-long sky's texels, when the test sets one
+    sphbasis::render::SceneDesc desc;
+    std::unique_ptr<sphbasis::render::Scene> rt;
+    void build() {
+        desc.meshes.clear();
+        for (const auto& m : meshes) desc.meshes.push_back(m.view());
+        rt = std::make_unique<sphbasis::render::Scene>(desc.meshes);
+    }
+};
+
+/// A ball (radius 0.5, centre 0.6 above the plane, albedo 0.7, 0.6, 0.5) over a 3 x 3 plane
+/// (4 x 4 cells, albedo 0.5), both with UVs; not built.
+inline World sphere_on_plane_meshes() {
+    World w;
+    w.meshes.push_back(sphbasis::render::shapes::sphere({0, 0, 0.6}, 0.5, 8, 16));
+    w.meshes.push_back(quad_grid(-1.5, 1.5, -1.5, 1.5, 0, 4));
+    w.meshes[0].albedo = {0.7f, 0.6f, 0.5f};
+    w.meshes[1].albedo = {0.5f, 0.5f, 0.5f};
+    return w;
+}
+
+}  // namespace sphbasis_test
