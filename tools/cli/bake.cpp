@@ -950,7 +950,7 @@ Run setup_bake(CLI::App& app) {
         "scene's probe grid (JSON) or at points (JSON lines on stdout). Writes OUT/bake.json\n"
         "with the pass plan, timings and settings. --shard I/N bakes 1/N of the points for\n"
         "`sphbasis bake-merge`.");
-    app.add_option("scene", o->scene, "the scene file (JSON)")->type_name("SCENE.json")->required();
+    add_scene(app, o->scene);
     app.add_option("--quantities", o->quantities,
                    "comma-separated: ao, bent, visibility, transfer, irradiance, radiance")
         ->type_name("LIST")

@@ -625,7 +625,7 @@ Run setup_render(CLI::App& app) {
         "reference_stderr.exr, NAME.{exr,png} and NAME_error.png per representation, and\n"
         "report.{json,md,html} (error, bake time, render time, memory, what it cannot show).\n"
         "Bakes are cached in DIR/cache. The plan is printed on stderr before any work.");
-    app.add_option("scene", o->scene, "the scene file (JSON)")->type_name("SCENE.json")->required();
+    add_scene(app, o->scene);
     app.add_option("--representations", o->representations,
                    "'all' or a comma-separated list (irradiance-sh9, ao, prt-vertex, ...)")
         ->type_name("LIST|all")
