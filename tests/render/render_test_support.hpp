@@ -1,4 +1,4 @@
-// Shared pieces of the render tests: image comparisons, and the World (meshes, scene
+// Shared pieces of the render tests: image comparisons, lat-long environments, and the World (meshes, scene
 // description, Embree scene) that the representation tests bake and shade.
 #pragma once
 
@@ -11,6 +11,7 @@
 #include "render_shapes_for_tests.hpp"
 #include "sphbasis/render/bake.hpp"
 #include "sphbasis/render/image.hpp"
+#include "sphbasis/render/lighting.hpp"
 #include "sphbasis/render/scene.hpp"
 #include "sphbasis/render/shapes.hpp"
 
@@ -37,6 +38,37 @@ inline double rmse(const Image& a, const Image& ref) {
     for (std::size_t i = 0; i < a.data.size(); ++i)
         e += (double(a.data[i]) - ref.data[i]) * (double(a.data[i]) - ref.data[i]);
     return std::sqrt(e / double(a.data.size()));
+}
+
+/// A lat-long environment over w x h RGB texels (borrowed: `texels` must outlive it).
+inline sphbasis::render::Environment latlong_environment(const std::vector<float>& texels, int w,
+                                                         int h) {
+    sphbasis::render::Environment e;
+    e.kind = sphbasis::render::Environment::Kind::latlong;
+    e.texels = texels.data();
+    e.width = w;
+    e.height = h;
+    return e;
+}
+
+/// A directional light towards unit `direction` with irradiance `color` (normal incidence).
+inline sphbasis::render::Light directional_light(sphbasis::vec3<double> direction,
+                                                 sphbasis::render::RGB color) {
+    sphbasis::render::Light l;
+    l.type = sphbasis::render::Light::Type::directional;
+    l.direction = direction;
+    l.color = color;
+    return l;
+}
+/// A sphere light of `radius` at `position` with radiance `color`.
+inline sphbasis::render::Light sphere_light(sphbasis::vec3<double> position, double radius,
+                                            sphbasis::render::RGB color) {
+    sphbasis::render::Light l;
+    l.type = sphbasis::render::Light::Type::sphere;
+    l.position = position;
+    l.radius = radius;
+    l.color = color;
+    return l;
 }
 
 /// Meshes, the scene description over them and the Embree scene; build() after the meshes and

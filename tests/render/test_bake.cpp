@@ -7,7 +7,7 @@
 #include <limits>
 #include <random>
 
-#include "render_shapes_for_tests.hpp"
+#include "render_test_support.hpp"
 #include "sphbasis/render/bake.hpp"
 
 using namespace sphbasis;
@@ -644,10 +644,7 @@ TEST_CASE("bake: a NaN environment texel or a zero-angle cone is refused", "[ren
     tex[5] = std::numeric_limits<float>::quiet_NaN();
     SceneDesc d;
     d.meshes = {plane.view()};
-    d.environment.kind = Environment::Kind::latlong;
-    d.environment.texels = tex.data();
-    d.environment.width = 8;
-    d.environment.height = 4;
+    d.environment = sphbasis_test::latlong_environment(tex, 8, 4);
     BakeSettings s;
     s.quantities = Quantity::irradiance;
     CHECK_THROWS_WITH(Baker(d, s), Catch::Contains("finite environment texels"));

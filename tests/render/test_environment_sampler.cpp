@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "render_test_support.hpp"
 #include "sphbasis/core/constants.hpp"
 #include "sphbasis/core/frame.hpp"
 #include "sphbasis/param/latlong.hpp"
@@ -17,6 +18,7 @@ using render::Environment;
 using render::EnvironmentSampler;
 using sphbasis::vec3;
 namespace constants = sphbasis::constants;
+using sphbasis_test::latlong_environment;
 
 namespace {
 
@@ -36,15 +38,6 @@ std::vector<float> test_map(int w, int h) {
     return t;
 }
 
-Environment latlong(const std::vector<float>& t, int w, int h) {
-    Environment e;
-    e.kind = Environment::Kind::latlong;
-    e.texels = t.data();
-    e.width = w;
-    e.height = h;
-    return e;
-}
-
 /// Midpoint quadrature of f over the sphere in (cos theta, phi), n x 2n cells.
 template <class F>
 double sphere_integral(int n, F&& f) {
@@ -62,7 +55,7 @@ double sphere_integral(int n, F&& f) {
 
 TEST_CASE("EnvironmentSampler: the density integrates to one", "[render][environment_sampler]") {
     const auto t = test_map(16, 8);
-    Environment e = latlong(t, 16, 8);
+    Environment e = latlong_environment(t, 16, 8);
     const EnvironmentSampler s(e);
     // Quadrature cells aligned with the texels' cos(theta) bands would be exact; a plain grid of
     // 160 x 320 cells misses by about the texel edge fraction.
@@ -77,7 +70,7 @@ TEST_CASE("EnvironmentSampler: the density integrates to one", "[render][environ
 TEST_CASE("EnvironmentSampler: sample() and pdf() agree; positive where radiance is",
           "[render][environment_sampler]") {
     const auto t = test_map(16, 8);
-    Environment e = latlong(t, 16, 8);
+    Environment e = latlong_environment(t, 16, 8);
     e.rotation = sphbasis::matrix_from_euler_zyz(0.3, 1.1, -0.7);
     const EnvironmentSampler s(e);
     std::mt19937_64 rng(7);
@@ -107,7 +100,7 @@ TEST_CASE("EnvironmentSampler: a histogram of sampled texels matches the density
           "[render][environment_sampler]") {
     const int W = 16, H = 8;
     const auto t = test_map(W, H);
-    const Environment e = latlong(t, W, H);
+    const Environment e = latlong_environment(t, W, H);
     const EnvironmentSampler s(e);
     const int n = 40000;
     std::vector<double> count(std::size_t(W * H), 0.0);
@@ -155,7 +148,7 @@ TEST_CASE("EnvironmentSampler: constant, black and absent environments",
     CHECK(s.pdf(vec3<double>{0, 0, 1}) == Approx(1 / (4 * constants::pi)));
 
     std::vector<float> black(8 * 4 * 3, 0.0f);
-    const EnvironmentSampler b(latlong(black, 8, 4));
+    const EnvironmentSampler b(latlong_environment(black, 8, 4));
     CHECK(!b.emits());
     CHECK(b.sample(0.5, 0.5).pdf == Approx(1 / (4 * constants::pi)));
 

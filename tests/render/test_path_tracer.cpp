@@ -44,13 +44,7 @@ Environment constant_sky(double L) {
     return e;
 }
 
-Light sun(vec3<double> d, double E) {
-    Light l;
-    l.type = Light::Type::directional;
-    l.direction = d;
-    l.color = {E, E, E};
-    return l;
-}
+Light sun(vec3<double> d, double E) { return sphbasis_test::directional_light(d, {E, E, E}); }
 
 std::unique_ptr<Scene> make_scene(const std::vector<Mesh>& meshes) {
     std::vector<render::MeshView> views;
@@ -77,6 +71,7 @@ Estimate estimate(const PathTracer& t, vec3<double> o, vec3<double> d, int n,
 }
 
 using sphbasis_test::camera_at;
+using sphbasis_test::latlong_environment;
 using sphbasis_test::rmse;
 
 /// The scene of the image tests: a ball of radius 0.6 resting on a 10 x 10 plane at z = 0.
@@ -87,16 +82,6 @@ std::unique_ptr<Scene> ball_on_plane(int rings, int segments) {
 /// A w x h camera looking down at ball_on_plane().
 Camera ball_camera(int w, int h, double fov = 35) {
     return camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, w, h, fov);
-}
-
-/// A lat-long environment over W x H RGB texels (borrowed).
-Environment latlong_sky(const std::vector<float>& tex, int W, int H) {
-    Environment env;
-    env.kind = Environment::Kind::latlong;
-    env.texels = tex.data();
-    env.width = W;
-    env.height = H;
-    return env;
 }
 
 /// Integral of g(w) over the hemisphere z > 0 by 256 x 512 midpoint cells, uniform in z = cos
@@ -244,11 +229,7 @@ TEST_CASE("PathTracer: sphere, cone and hemisphere lights with MIS equal their i
     Mesh q = sphbasis_test::quad_grid(-20, 20, -20, 20, 0, 1);
     q.albedo = {0.9f, 0.9f, 0.9f};
     const auto scene = make_scene({q});
-    Light ball;
-    ball.type = Light::Type::sphere;
-    ball.position = {0.6, 0.2, 1.2};
-    ball.radius = 0.5;
-    ball.color = {3, 3, 3};
+    Light ball = sphbasis_test::sphere_light({0.6, 0.2, 1.2}, 0.5, {3, 3, 3});
     Light cone;
     cone.type = Light::Type::cone;
     cone.direction = unit({1, 0, 0.15});  // straddles the horizon
@@ -320,7 +301,7 @@ TEST_CASE("PathTracer: MIS irradiance of a lat-long map equals quadrature",
             p[2] = 0.1f + 0.05f * float(j);
             if (j == 2 && i == 3) p[0] = p[1] = p[2] = 60;  // a sun
         }
-    Environment env = latlong_sky(tex, W, H);
+    Environment env = latlong_environment(tex, W, H);
     env.rotation = sphbasis::matrix_from_euler_zyz(0.4, 0.3, 0.0);
     for (const vec3<double> n : {vec3<double>{0, 0, 1}, unit({0.5, 0.2, 0.8})}) {
         // A big quad with normal n through the origin.
@@ -353,7 +334,7 @@ TEST_CASE("PathTracer: Blinn-Phong under a lat-long map (MIS with lobe sampling)
             p[0] = p[1] = p[2] = 0.2f + 0.1f * float(i % 3);
             if (j == 1 && i == 9) p[0] = p[1] = p[2] = 30;
         }
-    Environment env = latlong_sky(tex, W, H);
+    Environment env = latlong_environment(tex, W, H);
     Mesh q = sphbasis_test::quad_grid(-50, 50, -50, 50, 0, 1);
     q.albedo = {0.2f, 0.2f, 0.2f};
     q.shininess = 8;
@@ -562,12 +543,8 @@ TEST_CASE("PathTracer: a tile's paths traced together equal paths traced one at 
     std::vector<float> tex(std::size_t(W * H * 3));
     for (std::size_t i = 0; i < tex.size(); ++i) tex[i] = 0.2f + 0.1f * float(i % 7);
     tex[3 * 10] = tex[3 * 10 + 1] = tex[3 * 10 + 2] = 40;
-    Environment env = latlong_sky(tex, W, H);
-    Light ball;
-    ball.type = Light::Type::sphere;
-    ball.position = {-1, -1, 2};
-    ball.radius = 0.3;
-    ball.color = {4, 4, 4};
+    Environment env = latlong_environment(tex, W, H);
+    Light ball = sphbasis_test::sphere_light({-1, -1, 2}, 0.3, {4, 4, 4});
     const auto scene = ball_on_plane(12, 24);
     TraceSettings s;
     s.bounces = 2;
@@ -615,11 +592,7 @@ TEST_CASE("PathTracer: recorded rays are the streams it traced, one record per c
     s.spp_min = s.spp_max = 2;
     s.target_noise = 0;
     s.tile = 4;
-    Light ball;
-    ball.type = Light::Type::sphere;
-    ball.position = {-1, -1, 2};
-    ball.radius = 0.3;
-    ball.color = {4, 4, 4};
+    Light ball = sphbasis_test::sphere_light({-1, -1, 2}, 0.3, {4, 4, 4});
     for (int lights = 0; lights < 2; ++lights) {
         std::vector<Light> ls = {sun(unit({0.5, 0.3, 1}), 2)};
         if (lights) ls.push_back(ball);

@@ -229,10 +229,7 @@ TEST_CASE("representations: irradiance-sh9 under analytic lights against the ana
     hemi.direction = {0.3, -0.2, 0.9};
     hemi.color = {1.0, 0.6, 0.3};
     hemi.ground = {0.1, 0.2, 0.4};
-    Light sun;
-    sun.type = Light::Type::directional;
-    sun.direction = {-0.4, -0.5, 0.7};
-    sun.color = {2.0, 2.0, 1.5};
+    const Light sun = sphbasis_test::directional_light({-0.4, -0.5, 0.7}, {2.0, 2.0, 1.5});
     const Camera cam = camera_at({0, -4, 0.5}, {0, 0, 0}, 16, 16, 35);
     const render::PinholeCamera pc(cam);
     for (int which = 0; which < 2; ++which) {
@@ -329,17 +326,10 @@ TEST_CASE("representations: render-time rotation of prt equals re-baking with ro
           "[render]") {
     const std::vector<float> tex = latlong_texels(8, 4);
     const Mat3<double> R = rotation(0.7, 0.4);
-    Light sun;
-    sun.type = Light::Type::directional;
-    sun.direction = {0.3, -0.4, 0.8};
-    sun.color = {1.5, 1.2, 1.0};
+    const Light sun = sphbasis_test::directional_light({0.3, -0.4, 0.8}, {1.5, 1.2, 1.0});
     auto make = [&](bool rotate_scene) {
         World w = sphere_on_plane(true);
-        Environment e;
-        e.kind = Environment::Kind::latlong;
-        e.texels = tex.data();
-        e.width = 8;
-        e.height = 4;
+        Environment e = sphbasis_test::latlong_environment(tex, 8, 4);
         Light l = sun;
         if (rotate_scene) {
             e.rotation = R;
@@ -388,10 +378,7 @@ TEST_CASE("representations: render-time rotation of prt equals re-baking with ro
 TEST_CASE("representations: a changed light re-bakes lightmaps, not the PRT transfer", "[render]") {
     World w = sphere_on_plane(true);
     w.desc.environment = constant_env(0.3, 0.3, 0.3);
-    Light sun;
-    sun.type = Light::Type::directional;
-    sun.direction = {0.3, -0.4, 0.8};
-    sun.color = {1.5, 1.2, 1.0};
+    const Light sun = sphbasis_test::directional_light({0.3, -0.4, 0.8}, {1.5, 1.2, 1.0});
     w.desc.lights = {sun};
     w.build();
     const render::RepresentationSettings s = settings(8, 1, 4);
@@ -464,11 +451,7 @@ TEST_CASE("representations: lightmaps of an unoccluded quad under a constant sky
 TEST_CASE("representations: every representation renders finite values", "[render]") {
     World w = sphere_on_plane(true);
     const std::vector<float> tex = latlong_texels(8, 4);
-    Environment e;
-    e.kind = Environment::Kind::latlong;
-    e.texels = tex.data();
-    e.width = 8;
-    e.height = 4;
+    Environment e = sphbasis_test::latlong_environment(tex, 8, 4);
     w.desc.environment = e;
     w.build();
     const render::RepresentationSettings s = settings(8, 1, 4);

@@ -43,11 +43,7 @@ void smooth_sky(World& w) {
             p[1] = float(0.5 + 0.3 * dz);
             p[2] = float(0.4 + 0.2 * dz * dz);
         }
-    Environment e;
-    e.kind = Environment::Kind::latlong;
-    e.texels = w.env_texels.data();
-    e.width = W;
-    e.height = H;
+    Environment e = sphbasis_test::latlong_environment(w.env_texels, W, H);
     w.desc.environment = e;
 }
 

@@ -491,22 +491,22 @@ int run_render(const RenderOptions& o) {
     const render::Image* mask = ref.coverage.data.empty() ? nullptr : &ref.coverage;
 
     OutputFiles files;
-    auto add_image = [&](const std::string& base, const render::Image& img) {
+    auto add_exr = [&](const std::string& base, const render::Image& img) {
         files.add(join_path(o.out, base + ".exr"), exr_bytes(o.out, base + ".exr", img));
+    };
+    auto add_image = [&](const std::string& base, const render::Image& img) {
+        add_exr(base, img);
         files.add(join_path(o.out, base + ".png"),
                   png_bytes(render::to_srgb8(img, exposure, rep.tonemap), img.width, img.height));
     };
     add_image("reference", ref.color);
-    files.add(join_path(o.out, "reference_stderr.exr"),
-              exr_bytes(o.out, "reference_stderr.exr", ref.stderr_));
+    add_exr("reference_stderr", ref.stderr_);
     if (o.aovs)
         for (const auto& [name, img] :
              {std::pair<const char*, const render::Image*>{"normal", &ref.normal},
               {"albedo", &ref.albedo},
               {"position", &ref.position}})
-            if (!img->data.empty())
-                files.add(join_path(o.out, std::string("aov_") + name + ".exr"),
-                          exr_bytes(o.out, std::string("aov_") + name + ".exr", *img));
+            if (!img->data.empty()) add_exr(std::string("aov_") + name, *img);
     rep.reference_image = "reference.png";
     rep.reference_exr = "reference.exr";
     rep.reference_stderr_exr = "reference_stderr.exr";
