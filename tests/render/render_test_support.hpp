@@ -40,6 +40,13 @@ inline double rmse(const Image& a, const Image& ref) {
     return std::sqrt(e / double(a.data.size()));
 }
 
+/// A constant environment of radiance `radiance`.
+inline sphbasis::render::Environment constant_environment(sphbasis::render::RGB radiance) {
+    sphbasis::render::Environment e;
+    e.kind = sphbasis::render::Environment::Kind::constant;
+    e.constant = radiance;
+    return e;
+}
 /// A lat-long environment over w x h RGB texels (borrowed: `texels` must outlive it).
 inline sphbasis::render::Environment latlong_environment(const std::vector<float>& texels, int w,
                                                          int h) {

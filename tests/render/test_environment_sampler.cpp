@@ -136,9 +136,7 @@ TEST_CASE("EnvironmentSampler: a histogram of sampled texels matches the density
 
 TEST_CASE("EnvironmentSampler: constant, black and absent environments",
           "[render][environment_sampler]") {
-    Environment c;
-    c.kind = Environment::Kind::constant;
-    c.constant = {1, 2, 3};
+    Environment c = sphbasis_test::constant_environment({1, 2, 3});
     const EnvironmentSampler s(c);
     CHECK(s.emits());
     CHECK(s.is_constant());

@@ -247,17 +247,13 @@ TEST_CASE("Environment: validate rejects bad structs", "[render][lighting]") {
         CHECK_THROWS_WITH(render::validate(b), Catch::Contains("finite environment texels"));
     }
     {
-        Environment b;
-        b.kind = Environment::Kind::constant;
-        b.constant = {1, std::nan(""), 0};
+        Environment b = sphbasis_test::constant_environment({1, std::nan(""), 0});
         CHECK_THROWS_WITH(render::validate(b), Catch::StartsWith("sphbasis::render::validate()"));
     }
 }
 
 TEST_CASE("Environment: SH projection, constant and rotated lat-long", "[render][lighting]") {
-    Environment c;
-    c.kind = Environment::Kind::constant;
-    c.constant = {1, 2, 3};
+    Environment c = sphbasis_test::constant_environment({1, 2, 3});
     c.scale = 2;
     c.rotation = sphbasis::matrix_from_euler_zyz(0.3, 0.2, 0.1);
     const std::vector<RGB> pc = render::project_sh(c, 3);

@@ -37,12 +37,7 @@ vec3<double> unit(vec3<double> v) {
     return {v.x / l, v.y / l, v.z / l};
 }
 
-Environment constant_sky(double L) {
-    Environment e;
-    e.kind = Environment::Kind::constant;
-    e.constant = {L, L, L};
-    return e;
-}
+Environment constant_sky(double L) { return sphbasis_test::constant_environment({L, L, L}); }
 
 Light sun(vec3<double> d, double E) { return sphbasis_test::directional_light(d, {E, E, E}); }
 

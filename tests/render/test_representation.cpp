@@ -27,12 +27,6 @@ using sphbasis_test::max_abs;
 using sphbasis_test::max_abs_diff;
 using sphbasis_test::World;
 
-Environment constant_env(double r, double g, double b) {
-    Environment e;
-    e.kind = Environment::Kind::constant;
-    e.constant = {r, g, b};
-    return e;
-}
 
 using sphbasis_test::camera_at;
 
@@ -110,7 +104,7 @@ std::vector<float> latlong_texels(int w, int h) {
 
 TEST_CASE("representations: names, unknown and duplicate names, bad settings", "[render]") {
     World w = sphere_on_plane(true);
-    w.desc.environment = constant_env(1, 1, 1);
+    w.desc.environment = sphbasis_test::constant_environment({1, 1, 1});
     w.build();
     render::RepresentationSettings s;
     const auto& names = render::representation_names();
@@ -142,7 +136,7 @@ TEST_CASE("representations: names, unknown and duplicate names, bad settings", "
 
 TEST_CASE("representations: the bake plan reads only what is requested", "[render]") {
     World w = sphere_on_plane(true);
-    w.desc.environment = constant_env(1, 1, 1);
+    w.desc.environment = sphbasis_test::constant_environment({1, 1, 1});
     w.build();
     render::RepresentationSettings s;
     s.rays = 16;
@@ -183,7 +177,7 @@ TEST_CASE("representations: the bake plan reads only what is requested", "[rende
 TEST_CASE("representations: irradiance-sh9 of a lone sphere under a constant sky is albedo L",
           "[render]") {
     World w = lone_sphere(12, 24, 0.6f);
-    w.desc.environment = constant_env(0.7, 0.8, 0.9);
+    w.desc.environment = sphbasis_test::constant_environment({0.7, 0.8, 0.9});
     w.build();
     render::RepresentationSettings s;
     render::Representations r(w.desc, *w.rt, s,
@@ -299,7 +293,7 @@ TEST_CASE("representations: irradiance-sh9 under analytic lights against the ana
 TEST_CASE("representations: under a constant sky prt equals ao times the sky", "[render]") {
     for (bool uvs : {true, false}) {
         World w = sphere_on_plane(uvs);
-        w.desc.environment = constant_env(0.9, 0.7, 0.5);
+        w.desc.environment = sphbasis_test::constant_environment({0.9, 0.7, 0.5});
         w.build();
         const render::RepresentationSettings s = settings(64, 0, 16);
         render::Representations r(w.desc, *w.rt, s, {"ao", uvs ? "prt-texel" : "prt-vertex"});
@@ -377,7 +371,7 @@ TEST_CASE("representations: render-time rotation of prt equals re-baking with ro
 
 TEST_CASE("representations: a changed light re-bakes lightmaps, not the PRT transfer", "[render]") {
     World w = sphere_on_plane(true);
-    w.desc.environment = constant_env(0.3, 0.3, 0.3);
+    w.desc.environment = sphbasis_test::constant_environment({0.3, 0.3, 0.3});
     const Light sun = sphbasis_test::directional_light({0.3, -0.4, 0.8}, {1.5, 1.2, 1.0});
     w.desc.lights = {sun};
     w.build();
@@ -416,7 +410,7 @@ TEST_CASE("representations: lightmaps of an unoccluded quad under a constant sky
     World w;
     w.meshes.push_back(sphbasis_test::quad_grid(-1, 1, -1, 1, 0, 1));
     w.meshes[0].albedo = {0.8f, 0.8f, 0.8f};
-    w.desc.environment = constant_env(1.0, 0.5, 0.25);
+    w.desc.environment = sphbasis_test::constant_environment({1.0, 0.5, 0.25});
     w.build();
     const render::RepresentationSettings s = settings(256, 0, 4);
     std::vector<std::string> names;
@@ -486,7 +480,7 @@ TEST_CASE("representations: every representation renders finite values", "[rende
 
 TEST_CASE("representations: bake records round-trip and reject bad bytes", "[render]") {
     World w = sphere_on_plane(true);
-    w.desc.environment = constant_env(1, 1, 1);
+    w.desc.environment = sphbasis_test::constant_environment({1, 1, 1});
     w.build();
     const render::RepresentationSettings s = settings(8, 1, 4);
     render::Representations r(w.desc, *w.rt, s,
@@ -529,7 +523,7 @@ TEST_CASE("representations: bake records round-trip and reject bad bytes", "[ren
 
 TEST_CASE("representations: bake_key depends on exactly what a bake reads", "[render]") {
     World w = sphere_on_plane(true);
-    w.desc.environment = constant_env(1, 1, 1);
+    w.desc.environment = sphbasis_test::constant_environment({1, 1, 1});
     w.build();
     render::BakeRequest q;
     q.settings.quantities = render::Quantity::transfer;
@@ -601,7 +595,7 @@ TEST_CASE("representations: lightmap texels sit where the UVs say (texel ao agai
         w.meshes.push_back(render::shapes::sphere({0.5, 0.3, 0.55}, 0.5, 8, 16));
         w.meshes.push_back(sphbasis_test::quad_grid(-1.5, 1.5, -1.5, 1.5, 0, 24));
         if (!uvs) strip_uvs(w);
-        w.desc.environment = constant_env(1, 1, 1);
+        w.desc.environment = sphbasis_test::constant_environment({1, 1, 1});
         w.build();
         return w;
     };
