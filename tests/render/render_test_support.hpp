@@ -40,6 +40,15 @@ inline double rmse(const Image& a, const Image& ref) {
     return std::sqrt(e / double(a.data.size()));
 }
 
+/// w x h RGB texels, row by row: fill(i, j, p) sets the 3 floats p of column i, row j.
+template <class Fill>
+std::vector<float> rgb_texels(int w, int h, Fill&& fill) {
+    std::vector<float> t(std::size_t(w) * std::size_t(h) * 3);
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) fill(i, j, &t[3 * (std::size_t(j) * std::size_t(w) + std::size_t(i))]);
+    return t;
+}
+
 /// A constant environment of radiance `radiance`.
 inline sphbasis::render::Environment constant_environment(sphbasis::render::RGB radiance) {
     sphbasis::render::Environment e;

@@ -24,18 +24,14 @@ namespace {
 
 /// A 16 x 8 map: a dim coloured gradient, a bright "sun" texel block and a black band.
 std::vector<float> test_map(int w, int h) {
-    std::vector<float> t(std::size_t(w * h * 3));
-    for (int j = 0; j < h; ++j)
-        for (int i = 0; i < w; ++i) {
-            float* p = &t[3 * std::size_t(j * w + i)];
-            const float g = 0.1f + 0.05f * float(i) / float(w);
-            p[0] = g;
-            p[1] = 0.5f * g;
-            p[2] = 0.2f + 0.1f * float(j) / float(h);
-            if (j == h - 2) p[0] = p[1] = p[2] = 0;                     // a black band
-            if (j == 2 && (i == 5 || i == 6)) p[0] = p[1] = p[2] = 40;  // the sun
-        }
-    return t;
+    return sphbasis_test::rgb_texels(w, h, [w, h](int i, int j, float* p) {
+        const float g = 0.1f + 0.05f * float(i) / float(w);
+        p[0] = g;
+        p[1] = 0.5f * g;
+        p[2] = 0.2f + 0.1f * float(j) / float(h);
+        if (j == h - 2) p[0] = p[1] = p[2] = 0;                     // a black band
+        if (j == 2 && (i == 5 || i == 6)) p[0] = p[1] = p[2] = 40;  // the sun
+    });
 }
 
 /// Midpoint quadrature of f over the sphere in (cos theta, phi), n x 2n cells.

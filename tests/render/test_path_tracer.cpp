@@ -287,15 +287,12 @@ TEST_CASE("PathTracer: a tilted normal map and the Blinn-Phong lobe under a sun"
 TEST_CASE("PathTracer: MIS irradiance of a lat-long map equals quadrature",
           "[render][path_tracer]") {
     const int W = 16, H = 8;
-    std::vector<float> tex(std::size_t(W * H * 3));
-    for (int j = 0; j < H; ++j)
-        for (int i = 0; i < W; ++i) {
-            float* p = &tex[3 * std::size_t(j * W + i)];
-            p[0] = 0.3f + 0.2f * float(std::sin(0.7 * i));
-            p[1] = 0.2f;
-            p[2] = 0.1f + 0.05f * float(j);
-            if (j == 2 && i == 3) p[0] = p[1] = p[2] = 60;  // a sun
-        }
+    const std::vector<float> tex = sphbasis_test::rgb_texels(W, H, [](int i, int j, float* p) {
+        p[0] = 0.3f + 0.2f * float(std::sin(0.7 * i));
+        p[1] = 0.2f;
+        p[2] = 0.1f + 0.05f * float(j);
+        if (j == 2 && i == 3) p[0] = p[1] = p[2] = 60;  // a sun
+    });
     Environment env = latlong_environment(tex, W, H);
     env.rotation = sphbasis::matrix_from_euler_zyz(0.4, 0.3, 0.0);
     for (const vec3<double> n : {vec3<double>{0, 0, 1}, unit({0.5, 0.2, 0.8})}) {
@@ -322,13 +319,10 @@ TEST_CASE("PathTracer: MIS irradiance of a lat-long map equals quadrature",
 TEST_CASE("PathTracer: Blinn-Phong under a lat-long map (MIS with lobe sampling) equals quadrature",
           "[render][path_tracer]") {
     const int W = 16, H = 8;
-    std::vector<float> tex(std::size_t(W * H * 3));
-    for (int j = 0; j < H; ++j)
-        for (int i = 0; i < W; ++i) {
-            float* p = &tex[3 * std::size_t(j * W + i)];
-            p[0] = p[1] = p[2] = 0.2f + 0.1f * float(i % 3);
-            if (j == 1 && i == 9) p[0] = p[1] = p[2] = 30;
-        }
+    const std::vector<float> tex = sphbasis_test::rgb_texels(W, H, [](int i, int j, float* p) {
+        p[0] = p[1] = p[2] = 0.2f + 0.1f * float(i % 3);
+        if (j == 1 && i == 9) p[0] = p[1] = p[2] = 30;
+    });
     Environment env = latlong_environment(tex, W, H);
     Mesh q = sphbasis_test::quad_grid(-50, 50, -50, 50, 0, 1);
     q.albedo = {0.2f, 0.2f, 0.2f};

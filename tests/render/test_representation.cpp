@@ -87,17 +87,13 @@ vec3<double> mat_apply(const Mat3<double>& r, const vec3<double>& v) {
 
 /// A small lat-long map with a smooth gradient and a bright patch.
 std::vector<float> latlong_texels(int w, int h) {
-    std::vector<float> t(std::size_t(w * h * 3));
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            float* p = &t[std::size_t((y * w + x) * 3)];
-            const float base = 0.2f + 0.6f * float(h - y) / float(h);
-            const bool patch = x >= 3 && x <= 5 && y >= 2 && y <= 3;
-            p[0] = base + (patch ? 4.0f : 0.0f);
-            p[1] = 0.8f * base + (patch ? 3.0f : 0.0f);
-            p[2] = 0.5f + 0.1f * float(x % 4);
-        }
-    return t;
+    return sphbasis_test::rgb_texels(w, h, [h](int x, int y, float* p) {
+        const float base = 0.2f + 0.6f * float(h - y) / float(h);
+        const bool patch = x >= 3 && x <= 5 && y >= 2 && y <= 3;
+        p[0] = base + (patch ? 4.0f : 0.0f);
+        p[1] = 0.8f * base + (patch ? 3.0f : 0.0f);
+        p[2] = 0.5f + 0.1f * float(x % 4);
+    });
 }
 
 }  // namespace

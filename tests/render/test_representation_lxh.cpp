@@ -33,18 +33,14 @@ using sphbasis_test::World;
 /// bands hold most of it.
 void smooth_sky(World& w) {
     const int W = 16, H = 8;
-    w.env_texels.resize(std::size_t(W * H * 3));
-    for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x) {
-            const double th = constants::pi * (y + 0.5) / H, ph = 2 * constants::pi * (x + 0.5) / W;
-            const double dz = std::cos(th), dx = std::sin(th) * std::cos(ph);
-            float* p = &w.env_texels[std::size_t((y * W + x) * 3)];
-            p[0] = float(0.6 + 0.4 * dz + 0.3 * dx * dx);
-            p[1] = float(0.5 + 0.3 * dz);
-            p[2] = float(0.4 + 0.2 * dz * dz);
-        }
-    Environment e = sphbasis_test::latlong_environment(w.env_texels, W, H);
-    w.desc.environment = e;
+    w.env_texels = sphbasis_test::rgb_texels(W, H, [](int x, int y, float* p) {
+        const double th = constants::pi * (y + 0.5) / H, ph = 2 * constants::pi * (x + 0.5) / W;
+        const double dz = std::cos(th), dx = std::sin(th) * std::cos(ph);
+        p[0] = float(0.6 + 0.4 * dz + 0.3 * dx * dx);
+        p[1] = float(0.5 + 0.3 * dz);
+        p[2] = float(0.4 + 0.2 * dz * dz);
+    });
+    w.desc.environment = sphbasis_test::latlong_environment(w.env_texels, W, H);
 }
 
 World lone_sphere() {
