@@ -242,12 +242,7 @@ TEST_CASE(
     const RGB lc{1, 2, 0.5};
     desc.lights = {sphbasis_test::directional_light(ld, lc)};
     Scene rt(desc.meshes);
-    Camera cam;
-    cam.position = {0.2, -2.5, 2.0};
-    cam.look_at = {0, 0, 0};
-    cam.width = 24;
-    cam.height = 16;
-    cam.fov_deg = 30;
+    const Camera cam = sphbasis_test::camera_at({0.2, -2.5, 2.0}, {0, 0, 0}, 24, 16, 30);
     const PinholeCamera pc(cam);
     const Image al = render_specular(desc, rt, cam, SpecularShading::Mode::aliased);
     const Image tk = render_specular(desc, rt, cam, SpecularShading::Mode::toksvig);
@@ -332,11 +327,7 @@ TEST_CASE("render::SpecularShading: no normal map reads the shading normal; shin
         desc.lights = {sphbasis_test::directional_light({0, 0, 1}, {1, 1, 1})};
         Scene rt(desc.meshes);
         CHECK(SpecularShading(desc).mip_chains() == 0);
-        Camera cam;
-        cam.position = {0, 0, 3};
-        cam.look_at = {0, 0, 0};
-        cam.up = {0, 1, 0};
-        cam.width = cam.height = 8;
+        const Camera cam = sphbasis_test::camera_at({0, 0, 3}, {0, 0, 0}, 8, 8, 45);
         for (const Image& img : {render_specular(desc, rt, cam, SpecularShading::Mode::aliased),
                                  render_specular(desc, rt, cam, SpecularShading::Mode::toksvig),
                                  render_specular_reference(desc, rt, cam, 2)})
@@ -432,11 +423,7 @@ TEST_CASE("render::SpecularShading: the level of detail follows the pixel footpr
     CHECK(sh.level_of_detail(hit, 1.0 / 128) == 0);
     CHECK(sh.level_of_detail(hit, 100) == Approx(6));
     // The footprint of a pixel straight below a camera at height 5.
-    Camera cam;
-    cam.position = {0, 0, 5};
-    cam.look_at = {0, 0, 0};
-    cam.up = {0, 1, 0};
-    cam.width = cam.height = 64;
+    const Camera cam = sphbasis_test::camera_at({0, 0, 5}, {0, 0, 0}, 64, 64, 45);
     const PinholeCamera pc(cam);
     const Hit c = rt.intersect({0, 0, 5}, pc.ray(32, 32).direction);
     REQUIRE(c.valid);
@@ -450,11 +437,7 @@ TEST_CASE("render::specular: bad input throws", "[render]") {
     desc.meshes = {quad.view()};
     desc.lights = {sphbasis_test::directional_light({0, 0, 1}, {1, 1, 1})};
     Scene rt(desc.meshes);
-    Camera cam;
-    cam.position = {0, 0, 3};
-    cam.look_at = {0, 0, 0};
-    cam.up = {0, 1, 0};
-    cam.width = cam.height = 4;
+    const Camera cam = sphbasis_test::camera_at({0, 0, 3}, {0, 0, 0}, 4, 4, 45);
     CHECK_THROWS_WITH(render_specular_reference(desc, rt, cam, 0),
                       Catch::Contains("sphbasis::render::render_specular_reference()"));
     CHECK_THROWS_AS(render_specular_reference(desc, rt, cam, 65), std::invalid_argument);
@@ -549,11 +532,7 @@ TEST_CASE("render::render_specular_reference: deterministic whatever the thread 
     desc.meshes = {quad.view()};
     desc.lights = {sphbasis_test::directional_light({0, 0.5, 0.8}, {1, 1, 1})};
     Scene rt(desc.meshes);
-    Camera cam;
-    cam.position = {0, -2, 2};
-    cam.look_at = {0, 0, 0};
-    cam.width = 40;
-    cam.height = 20;
+    const Camera cam = sphbasis_test::camera_at({0, -2, 2}, {0, 0, 0}, 40, 20, 45);
     const Image a = render_specular_reference(desc, rt, cam, 3);
     Image b;
     tbb::task_arena one(1);
