@@ -401,24 +401,18 @@ class Scene {
             bad(m, "fewer than 2^32 vertices, got " + std::to_string(v.vertex_count));
         MeshData& d = meshes_[m];
         const std::size_t nv = v.vertex_count;
-        if (nv) d.positions.assign(v.positions, v.positions + 3 * nv);
-        if (!all_finite(d.positions.data(), d.positions.size()))
-            bad(m, "finite vertex positions, got a NaN or an infinity");
-        if (v.normals && nv) {
-            d.normals.assign(v.normals, v.normals + 3 * nv);
-            if (!all_finite(d.normals.data(), d.normals.size()))
-                bad(m, "finite normals, got a NaN or an infinity");
-        }
-        if (v.uvs && nv) {
-            d.uvs.assign(v.uvs, v.uvs + 2 * nv);
-            if (!all_finite(d.uvs.data(), d.uvs.size()))
-                bad(m, "finite UVs, got a NaN or an infinity");
-        }
-        if (v.tangents && nv) {
-            d.tangents.assign(v.tangents, v.tangents + 4 * nv);
-            if (!all_finite(d.tangents.data(), d.tangents.size()))
-                bad(m, "finite tangents, got a NaN or an infinity");
-        }
+        // Copies `per` floats a vertex of an optional array, all finite.
+        auto copy = [m, nv](const float* src, std::size_t per, std::vector<float>& dst,
+                            const char* what) {
+            if (!src || nv == 0) return;
+            dst.assign(src, src + per * nv);
+            if (!all_finite(dst.data(), dst.size()))
+                bad(m, std::string("finite ") + what + ", got a NaN or an infinity");
+        };
+        copy(v.positions, 3, d.positions, "vertex positions");
+        copy(v.normals, 3, d.normals, "normals");
+        copy(v.uvs, 2, d.uvs, "UVs");
+        copy(v.tangents, 4, d.tangents, "tangents");
         if (!(v.shininess >= 0 && std::isfinite(v.shininess)))
             bad(m, "a finite shininess >= 0, got " + std::to_string(v.shininess));
         d.shininess = v.shininess;
