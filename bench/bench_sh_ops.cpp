@@ -41,14 +41,14 @@ inline RGB operator*(const RGB& a, float s) { return {a.r * s, a.g * s, a.b * s}
 constexpr std::size_t kCount = 256;
 
 // name<N> (one float channel, all 0.5) and name_rgb<N> (RGB) from name_of<N>(state, fill).
-#define SPHBASIS_BENCH_ONE_AND_RGB(name)                                    \
-    template <int N>                                               \
-    void name(benchmark::State& st) {                              \
-        name##_of<N>(st, 0.5f);                                    \
-    }                                                              \
-    template <int N>                                               \
-    void name##_rgb(benchmark::State& st) {                        \
-        name##_of<N>(st, RGB{0.5f, 0.25f, 1.0f});                  \
+#define SPHBASIS_BENCH_ONE_AND_RGB(name)          \
+    template <int N>                              \
+    void name(benchmark::State& st) {             \
+        name##_of<N>(st, 0.5f);                   \
+    }                                             \
+    template <int N>                              \
+    void name##_rgb(benchmark::State& st) {       \
+        name##_of<N>(st, RGB{0.5f, 0.25f, 1.0f}); \
     }
 
 std::vector<std::array<float, 4>> quaternions() {

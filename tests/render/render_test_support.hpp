@@ -1,5 +1,5 @@
-// Shared pieces of the render tests: image comparisons, lat-long environments, and the World (meshes, scene
-// description, Embree scene) that the representation tests bake and shade.
+// Shared pieces of the render tests: image comparisons, lat-long environments, and the World
+// (meshes, scene description, Embree scene) that the representation tests bake and shade.
 #pragma once
 
 #include <algorithm>
@@ -45,7 +45,8 @@ template <class Fill>
 std::vector<float> rgb_texels(int w, int h, Fill&& fill) {
     std::vector<float> t(std::size_t(w) * std::size_t(h) * 3);
     for (int j = 0; j < h; ++j)
-        for (int i = 0; i < w; ++i) fill(i, j, &t[3 * (std::size_t(j) * std::size_t(w) + std::size_t(i))]);
+        for (int i = 0; i < w; ++i)
+            fill(i, j, &t[3 * (std::size_t(j) * std::size_t(w) + std::size_t(i))]);
     return t;
 }
 

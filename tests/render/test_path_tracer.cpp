@@ -94,7 +94,6 @@ double hemisphere_integral(G&& g) {
     return sum * (2 * constants::pi / (double(nt) * np));
 }
 
-
 /// Analytic ray-sphere hit: the unit normal at the near intersection (false on a miss).
 bool sphere_normal(vec3<double> o, vec3<double> d, vec3<double> c, double r, vec3<double>& n) {
     const vec3<double> oc{o.x - c.x, o.y - c.y, o.z - c.z};

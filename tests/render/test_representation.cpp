@@ -27,7 +27,6 @@ using sphbasis_test::max_abs;
 using sphbasis_test::max_abs_diff;
 using sphbasis_test::World;
 
-
 using sphbasis_test::camera_at;
 
 /// Drops every mesh's UVs and tangents (the bakes then run per vertex).

@@ -112,7 +112,6 @@ Image irradiance_image(const World& w, const Camera& cam, int bands) {
     return img;
 }
 
-
 }  // namespace
 
 TEST_CASE("lxh representations: the plan bakes visibility only for lxh-*, tables only on demand",

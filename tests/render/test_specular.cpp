@@ -46,7 +46,6 @@ Mesh mapped_quad(double h, double tiles, std::vector<float> texels, int w, int h
     return m;
 }
 
-
 /// A value in [0, 1) from a SplitMix64-style state.
 double next01(std::uint64_t& st) {
     st = sphbasis::render::detail::rt::mix64(st);

@@ -71,7 +71,6 @@ namespace {
 constexpr int kGutter = 4;  // texels dilated around each chart
 constexpr char kShardMagic[8] = {'S', 'P', 'H', 'B', 'S', 'H', 'R', 'D'};
 
-
 const std::vector<std::pair<std::string, unsigned>>& quantity_names() {
     static const std::vector<std::pair<std::string, unsigned>> q = {
         {"ao", render::Quantity::ao},
@@ -578,7 +577,8 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
                     {"channels", names},
                     {"inside", inside},
                     {"probes", probes}};
-        write_file_atomic(join_path(out_dir, "probes.json"), dump_json(doc, {{"probes", 0}}) + "\n");
+        write_file_atomic(join_path(out_dir, "probes.json"),
+                          dump_json(doc, {{"probes", 0}}) + "\n");
         outputs.push_back({{"file", "probes.json"},
                            {"kind", "json"},
                            {"probes", w.points.size()},

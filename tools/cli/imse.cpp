@@ -93,7 +93,6 @@ double reported_imse(double v) {
     return std::isfinite(v) && std::fabs(v) <= kRoundingFloor ? 0 : v;
 }
 
-
 struct Timing {
     double eval_ns = 0, eval_batch_ns = 0, project_ns = 0;
 };

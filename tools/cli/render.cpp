@@ -57,7 +57,6 @@ namespace sphbasis::cli {
 
 namespace {
 
-
 struct RenderOptions {
     std::string scene, representations = "all", out = ".", exposure, tonemap, rotate, noise;
     long long spp = 0, max_spp = 4096, width = 0, height = 0, threads = 0, seed = 0, rays = 256,

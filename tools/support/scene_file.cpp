@@ -678,8 +678,9 @@ SceneTexture load_texture(const std::string& path, bool srgb) {
             stbi_image_free(px);
             return texels->size();
         };
-        const std::size_t count = wide ? to_float(stbi_load_16(path.c_str(), &w, &h, &n, 3), 65535.0f)
-                                       : to_float(stbi_load(path.c_str(), &w, &h, &n, 3), 255.0f);
+        const std::size_t count =
+            wide ? to_float(stbi_load_16(path.c_str(), &w, &h, &n, 3), 65535.0f)
+                 : to_float(stbi_load(path.c_str(), &w, &h, &n, 3), 255.0f);
         if (count == 0)
             throw std::runtime_error("cannot read image '" + path + "': " + stbi_failure_reason());
         if (srgb)

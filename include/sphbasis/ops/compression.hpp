@@ -447,8 +447,8 @@ Cpca<typename Derived::Scalar> cpca_static(const Eigen::MatrixBase<Derived>& dat
     using Scalar = typename Derived::Scalar;
     static_assert(std::is_floating_point_v<Scalar>,
                   "sphbasis::compress::cpca_static: the data must be float or double.");
-    return detail::static_model(
-        detail::checked_cpca_input(data, settings, "compress::cpca_static"), settings);
+    return detail::static_model(detail::checked_cpca_input(data, settings, "compress::cpca_static"),
+                                settings);
 }
 
 /// Iterative CPCA: cpca_static(), then reclassification of every point to the cluster whose

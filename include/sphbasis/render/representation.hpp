@@ -1757,8 +1757,7 @@ class Representations {
                 }
                 case Kind::lxh_unc:
                 case Kind::lxh_pca:
-                    request_per_mesh(r, base_settings(Quantity::visibility, 0), true,
-                                     r.vis_bands);
+                    request_per_mesh(r, base_settings(Quantity::visibility, 0), true, r.vis_bands);
                     break;
                 case Kind::specular_toksvig:
                 case Kind::specular_aliased:
@@ -1770,12 +1769,12 @@ class Representations {
             if (r.kind == Kind::prt_ratio || r.kind == Kind::prt_normalmap ||
                 r.kind == Kind::prt_cpca) {
                 needs_sh_ = true;
-                request_per_mesh(r,
-                                 base_settings(r.kind == Kind::prt_normalmap
-                                                   ? Quantity::transfer_matrix
-                                                   : Quantity::transfer,
-                                               settings_.bounces),
-                                 true, settings_.prt_bands);
+                request_per_mesh(
+                    r,
+                    base_settings(r.kind == Kind::prt_normalmap ? Quantity::transfer_matrix
+                                                                : Quantity::transfer,
+                                  settings_.bounces),
+                    true, settings_.prt_bands);
             }
             r.reads_bakes = r.probe_bake >= 0;
             for (int b : r.mesh_bake) r.reads_bakes = r.reads_bakes || b >= 0;
