@@ -16,10 +16,13 @@ eval_fixed_scaled_N(x, y, z, inv, store) gives the same values at a direction of
 with inv = 1/r (sh::eval<N>'s normalising kernel for N = 4..8): C_m, S_m from the raw x, y,
 then times inv^m; only z is normalised before the z recurrence. The powers of (x + i y) do not
 wait for the square root, which the one-call benchmark measured 1.1-1.5x faster at 4-8 bands.
-There Q_{m+2}^m and Q_{m+3}^m are written out as polynomials in z^2 (an FMA, or an FMA and a
-product, after one shared z^2, as Sloan's generated code does; the recurrence from Q_{m+4}^m):
-another 2-9% at 4-8 bands. eval_fixed_N keeps the recurrence everywhere: the shader twins follow
-its operation order, and the shader test's 4-ulp bound failed (7 ulps) with the short columns.
+In every kernel (eval_fixed_N, eval_fixed_scaled_N and the shader twins) Q_{m+2}^m and
+Q_{m+3}^m are written out as polynomials in z^2 (an FMA, or an FMA and a product, after one
+shared z^2, as Sloan's generated code does; the recurrence from Q_{m+4}^m): 2-9% at 4-8 bands.
+The shader twins emit the same short columns as eval_fixed_N (shader_kernel below): with the
+short columns in C++ only, the shaders' recurrence and the C++ polynomials differed by 7 ulps at
+7 bands, beyond the shader test's 4-ulp bound; with the same form on both sides only the
+driver's fused multiply-adds remain.
 
 Usage: /usr/bin/python3 tools/gen/gen_sh_fixed.py > include/sphbasis/basis/sh_fixed.hpp
        /usr/bin/python3 tools/gen/gen_sh_fixed.py --glsl > shaders/sphbasis.glsl
@@ -106,6 +109,8 @@ def kernel(n):
     w("SPHBASIS_FORCEINLINE void eval_fixed_%d(const V& x, const V& y, const V& z, Store&& store) noexcept {" % n)
     w("    using S = scalar_t<V>;")
     w("    (void)x; (void)y; (void)z;")
+    if n > 2:
+        w("    const V z2 = z * z;")
     # (x+iy)^m
     if n > 1:
         w("    const V c1 = x, s1 = y;")
@@ -122,6 +127,8 @@ def kernel(n):
             elif l == m + 1:
                 c = sp.sqrt(2 * m + 3) * qmm
                 w("    const V %s = V(%s) * z;  // %s z" % (name, lit(c), closed(sp.simplify(c))))
+            elif short_column(l, m, "z", "z2"):
+                w("    const V %s = %s" % (name, short_column(l, m, "z", "z2")))
             else:
                 A = a(l, m)
                 B = A * b(l, m)
@@ -285,6 +292,8 @@ def shader_kernel(n, lang):
     w("void sphbasis_sh_eval%d(%s d, out float sh[%d])" % (n, vec3, n * n))
     w("{")
     w("    float x = d.x; float y = d.y; float z = d.z;")
+    if n > 2:
+        w("    float z2 = z * z;")
     if n > 1:
         w("    float c1 = x; float s1 = y;")
     for m in range(2, n):
@@ -298,6 +307,14 @@ def shader_kernel(n, lang):
             elif l == m + 1:
                 c = sp.sqrt(2 * m + 3) * qmm
                 w("    float %s = %s * z;  // %s z" % (name, flit(c, lang), closed(sp.simplify(c))))
+            elif l - m == 2:
+                p = column_poly(l, m)
+                al, be = p.coeff_monomial(_Z ** 2), p.coeff_monomial(1)
+                w("    float %s = %s * z2 + %s;  // %s z^2 + %s" % (name, flit(al, lang), flit(be, lang), closed(sp.simplify(al)), closed(sp.simplify(be))))
+            elif l - m == 3:
+                p = column_poly(l, m)
+                ga, de = p.coeff_monomial(_Z ** 3), p.coeff_monomial(_Z)
+                w("    float %s = z * (%s * z2 + %s);  // z (%s z^2 + %s)" % (name, flit(ga, lang), flit(de, lang), closed(sp.simplify(ga)), closed(sp.simplify(de))))
             else:
                 A = a(l, m)
                 B = A * b(l, m)

@@ -45,13 +45,14 @@ template <class V, class Store>
 SPHBASIS_FORCEINLINE void eval_fixed_3(const V& x, const V& y, const V& z, Store&& store) noexcept {
     using S = scalar_t<V>;
     (void)x; (void)y; (void)z;
+    const V z2 = z * z;
     const V c1 = x, s1 = y;
     const V c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
     const V q0_0 = V(S(0.28209479177387814));  // 1/(2*sqrt(pi))
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * z;  // sqrt(3)/(2*sqrt(pi)) z
     store(2, q1_0);
-    const V q2_0 = V(S(1.9364916731037085)) * z * q1_0 - V(S(1.1180339887498949)) * q0_0;
+    const V q2_0 = V(S(0.94617469575755997)) * z2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     store(6, q2_0);
     const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
     store(3, q1_1 * c1);
@@ -69,6 +70,7 @@ template <class V, class Store>
 SPHBASIS_FORCEINLINE void eval_fixed_4(const V& x, const V& y, const V& z, Store&& store) noexcept {
     using S = scalar_t<V>;
     (void)x; (void)y; (void)z;
+    const V z2 = z * z;
     const V c1 = x, s1 = y;
     const V c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
     const V c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
@@ -76,9 +78,9 @@ SPHBASIS_FORCEINLINE void eval_fixed_4(const V& x, const V& y, const V& z, Store
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * z;  // sqrt(3)/(2*sqrt(pi)) z
     store(2, q1_0);
-    const V q2_0 = V(S(1.9364916731037085)) * z * q1_0 - V(S(1.1180339887498949)) * q0_0;
+    const V q2_0 = V(S(0.94617469575755997)) * z2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     store(6, q2_0);
-    const V q3_0 = V(S(1.9720265943665387)) * z * q2_0 - V(S(1.0183501544346312)) * q1_0;
+    const V q3_0 = z * (V(S(1.865881662950577)) * z2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     store(12, q3_0);
     const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
     store(3, q1_1 * c1);
@@ -86,7 +88,7 @@ SPHBASIS_FORCEINLINE void eval_fixed_4(const V& x, const V& y, const V& z, Store
     const V q2_1 = V(S(1.0925484305920792)) * z;  // sqrt(15)/(2*sqrt(pi)) z
     store(7, q2_1 * c1);
     store(5, q2_1 * s1);
-    const V q3_1 = V(S(2.0916500663351889)) * z * q2_1 - V(S(0.93541434669348533)) * q1_1;
+    const V q3_1 = V(S(2.2852289973223288)) * z2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     store(13, q3_1 * c1);
     store(11, q3_1 * s1);
     const V q2_2 = V(S(0.54627421529603959));  // sqrt(15)/(4*sqrt(pi))
@@ -105,6 +107,7 @@ template <class V, class Store>
 SPHBASIS_FORCEINLINE void eval_fixed_5(const V& x, const V& y, const V& z, Store&& store) noexcept {
     using S = scalar_t<V>;
     (void)x; (void)y; (void)z;
+    const V z2 = z * z;
     const V c1 = x, s1 = y;
     const V c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
     const V c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
@@ -113,9 +116,9 @@ SPHBASIS_FORCEINLINE void eval_fixed_5(const V& x, const V& y, const V& z, Store
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * z;  // sqrt(3)/(2*sqrt(pi)) z
     store(2, q1_0);
-    const V q2_0 = V(S(1.9364916731037085)) * z * q1_0 - V(S(1.1180339887498949)) * q0_0;
+    const V q2_0 = V(S(0.94617469575755997)) * z2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     store(6, q2_0);
-    const V q3_0 = V(S(1.9720265943665387)) * z * q2_0 - V(S(1.0183501544346312)) * q1_0;
+    const V q3_0 = z * (V(S(1.865881662950577)) * z2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     store(12, q3_0);
     const V q4_0 = V(S(1.984313483298443)) * z * q3_0 - V(S(1.0062305898749053)) * q2_0;
     store(20, q4_0);
@@ -125,10 +128,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_5(const V& x, const V& y, const V& z, Store
     const V q2_1 = V(S(1.0925484305920792)) * z;  // sqrt(15)/(2*sqrt(pi)) z
     store(7, q2_1 * c1);
     store(5, q2_1 * s1);
-    const V q3_1 = V(S(2.0916500663351889)) * z * q2_1 - V(S(0.93541434669348533)) * q1_1;
+    const V q3_1 = V(S(2.2852289973223288)) * z2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     store(13, q3_1 * c1);
     store(11, q3_1 * s1);
-    const V q4_1 = V(S(2.0493901531919199)) * z * q3_1 - V(S(0.9797958971132712)) * q2_1;
+    const V q4_1 = z * (V(S(4.683325804901024)) * z2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
     store(21, q4_1 * c1);
     store(19, q4_1 * s1);
     const V q2_2 = V(S(0.54627421529603959));  // sqrt(15)/(4*sqrt(pi))
@@ -137,7 +140,7 @@ SPHBASIS_FORCEINLINE void eval_fixed_5(const V& x, const V& y, const V& z, Store
     const V q3_2 = V(S(1.4453057213202771)) * z;  // sqrt(105)/(4*sqrt(pi)) z
     store(14, q3_2 * c2);
     store(10, q3_2 * s2);
-    const V q4_2 = V(S(2.2912878474779199)) * z * q3_2 - V(S(0.8660254037844386)) * q2_2;
+    const V q4_2 = V(S(3.3116114351514603)) * z2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
     store(22, q4_2 * c2);
     store(18, q4_2 * s2);
     const V q3_3 = V(S(0.59004358992664352));  // sqrt(70)/(8*sqrt(pi))
@@ -156,6 +159,7 @@ template <class V, class Store>
 SPHBASIS_FORCEINLINE void eval_fixed_6(const V& x, const V& y, const V& z, Store&& store) noexcept {
     using S = scalar_t<V>;
     (void)x; (void)y; (void)z;
+    const V z2 = z * z;
     const V c1 = x, s1 = y;
     const V c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
     const V c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
@@ -165,9 +169,9 @@ SPHBASIS_FORCEINLINE void eval_fixed_6(const V& x, const V& y, const V& z, Store
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * z;  // sqrt(3)/(2*sqrt(pi)) z
     store(2, q1_0);
-    const V q2_0 = V(S(1.9364916731037085)) * z * q1_0 - V(S(1.1180339887498949)) * q0_0;
+    const V q2_0 = V(S(0.94617469575755997)) * z2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     store(6, q2_0);
-    const V q3_0 = V(S(1.9720265943665387)) * z * q2_0 - V(S(1.0183501544346312)) * q1_0;
+    const V q3_0 = z * (V(S(1.865881662950577)) * z2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     store(12, q3_0);
     const V q4_0 = V(S(1.984313483298443)) * z * q3_0 - V(S(1.0062305898749053)) * q2_0;
     store(20, q4_0);
@@ -179,10 +183,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_6(const V& x, const V& y, const V& z, Store
     const V q2_1 = V(S(1.0925484305920792)) * z;  // sqrt(15)/(2*sqrt(pi)) z
     store(7, q2_1 * c1);
     store(5, q2_1 * s1);
-    const V q3_1 = V(S(2.0916500663351889)) * z * q2_1 - V(S(0.93541434669348533)) * q1_1;
+    const V q3_1 = V(S(2.2852289973223288)) * z2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     store(13, q3_1 * c1);
     store(11, q3_1 * s1);
-    const V q4_1 = V(S(2.0493901531919199)) * z * q3_1 - V(S(0.9797958971132712)) * q2_1;
+    const V q4_1 = z * (V(S(4.683325804901024)) * z2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
     store(21, q4_1 * c1);
     store(19, q4_1 * s1);
     const V q5_1 = V(S(2.0310096011589902)) * z * q4_1 - V(S(0.99103120896511487)) * q3_1;
@@ -194,10 +198,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_6(const V& x, const V& y, const V& z, Store
     const V q3_2 = V(S(1.4453057213202771)) * z;  // sqrt(105)/(4*sqrt(pi)) z
     store(14, q3_2 * c2);
     store(10, q3_2 * s2);
-    const V q4_2 = V(S(2.2912878474779199)) * z * q3_2 - V(S(0.8660254037844386)) * q2_2;
+    const V q4_2 = V(S(3.3116114351514603)) * z2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
     store(22, q4_2 * c2);
     store(18, q4_2 * s2);
-    const V q5_2 = V(S(2.1712405933672376)) * z * q4_2 - V(S(0.94760708295868568)) * q3_2;
+    const V q5_2 = z * (V(S(7.1903051774599858)) * z2 + V(S(-2.3967683924866621)));  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
     store(32, q5_2 * c2);
     store(28, q5_2 * s2);
     const V q3_3 = V(S(0.59004358992664352));  // sqrt(70)/(8*sqrt(pi))
@@ -206,7 +210,7 @@ SPHBASIS_FORCEINLINE void eval_fixed_6(const V& x, const V& y, const V& z, Store
     const V q4_3 = V(S(1.7701307697799304)) * z;  // 3*sqrt(70)/(8*sqrt(pi)) z
     store(23, q4_3 * c3);
     store(17, q4_3 * s3);
-    const V q5_3 = V(S(2.4874685927665499)) * z * q4_3 - V(S(0.82915619758884995)) * q3_3;
+    const V q5_3 = V(S(4.4031446949172537)) * z2 + V(S(-0.48923829943525038));  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
     store(33, q5_3 * c3);
     store(27, q5_3 * s3);
     const V q4_4 = V(S(0.62583573544917614));  // 3*sqrt(35)/(16*sqrt(pi))
@@ -225,6 +229,7 @@ template <class V, class Store>
 SPHBASIS_FORCEINLINE void eval_fixed_7(const V& x, const V& y, const V& z, Store&& store) noexcept {
     using S = scalar_t<V>;
     (void)x; (void)y; (void)z;
+    const V z2 = z * z;
     const V c1 = x, s1 = y;
     const V c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
     const V c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
@@ -235,9 +240,9 @@ SPHBASIS_FORCEINLINE void eval_fixed_7(const V& x, const V& y, const V& z, Store
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * z;  // sqrt(3)/(2*sqrt(pi)) z
     store(2, q1_0);
-    const V q2_0 = V(S(1.9364916731037085)) * z * q1_0 - V(S(1.1180339887498949)) * q0_0;
+    const V q2_0 = V(S(0.94617469575755997)) * z2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     store(6, q2_0);
-    const V q3_0 = V(S(1.9720265943665387)) * z * q2_0 - V(S(1.0183501544346312)) * q1_0;
+    const V q3_0 = z * (V(S(1.865881662950577)) * z2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     store(12, q3_0);
     const V q4_0 = V(S(1.984313483298443)) * z * q3_0 - V(S(1.0062305898749053)) * q2_0;
     store(20, q4_0);
@@ -251,10 +256,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_7(const V& x, const V& y, const V& z, Store
     const V q2_1 = V(S(1.0925484305920792)) * z;  // sqrt(15)/(2*sqrt(pi)) z
     store(7, q2_1 * c1);
     store(5, q2_1 * s1);
-    const V q3_1 = V(S(2.0916500663351889)) * z * q2_1 - V(S(0.93541434669348533)) * q1_1;
+    const V q3_1 = V(S(2.2852289973223288)) * z2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     store(13, q3_1 * c1);
     store(11, q3_1 * s1);
-    const V q4_1 = V(S(2.0493901531919199)) * z * q3_1 - V(S(0.9797958971132712)) * q2_1;
+    const V q4_1 = z * (V(S(4.683325804901024)) * z2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
     store(21, q4_1 * c1);
     store(19, q4_1 * s1);
     const V q5_1 = V(S(2.0310096011589902)) * z * q4_1 - V(S(0.99103120896511487)) * q3_1;
@@ -269,10 +274,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_7(const V& x, const V& y, const V& z, Store
     const V q3_2 = V(S(1.4453057213202771)) * z;  // sqrt(105)/(4*sqrt(pi)) z
     store(14, q3_2 * c2);
     store(10, q3_2 * s2);
-    const V q4_2 = V(S(2.2912878474779199)) * z * q3_2 - V(S(0.8660254037844386)) * q2_2;
+    const V q4_2 = V(S(3.3116114351514603)) * z2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
     store(22, q4_2 * c2);
     store(18, q4_2 * s2);
-    const V q5_2 = V(S(2.1712405933672376)) * z * q4_2 - V(S(0.94760708295868568)) * q3_2;
+    const V q5_2 = z * (V(S(7.1903051774599858)) * z2 + V(S(-2.3967683924866621)));  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
     store(32, q5_2 * c2);
     store(28, q5_2 * s2);
     const V q6_2 = V(S(2.1139418156609704)) * z * q5_2 - V(S(0.97361012046232687)) * q4_2;
@@ -284,10 +289,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_7(const V& x, const V& y, const V& z, Store
     const V q4_3 = V(S(1.7701307697799304)) * z;  // 3*sqrt(70)/(8*sqrt(pi)) z
     store(23, q4_3 * c3);
     store(17, q4_3 * s3);
-    const V q5_3 = V(S(2.4874685927665499)) * z * q4_3 - V(S(0.82915619758884995)) * q3_3;
+    const V q5_3 = V(S(4.4031446949172537)) * z2 + V(S(-0.48923829943525038));  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
     store(33, q5_3 * c3);
     store(27, q5_3 * s3);
-    const V q6_3 = V(S(2.3013683530231086)) * z * q5_3 - V(S(0.92518488865161452)) * q4_3;
+    const V q6_3 = z * (V(S(10.133257854664159)) * z2 + V(S(-2.7636157785447706)));  // z (11*sqrt(2730)/(32*sqrt(pi)) z^2 + -3*sqrt(2730)/(32*sqrt(pi)))
     store(45, q6_3 * c3);
     store(39, q6_3 * s3);
     const V q4_4 = V(S(0.62583573544917614));  // 3*sqrt(35)/(16*sqrt(pi))
@@ -296,7 +301,7 @@ SPHBASIS_FORCEINLINE void eval_fixed_7(const V& x, const V& y, const V& z, Store
     const V q5_4 = V(S(2.0756623148810411)) * z;  // 3*sqrt(385)/(16*sqrt(pi)) z
     store(34, q5_4 * c4);
     store(26, q5_4 * s4);
-    const V q6_4 = V(S(2.6739483914241875)) * z * q5_4 - V(S(0.80622577482985491)) * q4_4;
+    const V q6_4 = V(S(5.5502139080159658)) * z2 + V(S(-0.50456490072872417));  // 33*sqrt(91)/(32*sqrt(pi)) z^2 + -3*sqrt(91)/(32*sqrt(pi))
     store(46, q6_4 * c4);
     store(38, q6_4 * s4);
     const V q5_5 = V(S(0.65638205684017015));  // 3*sqrt(154)/(32*sqrt(pi))
@@ -315,6 +320,7 @@ template <class V, class Store>
 SPHBASIS_FORCEINLINE void eval_fixed_8(const V& x, const V& y, const V& z, Store&& store) noexcept {
     using S = scalar_t<V>;
     (void)x; (void)y; (void)z;
+    const V z2 = z * z;
     const V c1 = x, s1 = y;
     const V c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
     const V c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
@@ -326,9 +332,9 @@ SPHBASIS_FORCEINLINE void eval_fixed_8(const V& x, const V& y, const V& z, Store
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * z;  // sqrt(3)/(2*sqrt(pi)) z
     store(2, q1_0);
-    const V q2_0 = V(S(1.9364916731037085)) * z * q1_0 - V(S(1.1180339887498949)) * q0_0;
+    const V q2_0 = V(S(0.94617469575755997)) * z2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     store(6, q2_0);
-    const V q3_0 = V(S(1.9720265943665387)) * z * q2_0 - V(S(1.0183501544346312)) * q1_0;
+    const V q3_0 = z * (V(S(1.865881662950577)) * z2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     store(12, q3_0);
     const V q4_0 = V(S(1.984313483298443)) * z * q3_0 - V(S(1.0062305898749053)) * q2_0;
     store(20, q4_0);
@@ -344,10 +350,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_8(const V& x, const V& y, const V& z, Store
     const V q2_1 = V(S(1.0925484305920792)) * z;  // sqrt(15)/(2*sqrt(pi)) z
     store(7, q2_1 * c1);
     store(5, q2_1 * s1);
-    const V q3_1 = V(S(2.0916500663351889)) * z * q2_1 - V(S(0.93541434669348533)) * q1_1;
+    const V q3_1 = V(S(2.2852289973223288)) * z2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     store(13, q3_1 * c1);
     store(11, q3_1 * s1);
-    const V q4_1 = V(S(2.0493901531919199)) * z * q3_1 - V(S(0.9797958971132712)) * q2_1;
+    const V q4_1 = z * (V(S(4.683325804901024)) * z2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
     store(21, q4_1 * c1);
     store(19, q4_1 * s1);
     const V q5_1 = V(S(2.0310096011589902)) * z * q4_1 - V(S(0.99103120896511487)) * q3_1;
@@ -365,10 +371,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_8(const V& x, const V& y, const V& z, Store
     const V q3_2 = V(S(1.4453057213202771)) * z;  // sqrt(105)/(4*sqrt(pi)) z
     store(14, q3_2 * c2);
     store(10, q3_2 * s2);
-    const V q4_2 = V(S(2.2912878474779199)) * z * q3_2 - V(S(0.8660254037844386)) * q2_2;
+    const V q4_2 = V(S(3.3116114351514603)) * z2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
     store(22, q4_2 * c2);
     store(18, q4_2 * s2);
-    const V q5_2 = V(S(2.1712405933672376)) * z * q4_2 - V(S(0.94760708295868568)) * q3_2;
+    const V q5_2 = z * (V(S(7.1903051774599858)) * z2 + V(S(-2.3967683924866621)));  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
     store(32, q5_2 * c2);
     store(28, q5_2 * s2);
     const V q6_2 = V(S(2.1139418156609704)) * z * q5_2 - V(S(0.97361012046232687)) * q4_2;
@@ -383,10 +389,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_8(const V& x, const V& y, const V& z, Store
     const V q4_3 = V(S(1.7701307697799304)) * z;  // 3*sqrt(70)/(8*sqrt(pi)) z
     store(23, q4_3 * c3);
     store(17, q4_3 * s3);
-    const V q5_3 = V(S(2.4874685927665499)) * z * q4_3 - V(S(0.82915619758884995)) * q3_3;
+    const V q5_3 = V(S(4.4031446949172537)) * z2 + V(S(-0.48923829943525038));  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
     store(33, q5_3 * c3);
     store(27, q5_3 * s3);
-    const V q6_3 = V(S(2.3013683530231086)) * z * q5_3 - V(S(0.92518488865161452)) * q4_3;
+    const V q6_3 = z * (V(S(10.133257854664159)) * z2 + V(S(-2.7636157785447706)));  // z (11*sqrt(2730)/(32*sqrt(pi)) z^2 + -3*sqrt(2730)/(32*sqrt(pi)))
     store(45, q6_3 * c3);
     store(39, q6_3 * s3);
     const V q7_3 = V(S(2.2079402165819619)) * z * q6_3 - V(S(0.95940322360024699)) * q5_3;
@@ -398,10 +404,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_8(const V& x, const V& y, const V& z, Store
     const V q5_4 = V(S(2.0756623148810411)) * z;  // 3*sqrt(385)/(16*sqrt(pi)) z
     store(34, q5_4 * c4);
     store(26, q5_4 * s4);
-    const V q6_4 = V(S(2.6739483914241875)) * z * q5_4 - V(S(0.80622577482985491)) * q4_4;
+    const V q6_4 = V(S(5.5502139080159658)) * z2 + V(S(-0.50456490072872417));  // 33*sqrt(91)/(32*sqrt(pi)) z^2 + -3*sqrt(91)/(32*sqrt(pi))
     store(46, q6_4 * c4);
     store(38, q6_4 * s4);
-    const V q7_4 = V(S(2.4308621740219887)) * z * q6_4 - V(S(0.90909090909090906)) * q5_4;
+    const V q7_4 = z * (V(S(13.491805046726768)) * z2 + V(S(-3.1134934723215619)));  // z (39*sqrt(385)/(32*sqrt(pi)) z^2 + -9*sqrt(385)/(32*sqrt(pi)))
     store(60, q7_4 * c4);
     store(52, q7_4 * s4);
     const V q5_5 = V(S(0.65638205684017015));  // 3*sqrt(154)/(32*sqrt(pi))
@@ -410,7 +416,7 @@ SPHBASIS_FORCEINLINE void eval_fixed_8(const V& x, const V& y, const V& z, Store
     const V q6_5 = V(S(2.3666191622317521)) * z;  // 3*sqrt(2002)/(32*sqrt(pi)) z
     store(47, q6_5 * c5);
     store(37, q6_5 * s5);
-    const V q7_5 = V(S(2.8504385627478448)) * z * q6_5 - V(S(0.79056941504209488)) * q5_5;
+    const V q7_5 = V(S(6.7459025233633838)) * z2 + V(S(-0.51891557872026028));  // 39*sqrt(385)/(64*sqrt(pi)) z^2 + -3*sqrt(385)/(64*sqrt(pi))
     store(61, q7_5 * c5);
     store(51, q7_5 * s5);
     const V q6_6 = V(S(0.6831841051919143));  // sqrt(6006)/(64*sqrt(pi))
