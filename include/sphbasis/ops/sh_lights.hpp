@@ -47,6 +47,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -95,6 +96,9 @@ void check_light(int bands, T x, T y, T z, const C* out, const char* fn) {
                   "C * coefficient_scalar_t<C> (specialise sphbasis::coefficient_scalar).");
     check_bands(bands, fn);
     sphbasis::detail::check_buffer(fn, "out", out, static_cast<std::size_t>(bands));
+    // A finite squared length > 0 (the normalising kernels compute it too) settles it at once.
+    const T r2 = x * x + y * y + z * z;
+    if (r2 > T(0) && r2 <= std::numeric_limits<T>::max()) return;
     if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) ||
         (x == T(0) && y == T(0) && z == T(0)))
         sphbasis::detail::throw_invalid(fn, "a finite non-zero direction");
@@ -273,8 +277,8 @@ SPHBASIS_FORCEINLINE bool with_light_bands(int bands, F&& f) {
 
 /// The run-time cap lights for 1..8 bands after their checks: cap_light_fixed with u given in
 /// double (computed there without cancellation), in the coefficient's evaluation type.
-template <class T, class C>
-SPHBASIS_FORCEINLINE bool cap_light_dispatch(int bands, T x, T y, T z, double u,
+template <class T, class U, class C>
+SPHBASIS_FORCEINLINE bool cap_light_dispatch(int bands, T x, T y, T z, U u,
                                              const C& radiance, C* out) {
     using E = light_eval_t<C>;
     return with_light_bands(bands, [&](auto n) {
@@ -320,12 +324,12 @@ SPHBASIS_FORCEINLINE void spherical_light(T px, T py, T pz, T radius, const C0& 
     SPHBASIS_ASSERT(out != nullptr);
     using E = detail::light_eval_t<C>;
     const E x = static_cast<E>(px), y = static_cast<E>(py), z = static_cast<E>(pz);
-    const E dist = std::sqrt(x * x + y * y + z * z);
+    const E d2 = x * x + y * y + z * z;
     const E r = std::fmax(static_cast<E>(radius), E(0));
     E u = 2;  // inside the ball: everything
-    if (r < dist) {
-        const E s = r / dist;
-        u = s * s / (1 + std::sqrt((1 - s) * (1 + s)));  // 1 - cos a without cancellation
+    if (r * r < d2) {
+        const E s2 = r * r / d2;  // sin^2 a
+        u = s2 / (1 + std::sqrt(1 - s2));  // 1 - cos a without cancellation
     }
     detail::cap_light_fixed<N>(x, y, z, u, detail::light_colour<C>(radiance_in), out);
 }
@@ -449,6 +453,23 @@ void spherical_light(int bands, T px, T py, T pz, T radius, const C0& radiance_i
     if (!(r >= 0) || !std::isfinite(r))
         sphbasis::detail::throw_invalid("sh::spherical_light",
                                         "a finite radius >= 0, got " + std::to_string(r));
+    if (bands >= 1 && bands <= 8) {
+        // 1 - cos a = s^2 / (1 + sqrt(1 - s^2)), s^2 = r^2 / |p|^2, in the evaluation type where
+        // |p|^2 neither over- nor underflows.
+        using E = detail::light_eval_t<C>;
+        const E ex = static_cast<E>(px), ey = static_cast<E>(py), ez = static_cast<E>(pz);
+        const E d2 = ex * ex + ey * ey + ez * ez;
+        if (d2 > E(1e-30) && d2 < E(1e30)) {
+            const E er = static_cast<E>(r);
+            E u = 2;  // inside the ball: everything
+            if (er * er < d2) {
+                const E s2 = er * er / d2;
+                u = s2 / (1 + std::sqrt(1 - s2));
+            }
+            detail::cap_light_dispatch(bands, ex, ey, ez, u, radiance, out);
+            return;
+        }
+    }
     const double x = px, y = py, z = pz;
     const double big = std::max(std::fabs(x), std::max(std::fabs(y), std::fabs(z)));
     const double dist =
