@@ -135,45 +135,45 @@ TEMPLATE_TEST_CASE(
     const double tol = std::is_same_v<T, float> ? 3e-6 : 1e-13;
     // 8 bands: the unrolled fixed-band path; 10: the run-time factors and basis in double.
     for (const int bands : {8, 10}) {
-    const auto d = unit(0.3, -0.4, 0.6);
-    std::vector<T> out(std::size_t(bands * bands));
-    for (double a : {0.05, 0.4, 1.3, 2.8}) {
-        const double L = 2.5;
-        sh::cone_light(bands, T(d.x), T(d.y), T(d.z), T(a), T(L), out.data());
-        const auto ref = cap_projection(bands, d, a);
-        for (std::size_t k = 0; k < out.size(); ++k) {
-            INFO("angle " << a << " k " << k);
-            CHECK(double(out[k]) == Approx(L * ref[k]).margin(tol * L * (1 + a * a)));
-        }
-        // The same cap as a ball at distance 3, and by solid angle.
-        std::vector<T> ball(out.size()), sa(out.size());
-        if (a < pi / 2) {
-            const double dist = 3, r = dist * std::sin(a);
-            sh::spherical_light(bands, T(dist * d.x), T(dist * d.y), T(dist * d.z), T(r), T(L),
-                                ball.data());
+        const auto d = unit(0.3, -0.4, 0.6);
+        std::vector<T> out(std::size_t(bands * bands));
+        for (double a : {0.05, 0.4, 1.3, 2.8}) {
+            const double L = 2.5;
+            sh::cone_light(bands, T(d.x), T(d.y), T(d.z), T(a), T(L), out.data());
+            const auto ref = cap_projection(bands, d, a);
+            for (std::size_t k = 0; k < out.size(); ++k) {
+                INFO("angle " << a << " k " << k);
+                CHECK(double(out[k]) == Approx(L * ref[k]).margin(tol * L * (1 + a * a)));
+            }
+            // The same cap as a ball at distance 3, and by solid angle.
+            std::vector<T> ball(out.size()), sa(out.size());
+            if (a < pi / 2) {
+                const double dist = 3, r = dist * std::sin(a);
+                sh::spherical_light(bands, T(dist * d.x), T(dist * d.y), T(dist * d.z), T(r), T(L),
+                                    ball.data());
+                for (std::size_t k = 0; k < out.size(); ++k)
+                    CHECK(double(ball[k]) == Approx(double(out[k])).margin(tol * 10));
+            }
+            sh::spherical_light_solid_angle(bands, T(d.x), T(d.y), T(d.z),
+                                            T(2 * pi * (1 - std::cos(a))), T(L), sa.data());
             for (std::size_t k = 0; k < out.size(); ++k)
-                CHECK(double(ball[k]) == Approx(double(out[k])).margin(tol * 10));
+                CHECK(double(sa[k]) == Approx(double(out[k])).margin(tol * 10));
         }
-        sh::spherical_light_solid_angle(bands, T(d.x), T(d.y), T(d.z),
-                                        T(2 * pi * (1 - std::cos(a))), T(L), sa.data());
+        // Inside the ball: uniform radiance everywhere.
+        sh::spherical_light(bands, T(0.1), T(0), T(0), T(1), T(1), out.data());
+        CHECK(double(out[0]) == Approx(std::sqrt(4 * pi)).epsilon(1e-6));
+        for (std::size_t k = 1; k < out.size(); ++k) CHECK(double(out[k]) == Approx(0).margin(tol));
+        // Directional: E y(d); reconstructed irradiance facing it is E * peak.
+        sh::directional_light(bands, T(2 * d.x), T(2 * d.y), T(2 * d.z), T(3), out.data());
+        std::vector<T> y(out.size());
+        sh::eval(bands, T(d.x), T(d.y), T(d.z), y.data());
         for (std::size_t k = 0; k < out.size(); ++k)
-            CHECK(double(sa[k]) == Approx(double(out[k])).margin(tol * 10));
-    }
-    // Inside the ball: uniform radiance everywhere.
-    sh::spherical_light(bands, T(0.1), T(0), T(0), T(1), T(1), out.data());
-    CHECK(double(out[0]) == Approx(std::sqrt(4 * pi)).epsilon(1e-6));
-    for (std::size_t k = 1; k < out.size(); ++k) CHECK(double(out[k]) == Approx(0).margin(tol));
-    // Directional: E y(d); reconstructed irradiance facing it is E * peak.
-    sh::directional_light(bands, T(2 * d.x), T(2 * d.y), T(2 * d.z), T(3), out.data());
-    std::vector<T> y(out.size());
-    sh::eval(bands, T(d.x), T(d.y), T(d.z), y.data());
-    for (std::size_t k = 0; k < out.size(); ++k)
-        CHECK(double(out[k]) == Approx(3 * double(y[k])).margin(tol));
-    const auto a = sh::clamped_cosine_kernel<T>(bands);
-    sh::convolve(bands, a.data(), out.data(), out.data());
-    CHECK(double(sh::eval_sum(bands, out.data(), T(d.x), T(d.y), T(d.z))) ==
-          Approx(3 * sh::directional_light_peak(bands))
-              .epsilon(std::is_same_v<T, float> ? 1e-5 : 1e-13));
+            CHECK(double(out[k]) == Approx(3 * double(y[k])).margin(tol));
+        const auto a = sh::clamped_cosine_kernel<T>(bands);
+        sh::convolve(bands, a.data(), out.data(), out.data());
+        CHECK(double(sh::eval_sum(bands, out.data(), T(d.x), T(d.y), T(d.z))) ==
+              Approx(3 * sh::directional_light_peak(bands))
+                  .epsilon(std::is_same_v<T, float> ? 1e-5 : 1e-13));
     }
     CHECK(sh::directional_light_peak(3) == Approx(17.0 / 16));
     CHECK(sh::directional_light_peak(1) == Approx(0.25));
@@ -398,8 +398,10 @@ void check_fixed_lights(std::mt19937& rng) {
         auto same = [&](const char* what, const std::vector<double>& ref) {
             INFO(what << " N = " << N << " trial " << trial);
             for (int k = 0; k < N * N; ++k) {
-                CHECK(double(f[k]) == Approx(ref[std::size_t(k)]).margin(tol * 4 * pi).epsilon(tol));
-                CHECK(double(r[k]) == Approx(ref[std::size_t(k)]).margin(tol * 4 * pi).epsilon(tol));
+                CHECK(double(f[k]) ==
+                      Approx(ref[std::size_t(k)]).margin(tol * 4 * pi).epsilon(tol));
+                CHECK(double(r[k]) ==
+                      Approx(ref[std::size_t(k)]).margin(tol * 4 * pi).epsilon(tol));
             }
         };
         sh::directional_light<N>(x, y, z, T(1.5), f);
@@ -435,9 +437,10 @@ void fixed_lights_all(std::mt19937& rng, T) {
 }
 }  // namespace
 
-TEMPLATE_TEST_CASE("directional/cone/spherical/hemisphere_light<N> and the run-time lights at N bands "
-                   "equal factor times y in double",
-                   "[ops][lights]", float, double) {
+TEMPLATE_TEST_CASE(
+    "directional/cone/spherical/hemisphere_light<N> and the run-time lights at N bands "
+    "equal factor times y in double",
+    "[ops][lights]", float, double) {
     std::mt19937 rng(21);
     fixed_lights_all<1, 2, 3, 4, 5, 6, 7, 8>(rng, TestType(0));
 }

@@ -212,7 +212,8 @@ constexpr std::array<double, N> hemisphere_factors() noexcept {
         const double dn = l == 0 ? -1.0 : (l * d - (2 * l + 1) * p) / (l + 1);
         p += dn;
         d = dn;
-        f[static_cast<std::size_t>(l + 1)] = (l + 1) % 2 == 0 ? 0.0 : constants::two_pi * (p - d) / (l + 2);
+        f[static_cast<std::size_t>(l + 1)] =
+            (l + 1) % 2 == 0 ? 0.0 : constants::two_pi * (p - d) / (l + 2);
     }
     return f;
 }
@@ -221,8 +222,8 @@ constexpr std::array<double, N> hemisphere_factors() noexcept {
 inline constexpr unsigned hemisphere_zero_bands = 0x55555554u;
 
 template <class C, class Band, std::size_t... Ls>
-SPHBASIS_FORCEINLINE std::array<C, sizeof...(Ls)> light_band_colours(
-    Band&& band, std::index_sequence<Ls...>) {
+SPHBASIS_FORCEINLINE std::array<C, sizeof...(Ls)> light_band_colours(Band&& band,
+                                                                     std::index_sequence<Ls...>) {
     return {{band(static_cast<int>(Ls))...}};
 }
 
@@ -250,12 +251,12 @@ SPHBASIS_FORCEINLINE void zonal_out_fixed(E x, E y, E z, Band&& band, C* out) no
 /// A uniform cap of 1 - cos(a) = u about (x, y, z), N bands, in E: the factors by the cap
 /// recurrence unrolled, then zonal_out_fixed.
 template <int N, class E, class C>
-SPHBASIS_FORCEINLINE void cap_light_fixed(E x, E y, E z, E u, const C& radiance,
-                                          C* out) noexcept {
+SPHBASIS_FORCEINLINE void cap_light_fixed(E x, E y, E z, E u, const C& radiance, C* out) noexcept {
     using S = coefficient_scalar_t<C>;
     E f[N];
     cap_factors_fixed<N>(u, f);
-    zonal_out_fixed<N>(x, y, z, [&](int l) { return radiance * static_cast<S>(f[l]); }, out);
+    zonal_out_fixed<N>(
+        x, y, z, [&](int l) { return radiance * static_cast<S>(f[l]); }, out);
 }
 
 /// Calls f(std::integral_constant<int, N>{}) for 1 <= N = bands <= 8 and returns true, else
@@ -263,27 +264,44 @@ SPHBASIS_FORCEINLINE void cap_light_fixed(E x, E y, E z, E u, const C& radiance,
 template <class F>
 SPHBASIS_FORCEINLINE bool with_light_bands(int bands, F&& f) {
     switch (bands) {
-        case 1: f(std::integral_constant<int, 1>{}); return true;
-        case 2: f(std::integral_constant<int, 2>{}); return true;
-        case 3: f(std::integral_constant<int, 3>{}); return true;
-        case 4: f(std::integral_constant<int, 4>{}); return true;
-        case 5: f(std::integral_constant<int, 5>{}); return true;
-        case 6: f(std::integral_constant<int, 6>{}); return true;
-        case 7: f(std::integral_constant<int, 7>{}); return true;
-        case 8: f(std::integral_constant<int, 8>{}); return true;
-        default: return false;
+        case 1:
+            f(std::integral_constant<int, 1>{});
+            return true;
+        case 2:
+            f(std::integral_constant<int, 2>{});
+            return true;
+        case 3:
+            f(std::integral_constant<int, 3>{});
+            return true;
+        case 4:
+            f(std::integral_constant<int, 4>{});
+            return true;
+        case 5:
+            f(std::integral_constant<int, 5>{});
+            return true;
+        case 6:
+            f(std::integral_constant<int, 6>{});
+            return true;
+        case 7:
+            f(std::integral_constant<int, 7>{});
+            return true;
+        case 8:
+            f(std::integral_constant<int, 8>{});
+            return true;
+        default:
+            return false;
     }
 }
 
 /// The run-time cap lights for 1..8 bands after their checks: cap_light_fixed with u given in
 /// double (computed there without cancellation), in the coefficient's evaluation type.
 template <class T, class U, class C>
-SPHBASIS_FORCEINLINE bool cap_light_dispatch(int bands, T x, T y, T z, U u,
-                                             const C& radiance, C* out) {
+SPHBASIS_FORCEINLINE bool cap_light_dispatch(int bands, T x, T y, T z, U u, const C& radiance,
+                                             C* out) {
     using E = light_eval_t<C>;
     return with_light_bands(bands, [&](auto n) {
-        cap_light_fixed<decltype(n)::value>(static_cast<E>(x), static_cast<E>(y),
-                                            static_cast<E>(z), static_cast<E>(u), radiance, out);
+        cap_light_fixed<decltype(n)::value>(static_cast<E>(x), static_cast<E>(y), static_cast<E>(z),
+                                            static_cast<E>(u), radiance, out);
     });
 }
 }  // namespace detail
@@ -297,8 +315,9 @@ SPHBASIS_FORCEINLINE void directional_light(T x, T y, T z, const C0& irradiance_
     SPHBASIS_ASSERT(out != nullptr);
     using E = detail::light_eval_t<C>;
     const C irradiance = detail::light_colour<C>(irradiance_in);
-    detail::zonal_out_fixed<N>(static_cast<E>(x), static_cast<E>(y), static_cast<E>(z),
-                               [&](int) { return irradiance; }, out);
+    detail::zonal_out_fixed<N>(
+        static_cast<E>(x), static_cast<E>(y), static_cast<E>(z), [&](int) { return irradiance; },
+        out);
 }
 
 /// cone_light() for a compile-time band count N (half_angle in radians, clamped to [0, pi]).
@@ -328,7 +347,7 @@ SPHBASIS_FORCEINLINE void spherical_light(T px, T py, T pz, T radius, const C0& 
     const E r = std::fmax(static_cast<E>(radius), E(0));
     E u = 2;  // inside the ball: everything
     if (r * r < d2) {
-        const E s2 = r * r / d2;  // sin^2 a
+        const E s2 = r * r / d2;           // sin^2 a
         u = s2 / (1 + std::sqrt(1 - s2));  // 1 - cos a without cancellation
     }
     detail::cap_light_fixed<N>(x, y, z, u, detail::light_colour<C>(radiance_in), out);
@@ -359,7 +378,6 @@ SPHBASIS_FORCEINLINE void hemisphere_light(T x, T y, T z, const C0& sky_in, cons
         },
         out);
 }
-
 
 /// Funk-Hecke factors Lambda_l (l < bands) of the indicator of a cap with 1 - cos(a) =
 /// one_minus_cos in [0, 2] (solid angle 2 pi one_minus_cos). Throws std::invalid_argument for
