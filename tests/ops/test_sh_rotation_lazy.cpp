@@ -57,7 +57,8 @@ std::vector<double> d_product(const sh::Rotation<T>& rot, const std::vector<T>& 
         for (int i = 0; i < w; ++i) {
             double acc = 0;
             for (int j = 0; j < w; ++j)
-                acc += double(transposed ? b[j * w + i] : b[i * w + j]) * double(in[k0 + j]);
+                acc += double(transposed ? b[j * w + i] : b[i * w + j]) *
+                       double(in[static_cast<std::size_t>(k0 + j)]);
             out[static_cast<std::size_t>(k0 + i)] = acc;
         }
     }

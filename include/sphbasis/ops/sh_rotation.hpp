@@ -29,6 +29,12 @@
 //     linearly: measured max|D D^T - I| ~ 1e-14 at l = 40 and ~ 1e-13 at l = 199. It agrees
 //     with Ivanic-Ruedenberg to 3e-15 where both are accurate. The 200-band matrix (1.07e7
 //     values, 85 MB in double) builds in well under a second, mostly memory traffic.
+// At 1..8 bands (max_fixed_rotation_bands) none of this runs on the hot path: rotate(),
+// rotate_quaternion() and Rotation<T>::apply() / apply_transposed() switch on the band count to
+// the generated factored code sh::rotate<N> (ops/sh_rotation_fixed.hpp: band 1 is R, band 2 the
+// quadratic form R Q R^T, bands 3.. an Euler factorisation read from R; D never formed; within
+// 4.4e-6 (float) / 1.6e-14 (double) of the product with D for coefficients in [-1, 1]), and a
+// Rotation<T> forms D only when D itself is asked for (see Rotation).
 // Why not Euler angles and Wigner-d recurrences in beta: ZYZ angles lose accuracy near
 // beta = 0 and pi, and d-recurrences need scaled starting values at high degree; the
 // quaternion feeds Risbo's recursion directly and has no such singularity.
@@ -490,6 +496,23 @@ SPHBASIS_FORCEINLINE bool orthonormal_within(const Mat3<T>& r, T tol) noexcept {
     return e00 <= tol && e11 <= tol && e22 <= tol && e01 <= tol && e02 <= tol && e12 <= tol;
 }
 
+/// matrix_from_quaternion() (core/frame.hpp) with a fast path: when the squared norm is in
+/// [1e-12, 1e12] (all components finite, no under- or overflow that matters) the matrix is
+/// formed directly with one division; otherwise (zero, non-finite, extreme scales) the careful
+/// scaled form runs and throws where it throws. The two agree to rounding.
+template <class T>
+SPHBASIS_FORCEINLINE Mat3<T> quaternion_matrix(T w, T x, T y, T z) {
+    const T n2 = w * w + x * x + y * y + z * z;
+    if (!(n2 >= T(1e-12) && n2 <= T(1e12))) return matrix_from_quaternion(w, x, y, z);
+    const T s = T(2) / n2;
+    const T xs = x * s, ys = y * s, zs = z * s;
+    const T wx = w * xs, wy = w * ys, wz = w * zs;
+    const T xx = x * xs, xy = x * ys, xz = x * zs;
+    const T yy = y * ys, yz = y * zs, zz = z * zs;
+    return {T(1) - (yy + zz), xy - wz, xz + wy, xy + wz,         T(1) - (xx + zz),
+            yz - wx,          xz - wy, yz + wx, T(1) - (xx + yy)};
+}
+
 /// check_orthonormal() with the straight-line test first: the message (and its std::string)
 /// is built only when the check fails.
 template <class T>
@@ -609,7 +632,7 @@ class Rotation {
     static Rotation from_quaternion(int bands, T w, T x, T y, T z) {
         sphbasis::detail::check_range("sh::Rotation::from_quaternion", "bands", bands, 0,
                                       max_rotation_matrix_bands);
-        return build(bands, matrix_from_quaternion(w, x, y, z));
+        return build(bands, detail::quaternion_matrix(w, x, y, z));
     }
     /// D of a quaternion type: glm::quat / dquat, Eigen::Quaternionf / d, sphbasis::Quat.
     template <class Q>
@@ -931,7 +954,8 @@ Mat3<rotation_scalar_t<R>> checked_rotation_matrix(const R& r, rotation_scalar_t
     if constexpr (is_quaternion_v<R>) {
         (void)tol;
         (void)fn;
-        return matrix_from_quaternion(r);
+        const auto p = to_quat(r);
+        return quaternion_matrix(p.w, p.x, p.y, p.z);
     } else {
         const Mat3<rotation_scalar_t<R>> m = to_mat3(r, fn);
         check_orthonormal_fast(m, tol, fn);
@@ -965,7 +989,7 @@ template <class T, class In, class Out>
 void rotate_quaternion(int bands, T w, T x, T y, T z, const In& in, Out&& out) {
     const char* fn = "sh::rotate_quaternion";
     sphbasis::detail::check_range(fn, "bands", bands, 0, max_bands);
-    const Mat3<T> r = matrix_from_quaternion(w, x, y, z);
+    const Mat3<T> r = detail::quaternion_matrix(w, x, y, z);
     detail::rotate_entry(fn, bands, r, in, out);
 }
 /// rotate() by a quaternion type (glm::quat / dquat, Eigen::Quaternionf / d, sphbasis::Quat).
