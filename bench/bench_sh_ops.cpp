@@ -3,7 +3,11 @@
 // turned into coefficients), texels (of a projected environment map) or normals (irradiance
 // evaluations); ns per item = 1e9 / items_per_second.
 //   rotation_build_apply<N>: Rotation::from_matrix(quaternion) + apply, N bands
-//   rotate_streaming<N>:     sh::rotate (band by band, matrix never stored)
+//   rotation_from_matrix_apply<N>: Rotation::from_matrix(N, R) + apply (checked; <= 8 bands:
+//                            rotate<N>, D never formed)
+//   rotate_matrix<N>:        sh::rotate(N, R, in, out), checked (vs fixed_rotate: the checks)
+//   orthonormal_check<Fast>: max |R R^T - I| check alone, straight-line vs generic loop
+//   rotate_streaming<N>:     sh::rotate_quaternion (<= 8 bands: rotate<N>; above: band by band)
 //   rotation_apply<N>:       apply of a prebuilt rotation (one channel, and RGB)
 //   fixed_rotation_build_apply<N>: FixedRotation<N, float>::from_quaternion + apply (generated)
 //   fixed_rotate<N>:         sh::rotate<N>(Mat3, in, out), the matrices precomputed (D never
@@ -88,6 +92,61 @@ void rotation_build_apply(benchmark::State& st) {
         d.apply(in.data(), out.data());
         benchmark::DoNotOptimize(out.data());
     });
+}
+
+/// The checked matrix path users of DirectXMath take: Rotation::from_matrix(N, R) + apply,
+/// kCount precomputed matrices (at N <= 8: the checks, then rotate<N>; D never formed).
+template <int N>
+void rotation_from_matrix_apply(benchmark::State& st) {
+    std::vector<sh::Mat3<float>> m;
+    for (const auto& v : quaternions())
+        m.push_back(sh::matrix_from_quaternion(v[0], v[1], v[2], v[3]));
+    std::vector<float> in(N * N, 0.5f), out(N * N);
+    for (auto _ : st) {
+        for (const auto& r : m) {
+            const auto d = sh::Rotation<float>::from_matrix(N, r);
+            d.apply(in.data(), out.data());
+            benchmark::DoNotOptimize(out.data());
+        }
+    }
+    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+}
+
+/// sh::rotate(N, R, in, out) (checked: bands range, orthonormality, null buffers) by kCount
+/// precomputed matrices; compare with fixed_rotate<N> (no checks) for the cost of the checks.
+template <int N>
+void rotate_matrix(benchmark::State& st) {
+    std::vector<sh::Mat3<float>> m;
+    for (const auto& v : quaternions())
+        m.push_back(sh::matrix_from_quaternion(v[0], v[1], v[2], v[3]));
+    std::vector<float> in(N * N, 0.5f), out(N * N);
+    for (auto _ : st) {
+        for (const auto& r : m) {
+            sh::rotate(N, r, in.data(), out.data());
+            benchmark::DoNotOptimize(out.data());
+        }
+    }
+    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+}
+
+/// The orthonormality check alone per matrix: the straight-line test of the checked entry
+/// points (Fast) against the generic loop of core/frame.hpp.
+template <bool Fast>
+void orthonormal_check(benchmark::State& st) {
+    std::vector<sh::Mat3<float>> m;
+    for (const auto& v : quaternions())
+        m.push_back(sh::matrix_from_quaternion(v[0], v[1], v[2], v[3]));
+    const float tol = sphbasis::detail::default_orthonormal_tolerance<float>();
+    for (auto _ : st) {
+        for (const auto& r : m) {
+            if constexpr (Fast)
+                sh::detail::check_orthonormal_fast(r, tol, "bench");
+            else
+                sphbasis::detail::check_orthonormal(r, tol, "bench");
+            benchmark::ClobberMemory();
+        }
+    }
+    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
 }
 
 /// sh::rotate_quaternion of N^2 coefficients of type C, all `fill`.
@@ -283,6 +342,12 @@ void irradiance_convolve(benchmark::State& st) {
 
 BENCHMARK_TEMPLATE(rotation_build_apply, 3);
 BENCHMARK_TEMPLATE(rotation_build_apply, 6);
+BENCHMARK_TEMPLATE(rotation_from_matrix_apply, 3);
+BENCHMARK_TEMPLATE(rotation_from_matrix_apply, 6);
+BENCHMARK_TEMPLATE(rotate_matrix, 3);
+BENCHMARK_TEMPLATE(rotate_matrix, 6);
+BENCHMARK_TEMPLATE(orthonormal_check, true);
+BENCHMARK_TEMPLATE(orthonormal_check, false);
 BENCHMARK_TEMPLATE(rotate_streaming, 3);
 BENCHMARK_TEMPLATE(rotate_streaming, 6);
 BENCHMARK_TEMPLATE(rotate_streaming_rgb, 3);

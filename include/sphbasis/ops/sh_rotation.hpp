@@ -29,6 +29,12 @@
 //     linearly: measured max|D D^T - I| ~ 1e-14 at l = 40 and ~ 1e-13 at l = 199. It agrees
 //     with Ivanic-Ruedenberg to 3e-15 where both are accurate. The 200-band matrix (1.07e7
 //     values, 85 MB in double) builds in well under a second, mostly memory traffic.
+// At 1..8 bands (max_fixed_rotation_bands) none of this runs on the hot path: rotate(),
+// rotate_quaternion() and Rotation<T>::apply() / apply_transposed() switch on the band count to
+// the generated factored code sh::rotate<N> (ops/sh_rotation_fixed.hpp: band 1 is R, band 2 the
+// quadratic form R Q R^T, bands 3.. an Euler factorisation read from R; D never formed; within
+// 4.4e-6 (float) / 1.6e-14 (double) of the product with D for coefficients in [-1, 1]), and a
+// Rotation<T> forms D only when D itself is asked for (see Rotation).
 // Why not Euler angles and Wigner-d recurrences in beta: ZYZ angles lose accuracy near
 // beta = 0 and pi, and d-recurrences need scaled starting values at high degree; the
 // quaternion feeds Risbo's recursion directly and has no such singularity.
@@ -59,6 +65,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -428,7 +435,90 @@ void complex_to_real_block(int l, const double* re, const double* im, double sig
 // ---------------------------------------------------------------------------------------------
 // The stored rotation matrix
 
+/// out = D(R) in for a compile-time band count N in 1..8, D never formed: generated straight-line
+/// code, defined in ops/sh_rotation_fixed.hpp (included at the end of this header). Declared here
+/// because Rotation<T> and rotate() dispatch to it for bands 1..8.
+template <int N, class T, class C>
+SPHBASIS_FORCEINLINE void rotate(const Mat3<T>& r, const C* in, C* out) noexcept;
+
+/// Band counts up to this go through the factored rotate<N> (Rotation<T>::apply, rotate(),
+/// rotate_quaternion()).
+inline constexpr int max_fixed_rotation_bands = 8;
+
 namespace detail {
+/// rotate<bands>(r, in, out) for bands in 1..max_fixed_rotation_bands (a run-time switch).
+template <class T, class C>
+void rotate_fixed_dispatch(int bands, const Mat3<T>& r, const C* in, C* out) noexcept {
+    switch (bands) {
+        case 1:
+            sh::rotate<1, T, C>(r, in, out);
+            return;
+        case 2:
+            sh::rotate<2, T, C>(r, in, out);
+            return;
+        case 3:
+            sh::rotate<3, T, C>(r, in, out);
+            return;
+        case 4:
+            sh::rotate<4, T, C>(r, in, out);
+            return;
+        case 5:
+            sh::rotate<5, T, C>(r, in, out);
+            return;
+        case 6:
+            sh::rotate<6, T, C>(r, in, out);
+            return;
+        case 7:
+            sh::rotate<7, T, C>(r, in, out);
+            return;
+        case 8:
+            sh::rotate<8, T, C>(r, in, out);
+            return;
+        default:
+            SPHBASIS_ASSERT(false);
+            return;
+    }
+}
+
+/// True when every entry of R is finite and max |R R^T - I| <= tol, as straight-line code (the
+/// six distinct entries of the symmetric R R^T). A NaN entry makes some error NaN and the
+/// comparison false; an infinite one makes a diagonal error infinite.
+template <class T>
+SPHBASIS_FORCEINLINE bool orthonormal_within(const Mat3<T>& r, T tol) noexcept {
+    const T a0 = r[0], a1 = r[1], a2 = r[2], b0 = r[3], b1 = r[4], b2 = r[5];
+    const T c0 = r[6], c1 = r[7], c2 = r[8];
+    const T e00 = std::fabs(a0 * a0 + a1 * a1 + a2 * a2 - T(1));
+    const T e11 = std::fabs(b0 * b0 + b1 * b1 + b2 * b2 - T(1));
+    const T e22 = std::fabs(c0 * c0 + c1 * c1 + c2 * c2 - T(1));
+    const T e01 = std::fabs(a0 * b0 + a1 * b1 + a2 * b2);
+    const T e02 = std::fabs(a0 * c0 + a1 * c1 + a2 * c2);
+    const T e12 = std::fabs(b0 * c0 + b1 * c1 + b2 * c2);
+    return e00 <= tol && e11 <= tol && e22 <= tol && e01 <= tol && e02 <= tol && e12 <= tol;
+}
+
+/// matrix_from_quaternion() (core/frame.hpp) with a fast path: when the squared norm is in
+/// [1e-12, 1e12] (all components finite, no under- or overflow that matters) the matrix is
+/// formed directly with one division; otherwise (zero, non-finite, extreme scales) the careful
+/// scaled form runs and throws where it throws. The two agree to rounding.
+template <class T>
+SPHBASIS_FORCEINLINE Mat3<T> quaternion_matrix(T w, T x, T y, T z) {
+    const T n2 = w * w + x * x + y * y + z * z;
+    if (!(n2 >= T(1e-12) && n2 <= T(1e12))) return matrix_from_quaternion(w, x, y, z);
+    const T s = T(2) / n2;
+    const T xs = x * s, ys = y * s, zs = z * s;
+    const T wx = w * xs, wy = w * ys, wz = w * zs;
+    const T xx = x * xs, xy = x * ys, xz = x * zs;
+    const T yy = y * ys, yz = y * zs, zz = z * zs;
+    return {T(1) - (yy + zz), xy - wz, xz + wy, xy + wz,         T(1) - (xx + zz),
+            yz - wx,          xz - wy, yz + wx, T(1) - (xx + yy)};
+}
+
+/// check_orthonormal() with the straight-line test first: the message (and its std::string)
+/// is built only when the check fails.
+template <class T>
+SPHBASIS_FORCEINLINE void check_orthonormal_fast(const Mat3<T>& r, T tol, const char* fn) {
+    if (!orthonormal_within(r, tol)) check_orthonormal(r, tol, fn);
+}
 template <class T, class S>
 Mat3<T> mat3_cast(const Mat3<S>& m) noexcept {
     if constexpr (std::is_same_v<T, S>) {
@@ -465,6 +555,20 @@ inline std::size_t coefficient_count(int bands) noexcept {
 
 /// D(R) for `bands` bands: block l is (2l+1)x(2l+1), row-major, entry (m, n) at
 /// offset(l) + (m+l)(2l+1) + n+l. Memory: sum (2l+1)^2 = n(4n^2 - 1)/3 values.
+///
+/// Lazy D at 1..8 bands. A Rotation built by from_matrix / from_quaternion (and the
+/// rotation_from_* helpers) with 1 <= bands <= max_fixed_rotation_bands stores only the checked
+/// 3x3 matrix R: apply() runs the factored rotate<bands> (ops/sh_rotation_fixed.hpp, D never
+/// formed; within a few ulp per band of the product with D) and apply_transposed() runs it with
+/// R^T. D itself (data(), size(), block(), operator(), transposed()) is built on first access
+/// by the same recurrence as above 8 bands, so it is bit-identical to an eagerly built D. The
+/// first access is thread-safe: concurrent const use of one Rotation from several threads is
+/// allowed (each racing thread may build D, one result is published by an atomic
+/// compare-exchange, the others are discarded). Construction allocates nothing at <= 8 bands;
+/// the first access to D allocates it. Copies and moves are value copies (a copy duplicates D
+/// if it has been built, else stays lazy). The mutable data() builds D and from then on this
+/// object applies D (so edits through it take effect), as a Rotation with more than 8 bands
+/// always does.
 template <class T>
 class Rotation {
     static_assert(std::is_floating_point_v<T>, "sphbasis::sh::Rotation: T is float or double.");
@@ -473,6 +577,32 @@ class Rotation {
     using value_type = T;
 
     Rotation() = default;
+    Rotation(const Rotation& o)
+        : bands_(o.bands_), fixed_(o.fixed_), r_(o.r_), data_(o.data_), lazy_(o.lazy_copy()) {}
+    Rotation(Rotation&& o) noexcept
+        : bands_(o.bands_),
+          fixed_(o.fixed_),
+          r_(o.r_),
+          data_(std::move(o.data_)),
+          lazy_(o.lazy_.exchange(nullptr, std::memory_order_acq_rel)) {
+        o.bands_ = 0;
+        o.fixed_ = false;
+    }
+    Rotation& operator=(const Rotation& o) {
+        if (this != &o) {
+            Rotation t(o);
+            swap(t);
+        }
+        return *this;
+    }
+    Rotation& operator=(Rotation&& o) noexcept {
+        if (this != &o) {
+            Rotation t(std::move(o));
+            swap(t);
+        }
+        return *this;
+    }
+    ~Rotation() { delete lazy_.load(std::memory_order_acquire); }
 
     /// Offset of block l in data().
     static constexpr std::size_t offset(int l) noexcept {
@@ -484,7 +614,8 @@ class Rotation {
     /// dmat3 (column-major) or an Eigen::Matrix3f / Matrix3d (see core/frame.hpp). Throws
     /// std::invalid_argument for bands outside [0, max_rotation_matrix_bands] or a matrix that
     /// is not orthonormal within `tolerance` (max |R R^T - I|; default 3e-5 for float, 1e-6 for
-    /// double). Cost O(n^3): 4/3 n^3 entries at about 15 flops each; memory n(4n^2 - 1)/3
+    /// double). At 1..8 bands only R is stored (D is built on first access, see above).
+    /// Otherwise cost O(n^3): 4/3 n^3 entries at about 15 flops each; memory n(4n^2 - 1)/3
     /// entries of T (double: 256 bands 179 MB, 1024 bands 11.5 GB), checked against
     /// SPHBASIS_MAX_TABLE_BYTES before allocating.
     template <class M>
@@ -493,7 +624,7 @@ class Rotation {
         const char* fn = "sh::Rotation::from_matrix";
         sphbasis::detail::check_range(fn, "bands", bands, 0, max_rotation_matrix_bands);
         const Mat3<T> m = detail::mat3_cast<T>(to_mat3(r, fn));
-        detail::check_orthonormal(m, tolerance, fn);
+        detail::check_orthonormal_fast(m, tolerance, fn);
         return build(bands, m);
     }
 
@@ -501,7 +632,7 @@ class Rotation {
     static Rotation from_quaternion(int bands, T w, T x, T y, T z) {
         sphbasis::detail::check_range("sh::Rotation::from_quaternion", "bands", bands, 0,
                                       max_rotation_matrix_bands);
-        return build(bands, matrix_from_quaternion(w, x, y, z));
+        return build(bands, detail::quaternion_matrix(w, x, y, z));
     }
     /// D of a quaternion type: glm::quat / dquat, Eigen::Quaternionf / d, sphbasis::Quat.
     template <class Q>
@@ -512,49 +643,96 @@ class Rotation {
 
   private:
     static Rotation build(int bands, const Mat3<T>& r) {
-        // sum_l (2l + 1)^2 = n (4 n^2 - 1)/3 entries: n = 1024, double: 11.5 GB.
-        sphbasis::detail::check_table_bytes(
-            "sh::Rotation", double(bands) * (4.0 * double(bands) * bands - 1) / 3 * sizeof(T),
-            std::to_string(bands) + " bands");
         Rotation out;
         out.bands_ = bands;
+        out.r_ = r;
+        if (bands >= 1 && bands <= max_fixed_rotation_bands) {
+            out.fixed_ = true;  // D on first access
+            return out;
+        }
+        // sum_l (2l + 1)^2 = n (4 n^2 - 1)/3 entries: n = 1024, double: 11.5 GB.
+        const double bytes = double(bands) * (4.0 * double(bands) * bands - 1) / 3 * sizeof(T);
+        if (!(bytes <= static_cast<double>(SPHBASIS_MAX_TABLE_BYTES)))
+            sphbasis::detail::check_table_bytes("sh::Rotation", bytes,
+                                                std::to_string(bands) + " bands");
         out.data_.assign(offset(bands), T(0));
-        if (bands == 0) return out;
-        out.data_[0] = T(1);
-        if (bands == 1) return out;
+        build_d(bands, r, out.data_.data());
+        return out;
+    }
+
+    /// The n(4n^2 - 1)/3 values of D(R) into d (zero-initialised).
+    static void build_d(int bands, const Mat3<T>& r, T* d) {
+        if (bands == 0) return;
+        d[0] = T(1);
+        if (bands == 1) return;
         if (bands > detail::ir_max_bands) {
             bool improper = false;
             detail::Risbo risbo(bands, detail::quaternion_of(r, improper));
             for (int l = 1; l < bands; ++l) {
                 risbo.next();
                 detail::complex_to_real_block(l, risbo.re(), risbo.im(),
-                                              improper && (l & 1) ? -1.0 : 1.0,
-                                              out.data_.data() + offset(l));
+                                              improper && (l & 1) ? -1.0 : 1.0, d + offset(l));
             }
-            return out;
+            return;
         }
         const std::array<T, 9> b1 = detail::band1(r);
-        std::copy(b1.begin(), b1.end(), out.data_.begin() + static_cast<std::ptrdiff_t>(offset(1)));
+        std::copy(b1.begin(), b1.end(), d + offset(1));
         const detail::IrTable<T>& table = detail::ir_table<T>();
         detail::SmallBuffer<T, 512> scratch(detail::ir_scratch_size(bands - 1));
         for (int l = 2; l < bands; ++l)
-            detail::ir_band(l, b1, out.data_.data() + offset(l - 1), out.data_.data() + offset(l),
-                            table, scratch.data());
-        return out;
+            detail::ir_band(l, b1, d + offset(l - 1), d + offset(l), table, scratch.data());
+    }
+
+    /// D, built on first access when fixed_ (thread-safe publication, see the class comment).
+    const std::vector<T>& d() const {
+        if (!fixed_) return data_;
+        if (const std::vector<T>* p = lazy_.load(std::memory_order_acquire)) return *p;
+        auto fresh = std::make_unique<std::vector<T>>(offset(bands_), T(0));
+        build_d(bands_, r_, fresh->data());
+        std::vector<T>* expected = nullptr;
+        if (lazy_.compare_exchange_strong(expected, fresh.get(), std::memory_order_acq_rel,
+                                          std::memory_order_acquire))
+            return *fresh.release();
+        return *expected;  // another thread published first; ours is freed
+    }
+    std::vector<T>* lazy_copy() const {
+        const std::vector<T>* p = lazy_.load(std::memory_order_acquire);
+        return p ? new std::vector<T>(*p) : nullptr;
+    }
+    void swap(Rotation& o) noexcept {
+        std::swap(bands_, o.bands_);
+        std::swap(fixed_, o.fixed_);
+        std::swap(r_, o.r_);
+        data_.swap(o.data_);
+        std::vector<T>* a = lazy_.load(std::memory_order_relaxed);
+        lazy_.store(o.lazy_.load(std::memory_order_relaxed), std::memory_order_relaxed);
+        o.lazy_.store(a, std::memory_order_relaxed);
     }
 
   public:
     int bands() const noexcept { return bands_; }
-    /// Number of stored values, n(4n^2 - 1)/3.
-    std::size_t size() const noexcept { return data_.size(); }
-    const T* data() const noexcept { return data_.data(); }
-    T* data() noexcept { return data_.data(); }
+    /// Number of stored values, n(4n^2 - 1)/3 (builds D if it is lazy).
+    std::size_t size() const { return d().size(); }
+    const T* data() const { return d().data(); }
+    /// Mutable D: builds it if lazy, and from then on apply() uses D (edits take effect).
+    T* data() {
+        if (fixed_) {
+            data_ = d();
+            fixed_ = false;
+            delete lazy_.exchange(nullptr, std::memory_order_acq_rel);
+        }
+        return data_.data();
+    }
     /// Block l, (2l+1)^2 values row-major.
-    const T* block(int l) const noexcept { return data_.data() + offset(l); }
+    const T* block(int l) const { return d().data() + offset(l); }
     /// Entry (m, n) of band l (|m|, |n| <= l < bands()): d y_lm(Rw) / d y_ln(w).
-    T operator()(int l, int m, int n) const noexcept {
+    T operator()(int l, int m, int n) const {
         SPHBASIS_ASSERT(l >= 0 && l < bands_ && m >= -l && m <= l && n >= -l && n <= l);
-        return data_[offset(l) + static_cast<std::size_t>((m + l) * (2 * l + 1) + n + l)];
+        return d()[offset(l) + static_cast<std::size_t>((m + l) * (2 * l + 1) + n + l)];
+    }
+    /// True while D has not been formed (apply runs rotate<bands>); false above 8 bands.
+    bool lazy() const noexcept {
+        return fixed_ && lazy_.load(std::memory_order_acquire) == nullptr;
     }
 
     /// The contiguous-range overloads (not both pointers: those take the pointer overloads).
@@ -564,7 +742,8 @@ class Rotation {
 
     /// out = D in for coefficient vectors of bands() bands (bands()^2 values): raw pointers or
     /// contiguous ranges (.data(), .size() >= bands()^2). The coefficient type C is any type
-    /// with C + C and C * T (float, double, RGB). in == out is allowed. Cost sum (2l+1)^2.
+    /// with C + C and C * T (float, double, RGB). in == out is allowed. Cost sum (2l+1)^2, or
+    /// rotate<bands()> at 1..8 bands.
     template <class C>
     void apply(const C* in, C* out) const {
         apply_impl<false>(in, out, "sh::Rotation::apply");
@@ -597,8 +776,10 @@ class Rotation {
         return out;
     }
 
-    /// D^T = D(R^T), the inverse rotation.
+    /// D^T = D(R^T), the inverse rotation (at 1..8 bands: lazy again, with R^T; its D, when
+    /// formed, is D(R^T) from the recurrence, equal to the transpose of D(R) to rounding).
     Rotation transposed() const {
+        if (fixed_) return build(bands_, transpose(r_));
         Rotation t = *this;
         for (int l = 1; l < bands_; ++l) {
             const int w = 2 * l + 1;
@@ -620,20 +801,31 @@ class Rotation {
         if (bands_ == 0) return;
         if (!in) sphbasis::detail::throw_null_buffer(fn, "input");
         if (!out) sphbasis::detail::throw_null_buffer(fn, "output");
+        if (fixed_) {
+            if constexpr (Transposed)
+                detail::rotate_fixed_dispatch(bands_, transpose(r_), in, out);
+            else
+                detail::rotate_fixed_dispatch(bands_, r_, in, out);
+            return;
+        }
         out[0] = in[0] * data_[0];
         detail::SmallBuffer<C, 16> buf(static_cast<std::size_t>(2 * bands_ - 1));
         for (int l = 1; l < bands_; ++l) {
             const int w = 2 * l + 1, k0 = l * l;
             for (int j = 0; j < w; ++j) buf[static_cast<std::size_t>(j)] = in[k0 + j];
+            const T* b = data_.data() + offset(l);
             if (Transposed)
-                detail::apply_block_transposed(w, block(l), buf.data(), out + k0);
+                detail::apply_block_transposed(w, b, buf.data(), out + k0);
             else
-                detail::apply_block(w, block(l), buf.data(), out + k0);
+                detail::apply_block(w, b, buf.data(), out + k0);
         }
     }
 
     int bands_ = 0;
-    std::vector<T> data_;
+    bool fixed_ = false;   // 1..8 bands from a matrix: apply through rotate<bands_>(r_)
+    Mat3<T> r_{};          // the checked matrix
+    std::vector<T> data_;  // D when !fixed_
+    mutable std::atomic<std::vector<T>*> lazy_{nullptr};  // D when fixed_, once built
 };
 
 /// D(R) of an orthogonal matrix (std::array<T, 9> row-major, glm::mat3 / dmat3, Eigen::Matrix3f
@@ -690,6 +882,10 @@ namespace detail {
 /// rotate() after its checks: bands >= 1, r orthogonal, in and out non-null.
 template <class T, class C>
 void rotate_checked(int bands, const Mat3<T>& r, const C* in, C* out) {
+    if (bands <= max_fixed_rotation_bands) {
+        rotate_fixed_dispatch(bands, r, in, out);
+        return;
+    }
     out[0] = in[0] * T(1);
     if (bands == 1) return;
     const std::size_t wmax = static_cast<std::size_t>(2 * bands - 1);
@@ -758,10 +954,11 @@ Mat3<rotation_scalar_t<R>> checked_rotation_matrix(const R& r, rotation_scalar_t
     if constexpr (is_quaternion_v<R>) {
         (void)tol;
         (void)fn;
-        return matrix_from_quaternion(r);
+        const auto p = to_quat(r);
+        return quaternion_matrix(p.w, p.x, p.y, p.z);
     } else {
         const Mat3<rotation_scalar_t<R>> m = to_mat3(r, fn);
-        check_orthonormal(m, tol, fn);
+        check_orthonormal_fast(m, tol, fn);
         return m;
     }
 }
@@ -792,7 +989,7 @@ template <class T, class In, class Out>
 void rotate_quaternion(int bands, T w, T x, T y, T z, const In& in, Out&& out) {
     const char* fn = "sh::rotate_quaternion";
     sphbasis::detail::check_range(fn, "bands", bands, 0, max_bands);
-    const Mat3<T> r = matrix_from_quaternion(w, x, y, z);
+    const Mat3<T> r = detail::quaternion_matrix(w, x, y, z);
     detail::rotate_entry(fn, bands, r, in, out);
 }
 /// rotate() by a quaternion type (glm::quat / dquat, Eigen::Quaternionf / d, sphbasis::Quat).
@@ -974,3 +1171,6 @@ void reflect_z(int bands, const In& in, Out&& out) {
 }
 
 }  // namespace sphbasis::sh
+
+// rotate<N> (declared above, used by Rotation<T> and rotate() at 1..8 bands).
+#include "sh_rotation_fixed.hpp"
