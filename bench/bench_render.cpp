@@ -1,8 +1,9 @@
 // Benchmarks of the render tier's bake (render/bake.hpp) against a bare Embree occlusion loop
 // over the same rays, in the same run. Items are rays: items_per_second is rays per second.
 //   bare/<scene>/<threads>:      rtcOccluded1M over precomputed rays (the bake's own rays for
-//                                ao: same points, R2 + Cranley-Patterson directions, origins),
-//                                256 rays a stream, tbb::parallel_for over points.
+//                                ao and transfer: same points, R2 + Cranley-Patterson
+//                                directions from the same code, origins), 256 rays a stream
+//                                copied into a per-thread buffer, tbb::parallel_for over points.
 //   ao/<scene>/<threads>:        Baker::bake with Quantity::ao (sampling, tracing, accumulation).
 //   transfer6/<scene>/<threads>: Baker::bake with Quantity::transfer, 6 bands (36 SH values per
 //                                unoccluded ray through sh::eval_batch), no bounces.
@@ -16,11 +17,13 @@
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <assimp/Importer.hpp>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -192,32 +195,48 @@ std::vector<RTCRay> bake_rays(const BenchScene& s, const Scene& rt, std::uint64_
     return rays;
 }
 
-void bare(benchmark::State& state) {
-    const BenchScene& s = scene_of(int(state.range(0)));
-    if (s.points.empty()) {
-        state.SkipWithError("scene not available");
-        return;
+/// A run of bare, ao or transfer6: the scene of argument 0 (ok() false, with the benchmark
+/// skipped, when it is not available) and the thread count of argument 1 while it lives.
+struct Run {
+    const BenchScene& s;
+    tbb::global_control gc;
+    explicit Run(const benchmark::State& state)
+        : s(scene_of(int(state.range(0)))),
+          gc(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(1))) {}
+    bool ok(benchmark::State& state) const {
+        if (s.points.empty()) state.SkipWithError("scene not available");
+        return !s.points.empty();
     }
-    tbb::global_control gc(tbb::global_control::max_allowed_parallelism,
-                           std::size_t(state.range(1)));
+};
+
+void bare(benchmark::State& state) {
+    const Run run(state);
+    if (!run.ok(state)) return;
+    const BenchScene& s = run.s;
     const Scene rt(s.desc().meshes);
     const std::vector<RTCRay> pristine = bake_rays(s, rt, 0);
-    std::vector<RTCRay> work(pristine.size());
-    std::uint64_t occluded = 0;
+    // Each point's rays are copied into a per-thread buffer (as the bake reuses its per-thread
+    // ray buffer) and traced as one stream; the occlusion counts keep the work observable.
+    tbb::enumerable_thread_specific<std::vector<RTCRay>> buffers(
+        [] { return std::vector<RTCRay>(rays_per_point); });
+    std::atomic<std::uint64_t> occluded{0};
     const double cpu0 = process_cpu_seconds();
     for (auto _ : state) {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, s.points.size(), 4),
                           [&](const tbb::blocked_range<std::size_t>& r) {
+                              RTCRay* p = buffers.local().data();
+                              std::uint64_t hits = 0;
                               for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                                  RTCRay* p = &work[i * rays_per_point];
                                   std::memcpy(p, &pristine[i * rays_per_point],
                                               rays_per_point * sizeof(RTCRay));
                                   rt.occluded(p, rays_per_point);
+                                  hits += std::uint64_t(Scene::is_occluded(p[0]));
                               }
+                              occluded += hits;
                           });
-        occluded += std::size_t(work[0].tfar < 0);
     }
-    benchmark::DoNotOptimize(occluded);
+    std::uint64_t total = occluded.load();
+    benchmark::DoNotOptimize(total);
     state.counters["cpu_ns_per_ray"] = 1e9 * (process_cpu_seconds() - cpu0) /
                                        (double(state.iterations()) * double(pristine.size()));
     state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(pristine.size()));
@@ -225,13 +244,9 @@ void bare(benchmark::State& state) {
 }
 
 void bake(benchmark::State& state, unsigned quantities, int bands) {
-    const BenchScene& s = scene_of(int(state.range(0)));
-    if (s.points.empty()) {
-        state.SkipWithError("scene not available");
-        return;
-    }
-    tbb::global_control gc(tbb::global_control::max_allowed_parallelism,
-                           std::size_t(state.range(1)));
+    const Run run(state);
+    if (!run.ok(state)) return;
+    const BenchScene& s = run.s;
     BakeSettings st;
     st.quantities = quantities;
     st.bands = bands;

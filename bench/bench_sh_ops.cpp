@@ -40,6 +40,17 @@ inline RGB operator*(const RGB& a, float s) { return {a.r * s, a.g * s, a.b * s}
 
 constexpr std::size_t kCount = 256;
 
+// name<N> (one float channel, all 0.5) and name_rgb<N> (RGB) from name_of<N>(state, fill).
+#define SPHBASIS_BENCH_ONE_AND_RGB(name)          \
+    template <int N>                              \
+    void name(benchmark::State& st) {             \
+        name##_of<N>(st, 0.5f);                   \
+    }                                             \
+    template <int N>                              \
+    void name##_rgb(benchmark::State& st) {       \
+        name##_of<N>(st, RGB{0.5f, 0.25f, 1.0f}); \
+    }
+
 std::vector<std::array<float, 4>> quaternions() {
     std::mt19937 rng(1);
     std::normal_distribution<float> g;
@@ -88,20 +99,11 @@ void rotate_streaming_of(benchmark::State& st, const C& fill) {
         benchmark::DoNotOptimize(out.data());
     });
 }
-template <int N>
-void rotate_streaming(benchmark::State& st) {
-    rotate_streaming_of<N>(st, 0.5f);
-}
-template <int N>
-void rotate_streaming_rgb(benchmark::State& st) {
-    rotate_streaming_of<N>(st, RGB{0.5f, 0.25f, 1.0f});
-}
+SPHBASIS_BENCH_ONE_AND_RGB(rotate_streaming)
 
-/// A prebuilt rotation applied to kCount vectors of N^2 coefficients of type C, all `fill`.
-template <int N, class C>
-void rotation_apply_of(benchmark::State& st, const C& fill) {
-    const auto q = quaternions();
-    const auto d = sh::rotation_from_quaternion(N, q[0][0], q[0][1], q[0][2], q[0][3]);
+/// The prebuilt rotation d applied to kCount vectors of N^2 coefficients of type C, all `fill`.
+template <int N, class D, class C>
+void apply_prebuilt(benchmark::State& st, const D& d, const C& fill) {
     std::vector<C> in(N * N * kCount, fill), out(N * N * kCount);
     for (auto _ : st) {
         for (std::size_t i = 0; i < kCount; ++i)
@@ -110,14 +112,15 @@ void rotation_apply_of(benchmark::State& st, const C& fill) {
     }
     st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
 }
-template <int N>
-void rotation_apply(benchmark::State& st) {
-    rotation_apply_of<N>(st, 0.5f);
+
+/// A prebuilt Rotation applied to kCount vectors of N^2 coefficients of type C, all `fill`.
+template <int N, class C>
+void rotation_apply_of(benchmark::State& st, const C& fill) {
+    const auto q = quaternions();
+    apply_prebuilt<N>(st, sh::rotation_from_quaternion(N, q[0][0], q[0][1], q[0][2], q[0][3]),
+                      fill);
 }
-template <int N>
-void rotation_apply_rgb(benchmark::State& st) {
-    rotation_apply_of<N>(st, RGB{0.5f, 0.25f, 1.0f});
-}
+SPHBASIS_BENCH_ONE_AND_RGB(rotation_apply)
 
 template <int N>
 void fixed_rotation_build_apply(benchmark::State& st) {
@@ -144,36 +147,16 @@ void fixed_rotate_of(benchmark::State& st, const C& fill) {
     }
     st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
 }
-template <int N>
-void fixed_rotate(benchmark::State& st) {
-    fixed_rotate_of<N>(st, 0.5f);
-}
-template <int N>
-void fixed_rotate_rgb(benchmark::State& st) {
-    fixed_rotate_of<N>(st, RGB{0.5f, 0.25f, 1.0f});
-}
+SPHBASIS_BENCH_ONE_AND_RGB(fixed_rotate)
 
 /// A prebuilt FixedRotation applied to kCount vectors of N^2 coefficients of type C.
 template <int N, class C>
 void fixed_rotation_apply_of(benchmark::State& st, const C& fill) {
     const auto q = quaternions();
-    const auto d = sh::FixedRotation<N, float>::from_quaternion(q[0][0], q[0][1], q[0][2], q[0][3]);
-    std::vector<C> in(N * N * kCount, fill), out(N * N * kCount);
-    for (auto _ : st) {
-        for (std::size_t i = 0; i < kCount; ++i)
-            d.apply(in.data() + i * N * N, out.data() + i * N * N);
-        benchmark::DoNotOptimize(out.data());
-    }
-    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(kCount));
+    apply_prebuilt<N>(
+        st, sh::FixedRotation<N, float>::from_quaternion(q[0][0], q[0][1], q[0][2], q[0][3]), fill);
 }
-template <int N>
-void fixed_rotation_apply(benchmark::State& st) {
-    fixed_rotation_apply_of<N>(st, 0.5f);
-}
-template <int N>
-void fixed_rotation_apply_rgb(benchmark::State& st) {
-    fixed_rotation_apply_of<N>(st, RGB{0.5f, 0.25f, 1.0f});
-}
+SPHBASIS_BENCH_ONE_AND_RGB(fixed_rotation_apply)
 
 template <int N>
 void rotate_z(benchmark::State& st) {

@@ -39,13 +39,14 @@ void sphbasis_sh_eval2(vec3 d, out float sh[4])
 void sphbasis_sh_eval3(vec3 d, out float sh[9])
 {
     float x = d.x; float y = d.y; float z = d.z;
+    float z2 = z * z;
     float c1 = x; float s1 = y;
     float c2 = x * c1 - y * s1; float s2 = x * s1 + y * c1;
     float q0_0 = 0.282094806;  // 1/(2*sqrt(pi))
     sh[0] = q0_0;
     float q1_0 = 0.488602519 * z;  // sqrt(3)/(2*sqrt(pi)) z
     sh[2] = q1_0;
-    float q2_0 = 1.93649173 * z * q1_0 - 1.11803401 * q0_0;
+    float q2_0 = 0.946174681 * z2 + -0.31539157;  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     sh[6] = q2_0;
     float q1_1 = 0.488602519;  // sqrt(3)/(2*sqrt(pi))
     sh[3] = q1_1 * c1;
@@ -63,6 +64,7 @@ void sphbasis_sh_eval3(vec3 d, out float sh[9])
 void sphbasis_sh_eval4(vec3 d, out float sh[16])
 {
     float x = d.x; float y = d.y; float z = d.z;
+    float z2 = z * z;
     float c1 = x; float s1 = y;
     float c2 = x * c1 - y * s1; float s2 = x * s1 + y * c1;
     float c3 = x * c2 - y * s2; float s3 = x * s2 + y * c2;
@@ -70,9 +72,9 @@ void sphbasis_sh_eval4(vec3 d, out float sh[16])
     sh[0] = q0_0;
     float q1_0 = 0.488602519 * z;  // sqrt(3)/(2*sqrt(pi)) z
     sh[2] = q1_0;
-    float q2_0 = 1.93649173 * z * q1_0 - 1.11803401 * q0_0;
+    float q2_0 = 0.946174681 * z2 + -0.31539157;  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     sh[6] = q2_0;
-    float q3_0 = 1.97202659 * z * q2_0 - 1.01835012 * q1_0;
+    float q3_0 = z * (1.86588168 * z2 + -1.11952901);  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     sh[12] = q3_0;
     float q1_1 = 0.488602519;  // sqrt(3)/(2*sqrt(pi))
     sh[3] = q1_1 * c1;
@@ -80,7 +82,7 @@ void sphbasis_sh_eval4(vec3 d, out float sh[16])
     float q2_1 = 1.09254849 * z;  // sqrt(15)/(2*sqrt(pi)) z
     sh[7] = q2_1 * c1;
     sh[5] = q2_1 * s1;
-    float q3_1 = 2.09165001 * z * q2_1 - 0.935414374 * q1_1;
+    float q3_1 = 2.28522897 * z2 + -0.457045794;  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     sh[13] = q3_1 * c1;
     sh[11] = q3_1 * s1;
     float q2_2 = 0.546274245;  // sqrt(15)/(4*sqrt(pi))
@@ -99,6 +101,7 @@ void sphbasis_sh_eval4(vec3 d, out float sh[16])
 void sphbasis_sh_eval5(vec3 d, out float sh[25])
 {
     float x = d.x; float y = d.y; float z = d.z;
+    float z2 = z * z;
     float c1 = x; float s1 = y;
     float c2 = x * c1 - y * s1; float s2 = x * s1 + y * c1;
     float c3 = x * c2 - y * s2; float s3 = x * s2 + y * c2;
@@ -107,9 +110,9 @@ void sphbasis_sh_eval5(vec3 d, out float sh[25])
     sh[0] = q0_0;
     float q1_0 = 0.488602519 * z;  // sqrt(3)/(2*sqrt(pi)) z
     sh[2] = q1_0;
-    float q2_0 = 1.93649173 * z * q1_0 - 1.11803401 * q0_0;
+    float q2_0 = 0.946174681 * z2 + -0.31539157;  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     sh[6] = q2_0;
-    float q3_0 = 1.97202659 * z * q2_0 - 1.01835012 * q1_0;
+    float q3_0 = z * (1.86588168 * z2 + -1.11952901);  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     sh[12] = q3_0;
     float q4_0 = 1.98431349 * z * q3_0 - 1.00623059 * q2_0;
     sh[20] = q4_0;
@@ -119,10 +122,10 @@ void sphbasis_sh_eval5(vec3 d, out float sh[25])
     float q2_1 = 1.09254849 * z;  // sqrt(15)/(2*sqrt(pi)) z
     sh[7] = q2_1 * c1;
     sh[5] = q2_1 * s1;
-    float q3_1 = 2.09165001 * z * q2_1 - 0.935414374 * q1_1;
+    float q3_1 = 2.28522897 * z2 + -0.457045794;  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     sh[13] = q3_1 * c1;
     sh[11] = q3_1 * s1;
-    float q4_1 = 2.04939008 * z * q3_1 - 0.979795873 * q2_1;
+    float q4_1 = z * (4.68332577 * z2 + -2.00713968);  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
     sh[21] = q4_1 * c1;
     sh[19] = q4_1 * s1;
     float q2_2 = 0.546274245;  // sqrt(15)/(4*sqrt(pi))
@@ -131,7 +134,7 @@ void sphbasis_sh_eval5(vec3 d, out float sh[25])
     float q3_2 = 1.44530571 * z;  // sqrt(105)/(4*sqrt(pi)) z
     sh[14] = q3_2 * c2;
     sh[10] = q3_2 * s2;
-    float q4_2 = 2.2912879 * z * q3_2 - 0.866025388 * q2_2;
+    float q4_2 = 3.31161141 * z2 + -0.473087341;  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
     sh[22] = q4_2 * c2;
     sh[18] = q4_2 * s2;
     float q3_3 = 0.590043604;  // sqrt(70)/(8*sqrt(pi))
@@ -150,6 +153,7 @@ void sphbasis_sh_eval5(vec3 d, out float sh[25])
 void sphbasis_sh_eval6(vec3 d, out float sh[36])
 {
     float x = d.x; float y = d.y; float z = d.z;
+    float z2 = z * z;
     float c1 = x; float s1 = y;
     float c2 = x * c1 - y * s1; float s2 = x * s1 + y * c1;
     float c3 = x * c2 - y * s2; float s3 = x * s2 + y * c2;
@@ -159,9 +163,9 @@ void sphbasis_sh_eval6(vec3 d, out float sh[36])
     sh[0] = q0_0;
     float q1_0 = 0.488602519 * z;  // sqrt(3)/(2*sqrt(pi)) z
     sh[2] = q1_0;
-    float q2_0 = 1.93649173 * z * q1_0 - 1.11803401 * q0_0;
+    float q2_0 = 0.946174681 * z2 + -0.31539157;  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     sh[6] = q2_0;
-    float q3_0 = 1.97202659 * z * q2_0 - 1.01835012 * q1_0;
+    float q3_0 = z * (1.86588168 * z2 + -1.11952901);  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     sh[12] = q3_0;
     float q4_0 = 1.98431349 * z * q3_0 - 1.00623059 * q2_0;
     sh[20] = q4_0;
@@ -173,10 +177,10 @@ void sphbasis_sh_eval6(vec3 d, out float sh[36])
     float q2_1 = 1.09254849 * z;  // sqrt(15)/(2*sqrt(pi)) z
     sh[7] = q2_1 * c1;
     sh[5] = q2_1 * s1;
-    float q3_1 = 2.09165001 * z * q2_1 - 0.935414374 * q1_1;
+    float q3_1 = 2.28522897 * z2 + -0.457045794;  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     sh[13] = q3_1 * c1;
     sh[11] = q3_1 * s1;
-    float q4_1 = 2.04939008 * z * q3_1 - 0.979795873 * q2_1;
+    float q4_1 = z * (4.68332577 * z2 + -2.00713968);  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
     sh[21] = q4_1 * c1;
     sh[19] = q4_1 * s1;
     float q5_1 = 2.03100967 * z * q4_1 - 0.991031229 * q3_1;
@@ -188,10 +192,10 @@ void sphbasis_sh_eval6(vec3 d, out float sh[36])
     float q3_2 = 1.44530571 * z;  // sqrt(105)/(4*sqrt(pi)) z
     sh[14] = q3_2 * c2;
     sh[10] = q3_2 * s2;
-    float q4_2 = 2.2912879 * z * q3_2 - 0.866025388 * q2_2;
+    float q4_2 = 3.31161141 * z2 + -0.473087341;  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
     sh[22] = q4_2 * c2;
     sh[18] = q4_2 * s2;
-    float q5_2 = 2.17124057 * z * q4_2 - 0.9476071 * q3_2;
+    float q5_2 = z * (7.19030523 * z2 + -2.39676833);  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
     sh[32] = q5_2 * c2;
     sh[28] = q5_2 * s2;
     float q3_3 = 0.590043604;  // sqrt(70)/(8*sqrt(pi))
@@ -200,7 +204,7 @@ void sphbasis_sh_eval6(vec3 d, out float sh[36])
     float q4_3 = 1.77013075 * z;  // 3*sqrt(70)/(8*sqrt(pi)) z
     sh[23] = q4_3 * c3;
     sh[17] = q4_3 * s3;
-    float q5_3 = 2.48746848 * z * q4_3 - 0.82915622 * q3_3;
+    float q5_3 = 4.40314484 * z2 + -0.489238292;  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
     sh[33] = q5_3 * c3;
     sh[27] = q5_3 * s3;
     float q4_4 = 0.625835717;  // 3*sqrt(35)/(16*sqrt(pi))
@@ -219,6 +223,7 @@ void sphbasis_sh_eval6(vec3 d, out float sh[36])
 void sphbasis_sh_eval7(vec3 d, out float sh[49])
 {
     float x = d.x; float y = d.y; float z = d.z;
+    float z2 = z * z;
     float c1 = x; float s1 = y;
     float c2 = x * c1 - y * s1; float s2 = x * s1 + y * c1;
     float c3 = x * c2 - y * s2; float s3 = x * s2 + y * c2;
@@ -229,9 +234,9 @@ void sphbasis_sh_eval7(vec3 d, out float sh[49])
     sh[0] = q0_0;
     float q1_0 = 0.488602519 * z;  // sqrt(3)/(2*sqrt(pi)) z
     sh[2] = q1_0;
-    float q2_0 = 1.93649173 * z * q1_0 - 1.11803401 * q0_0;
+    float q2_0 = 0.946174681 * z2 + -0.31539157;  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     sh[6] = q2_0;
-    float q3_0 = 1.97202659 * z * q2_0 - 1.01835012 * q1_0;
+    float q3_0 = z * (1.86588168 * z2 + -1.11952901);  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     sh[12] = q3_0;
     float q4_0 = 1.98431349 * z * q3_0 - 1.00623059 * q2_0;
     sh[20] = q4_0;
@@ -245,10 +250,10 @@ void sphbasis_sh_eval7(vec3 d, out float sh[49])
     float q2_1 = 1.09254849 * z;  // sqrt(15)/(2*sqrt(pi)) z
     sh[7] = q2_1 * c1;
     sh[5] = q2_1 * s1;
-    float q3_1 = 2.09165001 * z * q2_1 - 0.935414374 * q1_1;
+    float q3_1 = 2.28522897 * z2 + -0.457045794;  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     sh[13] = q3_1 * c1;
     sh[11] = q3_1 * s1;
-    float q4_1 = 2.04939008 * z * q3_1 - 0.979795873 * q2_1;
+    float q4_1 = z * (4.68332577 * z2 + -2.00713968);  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
     sh[21] = q4_1 * c1;
     sh[19] = q4_1 * s1;
     float q5_1 = 2.03100967 * z * q4_1 - 0.991031229 * q3_1;
@@ -263,10 +268,10 @@ void sphbasis_sh_eval7(vec3 d, out float sh[49])
     float q3_2 = 1.44530571 * z;  // sqrt(105)/(4*sqrt(pi)) z
     sh[14] = q3_2 * c2;
     sh[10] = q3_2 * s2;
-    float q4_2 = 2.2912879 * z * q3_2 - 0.866025388 * q2_2;
+    float q4_2 = 3.31161141 * z2 + -0.473087341;  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
     sh[22] = q4_2 * c2;
     sh[18] = q4_2 * s2;
-    float q5_2 = 2.17124057 * z * q4_2 - 0.9476071 * q3_2;
+    float q5_2 = z * (7.19030523 * z2 + -2.39676833);  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
     sh[32] = q5_2 * c2;
     sh[28] = q5_2 * s2;
     float q6_2 = 2.11394191 * z * q5_2 - 0.973610103 * q4_2;
@@ -278,10 +283,10 @@ void sphbasis_sh_eval7(vec3 d, out float sh[49])
     float q4_3 = 1.77013075 * z;  // 3*sqrt(70)/(8*sqrt(pi)) z
     sh[23] = q4_3 * c3;
     sh[17] = q4_3 * s3;
-    float q5_3 = 2.48746848 * z * q4_3 - 0.82915622 * q3_3;
+    float q5_3 = 4.40314484 * z2 + -0.489238292;  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
     sh[33] = q5_3 * c3;
     sh[27] = q5_3 * s3;
-    float q6_3 = 2.30136824 * z * q5_3 - 0.925184906 * q4_3;
+    float q6_3 = z * (10.1332579 * z2 + -2.76361585);  // z (11*sqrt(2730)/(32*sqrt(pi)) z^2 + -3*sqrt(2730)/(32*sqrt(pi)))
     sh[45] = q6_3 * c3;
     sh[39] = q6_3 * s3;
     float q4_4 = 0.625835717;  // 3*sqrt(35)/(16*sqrt(pi))
@@ -290,7 +295,7 @@ void sphbasis_sh_eval7(vec3 d, out float sh[49])
     float q5_4 = 2.07566237 * z;  // 3*sqrt(385)/(16*sqrt(pi)) z
     sh[34] = q5_4 * c4;
     sh[26] = q5_4 * s4;
-    float q6_4 = 2.67394829 * z * q5_4 - 0.806225777 * q4_4;
+    float q6_4 = 5.55021381 * z2 + -0.504564881;  // 33*sqrt(91)/(32*sqrt(pi)) z^2 + -3*sqrt(91)/(32*sqrt(pi))
     sh[46] = q6_4 * c4;
     sh[38] = q6_4 * s4;
     float q5_5 = 0.656382084;  // 3*sqrt(154)/(32*sqrt(pi))
@@ -309,6 +314,7 @@ void sphbasis_sh_eval7(vec3 d, out float sh[49])
 void sphbasis_sh_eval8(vec3 d, out float sh[64])
 {
     float x = d.x; float y = d.y; float z = d.z;
+    float z2 = z * z;
     float c1 = x; float s1 = y;
     float c2 = x * c1 - y * s1; float s2 = x * s1 + y * c1;
     float c3 = x * c2 - y * s2; float s3 = x * s2 + y * c2;
@@ -320,9 +326,9 @@ void sphbasis_sh_eval8(vec3 d, out float sh[64])
     sh[0] = q0_0;
     float q1_0 = 0.488602519 * z;  // sqrt(3)/(2*sqrt(pi)) z
     sh[2] = q1_0;
-    float q2_0 = 1.93649173 * z * q1_0 - 1.11803401 * q0_0;
+    float q2_0 = 0.946174681 * z2 + -0.31539157;  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     sh[6] = q2_0;
-    float q3_0 = 1.97202659 * z * q2_0 - 1.01835012 * q1_0;
+    float q3_0 = z * (1.86588168 * z2 + -1.11952901);  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     sh[12] = q3_0;
     float q4_0 = 1.98431349 * z * q3_0 - 1.00623059 * q2_0;
     sh[20] = q4_0;
@@ -338,10 +344,10 @@ void sphbasis_sh_eval8(vec3 d, out float sh[64])
     float q2_1 = 1.09254849 * z;  // sqrt(15)/(2*sqrt(pi)) z
     sh[7] = q2_1 * c1;
     sh[5] = q2_1 * s1;
-    float q3_1 = 2.09165001 * z * q2_1 - 0.935414374 * q1_1;
+    float q3_1 = 2.28522897 * z2 + -0.457045794;  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     sh[13] = q3_1 * c1;
     sh[11] = q3_1 * s1;
-    float q4_1 = 2.04939008 * z * q3_1 - 0.979795873 * q2_1;
+    float q4_1 = z * (4.68332577 * z2 + -2.00713968);  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
     sh[21] = q4_1 * c1;
     sh[19] = q4_1 * s1;
     float q5_1 = 2.03100967 * z * q4_1 - 0.991031229 * q3_1;
@@ -359,10 +365,10 @@ void sphbasis_sh_eval8(vec3 d, out float sh[64])
     float q3_2 = 1.44530571 * z;  // sqrt(105)/(4*sqrt(pi)) z
     sh[14] = q3_2 * c2;
     sh[10] = q3_2 * s2;
-    float q4_2 = 2.2912879 * z * q3_2 - 0.866025388 * q2_2;
+    float q4_2 = 3.31161141 * z2 + -0.473087341;  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
     sh[22] = q4_2 * c2;
     sh[18] = q4_2 * s2;
-    float q5_2 = 2.17124057 * z * q4_2 - 0.9476071 * q3_2;
+    float q5_2 = z * (7.19030523 * z2 + -2.39676833);  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
     sh[32] = q5_2 * c2;
     sh[28] = q5_2 * s2;
     float q6_2 = 2.11394191 * z * q5_2 - 0.973610103 * q4_2;
@@ -377,10 +383,10 @@ void sphbasis_sh_eval8(vec3 d, out float sh[64])
     float q4_3 = 1.77013075 * z;  // 3*sqrt(70)/(8*sqrt(pi)) z
     sh[23] = q4_3 * c3;
     sh[17] = q4_3 * s3;
-    float q5_3 = 2.48746848 * z * q4_3 - 0.82915622 * q3_3;
+    float q5_3 = 4.40314484 * z2 + -0.489238292;  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
     sh[33] = q5_3 * c3;
     sh[27] = q5_3 * s3;
-    float q6_3 = 2.30136824 * z * q5_3 - 0.925184906 * q4_3;
+    float q6_3 = z * (10.1332579 * z2 + -2.76361585);  // z (11*sqrt(2730)/(32*sqrt(pi)) z^2 + -3*sqrt(2730)/(32*sqrt(pi)))
     sh[45] = q6_3 * c3;
     sh[39] = q6_3 * s3;
     float q7_3 = 2.2079401 * z * q6_3 - 0.959403217 * q5_3;
@@ -392,10 +398,10 @@ void sphbasis_sh_eval8(vec3 d, out float sh[64])
     float q5_4 = 2.07566237 * z;  // 3*sqrt(385)/(16*sqrt(pi)) z
     sh[34] = q5_4 * c4;
     sh[26] = q5_4 * s4;
-    float q6_4 = 2.67394829 * z * q5_4 - 0.806225777 * q4_4;
+    float q6_4 = 5.55021381 * z2 + -0.504564881;  // 33*sqrt(91)/(32*sqrt(pi)) z^2 + -3*sqrt(91)/(32*sqrt(pi))
     sh[46] = q6_4 * c4;
     sh[38] = q6_4 * s4;
-    float q7_4 = 2.43086219 * z * q6_4 - 0.909090936 * q5_4;
+    float q7_4 = z * (13.4918051 * z2 + -3.11349344);  // z (39*sqrt(385)/(32*sqrt(pi)) z^2 + -9*sqrt(385)/(32*sqrt(pi)))
     sh[60] = q7_4 * c4;
     sh[52] = q7_4 * s4;
     float q5_5 = 0.656382084;  // 3*sqrt(154)/(32*sqrt(pi))
@@ -404,7 +410,7 @@ void sphbasis_sh_eval8(vec3 d, out float sh[64])
     float q6_5 = 2.36661911 * z;  // 3*sqrt(2002)/(32*sqrt(pi)) z
     sh[47] = q6_5 * c5;
     sh[37] = q6_5 * s5;
-    float q7_5 = 2.85043859 * z * q6_5 - 0.790569425 * q5_5;
+    float q7_5 = 6.74590254 * z2 + -0.518915594;  // 39*sqrt(385)/(64*sqrt(pi)) z^2 + -3*sqrt(385)/(64*sqrt(pi))
     sh[61] = q7_5 * c5;
     sh[51] = q7_5 * s5;
     float q6_6 = 0.683184087;  // sqrt(6006)/(64*sqrt(pi))

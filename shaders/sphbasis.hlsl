@@ -38,13 +38,14 @@ void sphbasis_sh_eval2(float3 d, out float sh[4])
 void sphbasis_sh_eval3(float3 d, out float sh[9])
 {
     float x = d.x; float y = d.y; float z = d.z;
+    float z2 = z * z;
     float c1 = x; float s1 = y;
     float c2 = x * c1 - y * s1; float s2 = x * s1 + y * c1;
     float q0_0 = 0.282094806f;  // 1/(2*sqrt(pi))
     sh[0] = q0_0;
     float q1_0 = 0.488602519f * z;  // sqrt(3)/(2*sqrt(pi)) z
     sh[2] = q1_0;
-    float q2_0 = 1.93649173f * z * q1_0 - 1.11803401f * q0_0;
+    float q2_0 = 0.946174681f * z2 + -0.31539157f;  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     sh[6] = q2_0;
     float q1_1 = 0.488602519f;  // sqrt(3)/(2*sqrt(pi))
     sh[3] = q1_1 * c1;
@@ -62,6 +63,7 @@ void sphbasis_sh_eval3(float3 d, out float sh[9])
 void sphbasis_sh_eval4(float3 d, out float sh[16])
 {
     float x = d.x; float y = d.y; float z = d.z;
+    float z2 = z * z;
     float c1 = x; float s1 = y;
     float c2 = x * c1 - y * s1; float s2 = x * s1 + y * c1;
     float c3 = x * c2 - y * s2; float s3 = x * s2 + y * c2;
@@ -69,9 +71,9 @@ void sphbasis_sh_eval4(float3 d, out float sh[16])
     sh[0] = q0_0;
     float q1_0 = 0.488602519f * z;  // sqrt(3)/(2*sqrt(pi)) z
     sh[2] = q1_0;
-    float q2_0 = 1.93649173f * z * q1_0 - 1.11803401f * q0_0;
+    float q2_0 = 0.946174681f * z2 + -0.31539157f;  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     sh[6] = q2_0;
-    float q3_0 = 1.97202659f * z * q2_0 - 1.01835012f * q1_0;
+    float q3_0 = z * (1.86588168f * z2 + -1.11952901f);  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     sh[12] = q3_0;
     float q1_1 = 0.488602519f;  // sqrt(3)/(2*sqrt(pi))
     sh[3] = q1_1 * c1;
@@ -79,7 +81,7 @@ void sphbasis_sh_eval4(float3 d, out float sh[16])
     float q2_1 = 1.09254849f * z;  // sqrt(15)/(2*sqrt(pi)) z
     sh[7] = q2_1 * c1;
     sh[5] = q2_1 * s1;
-    float q3_1 = 2.09165001f * z * q2_1 - 0.935414374f * q1_1;
+    float q3_1 = 2.28522897f * z2 + -0.457045794f;  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     sh[13] = q3_1 * c1;
     sh[11] = q3_1 * s1;
     float q2_2 = 0.546274245f;  // sqrt(15)/(4*sqrt(pi))
@@ -98,6 +100,7 @@ void sphbasis_sh_eval4(float3 d, out float sh[16])
 void sphbasis_sh_eval5(float3 d, out float sh[25])
 {
     float x = d.x; float y = d.y; float z = d.z;
+    float z2 = z * z;
     float c1 = x; float s1 = y;
     float c2 = x * c1 - y * s1; float s2 = x * s1 + y * c1;
     float c3 = x * c2 - y * s2; float s3 = x * s2 + y * c2;
@@ -106,9 +109,9 @@ void sphbasis_sh_eval5(float3 d, out float sh[25])
     sh[0] = q0_0;
     float q1_0 = 0.488602519f * z;  // sqrt(3)/(2*sqrt(pi)) z
     sh[2] = q1_0;
-    float q2_0 = 1.93649173f * z * q1_0 - 1.11803401f * q0_0;
+    float q2_0 = 0.946174681f * z2 + -0.31539157f;  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     sh[6] = q2_0;
-    float q3_0 = 1.97202659f * z * q2_0 - 1.01835012f * q1_0;
+    float q3_0 = z * (1.86588168f * z2 + -1.11952901f);  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     sh[12] = q3_0;
     float q4_0 = 1.98431349f * z * q3_0 - 1.00623059f * q2_0;
     sh[20] = q4_0;
@@ -118,10 +121,10 @@ void sphbasis_sh_eval5(float3 d, out float sh[25])
     float q2_1 = 1.09254849f * z;  // sqrt(15)/(2*sqrt(pi)) z
     sh[7] = q2_1 * c1;
     sh[5] = q2_1 * s1;
-    float q3_1 = 2.09165001f * z * q2_1 - 0.935414374f * q1_1;
+    float q3_1 = 2.28522897f * z2 + -0.457045794f;  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     sh[13] = q3_1 * c1;
     sh[11] = q3_1 * s1;
-    float q4_1 = 2.04939008f * z * q3_1 - 0.979795873f * q2_1;
+    float q4_1 = z * (4.68332577f * z2 + -2.00713968f);  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
     sh[21] = q4_1 * c1;
     sh[19] = q4_1 * s1;
     float q2_2 = 0.546274245f;  // sqrt(15)/(4*sqrt(pi))
@@ -130,7 +133,7 @@ void sphbasis_sh_eval5(float3 d, out float sh[25])
     float q3_2 = 1.44530571f * z;  // sqrt(105)/(4*sqrt(pi)) z
     sh[14] = q3_2 * c2;
     sh[10] = q3_2 * s2;
-    float q4_2 = 2.2912879f * z * q3_2 - 0.866025388f * q2_2;
+    float q4_2 = 3.31161141f * z2 + -0.473087341f;  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
     sh[22] = q4_2 * c2;
     sh[18] = q4_2 * s2;
     float q3_3 = 0.590043604f;  // sqrt(70)/(8*sqrt(pi))
@@ -149,6 +152,7 @@ void sphbasis_sh_eval5(float3 d, out float sh[25])
 void sphbasis_sh_eval6(float3 d, out float sh[36])
 {
     float x = d.x; float y = d.y; float z = d.z;
+    float z2 = z * z;
     float c1 = x; float s1 = y;
     float c2 = x * c1 - y * s1; float s2 = x * s1 + y * c1;
     float c3 = x * c2 - y * s2; float s3 = x * s2 + y * c2;
@@ -158,9 +162,9 @@ void sphbasis_sh_eval6(float3 d, out float sh[36])
     sh[0] = q0_0;
     float q1_0 = 0.488602519f * z;  // sqrt(3)/(2*sqrt(pi)) z
     sh[2] = q1_0;
-    float q2_0 = 1.93649173f * z * q1_0 - 1.11803401f * q0_0;
+    float q2_0 = 0.946174681f * z2 + -0.31539157f;  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     sh[6] = q2_0;
-    float q3_0 = 1.97202659f * z * q2_0 - 1.01835012f * q1_0;
+    float q3_0 = z * (1.86588168f * z2 + -1.11952901f);  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     sh[12] = q3_0;
     float q4_0 = 1.98431349f * z * q3_0 - 1.00623059f * q2_0;
     sh[20] = q4_0;
@@ -172,10 +176,10 @@ void sphbasis_sh_eval6(float3 d, out float sh[36])
     float q2_1 = 1.09254849f * z;  // sqrt(15)/(2*sqrt(pi)) z
     sh[7] = q2_1 * c1;
     sh[5] = q2_1 * s1;
-    float q3_1 = 2.09165001f * z * q2_1 - 0.935414374f * q1_1;
+    float q3_1 = 2.28522897f * z2 + -0.457045794f;  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     sh[13] = q3_1 * c1;
     sh[11] = q3_1 * s1;
-    float q4_1 = 2.04939008f * z * q3_1 - 0.979795873f * q2_1;
+    float q4_1 = z * (4.68332577f * z2 + -2.00713968f);  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
     sh[21] = q4_1 * c1;
     sh[19] = q4_1 * s1;
     float q5_1 = 2.03100967f * z * q4_1 - 0.991031229f * q3_1;
@@ -187,10 +191,10 @@ void sphbasis_sh_eval6(float3 d, out float sh[36])
     float q3_2 = 1.44530571f * z;  // sqrt(105)/(4*sqrt(pi)) z
     sh[14] = q3_2 * c2;
     sh[10] = q3_2 * s2;
-    float q4_2 = 2.2912879f * z * q3_2 - 0.866025388f * q2_2;
+    float q4_2 = 3.31161141f * z2 + -0.473087341f;  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
     sh[22] = q4_2 * c2;
     sh[18] = q4_2 * s2;
-    float q5_2 = 2.17124057f * z * q4_2 - 0.9476071f * q3_2;
+    float q5_2 = z * (7.19030523f * z2 + -2.39676833f);  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
     sh[32] = q5_2 * c2;
     sh[28] = q5_2 * s2;
     float q3_3 = 0.590043604f;  // sqrt(70)/(8*sqrt(pi))
@@ -199,7 +203,7 @@ void sphbasis_sh_eval6(float3 d, out float sh[36])
     float q4_3 = 1.77013075f * z;  // 3*sqrt(70)/(8*sqrt(pi)) z
     sh[23] = q4_3 * c3;
     sh[17] = q4_3 * s3;
-    float q5_3 = 2.48746848f * z * q4_3 - 0.82915622f * q3_3;
+    float q5_3 = 4.40314484f * z2 + -0.489238292f;  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
     sh[33] = q5_3 * c3;
     sh[27] = q5_3 * s3;
     float q4_4 = 0.625835717f;  // 3*sqrt(35)/(16*sqrt(pi))
@@ -218,6 +222,7 @@ void sphbasis_sh_eval6(float3 d, out float sh[36])
 void sphbasis_sh_eval7(float3 d, out float sh[49])
 {
     float x = d.x; float y = d.y; float z = d.z;
+    float z2 = z * z;
     float c1 = x; float s1 = y;
     float c2 = x * c1 - y * s1; float s2 = x * s1 + y * c1;
     float c3 = x * c2 - y * s2; float s3 = x * s2 + y * c2;
@@ -228,9 +233,9 @@ void sphbasis_sh_eval7(float3 d, out float sh[49])
     sh[0] = q0_0;
     float q1_0 = 0.488602519f * z;  // sqrt(3)/(2*sqrt(pi)) z
     sh[2] = q1_0;
-    float q2_0 = 1.93649173f * z * q1_0 - 1.11803401f * q0_0;
+    float q2_0 = 0.946174681f * z2 + -0.31539157f;  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     sh[6] = q2_0;
-    float q3_0 = 1.97202659f * z * q2_0 - 1.01835012f * q1_0;
+    float q3_0 = z * (1.86588168f * z2 + -1.11952901f);  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     sh[12] = q3_0;
     float q4_0 = 1.98431349f * z * q3_0 - 1.00623059f * q2_0;
     sh[20] = q4_0;
@@ -244,10 +249,10 @@ void sphbasis_sh_eval7(float3 d, out float sh[49])
     float q2_1 = 1.09254849f * z;  // sqrt(15)/(2*sqrt(pi)) z
     sh[7] = q2_1 * c1;
     sh[5] = q2_1 * s1;
-    float q3_1 = 2.09165001f * z * q2_1 - 0.935414374f * q1_1;
+    float q3_1 = 2.28522897f * z2 + -0.457045794f;  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     sh[13] = q3_1 * c1;
     sh[11] = q3_1 * s1;
-    float q4_1 = 2.04939008f * z * q3_1 - 0.979795873f * q2_1;
+    float q4_1 = z * (4.68332577f * z2 + -2.00713968f);  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
     sh[21] = q4_1 * c1;
     sh[19] = q4_1 * s1;
     float q5_1 = 2.03100967f * z * q4_1 - 0.991031229f * q3_1;
@@ -262,10 +267,10 @@ void sphbasis_sh_eval7(float3 d, out float sh[49])
     float q3_2 = 1.44530571f * z;  // sqrt(105)/(4*sqrt(pi)) z
     sh[14] = q3_2 * c2;
     sh[10] = q3_2 * s2;
-    float q4_2 = 2.2912879f * z * q3_2 - 0.866025388f * q2_2;
+    float q4_2 = 3.31161141f * z2 + -0.473087341f;  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
     sh[22] = q4_2 * c2;
     sh[18] = q4_2 * s2;
-    float q5_2 = 2.17124057f * z * q4_2 - 0.9476071f * q3_2;
+    float q5_2 = z * (7.19030523f * z2 + -2.39676833f);  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
     sh[32] = q5_2 * c2;
     sh[28] = q5_2 * s2;
     float q6_2 = 2.11394191f * z * q5_2 - 0.973610103f * q4_2;
@@ -277,10 +282,10 @@ void sphbasis_sh_eval7(float3 d, out float sh[49])
     float q4_3 = 1.77013075f * z;  // 3*sqrt(70)/(8*sqrt(pi)) z
     sh[23] = q4_3 * c3;
     sh[17] = q4_3 * s3;
-    float q5_3 = 2.48746848f * z * q4_3 - 0.82915622f * q3_3;
+    float q5_3 = 4.40314484f * z2 + -0.489238292f;  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
     sh[33] = q5_3 * c3;
     sh[27] = q5_3 * s3;
-    float q6_3 = 2.30136824f * z * q5_3 - 0.925184906f * q4_3;
+    float q6_3 = z * (10.1332579f * z2 + -2.76361585f);  // z (11*sqrt(2730)/(32*sqrt(pi)) z^2 + -3*sqrt(2730)/(32*sqrt(pi)))
     sh[45] = q6_3 * c3;
     sh[39] = q6_3 * s3;
     float q4_4 = 0.625835717f;  // 3*sqrt(35)/(16*sqrt(pi))
@@ -289,7 +294,7 @@ void sphbasis_sh_eval7(float3 d, out float sh[49])
     float q5_4 = 2.07566237f * z;  // 3*sqrt(385)/(16*sqrt(pi)) z
     sh[34] = q5_4 * c4;
     sh[26] = q5_4 * s4;
-    float q6_4 = 2.67394829f * z * q5_4 - 0.806225777f * q4_4;
+    float q6_4 = 5.55021381f * z2 + -0.504564881f;  // 33*sqrt(91)/(32*sqrt(pi)) z^2 + -3*sqrt(91)/(32*sqrt(pi))
     sh[46] = q6_4 * c4;
     sh[38] = q6_4 * s4;
     float q5_5 = 0.656382084f;  // 3*sqrt(154)/(32*sqrt(pi))
@@ -308,6 +313,7 @@ void sphbasis_sh_eval7(float3 d, out float sh[49])
 void sphbasis_sh_eval8(float3 d, out float sh[64])
 {
     float x = d.x; float y = d.y; float z = d.z;
+    float z2 = z * z;
     float c1 = x; float s1 = y;
     float c2 = x * c1 - y * s1; float s2 = x * s1 + y * c1;
     float c3 = x * c2 - y * s2; float s3 = x * s2 + y * c2;
@@ -319,9 +325,9 @@ void sphbasis_sh_eval8(float3 d, out float sh[64])
     sh[0] = q0_0;
     float q1_0 = 0.488602519f * z;  // sqrt(3)/(2*sqrt(pi)) z
     sh[2] = q1_0;
-    float q2_0 = 1.93649173f * z * q1_0 - 1.11803401f * q0_0;
+    float q2_0 = 0.946174681f * z2 + -0.31539157f;  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     sh[6] = q2_0;
-    float q3_0 = 1.97202659f * z * q2_0 - 1.01835012f * q1_0;
+    float q3_0 = z * (1.86588168f * z2 + -1.11952901f);  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     sh[12] = q3_0;
     float q4_0 = 1.98431349f * z * q3_0 - 1.00623059f * q2_0;
     sh[20] = q4_0;
@@ -337,10 +343,10 @@ void sphbasis_sh_eval8(float3 d, out float sh[64])
     float q2_1 = 1.09254849f * z;  // sqrt(15)/(2*sqrt(pi)) z
     sh[7] = q2_1 * c1;
     sh[5] = q2_1 * s1;
-    float q3_1 = 2.09165001f * z * q2_1 - 0.935414374f * q1_1;
+    float q3_1 = 2.28522897f * z2 + -0.457045794f;  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     sh[13] = q3_1 * c1;
     sh[11] = q3_1 * s1;
-    float q4_1 = 2.04939008f * z * q3_1 - 0.979795873f * q2_1;
+    float q4_1 = z * (4.68332577f * z2 + -2.00713968f);  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
     sh[21] = q4_1 * c1;
     sh[19] = q4_1 * s1;
     float q5_1 = 2.03100967f * z * q4_1 - 0.991031229f * q3_1;
@@ -358,10 +364,10 @@ void sphbasis_sh_eval8(float3 d, out float sh[64])
     float q3_2 = 1.44530571f * z;  // sqrt(105)/(4*sqrt(pi)) z
     sh[14] = q3_2 * c2;
     sh[10] = q3_2 * s2;
-    float q4_2 = 2.2912879f * z * q3_2 - 0.866025388f * q2_2;
+    float q4_2 = 3.31161141f * z2 + -0.473087341f;  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
     sh[22] = q4_2 * c2;
     sh[18] = q4_2 * s2;
-    float q5_2 = 2.17124057f * z * q4_2 - 0.9476071f * q3_2;
+    float q5_2 = z * (7.19030523f * z2 + -2.39676833f);  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
     sh[32] = q5_2 * c2;
     sh[28] = q5_2 * s2;
     float q6_2 = 2.11394191f * z * q5_2 - 0.973610103f * q4_2;
@@ -376,10 +382,10 @@ void sphbasis_sh_eval8(float3 d, out float sh[64])
     float q4_3 = 1.77013075f * z;  // 3*sqrt(70)/(8*sqrt(pi)) z
     sh[23] = q4_3 * c3;
     sh[17] = q4_3 * s3;
-    float q5_3 = 2.48746848f * z * q4_3 - 0.82915622f * q3_3;
+    float q5_3 = 4.40314484f * z2 + -0.489238292f;  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
     sh[33] = q5_3 * c3;
     sh[27] = q5_3 * s3;
-    float q6_3 = 2.30136824f * z * q5_3 - 0.925184906f * q4_3;
+    float q6_3 = z * (10.1332579f * z2 + -2.76361585f);  // z (11*sqrt(2730)/(32*sqrt(pi)) z^2 + -3*sqrt(2730)/(32*sqrt(pi)))
     sh[45] = q6_3 * c3;
     sh[39] = q6_3 * s3;
     float q7_3 = 2.2079401f * z * q6_3 - 0.959403217f * q5_3;
@@ -391,10 +397,10 @@ void sphbasis_sh_eval8(float3 d, out float sh[64])
     float q5_4 = 2.07566237f * z;  // 3*sqrt(385)/(16*sqrt(pi)) z
     sh[34] = q5_4 * c4;
     sh[26] = q5_4 * s4;
-    float q6_4 = 2.67394829f * z * q5_4 - 0.806225777f * q4_4;
+    float q6_4 = 5.55021381f * z2 + -0.504564881f;  // 33*sqrt(91)/(32*sqrt(pi)) z^2 + -3*sqrt(91)/(32*sqrt(pi))
     sh[46] = q6_4 * c4;
     sh[38] = q6_4 * s4;
-    float q7_4 = 2.43086219f * z * q6_4 - 0.909090936f * q5_4;
+    float q7_4 = z * (13.4918051f * z2 + -3.11349344f);  // z (39*sqrt(385)/(32*sqrt(pi)) z^2 + -9*sqrt(385)/(32*sqrt(pi)))
     sh[60] = q7_4 * c4;
     sh[52] = q7_4 * s4;
     float q5_5 = 0.656382084f;  // 3*sqrt(154)/(32*sqrt(pi))
@@ -403,7 +409,7 @@ void sphbasis_sh_eval8(float3 d, out float sh[64])
     float q6_5 = 2.36661911f * z;  // 3*sqrt(2002)/(32*sqrt(pi)) z
     sh[47] = q6_5 * c5;
     sh[37] = q6_5 * s5;
-    float q7_5 = 2.85043859f * z * q6_5 - 0.790569425f * q5_5;
+    float q7_5 = 6.74590254f * z2 + -0.518915594f;  // 39*sqrt(385)/(64*sqrt(pi)) z^2 + -3*sqrt(385)/(64*sqrt(pi))
     sh[61] = q7_5 * c5;
     sh[51] = q7_5 * s5;
     float q6_6 = 0.683184087f;  // sqrt(6006)/(64*sqrt(pi))

@@ -8,16 +8,10 @@ set(_check_points ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_bake_points.py)
 # Passes when the command exits non-zero with exactly one line on stderr matching regex (and
 # nothing on stdout).
 function(sphbasis_bake_bad name regex)
-  string(JOIN " " _args ${ARGN})
-  add_test(NAME cli_bake_bad_${name}
-           COMMAND sh -c "err=$(\"${_bake}\" ${_args} 2>&1 >/dev/null); rc=$?; n=$(printf '%s\\n' \"$err\" | wc -l); if [ $rc -ne 0 ] && [ $n -eq 1 ]; then echo \"bad-input-ok: $err\"; else echo \"rc=$rc lines=$n: $err\"; fi")
-  set_tests_properties(cli_bake_bad_${name} PROPERTIES
-                       PASS_REGULAR_EXPRESSION "bad-input-ok: sphbasis bake[-a-z]*: ${regex}"
-                       LABELS cli)
+  sphbasis_cli_bad(bake_bad_${name} "bake[-a-z]*: ${regex}" ${ARGN})
 endfunction()
 function(sphbasis_bake_test name regex script)
-  add_test(NAME bake_${name} COMMAND sh -c "${script}")
-  set_tests_properties(bake_${name} PROPERTIES PASS_REGULAR_EXPRESSION "${regex}" LABELS bake)
+  sphbasis_script_test(bake ${name} "${regex}" "${script}")
 endfunction()
 
 # Help.

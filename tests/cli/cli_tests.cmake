@@ -5,10 +5,27 @@ function(sphbasis_cli_test name regex)
   add_test(NAME cli_${name} COMMAND ${_cli} ${ARGN})
   set_tests_properties(cli_${name} PROPERTIES PASS_REGULAR_EXPRESSION "${regex}" LABELS cli)
 endfunction()
+# A shell script (sh -c) that passes when its output matches regex: test <label>_<name>, with
+# label <label> ("cli" for option and input checks, "bake" and "render" for runs that trace rays).
+function(sphbasis_script_test label name regex script)
+  add_test(NAME ${label}_${name} COMMAND sh -c "${script}")
+  set_tests_properties(${label}_${name} PROPERTIES PASS_REGULAR_EXPRESSION "${regex}"
+                       LABELS ${label})
+endfunction()
 # A shell script (sh -c) around the binary that passes when its output matches regex.
 function(sphbasis_cli_script name regex script)
-  add_test(NAME cli_${name} COMMAND sh -c "${script}")
-  set_tests_properties(cli_${name} PROPERTIES PASS_REGULAR_EXPRESSION "${regex}" LABELS cli)
+  sphbasis_script_test(cli ${name} "${regex}" "${script}")
+endfunction()
+# Bad input: passes when `sphbasis ARGN...` exits non-zero with exactly one line on stderr (and
+# nothing on stdout) matching "sphbasis <what>" (what: the command's name, then ": " and the
+# message's regex). Test cli_<name>.
+function(sphbasis_cli_bad name what)
+  string(JOIN " " _args ${ARGN})
+  add_test(NAME cli_${name}
+           COMMAND sh -c "err=$(\"${_cli}\" ${_args} 2>&1 >/dev/null); rc=$?; n=$(printf '%s\\n' \"$err\" | wc -l); if [ $rc -ne 0 ] && [ $n -eq 1 ]; then echo \"bad-input-ok: $err\"; else echo \"rc=$rc lines=$n: $err\"; fi")
+  set_tests_properties(cli_${name} PROPERTIES
+                       PASS_REGULAR_EXPRESSION "bad-input-ok: sphbasis ${what}"
+                       LABELS cli)
 endfunction()
 function(sphbasis_cli_fails name)
   add_test(NAME cli_${name} COMMAND ${_cli} ${ARGN})

@@ -7,18 +7,13 @@ set(_render $<TARGET_FILE:sphbasis_cli>)
 set(_rscenes ${CMAKE_CURRENT_SOURCE_DIR}/data/scenes/render)
 set(_check_report ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_render_report.py)
 
-# Passes when the command exits non-zero with exactly one line on stderr matching regex.
+# Passes when `sphbasis render ARGN...` exits non-zero with exactly one line on stderr matching
+# regex.
 function(sphbasis_render_bad name regex)
-  string(JOIN " " _args ${ARGN})
-  add_test(NAME cli_render_bad_${name}
-           COMMAND sh -c "err=$(\"${_render}\" render ${_args} 2>&1 >/dev/null); rc=$?; n=$(printf '%s\\n' \"$err\" | wc -l); if [ $rc -ne 0 ] && [ $n -eq 1 ]; then echo \"bad-input-ok: $err\"; else echo \"rc=$rc lines=$n: $err\"; fi")
-  set_tests_properties(cli_render_bad_${name} PROPERTIES
-                       PASS_REGULAR_EXPRESSION "bad-input-ok: sphbasis render: ${regex}"
-                       LABELS cli)
+  sphbasis_cli_bad(render_bad_${name} "render: ${regex}" render ${ARGN})
 endfunction()
 function(sphbasis_render_test name regex script)
-  add_test(NAME render_${name} COMMAND sh -c "${script}")
-  set_tests_properties(render_${name} PROPERTIES PASS_REGULAR_EXPRESSION "${regex}" LABELS render)
+  sphbasis_script_test(render ${name} "${regex}" "${script}")
 endfunction()
 
 # Help.

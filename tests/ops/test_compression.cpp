@@ -55,6 +55,14 @@ Eigen::MatrixXd manifold_data(int p, std::mt19937_64& rng) {
     return x;
 }
 
+/// Settings of C clusters and M vectors, the rest defaults.
+compress::CpcaSettings cpca_settings(int clusters, int vectors) {
+    compress::CpcaSettings s;
+    s.clusters = clusters;
+    s.vectors = vectors;
+    return s;
+}
+
 }  // namespace
 
 TEST_CASE("compression: PCA of data = mean + W U^T is exact at M = rank", "[compression]") {
@@ -148,9 +156,7 @@ TEST_CASE("compression: static CPCA is deterministic and its error is its recons
           "[compression]") {
     std::mt19937_64 rng(3);
     const Eigen::MatrixXd x = manifold_data(600, rng);
-    compress::CpcaSettings s;
-    s.clusters = 8;
-    s.vectors = 2;
+    compress::CpcaSettings s = cpca_settings(8, 2);
     const auto a = compress::cpca_static(x, s);
     const auto b = compress::cpca_static(x, s);
     CHECK(a.cluster == b.cluster);
@@ -177,9 +183,7 @@ TEST_CASE("compression: iterative CPCA never ends worse than static, error non-i
     std::mt19937_64 rng(4);
     const Eigen::MatrixXd x = manifold_data(400, rng);
     for (int m : {1, 2}) {
-        compress::CpcaSettings s;
-        s.clusters = 6;
-        s.vectors = m;
+        compress::CpcaSettings s = cpca_settings(6, m);
         const auto st = compress::cpca_static(x, s);
         const auto it = compress::cpca_iterative(x, s);
         REQUIRE(!it.error_history.empty());
@@ -213,9 +217,7 @@ TEST_CASE("compression: iterative CPCA recovers known affine clusters to the noi
             truth.push_back(k);
         }
     }
-    compress::CpcaSettings s;
-    s.clusters = nc;
-    s.vectors = m;
+    compress::CpcaSettings s = cpca_settings(nc, m);
     const auto st = compress::cpca_static(x, s);
     const auto it = compress::cpca_iterative(x, s);
     // Noise floor: the noise outside the fitted planes, (c - M) of c components per point.
@@ -239,9 +241,7 @@ TEST_CASE("compression: iterative CPCA recovers known affine clusters to the noi
 TEST_CASE("compression: shading from exit values equals reconstruct-then-dot", "[compression]") {
     std::mt19937_64 rng(8);
     const Eigen::MatrixXd x = decaying_data(200, 27, rng);
-    compress::CpcaSettings s;
-    s.clusters = 5;
-    s.vectors = 3;
+    compress::CpcaSettings s = cpca_settings(5, 3);
     s.max_iterations = 4;
     const auto model = compress::cpca_iterative(x, s);
     const Eigen::MatrixXd light = random_matrix(27, 3, rng);  // RGB: K = 3 outputs
@@ -259,9 +259,7 @@ TEST_CASE("compression: shading from exit values equals reconstruct-then-dot", "
 TEST_CASE("compression: quantized weights and rendering within the stated bound", "[compression]") {
     std::mt19937_64 rng(10);
     const Eigen::MatrixXd x = decaying_data(400, 27, rng);
-    compress::CpcaSettings s;
-    s.clusters = 4;
-    s.vectors = 4;
+    compress::CpcaSettings s = cpca_settings(4, 4);
     const auto model = compress::cpca_static(x, s);
     const Eigen::MatrixXd light = random_matrix(27, 3, rng);
     const auto e = compress::exit_values(model, light);
@@ -314,9 +312,7 @@ TEST_CASE("compression: bad input throws with a message", "[compression]") {
     CHECK_THROWS_WITH(compress::pca(x, 7), Contains("M <= the number of columns (6)"));
     // Rank: 4 points have a centred rank of 3.
     CHECK_THROWS_WITH(compress::pca(x.topRows(4), 4), Contains("rank of the centred data (3)"));
-    compress::CpcaSettings s;
-    s.clusters = 51;
-    s.vectors = 2;
+    compress::CpcaSettings s = cpca_settings(51, 2);
     CHECK_THROWS_WITH(compress::cpca_static(x, s),
                       Contains("C <= the number of points (50) clusters, got C = 51"));
     s.clusters = 0;
@@ -336,9 +332,7 @@ TEST_CASE("compression: bad input throws with a message", "[compression]") {
 TEST_CASE("compression: iterative CPCA on a large curved data set", "[compression][slow]") {
     std::mt19937_64 rng(6);
     const Eigen::MatrixXd x = manifold_data(20000, rng);
-    compress::CpcaSettings s;
-    s.clusters = 16;
-    s.vectors = 2;
+    compress::CpcaSettings s = cpca_settings(16, 2);
     const auto st = compress::cpca_static(x, s);
     const auto it = compress::cpca_iterative(x, s);
     for (std::size_t i = 1; i < it.error_history.size(); ++i)

@@ -133,46 +133,48 @@ TEMPLATE_TEST_CASE(
     "[lights]", float, double) {
     using T = TestType;
     const double tol = std::is_same_v<T, float> ? 3e-6 : 1e-13;
-    const int bands = 8;
-    const auto d = unit(0.3, -0.4, 0.6);
-    std::vector<T> out(std::size_t(bands * bands));
-    for (double a : {0.05, 0.4, 1.3, 2.8}) {
-        const double L = 2.5;
-        sh::cone_light(bands, T(d.x), T(d.y), T(d.z), T(a), T(L), out.data());
-        const auto ref = cap_projection(bands, d, a);
-        for (std::size_t k = 0; k < out.size(); ++k) {
-            INFO("angle " << a << " k " << k);
-            CHECK(double(out[k]) == Approx(L * ref[k]).margin(tol * L * (1 + a * a)));
-        }
-        // The same cap as a ball at distance 3, and by solid angle.
-        std::vector<T> ball(out.size()), sa(out.size());
-        if (a < pi / 2) {
-            const double dist = 3, r = dist * std::sin(a);
-            sh::spherical_light(bands, T(dist * d.x), T(dist * d.y), T(dist * d.z), T(r), T(L),
-                                ball.data());
+    // 8 bands: the unrolled fixed-band path; 10: the run-time factors and basis in double.
+    for (const int bands : {8, 10}) {
+        const auto d = unit(0.3, -0.4, 0.6);
+        std::vector<T> out(std::size_t(bands * bands));
+        for (double a : {0.05, 0.4, 1.3, 2.8}) {
+            const double L = 2.5;
+            sh::cone_light(bands, T(d.x), T(d.y), T(d.z), T(a), T(L), out.data());
+            const auto ref = cap_projection(bands, d, a);
+            for (std::size_t k = 0; k < out.size(); ++k) {
+                INFO("angle " << a << " k " << k);
+                CHECK(double(out[k]) == Approx(L * ref[k]).margin(tol * L * (1 + a * a)));
+            }
+            // The same cap as a ball at distance 3, and by solid angle.
+            std::vector<T> ball(out.size()), sa(out.size());
+            if (a < pi / 2) {
+                const double dist = 3, r = dist * std::sin(a);
+                sh::spherical_light(bands, T(dist * d.x), T(dist * d.y), T(dist * d.z), T(r), T(L),
+                                    ball.data());
+                for (std::size_t k = 0; k < out.size(); ++k)
+                    CHECK(double(ball[k]) == Approx(double(out[k])).margin(tol * 10));
+            }
+            sh::spherical_light_solid_angle(bands, T(d.x), T(d.y), T(d.z),
+                                            T(2 * pi * (1 - std::cos(a))), T(L), sa.data());
             for (std::size_t k = 0; k < out.size(); ++k)
-                CHECK(double(ball[k]) == Approx(double(out[k])).margin(tol * 10));
+                CHECK(double(sa[k]) == Approx(double(out[k])).margin(tol * 10));
         }
-        sh::spherical_light_solid_angle(bands, T(d.x), T(d.y), T(d.z),
-                                        T(2 * pi * (1 - std::cos(a))), T(L), sa.data());
+        // Inside the ball: uniform radiance everywhere.
+        sh::spherical_light(bands, T(0.1), T(0), T(0), T(1), T(1), out.data());
+        CHECK(double(out[0]) == Approx(std::sqrt(4 * pi)).epsilon(1e-6));
+        for (std::size_t k = 1; k < out.size(); ++k) CHECK(double(out[k]) == Approx(0).margin(tol));
+        // Directional: E y(d); reconstructed irradiance facing it is E * peak.
+        sh::directional_light(bands, T(2 * d.x), T(2 * d.y), T(2 * d.z), T(3), out.data());
+        std::vector<T> y(out.size());
+        sh::eval(bands, T(d.x), T(d.y), T(d.z), y.data());
         for (std::size_t k = 0; k < out.size(); ++k)
-            CHECK(double(sa[k]) == Approx(double(out[k])).margin(tol * 10));
+            CHECK(double(out[k]) == Approx(3 * double(y[k])).margin(tol));
+        const auto a = sh::clamped_cosine_kernel<T>(bands);
+        sh::convolve(bands, a.data(), out.data(), out.data());
+        CHECK(double(sh::eval_sum(bands, out.data(), T(d.x), T(d.y), T(d.z))) ==
+              Approx(3 * sh::directional_light_peak(bands))
+                  .epsilon(std::is_same_v<T, float> ? 1e-5 : 1e-13));
     }
-    // Inside the ball: uniform radiance everywhere.
-    sh::spherical_light(bands, T(0.1), T(0), T(0), T(1), T(1), out.data());
-    CHECK(double(out[0]) == Approx(std::sqrt(4 * pi)).epsilon(1e-6));
-    for (std::size_t k = 1; k < out.size(); ++k) CHECK(double(out[k]) == Approx(0).margin(tol));
-    // Directional: E y(d); reconstructed irradiance facing it is E * peak.
-    sh::directional_light(bands, T(2 * d.x), T(2 * d.y), T(2 * d.z), T(3), out.data());
-    std::vector<T> y(out.size());
-    sh::eval(bands, T(d.x), T(d.y), T(d.z), y.data());
-    for (std::size_t k = 0; k < out.size(); ++k)
-        CHECK(double(out[k]) == Approx(3 * double(y[k])).margin(tol));
-    const auto a = sh::clamped_cosine_kernel<T>(bands);
-    sh::convolve(bands, a.data(), out.data(), out.data());
-    CHECK(double(sh::eval_sum(bands, out.data(), T(d.x), T(d.y), T(d.z))) ==
-          Approx(3 * sh::directional_light_peak(bands))
-              .epsilon(std::is_same_v<T, float> ? 1e-5 : 1e-13));
     CHECK(sh::directional_light_peak(3) == Approx(17.0 / 16));
     CHECK(sh::directional_light_peak(1) == Approx(0.25));
 }
@@ -369,6 +371,20 @@ struct RGBf {
 RGBf operator+(const RGBf& a, const RGBf& b) { return {a.r + b.r, a.g + b.g, a.b + b.b}; }
 RGBf operator*(const RGBf& a, float s) { return {a.r * s, a.g * s, a.b * s}; }
 
+/// Reference coefficients in double, independent of the lights' code paths: factor_l * y_k(d)
+/// with y from sh::eval(bands, double) and the factors from sh::cap_kernel (cap lights) or 1.
+std::vector<double> zonal_reference(int bands, double x, double y, double z,
+                                    const std::vector<double>& factor) {
+    std::vector<double> yv(std::size_t(bands * bands)), out(yv.size());
+    sh::eval(bands, x, y, z, yv.data());
+    for (int l = 0; l < bands; ++l)
+        for (int k = l * l; k < (l + 1) * (l + 1); ++k)
+            out[std::size_t(k)] = factor[std::size_t(l)] * yv[std::size_t(k)];
+    return out;
+}
+
+/// The fixed-band lights (and the run-time ones, which use them for 1..8 bands) against
+/// zonal_reference.
 template <int N, class T>
 void check_fixed_lights(std::mt19937& rng) {
     using C = T;  // one channel in T; the RGB case is below
@@ -377,24 +393,41 @@ void check_fixed_lights(std::mt19937& rng) {
     for (int trial = 0; trial < 8; ++trial) {
         const T x = T(nd(rng)), y = T(nd(rng)), z = T(nd(rng));
         const T a = T(0.05 + 0.4 * trial), rad = T(0.3 + 0.5 * trial);
+        const double xd = x, yd = y, zd = z;
         C f[N * N], r[N * N];
-        auto same = [&](const char* what) {
+        auto same = [&](const char* what, const std::vector<double>& ref) {
             INFO(what << " N = " << N << " trial " << trial);
-            for (int k = 0; k < N * N; ++k)
-                CHECK(double(f[k]) == Approx(double(r[k])).margin(tol * 4 * pi).epsilon(tol));
+            for (int k = 0; k < N * N; ++k) {
+                CHECK(double(f[k]) ==
+                      Approx(ref[std::size_t(k)]).margin(tol * 4 * pi).epsilon(tol));
+                CHECK(double(r[k]) ==
+                      Approx(ref[std::size_t(k)]).margin(tol * 4 * pi).epsilon(tol));
+            }
         };
         sh::directional_light<N>(x, y, z, T(1.5), f);
         sh::directional_light(N, x, y, z, T(1.5), r);
-        same("directional");
+        same("directional", zonal_reference(N, xd, yd, zd, std::vector<double>(N, 1.5)));
+        const double u_cone = 1 - std::cos(double(a));
+        auto fc = sh::cap_kernel(N, u_cone);
+        for (auto& v : fc) v *= 0.7;
         sh::cone_light<N>(x, y, z, a, T(0.7), f);
         sh::cone_light(N, x, y, z, a, T(0.7), r);
-        same("cone");
+        same("cone", zonal_reference(N, xd, yd, zd, fc));
+        const double dist = std::sqrt(xd * xd + yd * yd + zd * zd);
+        const double s = double(rad) / dist;
+        auto fs = sh::cap_kernel(N, s >= 1 ? 2.0 : 1 - std::sqrt(1 - s * s));
+        for (auto& v : fs) v *= 0.7;
         sh::spherical_light<N>(x, y, z, rad, T(0.7), f);
         sh::spherical_light(N, x, y, z, rad, T(0.7), r);
-        same("sphere");
+        same("sphere", zonal_reference(N, xd, yd, zd, fs));
+        // sky 1.25 on the cap u = 1 plus ground 0.25 on the rest of the sphere
+        auto fh = sh::cap_kernel(N, 1.0);
+        for (int l = 0; l < N; ++l)
+            fh[std::size_t(l)] =
+                1.25 * fh[std::size_t(l)] + 0.25 * ((l == 0 ? 4 * pi : 0.0) - fh[std::size_t(l)]);
         sh::hemisphere_light<N>(x, y, z, T(1.25), T(0.25), f);
         sh::hemisphere_light(N, x, y, z, T(1.25), T(0.25), r);
-        same("hemisphere");
+        same("hemisphere", zonal_reference(N, xd, yd, zd, fh));
     }
 }
 
@@ -404,8 +437,10 @@ void fixed_lights_all(std::mt19937& rng, T) {
 }
 }  // namespace
 
-TEMPLATE_TEST_CASE("directional/cone/spherical/hemisphere_light<N> equal the run-time lights",
-                   "[ops][lights]", float, double) {
+TEMPLATE_TEST_CASE(
+    "directional/cone/spherical/hemisphere_light<N> and the run-time lights at N bands "
+    "equal factor times y in double",
+    "[ops][lights]", float, double) {
     std::mt19937 rng(21);
     fixed_lights_all<1, 2, 3, 4, 5, 6, 7, 8>(rng, TestType(0));
 }

@@ -7,7 +7,7 @@
 #include <limits>
 #include <random>
 
-#include "render_shapes_for_tests.hpp"
+#include "render_test_support.hpp"
 #include "sphbasis/render/bake.hpp"
 
 using namespace sphbasis;
@@ -73,8 +73,7 @@ struct SphereOverPlane {
     SceneDesc desc() const {
         SceneDesc d;
         d.meshes = {plane.view(), ball.view()};
-        d.environment.kind = Environment::Kind::constant;
-        d.environment.constant = {1, 1, 1};
+        d.environment = sphbasis_test::constant_environment({1, 1, 1});
         return d;
     }
 };
@@ -184,8 +183,7 @@ TEST_CASE("render::Baker: a lone convex mesh needs no rays", "[render]") {
     ball.albedo = {0.9f, 0.2f, 0.4f};
     SceneDesc d;
     d.meshes = {ball.view()};
-    d.environment.kind = Environment::Kind::constant;
-    d.environment.constant = {1, 1, 1};
+    d.environment = sphbasis_test::constant_environment({1, 1, 1});
     BakeSettings s;
     s.quantities = Quantity::ao | Quantity::bent | Quantity::visibility | Quantity::transfer |
                    Quantity::irradiance;
@@ -257,8 +255,7 @@ struct Furnace {
         box.albedo = {1, 1, 1};
         SceneDesc d;
         d.meshes = {box.view()};
-        d.environment.kind = Environment::Kind::constant;
-        d.environment.constant = {1, 1, 1};
+        d.environment = sphbasis_test::constant_environment({1, 1, 1});
         return d;
     }
     static std::vector<BakePoint> points() {
@@ -439,8 +436,7 @@ TEST_CASE("render::Baker: pass seconds are exclusive and add up to the thread ti
 TEST_CASE("render::Baker: radiance at free points, lights and inside flags", "[render]") {
     SECTION("empty scene: closed forms, and the rays agree") {
         SceneDesc d;
-        d.environment.kind = Environment::Kind::constant;
-        d.environment.constant = {1, 2, 3};
+        d.environment = sphbasis_test::constant_environment({1, 2, 3});
         Light cone;
         cone.type = Light::Type::cone;
         cone.direction = {0, 0.6, 0.8};
@@ -475,8 +471,7 @@ TEST_CASE("render::Baker: radiance at free points, lights and inside flags", "[r
         auto boxm = sphbasis_test::box(-1, -1, -1, 1, 1, 1);
         SceneDesc d;
         d.meshes = {boxm.view()};
-        d.environment.kind = Environment::Kind::constant;
-        d.environment.constant = {1, 1, 1};
+        d.environment = sphbasis_test::constant_environment({1, 1, 1});
         BakeSettings s;
         s.quantities = Quantity::radiance;
         s.rays = 128;
@@ -496,8 +491,7 @@ TEST_CASE("render::Baker: irradiance on an open plane with a directional light",
     auto plane = sphbasis_test::quad_grid(-10, 10, -10, 10, 0, 1);
     SceneDesc d;
     d.meshes = {plane.view()};
-    d.environment.kind = Environment::Kind::constant;
-    d.environment.constant = {1, 1, 1};
+    d.environment = sphbasis_test::constant_environment({1, 1, 1});
     Light sun;
     sun.direction = {0, 0, 1};
     sun.color = {0, 0, 3};
@@ -583,8 +577,7 @@ TEST_CASE("bake: bounces reach points that the lone-convex-mesh shortcut does no
     SceneDesc d;
     d.meshes = {ball.view()};
     d.meshes[0].albedo = {1, 1, 1};
-    d.environment.kind = Environment::Kind::constant;
-    d.environment.constant = {1, 1, 1};
+    d.environment = sphbasis_test::constant_environment({1, 1, 1});
     BakeSettings s;
     s.quantities = Quantity::transfer;
     s.rays = 1024;
@@ -610,8 +603,7 @@ TEST_CASE("bake: a small open box in a large open scene gets its bounces", "[ren
     SceneDesc d;
     d.meshes = {ground.view(), box.view()};
     for (auto& m : d.meshes) m.albedo = {0.5f, 0.5f, 0.5f};
-    d.environment.kind = Environment::Kind::constant;
-    d.environment.constant = {1, 1, 1};
+    d.environment = sphbasis_test::constant_environment({1, 1, 1});
     BakeSettings s;
     s.quantities = Quantity::transfer;
     s.rays = 2048;
@@ -644,10 +636,7 @@ TEST_CASE("bake: a NaN environment texel or a zero-angle cone is refused", "[ren
     tex[5] = std::numeric_limits<float>::quiet_NaN();
     SceneDesc d;
     d.meshes = {plane.view()};
-    d.environment.kind = Environment::Kind::latlong;
-    d.environment.texels = tex.data();
-    d.environment.width = 8;
-    d.environment.height = 4;
+    d.environment = sphbasis_test::latlong_environment(tex, 8, 4);
     BakeSettings s;
     s.quantities = Quantity::irradiance;
     CHECK_THROWS_WITH(Baker(d, s), Catch::Contains("finite environment texels"));

@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "render_test_support.hpp"
 #include "sphbasis/core/constants.hpp"
 #include "sphbasis/core/frame.hpp"
 #include "sphbasis/param/latlong.hpp"
@@ -17,32 +18,20 @@ using render::Environment;
 using render::EnvironmentSampler;
 using sphbasis::vec3;
 namespace constants = sphbasis::constants;
+using sphbasis_test::latlong_environment;
 
 namespace {
 
 /// A 16 x 8 map: a dim coloured gradient, a bright "sun" texel block and a black band.
 std::vector<float> test_map(int w, int h) {
-    std::vector<float> t(std::size_t(w * h * 3));
-    for (int j = 0; j < h; ++j)
-        for (int i = 0; i < w; ++i) {
-            float* p = &t[3 * std::size_t(j * w + i)];
-            const float g = 0.1f + 0.05f * float(i) / float(w);
-            p[0] = g;
-            p[1] = 0.5f * g;
-            p[2] = 0.2f + 0.1f * float(j) / float(h);
-            if (j == h - 2) p[0] = p[1] = p[2] = 0;                     // a black band
-            if (j == 2 && (i == 5 || i == 6)) p[0] = p[1] = p[2] = 40;  // the sun
-        }
-    return t;
-}
-
-Environment latlong(const std::vector<float>& t, int w, int h) {
-    Environment e;
-    e.kind = Environment::Kind::latlong;
-    e.texels = t.data();
-    e.width = w;
-    e.height = h;
-    return e;
+    return sphbasis_test::rgb_texels(w, h, [w, h](int i, int j, float* p) {
+        const float g = 0.1f + 0.05f * float(i) / float(w);
+        p[0] = g;
+        p[1] = 0.5f * g;
+        p[2] = 0.2f + 0.1f * float(j) / float(h);
+        if (j == h - 2) p[0] = p[1] = p[2] = 0;                     // a black band
+        if (j == 2 && (i == 5 || i == 6)) p[0] = p[1] = p[2] = 40;  // the sun
+    });
 }
 
 /// Midpoint quadrature of f over the sphere in (cos theta, phi), n x 2n cells.
@@ -62,7 +51,7 @@ double sphere_integral(int n, F&& f) {
 
 TEST_CASE("EnvironmentSampler: the density integrates to one", "[render][environment_sampler]") {
     const auto t = test_map(16, 8);
-    Environment e = latlong(t, 16, 8);
+    Environment e = latlong_environment(t, 16, 8);
     const EnvironmentSampler s(e);
     // Quadrature cells aligned with the texels' cos(theta) bands would be exact; a plain grid of
     // 160 x 320 cells misses by about the texel edge fraction.
@@ -77,7 +66,7 @@ TEST_CASE("EnvironmentSampler: the density integrates to one", "[render][environ
 TEST_CASE("EnvironmentSampler: sample() and pdf() agree; positive where radiance is",
           "[render][environment_sampler]") {
     const auto t = test_map(16, 8);
-    Environment e = latlong(t, 16, 8);
+    Environment e = latlong_environment(t, 16, 8);
     e.rotation = sphbasis::matrix_from_euler_zyz(0.3, 1.1, -0.7);
     const EnvironmentSampler s(e);
     std::mt19937_64 rng(7);
@@ -107,7 +96,7 @@ TEST_CASE("EnvironmentSampler: a histogram of sampled texels matches the density
           "[render][environment_sampler]") {
     const int W = 16, H = 8;
     const auto t = test_map(W, H);
-    const Environment e = latlong(t, W, H);
+    const Environment e = latlong_environment(t, W, H);
     const EnvironmentSampler s(e);
     const int n = 40000;
     std::vector<double> count(std::size_t(W * H), 0.0);
@@ -143,9 +132,7 @@ TEST_CASE("EnvironmentSampler: a histogram of sampled texels matches the density
 
 TEST_CASE("EnvironmentSampler: constant, black and absent environments",
           "[render][environment_sampler]") {
-    Environment c;
-    c.kind = Environment::Kind::constant;
-    c.constant = {1, 2, 3};
+    Environment c = sphbasis_test::constant_environment({1, 2, 3});
     const EnvironmentSampler s(c);
     CHECK(s.emits());
     CHECK(s.is_constant());
@@ -155,7 +142,7 @@ TEST_CASE("EnvironmentSampler: constant, black and absent environments",
     CHECK(s.pdf(vec3<double>{0, 0, 1}) == Approx(1 / (4 * constants::pi)));
 
     std::vector<float> black(8 * 4 * 3, 0.0f);
-    const EnvironmentSampler b(latlong(black, 8, 4));
+    const EnvironmentSampler b(latlong_environment(black, 8, 4));
     CHECK(!b.emits());
     CHECK(b.sample(0.5, 0.5).pdf == Approx(1 / (4 * constants::pi)));
 

@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "render_test_support.hpp"
 #include "sphbasis/basis/sh.hpp"
 #include "sphbasis/core/frame.hpp"
 #include "sphbasis/core/quadrature.hpp"
@@ -130,11 +131,7 @@ TEST_CASE("Environment: lat-long texel centres, bilinear, wrap in u, clamp in v"
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> U(0.f, 4.f);
     for (float& t : tex) t = U(rng);
-    Environment e;
-    e.kind = Environment::Kind::latlong;
-    e.texels = tex.data();
-    e.width = W;
-    e.height = H;
+    Environment e = sphbasis_test::latlong_environment(tex, W, H);
     e.scale = 2.0;
     REQUIRE_NOTHROW(render::validate(e));
     auto texel = [&](int i, int j, int c) {
@@ -197,11 +194,7 @@ TEST_CASE("Environment: rotation is world = rotation * map", "[render][lighting]
             for (int c = 0; c < 3; ++c)
                 tex[static_cast<std::size_t>(3 * (j * W + i) + c)] =
                     static_cast<float>(1 + i + 0.1 * j * j + c);
-    Environment base;
-    base.kind = Environment::Kind::latlong;
-    base.texels = tex.data();
-    base.width = W;
-    base.height = H;
+    Environment base = sphbasis_test::latlong_environment(tex, W, H);
     Environment rot = base;
     rot.rotation = sphbasis::matrix_from_euler_zyz(0.7, 1.1, -0.4);
     REQUIRE_NOTHROW(render::validate(rot));
@@ -221,11 +214,7 @@ TEST_CASE("Environment: rotation is world = rotation * map", "[render][lighting]
 
 TEST_CASE("Environment: validate rejects bad structs", "[render][lighting]") {
     std::vector<float> tex(2 * 1 * 3, 1.f);
-    Environment e;
-    e.kind = Environment::Kind::latlong;
-    e.texels = tex.data();
-    e.width = 2;
-    e.height = 1;
+    Environment e = sphbasis_test::latlong_environment(tex, 2, 1);
     REQUIRE_NOTHROW(render::validate(e));
     {
         Environment b = e;
@@ -258,17 +247,13 @@ TEST_CASE("Environment: validate rejects bad structs", "[render][lighting]") {
         CHECK_THROWS_WITH(render::validate(b), Catch::Contains("finite environment texels"));
     }
     {
-        Environment b;
-        b.kind = Environment::Kind::constant;
-        b.constant = {1, std::nan(""), 0};
+        Environment b = sphbasis_test::constant_environment({1, std::nan(""), 0});
         CHECK_THROWS_WITH(render::validate(b), Catch::StartsWith("sphbasis::render::validate()"));
     }
 }
 
 TEST_CASE("Environment: SH projection, constant and rotated lat-long", "[render][lighting]") {
-    Environment c;
-    c.kind = Environment::Kind::constant;
-    c.constant = {1, 2, 3};
+    Environment c = sphbasis_test::constant_environment({1, 2, 3});
     c.scale = 2;
     c.rotation = sphbasis::matrix_from_euler_zyz(0.3, 0.2, 0.1);
     const std::vector<RGB> pc = render::project_sh(c, 3);
@@ -285,11 +270,7 @@ TEST_CASE("Environment: SH projection, constant and rotated lat-long", "[render]
                 tex[static_cast<std::size_t>(3 * (j * W + i) + k)] =
                     static_cast<float>((k + 1) * (1 + m.x));
         }
-    Environment e;
-    e.kind = Environment::Kind::latlong;
-    e.texels = tex.data();
-    e.width = W;
-    e.height = H;
+    Environment e = sphbasis_test::latlong_environment(tex, W, H);
     e.scale = 0.5;
     e.rotation = sphbasis::matrix_from_euler_zyz(0.7, 1.1, -0.4);
     const std::vector<RGB> p = render::project_sh(e, 3);
@@ -330,11 +311,7 @@ TEST_CASE("Lights: radiance of each type", "[render][lighting]") {
     dir.direction = d;
     CHECK(render::light_radiance(dir, d)[0] == 0);  // delta: only through irradiance() and sample()
     // Sphere light: radiance where the ray meets the ball (independent ray-ball test).
-    Light sph;
-    sph.type = Light::Type::sphere;
-    sph.position = {1, -2, 3};
-    sph.radius = 0.8;
-    sph.color = {5, 5, 5};
+    Light sph = sphbasis_test::sphere_light({1, -2, 3}, 0.8, {5, 5, 5});
     const vec3<double> x{0.2, 0.1, -0.3};
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> U(0.0, 1.0);
@@ -414,11 +391,7 @@ TEST_CASE("Lights: cone irradiance against quadrature, horizon crossings include
 }
 
 TEST_CASE("Lights: sphere light irradiance as a function of the point", "[render][lighting]") {
-    Light s;
-    s.type = Light::Type::sphere;
-    s.position = {0, 0, 2};
-    s.radius = 1;
-    s.color = {3, 3, 3};
+    Light s = sphbasis_test::sphere_light({0, 0, 2}, 1, {3, 3, 3});
     // On the plane z = 0 below the centre facing up: pi L sin^2(a) = pi L r^2 / D^2.
     CHECK(render::light_irradiance(s, {0, 0, 1}, {0, 0, 0})[0] ==
           Approx(3 * constants::pi / 4).epsilon(1e-12));
@@ -477,11 +450,7 @@ TEST_CASE("Lights: SH projections against quadrature of radiance()", "[render][l
     hemi.color = {1, 2, 3};
     hemi.ground = {0.5, 0.25, 0.0};
     check_light(hemi, d, {0.0}, {0, 0, 0});
-    Light s;
-    s.type = Light::Type::sphere;
-    s.position = {1, 2, 3};
-    s.radius = 1.5;
-    s.color = {2, 1, 1};
+    Light s = sphbasis_test::sphere_light({1, 2, 3}, 1.5, {2, 1, 1});
     const vec3<double> x{0.5, -0.5, 0.2};
     const vec3<double> p{s.position.x - x.x, s.position.y - x.y, s.position.z - x.z};
     const double D = std::sqrt(sphbasis::dot(p, p));
@@ -500,11 +469,7 @@ TEST_CASE("Lights: SH projections against quadrature of radiance()", "[render][l
 TEST_CASE("Lights: sampling pdf integrates to one and the estimator converges",
           "[render][lighting]") {
     const vec3<double> d = unit({0.1, 0.9, 0.3});
-    Light sph;
-    sph.type = Light::Type::sphere;
-    sph.position = {0.5, 2, 1};
-    sph.radius = 0.7;
-    sph.color = {2, 2, 2};
+    Light sph = sphbasis_test::sphere_light({0.5, 2, 1}, 0.7, {2, 2, 2});
     Light hemi;
     hemi.type = Light::Type::hemisphere;
     hemi.direction = d;

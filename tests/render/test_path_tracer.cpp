@@ -13,7 +13,7 @@
 #include <memory>
 #include <vector>
 
-#include "render_shapes_for_tests.hpp"
+#include "render_test_support.hpp"
 #include "sphbasis/core/constants.hpp"
 #include "sphbasis/render/path_tracer.hpp"
 #include "sphbasis/render/shapes.hpp"
@@ -37,20 +37,9 @@ vec3<double> unit(vec3<double> v) {
     return {v.x / l, v.y / l, v.z / l};
 }
 
-Environment constant_sky(double L) {
-    Environment e;
-    e.kind = Environment::Kind::constant;
-    e.constant = {L, L, L};
-    return e;
-}
+Environment constant_sky(double L) { return sphbasis_test::constant_environment({L, L, L}); }
 
-Light sun(vec3<double> d, double E) {
-    Light l;
-    l.type = Light::Type::directional;
-    l.direction = d;
-    l.color = {E, E, E};
-    return l;
-}
+Light sun(vec3<double> d, double E) { return sphbasis_test::directional_light(d, {E, E, E}); }
 
 std::unique_ptr<Scene> make_scene(const std::vector<Mesh>& meshes) {
     std::vector<render::MeshView> views;
@@ -77,6 +66,33 @@ Estimate estimate(const PathTracer& t, vec3<double> o, vec3<double> d, int n,
 }
 
 using sphbasis_test::camera_at;
+using sphbasis_test::latlong_environment;
+using sphbasis_test::rmse;
+
+/// The scene of the image tests: a ball of radius 0.6 resting on a 10 x 10 plane at z = 0.
+std::unique_ptr<Scene> ball_on_plane(int rings, int segments) {
+    return make_scene({render::shapes::sphere({0, 0, 0.6}, 0.6, rings, segments),
+                       sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1)});
+}
+/// A w x h camera looking down at ball_on_plane().
+Camera ball_camera(int w, int h, double fov = 35) {
+    return camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, w, h, fov);
+}
+
+/// Integral of g(w) over the hemisphere z > 0 by 256 x 512 midpoint cells, uniform in z = cos
+/// theta and phi.
+template <class G>
+double hemisphere_integral(G&& g) {
+    double sum = 0;
+    const int nt = 256, np = 512;
+    for (int a = 0; a < nt; ++a)
+        for (int b = 0; b < np; ++b) {
+            const double z = (a + 0.5) / nt, phi = 2 * constants::pi * (b + 0.5) / np;
+            const double rr = std::sqrt(1 - z * z);
+            sum += g(vec3<double>{rr * std::cos(phi), rr * std::sin(phi), z});
+        }
+    return sum * (2 * constants::pi / (double(nt) * np));
+}
 
 /// Analytic ray-sphere hit: the unit normal at the near intersection (false on a miss).
 bool sphere_normal(vec3<double> o, vec3<double> d, vec3<double> c, double r, vec3<double>& n) {
@@ -207,11 +223,7 @@ TEST_CASE("PathTracer: sphere, cone and hemisphere lights with MIS equal their i
     Mesh q = sphbasis_test::quad_grid(-20, 20, -20, 20, 0, 1);
     q.albedo = {0.9f, 0.9f, 0.9f};
     const auto scene = make_scene({q});
-    Light ball;
-    ball.type = Light::Type::sphere;
-    ball.position = {0.6, 0.2, 1.2};
-    ball.radius = 0.5;
-    ball.color = {3, 3, 3};
+    Light ball = sphbasis_test::sphere_light({0.6, 0.2, 1.2}, 0.5, {3, 3, 3});
     Light cone;
     cone.type = Light::Type::cone;
     cone.direction = unit({1, 0, 0.15});  // straddles the horizon
@@ -274,20 +286,13 @@ TEST_CASE("PathTracer: a tilted normal map and the Blinn-Phong lobe under a sun"
 TEST_CASE("PathTracer: MIS irradiance of a lat-long map equals quadrature",
           "[render][path_tracer]") {
     const int W = 16, H = 8;
-    std::vector<float> tex(std::size_t(W * H * 3));
-    for (int j = 0; j < H; ++j)
-        for (int i = 0; i < W; ++i) {
-            float* p = &tex[3 * std::size_t(j * W + i)];
-            p[0] = 0.3f + 0.2f * float(std::sin(0.7 * i));
-            p[1] = 0.2f;
-            p[2] = 0.1f + 0.05f * float(j);
-            if (j == 2 && i == 3) p[0] = p[1] = p[2] = 60;  // a sun
-        }
-    Environment env;
-    env.kind = Environment::Kind::latlong;
-    env.texels = tex.data();
-    env.width = W;
-    env.height = H;
+    const std::vector<float> tex = sphbasis_test::rgb_texels(W, H, [](int i, int j, float* p) {
+        p[0] = 0.3f + 0.2f * float(std::sin(0.7 * i));
+        p[1] = 0.2f;
+        p[2] = 0.1f + 0.05f * float(j);
+        if (j == 2 && i == 3) p[0] = p[1] = p[2] = 60;  // a sun
+    });
+    Environment env = latlong_environment(tex, W, H);
     env.rotation = sphbasis::matrix_from_euler_zyz(0.4, 0.3, 0.0);
     for (const vec3<double> n : {vec3<double>{0, 0, 1}, unit({0.5, 0.2, 0.8})}) {
         // A big quad with normal n through the origin.
@@ -303,17 +308,8 @@ TEST_CASE("PathTracer: MIS irradiance of a lat-long map equals quadrature",
         const Estimate e = estimate(t, o, unit({-o.x, -o.y, -o.z}), 3000);
         // Quadrature of L(w) max(n.w, 0) over the hemisphere of n, 256 x 512 cells in the
         // frame of n (uniform in cos theta and phi).
-        double E = 0;
-        const int nt = 256, np = 512;
-        for (int a = 0; a < nt; ++a)
-            for (int b = 0; b < np; ++b) {
-                const double z = (a + 0.5) / nt, phi = 2 * constants::pi * (b + 0.5) / np;
-                const double rr = std::sqrt(1 - z * z);
-                const vec3<double> w =
-                    f.to_world(vec3<double>{rr * std::cos(phi), rr * std::sin(phi), z});
-                E += env.radiance(w)[0] * z;
-            }
-        E *= 2 * constants::pi / (double(nt) * np);
+        const double E = hemisphere_integral(
+            [&](const vec3<double>& w) { return env.radiance(f.to_world(w))[0] * w.z; });
         CHECK(std::fabs(e.mean - E / constants::pi) < 4 * e.se + 2e-3 * E);
         CHECK(t.counters().environment_samples == 3000);
     }
@@ -322,18 +318,11 @@ TEST_CASE("PathTracer: MIS irradiance of a lat-long map equals quadrature",
 TEST_CASE("PathTracer: Blinn-Phong under a lat-long map (MIS with lobe sampling) equals quadrature",
           "[render][path_tracer]") {
     const int W = 16, H = 8;
-    std::vector<float> tex(std::size_t(W * H * 3));
-    for (int j = 0; j < H; ++j)
-        for (int i = 0; i < W; ++i) {
-            float* p = &tex[3 * std::size_t(j * W + i)];
-            p[0] = p[1] = p[2] = 0.2f + 0.1f * float(i % 3);
-            if (j == 1 && i == 9) p[0] = p[1] = p[2] = 30;
-        }
-    Environment env;
-    env.kind = Environment::Kind::latlong;
-    env.texels = tex.data();
-    env.width = W;
-    env.height = H;
+    const std::vector<float> tex = sphbasis_test::rgb_texels(W, H, [](int i, int j, float* p) {
+        p[0] = p[1] = p[2] = 0.2f + 0.1f * float(i % 3);
+        if (j == 1 && i == 9) p[0] = p[1] = p[2] = 30;
+    });
+    Environment env = latlong_environment(tex, W, H);
     Mesh q = sphbasis_test::quad_grid(-50, 50, -50, 50, 0, 1);
     q.albedo = {0.2f, 0.2f, 0.2f};
     q.shininess = 8;
@@ -346,27 +335,17 @@ TEST_CASE("PathTracer: Blinn-Phong under a lat-long map (MIS with lobe sampling)
     const vec3<double> d = unit({-o.x, -o.y, -o.z});
     const Estimate e = estimate(t, o, d, 4000);
     const vec3<double> wo{-d.x, -d.y, -d.z};
-    double ref = 0;
-    const int nt = 256, np = 512;
-    for (int a = 0; a < nt; ++a)
-        for (int b = 0; b < np; ++b) {
-            const double z = (a + 0.5) / nt, phi = 2 * constants::pi * (b + 0.5) / np;
-            const double rr = std::sqrt(1 - z * z);
-            const vec3<double> w{rr * std::cos(phi), rr * std::sin(phi), z};
-            const vec3<double> h = unit({wo.x + w.x, wo.y + w.y, wo.z + w.z});
-            const double f =
-                0.2 / constants::pi + 0.6 * 16 / (8 * constants::pi) * std::pow(h.z, 8);
-            ref += f * env.radiance(w)[0] * z;
-        }
-    ref *= 2 * constants::pi / (double(nt) * np);
+    const double ref = hemisphere_integral([&](const vec3<double>& w) {
+        const vec3<double> h = unit({wo.x + w.x, wo.y + w.y, wo.z + w.z});
+        const double f = 0.2 / constants::pi + 0.6 * 16 / (8 * constants::pi) * std::pow(h.z, 8);
+        return f * env.radiance(w)[0] * w.z;
+    });
     CHECK(std::fabs(e.mean - ref) < 4 * e.se + 2e-3 * ref);
     CHECK(t.counters().specular_evaluations > 0);
 }
 
 TEST_CASE("PathTracer: error halves when samples quadruple", "[render][path_tracer]") {
-    Mesh ball = render::shapes::sphere({0, 0, 0.6}, 0.6, 16, 32);
-    Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);
-    const auto scene = make_scene({ball, plane});
+    const auto scene = ball_on_plane(16, 32);
     TraceSettings s;
     s.bounces = 1;
     s.target_noise = 0;
@@ -375,16 +354,10 @@ TEST_CASE("PathTracer: error halves when samples quadruple", "[render][path_trac
         q.spp_min = q.spp_max = spp;
         q.seed = seed;
         PathTracer t(*scene, constant_sky(1), {sun(unit({0.5, 0.3, 1}), 2)}, q);
-        return t.render(camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, 8, 8, 35)).color;
+        return t.render(ball_camera(8, 8)).color;
     };
     const auto ref = render_spp(256, 99);
-    auto rmse = [&](const render::Image& a) {
-        double e = 0;
-        for (std::size_t i = 0; i < a.data.size(); ++i)
-            e += (double(a.data[i]) - ref.data[i]) * (double(a.data[i]) - ref.data[i]);
-        return std::sqrt(e / double(a.data.size()));
-    };
-    const double e16 = rmse(render_spp(16, 1)), e64 = rmse(render_spp(64, 2));
+    const double e16 = rmse(render_spp(16, 1), ref), e64 = rmse(render_spp(64, 2), ref);
     // With the reference's own variance: sqrt((1/16 + 1/256) / (1/64 + 1/256)) = 1.84.
     CHECK(e16 / e64 > 1.35);
     CHECK(e16 / e64 < 2.5);
@@ -392,9 +365,7 @@ TEST_CASE("PathTracer: error halves when samples quadruple", "[render][path_trac
 
 TEST_CASE("PathTracer: deterministic for a seed, whatever the thread count",
           "[render][path_tracer]") {
-    Mesh ball = render::shapes::sphere({0, 0, 0.6}, 0.6, 12, 24);
-    Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);
-    const auto scene = make_scene({ball, plane});
+    const auto scene = ball_on_plane(12, 24);
     TraceSettings s;
     s.bounces = 2;
     s.spp_min = 2;
@@ -403,7 +374,7 @@ TEST_CASE("PathTracer: deterministic for a seed, whatever the thread count",
     s.tile = 4;
     s.seed = 5;
     s.aovs = true;
-    const Camera cam = camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, 12, 10, 35);
+    const Camera cam = ball_camera(12, 10);
     PathTracer t(*scene, constant_sky(1), {sun(unit({0.5, 0.3, 1}), 2)}, s);
     render::TraceResult one, all;
     tbb::task_arena(1).execute([&] { one = t.render(cam); });
@@ -424,10 +395,8 @@ TEST_CASE("PathTracer: deterministic for a seed, whatever the thread count",
 }
 
 TEST_CASE("PathTracer: counters of work the scene does not call for", "[render][path_tracer]") {
-    Mesh ball = render::shapes::sphere({0, 0, 0.6}, 0.6, 12, 24);
-    Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);
-    const auto scene = make_scene({ball, plane});
-    const Camera cam = camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, 8, 8, 35);
+    const auto scene = ball_on_plane(12, 24);
+    const Camera cam = ball_camera(8, 8);
     TraceSettings s;
     s.spp_min = s.spp_max = 2;
     s.target_noise = 0;
@@ -472,10 +441,8 @@ TEST_CASE("PathTracer: counters of work the scene does not call for", "[render][
 
 TEST_CASE("PathTracer: progressive passes stop at the target noise; bad settings throw",
           "[render][path_tracer]") {
-    Mesh ball = render::shapes::sphere({0, 0, 0.6}, 0.6, 12, 24);
-    Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);
-    const auto scene = make_scene({ball, plane});
-    const Camera cam = camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, 8, 8, 35);
+    const auto scene = ball_on_plane(12, 24);
+    const Camera cam = ball_camera(8, 8);
     TraceSettings s;
     s.bounces = 1;
     s.spp_min = 4;
@@ -537,9 +504,7 @@ TEST_CASE("PathTracer: furnace and convergence at scale", "[render][path_tracer]
         CHECK(std::fabs(r.color.data[i] - 1) <= 5 * r.stderr_.data[i] + 1e-4);
 
     // Convergence: 64 x 64 pixels, 16 against 64 samples, reference 4096.
-    Mesh ball = render::shapes::sphere({0, 0, 0.6}, 0.6, 16, 32);
-    Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);
-    const auto scene2 = make_scene({ball, plane});
+    const auto scene2 = ball_on_plane(16, 32);
     auto render_spp = [&](int spp, std::uint64_t seed) {
         TraceSettings q;
         q.bounces = 2;
@@ -547,17 +512,11 @@ TEST_CASE("PathTracer: furnace and convergence at scale", "[render][path_tracer]
         q.target_noise = 0;
         q.seed = seed;
         PathTracer tt(*scene2, constant_sky(1), {sun(unit({0.5, 0.3, 1}), 2)}, q);
-        return tt.render(camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, 32, 32, 35)).color;
+        return tt.render(ball_camera(32, 32)).color;
     };
     const auto ref = render_spp(4096, 99);
-    auto rmse = [&](const render::Image& a) {
-        double e = 0;
-        for (std::size_t i = 0; i < a.data.size(); ++i)
-            e += (double(a.data[i]) - ref.data[i]) * (double(a.data[i]) - ref.data[i]);
-        return std::sqrt(e / double(a.data.size()));
-    };
-    const double e16 = rmse(render_spp(16, 1)), e64 = rmse(render_spp(64, 2)),
-                 e256 = rmse(render_spp(256, 3));
+    const double e16 = rmse(render_spp(16, 1), ref), e64 = rmse(render_spp(64, 2), ref),
+                 e256 = rmse(render_spp(256, 3), ref);
     CHECK(e16 / e64 == Approx(2).epsilon(0.15));
     CHECK(e64 / e256 ==
           Approx(std::sqrt((1 / 64.0 + 1 / 4096.0) / (1 / 256.0 + 1 / 4096.0))).epsilon(0.15));
@@ -572,26 +531,16 @@ TEST_CASE("PathTracer: a tile's paths traced together equal paths traced one at 
     std::vector<float> tex(std::size_t(W * H * 3));
     for (std::size_t i = 0; i < tex.size(); ++i) tex[i] = 0.2f + 0.1f * float(i % 7);
     tex[3 * 10] = tex[3 * 10 + 1] = tex[3 * 10 + 2] = 40;
-    Environment env;
-    env.kind = Environment::Kind::latlong;
-    env.texels = tex.data();
-    env.width = W;
-    env.height = H;
-    Light ball;
-    ball.type = Light::Type::sphere;
-    ball.position = {-1, -1, 2};
-    ball.radius = 0.3;
-    ball.color = {4, 4, 4};
-    Mesh sph = render::shapes::sphere({0, 0, 0.6}, 0.6, 12, 24);
-    Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);
-    const auto scene = make_scene({sph, plane});
+    Environment env = latlong_environment(tex, W, H);
+    Light ball = sphbasis_test::sphere_light({-1, -1, 2}, 0.3, {4, 4, 4});
+    const auto scene = ball_on_plane(12, 24);
     TraceSettings s;
     s.bounces = 2;
     s.spp_min = s.spp_max = 1;
     s.target_noise = 0;
     s.tile = 3;
     s.seed = 11;
-    const Camera cam = camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, 7, 5, 40);
+    const Camera cam = ball_camera(7, 5, 40);
     PathTracer t(*scene, env, {sun(unit({0.5, 0.3, 1}), 2), ball}, s);
     const render::TraceResult r = t.render(cam);
     const render::PinholeCamera pc(cam);
@@ -624,20 +573,14 @@ TEST_CASE("PathTracer: a tile's paths traced together equal paths traced one at 
 
 TEST_CASE("PathTracer: recorded rays are the streams it traced, one record per counted ray",
           "[render][path_tracer]") {
-    Mesh sph = render::shapes::sphere({0, 0, 0.6}, 0.6, 12, 24);
-    Mesh plane = sphbasis_test::quad_grid(-5, 5, -5, 5, 0, 1);
-    const auto scene = make_scene({sph, plane});
-    const Camera cam = camera_at({2.5, -2.5, 1.8}, {0, 0, 0.4}, 9, 7, 35);
+    const auto scene = ball_on_plane(12, 24);
+    const Camera cam = ball_camera(9, 7);
     TraceSettings s;
     s.bounces = 1;
     s.spp_min = s.spp_max = 2;
     s.target_noise = 0;
     s.tile = 4;
-    Light ball;
-    ball.type = Light::Type::sphere;
-    ball.position = {-1, -1, 2};
-    ball.radius = 0.3;
-    ball.color = {4, 4, 4};
+    Light ball = sphbasis_test::sphere_light({-1, -1, 2}, 0.3, {4, 4, 4});
     for (int lights = 0; lights < 2; ++lights) {
         std::vector<Light> ls = {sun(unit({0.5, 0.3, 1}), 2)};
         if (lights) ls.push_back(ball);

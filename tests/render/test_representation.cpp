@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "render_shapes_for_tests.hpp"
+#include "render_test_support.hpp"
 #include "sphbasis/render/representation.hpp"
 #include "sphbasis/render/shapes.hpp"
 
@@ -23,25 +23,28 @@ using render::Light;
 using render::Mesh;
 using render::RGB;
 
-struct World {
-    std::vector<Mesh> meshes;
-    render::SceneDesc desc;
-    std::unique_ptr<render::Scene> rt;
-    void build() {
-        desc.meshes.clear();
-        for (const Mesh& m : meshes) desc.meshes.push_back(m.view());
-        rt = std::make_unique<render::Scene>(desc.meshes);
-    }
-};
-
-Environment constant_env(double r, double g, double b) {
-    Environment e;
-    e.kind = Environment::Kind::constant;
-    e.constant = {r, g, b};
-    return e;
-}
+using sphbasis_test::max_abs;
+using sphbasis_test::max_abs_diff;
+using sphbasis_test::World;
 
 using sphbasis_test::camera_at;
+
+/// Drops every mesh's UVs and tangents (the bakes then run per vertex).
+void strip_uvs(World& w) {
+    for (Mesh& m : w.meshes) {
+        m.uvs.clear();
+        m.tangents.clear();
+    }
+}
+
+/// Settings with the given rays, bounces and lightmap size, the rest defaults.
+render::RepresentationSettings settings(int rays, int bounces, int lightmap_size) {
+    render::RepresentationSettings s;
+    s.rays = rays;
+    s.bounces = bounces;
+    s.lightmap_size = lightmap_size;
+    return s;
+}
 
 /// Sphere of radius 1 at the origin, UVs stripped or kept.
 World lone_sphere(int rings, int segments, float albedo) {
@@ -53,30 +56,11 @@ World lone_sphere(int rings, int segments, float albedo) {
 
 /// A sphere over a plane (both with UVs unless stripped).
 World sphere_on_plane(bool uvs) {
-    World w;
-    w.meshes.push_back(render::shapes::sphere({0, 0, 0.6}, 0.5, 8, 16));
-    w.meshes.push_back(sphbasis_test::quad_grid(-1.5, 1.5, -1.5, 1.5, 0, 4));
-    w.meshes[0].albedo = {0.7f, 0.6f, 0.5f};
-    w.meshes[1].albedo = {0.5f, 0.5f, 0.5f};
-    if (!uvs)
-        for (Mesh& m : w.meshes) {
-            m.uvs.clear();
-            m.tangents.clear();
-        }
+    World w = sphbasis_test::sphere_on_plane_meshes();
+    if (!uvs) strip_uvs(w);
     return w;
 }
 
-double max_abs_diff(const Image& a, const Image& b) {
-    double d = 0;
-    for (std::size_t i = 0; i < a.data.size(); ++i)
-        d = std::max(d, std::fabs(double(a.data[i]) - double(b.data[i])));
-    return d;
-}
-double max_abs(const Image& a) {
-    double d = 0;
-    for (float v : a.data) d = std::max(d, std::fabs(double(v)));
-    return d;
-}
 bool all_finite(const Image& a) {
     for (float v : a.data)
         if (!std::isfinite(v)) return false;
@@ -102,24 +86,20 @@ vec3<double> mat_apply(const Mat3<double>& r, const vec3<double>& v) {
 
 /// A small lat-long map with a smooth gradient and a bright patch.
 std::vector<float> latlong_texels(int w, int h) {
-    std::vector<float> t(std::size_t(w * h * 3));
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            float* p = &t[std::size_t((y * w + x) * 3)];
-            const float base = 0.2f + 0.6f * float(h - y) / float(h);
-            const bool patch = x >= 3 && x <= 5 && y >= 2 && y <= 3;
-            p[0] = base + (patch ? 4.0f : 0.0f);
-            p[1] = 0.8f * base + (patch ? 3.0f : 0.0f);
-            p[2] = 0.5f + 0.1f * float(x % 4);
-        }
-    return t;
+    return sphbasis_test::rgb_texels(w, h, [h](int x, int y, float* p) {
+        const float base = 0.2f + 0.6f * float(h - y) / float(h);
+        const bool patch = x >= 3 && x <= 5 && y >= 2 && y <= 3;
+        p[0] = base + (patch ? 4.0f : 0.0f);
+        p[1] = 0.8f * base + (patch ? 3.0f : 0.0f);
+        p[2] = 0.5f + 0.1f * float(x % 4);
+    });
 }
 
 }  // namespace
 
 TEST_CASE("representations: names, unknown and duplicate names, bad settings", "[render]") {
     World w = sphere_on_plane(true);
-    w.desc.environment = constant_env(1, 1, 1);
+    w.desc.environment = sphbasis_test::constant_environment({1, 1, 1});
     w.build();
     render::RepresentationSettings s;
     const auto& names = render::representation_names();
@@ -151,7 +131,7 @@ TEST_CASE("representations: names, unknown and duplicate names, bad settings", "
 
 TEST_CASE("representations: the bake plan reads only what is requested", "[render]") {
     World w = sphere_on_plane(true);
-    w.desc.environment = constant_env(1, 1, 1);
+    w.desc.environment = sphbasis_test::constant_environment({1, 1, 1});
     w.build();
     render::RepresentationSettings s;
     s.rays = 16;
@@ -192,7 +172,7 @@ TEST_CASE("representations: the bake plan reads only what is requested", "[rende
 TEST_CASE("representations: irradiance-sh9 of a lone sphere under a constant sky is albedo L",
           "[render]") {
     World w = lone_sphere(12, 24, 0.6f);
-    w.desc.environment = constant_env(0.7, 0.8, 0.9);
+    w.desc.environment = sphbasis_test::constant_environment({0.7, 0.8, 0.9});
     w.build();
     render::RepresentationSettings s;
     render::Representations r(w.desc, *w.rt, s,
@@ -238,10 +218,7 @@ TEST_CASE("representations: irradiance-sh9 under analytic lights against the ana
     hemi.direction = {0.3, -0.2, 0.9};
     hemi.color = {1.0, 0.6, 0.3};
     hemi.ground = {0.1, 0.2, 0.4};
-    Light sun;
-    sun.type = Light::Type::directional;
-    sun.direction = {-0.4, -0.5, 0.7};
-    sun.color = {2.0, 2.0, 1.5};
+    const Light sun = sphbasis_test::directional_light({-0.4, -0.5, 0.7}, {2.0, 2.0, 1.5});
     const Camera cam = camera_at({0, -4, 0.5}, {0, 0, 0}, 16, 16, 35);
     const render::PinholeCamera pc(cam);
     for (int which = 0; which < 2; ++which) {
@@ -311,12 +288,9 @@ TEST_CASE("representations: irradiance-sh9 under analytic lights against the ana
 TEST_CASE("representations: under a constant sky prt equals ao times the sky", "[render]") {
     for (bool uvs : {true, false}) {
         World w = sphere_on_plane(uvs);
-        w.desc.environment = constant_env(0.9, 0.7, 0.5);
+        w.desc.environment = sphbasis_test::constant_environment({0.9, 0.7, 0.5});
         w.build();
-        render::RepresentationSettings s;
-        s.rays = 64;
-        s.bounces = 0;
-        s.lightmap_size = 16;
+        const render::RepresentationSettings s = settings(64, 0, 16);
         render::Representations r(w.desc, *w.rt, s, {"ao", uvs ? "prt-texel" : "prt-vertex"});
         r.prepare(nullptr);
         CHECK(r.bakes_run() == 4);
@@ -341,17 +315,10 @@ TEST_CASE("representations: render-time rotation of prt equals re-baking with ro
           "[render]") {
     const std::vector<float> tex = latlong_texels(8, 4);
     const Mat3<double> R = rotation(0.7, 0.4);
-    Light sun;
-    sun.type = Light::Type::directional;
-    sun.direction = {0.3, -0.4, 0.8};
-    sun.color = {1.5, 1.2, 1.0};
+    const Light sun = sphbasis_test::directional_light({0.3, -0.4, 0.8}, {1.5, 1.2, 1.0});
     auto make = [&](bool rotate_scene) {
         World w = sphere_on_plane(true);
-        Environment e;
-        e.kind = Environment::Kind::latlong;
-        e.texels = tex.data();
-        e.width = 8;
-        e.height = 4;
+        Environment e = sphbasis_test::latlong_environment(tex, 8, 4);
         Light l = sun;
         if (rotate_scene) {
             e.rotation = R;
@@ -363,10 +330,7 @@ TEST_CASE("representations: render-time rotation of prt equals re-baking with ro
         return w;
     };
     World a = make(false), b = make(true);
-    render::RepresentationSettings s;
-    s.rays = 32;
-    s.bounces = 1;
-    s.lightmap_size = 8;
+    const render::RepresentationSettings s = settings(32, 1, 8);
     render::RepresentationSettings sa = s;
     sa.lighting_rotation = R;
     const std::vector<std::string> names{"prt-vertex", "prt-texel", "irradiance-sh9"};
@@ -402,17 +366,11 @@ TEST_CASE("representations: render-time rotation of prt equals re-baking with ro
 
 TEST_CASE("representations: a changed light re-bakes lightmaps, not the PRT transfer", "[render]") {
     World w = sphere_on_plane(true);
-    w.desc.environment = constant_env(0.3, 0.3, 0.3);
-    Light sun;
-    sun.type = Light::Type::directional;
-    sun.direction = {0.3, -0.4, 0.8};
-    sun.color = {1.5, 1.2, 1.0};
+    w.desc.environment = sphbasis_test::constant_environment({0.3, 0.3, 0.3});
+    const Light sun = sphbasis_test::directional_light({0.3, -0.4, 0.8}, {1.5, 1.2, 1.0});
     w.desc.lights = {sun};
     w.build();
-    render::RepresentationSettings s;
-    s.rays = 8;
-    s.bounces = 1;
-    s.lightmap_size = 4;
+    const render::RepresentationSettings s = settings(8, 1, 4);
     const std::vector<std::string> names{"prt-texel", "lightmap-sh4", "ao"};
     render::MemoryBakeCache cache;
     {
@@ -447,12 +405,9 @@ TEST_CASE("representations: lightmaps of an unoccluded quad under a constant sky
     World w;
     w.meshes.push_back(sphbasis_test::quad_grid(-1, 1, -1, 1, 0, 1));
     w.meshes[0].albedo = {0.8f, 0.8f, 0.8f};
-    w.desc.environment = constant_env(1.0, 0.5, 0.25);
+    w.desc.environment = sphbasis_test::constant_environment({1.0, 0.5, 0.25});
     w.build();
-    render::RepresentationSettings s;
-    s.rays = 256;
-    s.bounces = 0;
-    s.lightmap_size = 4;
+    const render::RepresentationSettings s = settings(256, 0, 4);
     std::vector<std::string> names;
     for (const auto& n : render::representation_names())
         if (n.rfind("lightmap-", 0) == 0) names.push_back(n);
@@ -485,17 +440,10 @@ TEST_CASE("representations: lightmaps of an unoccluded quad under a constant sky
 TEST_CASE("representations: every representation renders finite values", "[render]") {
     World w = sphere_on_plane(true);
     const std::vector<float> tex = latlong_texels(8, 4);
-    Environment e;
-    e.kind = Environment::Kind::latlong;
-    e.texels = tex.data();
-    e.width = 8;
-    e.height = 4;
+    Environment e = sphbasis_test::latlong_environment(tex, 8, 4);
     w.desc.environment = e;
     w.build();
-    render::RepresentationSettings s;
-    s.rays = 8;
-    s.bounces = 1;
-    s.lightmap_size = 4;
+    const render::RepresentationSettings s = settings(8, 1, 4);
     std::vector<std::string> names;
     for (const auto& n : render::representation_names())
         if (n.rfind("specular", 0) != 0) names.push_back(n);
@@ -527,12 +475,9 @@ TEST_CASE("representations: every representation renders finite values", "[rende
 
 TEST_CASE("representations: bake records round-trip and reject bad bytes", "[render]") {
     World w = sphere_on_plane(true);
-    w.desc.environment = constant_env(1, 1, 1);
+    w.desc.environment = sphbasis_test::constant_environment({1, 1, 1});
     w.build();
-    render::RepresentationSettings s;
-    s.rays = 8;
-    s.lightmap_size = 4;
-    s.bounces = 1;
+    const render::RepresentationSettings s = settings(8, 1, 4);
     render::Representations r(w.desc, *w.rt, s,
                               {"bent", "prt-vertex", "lightmap-hbasis6", "volume"});
     r.prepare(nullptr);
@@ -573,7 +518,7 @@ TEST_CASE("representations: bake records round-trip and reject bad bytes", "[ren
 
 TEST_CASE("representations: bake_key depends on exactly what a bake reads", "[render]") {
     World w = sphere_on_plane(true);
-    w.desc.environment = constant_env(1, 1, 1);
+    w.desc.environment = sphbasis_test::constant_environment({1, 1, 1});
     w.build();
     render::BakeRequest q;
     q.settings.quantities = render::Quantity::transfer;
@@ -644,20 +589,13 @@ TEST_CASE("representations: lightmap texels sit where the UVs say (texel ao agai
         World w;
         w.meshes.push_back(render::shapes::sphere({0.5, 0.3, 0.55}, 0.5, 8, 16));
         w.meshes.push_back(sphbasis_test::quad_grid(-1.5, 1.5, -1.5, 1.5, 0, 24));
-        if (!uvs)
-            for (Mesh& m : w.meshes) {
-                m.uvs.clear();
-                m.tangents.clear();
-            }
-        w.desc.environment = constant_env(1, 1, 1);
+        if (!uvs) strip_uvs(w);
+        w.desc.environment = sphbasis_test::constant_environment({1, 1, 1});
         w.build();
         return w;
     };
     World a = make(true), b = make(false);
-    render::RepresentationSettings s;
-    s.rays = 64;
-    s.bounces = 0;
-    s.lightmap_size = 32;
+    const render::RepresentationSettings s = settings(64, 0, 32);
     render::Representations ra(a.desc, *a.rt, s, {"ao"}), rb(b.desc, *b.rt, s, {"ao"});
     ra.prepare(nullptr);
     rb.prepare(nullptr);

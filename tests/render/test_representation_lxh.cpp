@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "render_shapes_for_tests.hpp"
+#include "render_test_support.hpp"
 #include "sphbasis/core/clamped_cosine.hpp"
 #include "sphbasis/render/representation.hpp"
 #include "sphbasis/render/shapes.hpp"
@@ -25,38 +25,22 @@ using render::Environment;
 using render::Image;
 using render::Mesh;
 
-struct World {
-    std::vector<Mesh> meshes;
-    std::vector<float> env_texels;
-    render::SceneDesc desc;
-    std::unique_ptr<render::Scene> rt;
-    void build() {
-        desc.meshes.clear();
-        for (const Mesh& m : meshes) desc.meshes.push_back(m.view());
-        rt = std::make_unique<render::Scene>(desc.meshes);
-    }
-};
+using sphbasis_test::max_abs;
+using sphbasis_test::max_abs_diff;
+using sphbasis_test::World;
 
 /// A smooth lat-long sky (brighter towards +z, tinted towards +x): low-frequency, so a few SH
 /// bands hold most of it.
 void smooth_sky(World& w) {
     const int W = 16, H = 8;
-    w.env_texels.resize(std::size_t(W * H * 3));
-    for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x) {
-            const double th = constants::pi * (y + 0.5) / H, ph = 2 * constants::pi * (x + 0.5) / W;
-            const double dz = std::cos(th), dx = std::sin(th) * std::cos(ph);
-            float* p = &w.env_texels[std::size_t((y * W + x) * 3)];
-            p[0] = float(0.6 + 0.4 * dz + 0.3 * dx * dx);
-            p[1] = float(0.5 + 0.3 * dz);
-            p[2] = float(0.4 + 0.2 * dz * dz);
-        }
-    Environment e;
-    e.kind = Environment::Kind::latlong;
-    e.texels = w.env_texels.data();
-    e.width = W;
-    e.height = H;
-    w.desc.environment = e;
+    w.env_texels = sphbasis_test::rgb_texels(W, H, [](int x, int y, float* p) {
+        const double th = constants::pi * (y + 0.5) / H, ph = 2 * constants::pi * (x + 0.5) / W;
+        const double dz = std::cos(th), dx = std::sin(th) * std::cos(ph);
+        p[0] = float(0.6 + 0.4 * dz + 0.3 * dx * dx);
+        p[1] = float(0.5 + 0.3 * dz);
+        p[2] = float(0.4 + 0.2 * dz * dz);
+    });
+    w.desc.environment = sphbasis_test::latlong_environment(w.env_texels, W, H);
 }
 
 World lone_sphere() {
@@ -69,11 +53,7 @@ World lone_sphere() {
 }
 
 World sphere_on_plane() {
-    World w;
-    w.meshes.push_back(render::shapes::sphere({0, 0, 0.6}, 0.5, 8, 16));
-    w.meshes.push_back(sphbasis_test::quad_grid(-1.5, 1.5, -1.5, 1.5, 0, 4));
-    w.meshes[0].albedo = {0.7f, 0.6f, 0.5f};
-    w.meshes[1].albedo = {0.5f, 0.5f, 0.5f};
+    World w = sphbasis_test::sphere_on_plane_meshes();
     smooth_sky(w);
     w.build();
     return w;
@@ -130,18 +110,6 @@ Image irradiance_image(const World& w, const Camera& cam, int bands) {
             }
         }
     return img;
-}
-
-double max_abs_diff(const Image& a, const Image& b) {
-    double d = 0;
-    for (std::size_t i = 0; i < a.data.size(); ++i)
-        d = std::max(d, std::fabs(double(a.data[i]) - double(b.data[i])));
-    return d;
-}
-double max_abs(const Image& a) {
-    double d = 0;
-    for (float v : a.data) d = std::max(d, std::fabs(double(v)));
-    return d;
 }
 
 }  // namespace

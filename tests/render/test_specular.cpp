@@ -9,7 +9,7 @@
 #include <memory>
 #include <vector>
 
-#include "render_shapes_for_tests.hpp"
+#include "render_test_support.hpp"
 #include "sphbasis/render/normal_maps.hpp"
 #include "sphbasis/render/specular.hpp"
 
@@ -46,23 +46,6 @@ Mesh mapped_quad(double h, double tiles, std::vector<float> texels, int w, int h
     return m;
 }
 
-Light directional(const vec3<double>& d, RGB color) {
-    Light l;
-    l.type = Light::Type::directional;
-    l.direction = d;
-    l.color = color;
-    return l;
-}
-
-double rms_difference(const Image& a, const Image& b) {
-    double s = 0;
-    for (std::size_t i = 0; i < a.data.size(); ++i) {
-        const double d = double(a.data[i]) - double(b.data[i]);
-        s += d * d;
-    }
-    return std::sqrt(s / double(a.data.size()));
-}
-
 /// A value in [0, 1) from a SplitMix64-style state.
 double next01(std::uint64_t& st) {
     st = sphbasis::render::detail::rt::mix64(st);
@@ -97,7 +80,7 @@ Comparison toksvig_vs_aliased(int size, int ss, double distance, float shininess
     SceneDesc desc;
     desc.meshes = {quad.view()};
     const double a = 30 * kPi / 180, b = (30 + light_offset_deg) * kPi / 180;
-    desc.lights = {directional({0, std::sin(b), std::cos(b)}, {1, 1, 1})};
+    desc.lights = {sphbasis_test::directional_light({0, std::sin(b), std::cos(b)}, {1, 1, 1})};
     Scene rt(desc.meshes);
     Camera cam;
     cam.position = {0, -distance * std::sin(a), distance * std::cos(a)};
@@ -111,8 +94,8 @@ Comparison toksvig_vs_aliased(int size, int ss, double distance, float shininess
     // The reference's own error: its change when ss doubles (only when asked: 4x the rays).
     double change = -1;
     if (check_reference)
-        change = rms_difference(ref, render_specular_reference(desc, rt, cam, 2 * ss));
-    return {rms_difference(al, ref), rms_difference(tk, ref), rms(ref), change};
+        change = sphbasis_test::rmse(ref, render_specular_reference(desc, rt, cam, 2 * ss));
+    return {sphbasis_test::rmse(al, ref), sphbasis_test::rmse(tk, ref), rms(ref), change};
 }
 
 }  // namespace
@@ -256,14 +239,9 @@ TEST_CASE(
     desc.meshes = {quad.view()};
     const vec3<double> ld = unit3(-0.1, 0.6, 0.8);  // near the camera's mirror direction
     const RGB lc{1, 2, 0.5};
-    desc.lights = {directional(ld, lc)};
+    desc.lights = {sphbasis_test::directional_light(ld, lc)};
     Scene rt(desc.meshes);
-    Camera cam;
-    cam.position = {0.2, -2.5, 2.0};
-    cam.look_at = {0, 0, 0};
-    cam.width = 24;
-    cam.height = 16;
-    cam.fov_deg = 30;
+    const Camera cam = sphbasis_test::camera_at({0.2, -2.5, 2.0}, {0, 0, 0}, 24, 16, 30);
     const PinholeCamera pc(cam);
     const Image al = render_specular(desc, rt, cam, SpecularShading::Mode::aliased);
     const Image tk = render_specular(desc, rt, cam, SpecularShading::Mode::toksvig);
@@ -311,9 +289,9 @@ TEST_CASE("render::SpecularShading: no normal map reads the shading normal; shin
         SceneDesc desc;
         desc.meshes = {quad.view()};
         const vec3<double> ld = unit3(-0.1, 0.4, 1);
-        desc.lights = {directional(ld, {2, 2, 2})};
+        desc.lights = {sphbasis_test::directional_light(ld, {2, 2, 2})};
         // A non-directional light is not part of the specular comparison.
-        Light sun2 = directional({0, 0, 1}, {5, 5, 5});
+        Light sun2 = sphbasis_test::directional_light({0, 0, 1}, {5, 5, 5});
         sun2.type = Light::Type::hemisphere;
         desc.lights.push_back(sun2);
         Scene rt(desc.meshes);
@@ -337,7 +315,7 @@ TEST_CASE("render::SpecularShading: no normal map reads the shading normal; shin
         }
         // A light below the geometric surface contributes nothing.
         SceneDesc below = desc;
-        below.lights = {directional({0.1, 0, -1}, {1, 1, 1})};
+        below.lights = {sphbasis_test::directional_light({0.1, 0, -1}, {1, 1, 1})};
         const RGB z = SpecularShading(below).shade(SpecularShading::Mode::aliased, hit, view, 0);
         CHECK(z[0] == 0);
     }
@@ -345,14 +323,10 @@ TEST_CASE("render::SpecularShading: no normal map reads the shading normal; shin
         Mesh quad = mapped_quad(1, 1, bumpy_normal_map(16, 16, 2, 0.5, 1), 16, 16, 0, {1, 1, 1});
         SceneDesc desc;
         desc.meshes = {quad.view()};
-        desc.lights = {directional({0, 0, 1}, {1, 1, 1})};
+        desc.lights = {sphbasis_test::directional_light({0, 0, 1}, {1, 1, 1})};
         Scene rt(desc.meshes);
         CHECK(SpecularShading(desc).mip_chains() == 0);
-        Camera cam;
-        cam.position = {0, 0, 3};
-        cam.look_at = {0, 0, 0};
-        cam.up = {0, 1, 0};
-        cam.width = cam.height = 8;
+        const Camera cam = sphbasis_test::camera_at({0, 0, 3}, {0, 0, 0}, 8, 8, 45);
         for (const Image& img : {render_specular(desc, rt, cam, SpecularShading::Mode::aliased),
                                  render_specular(desc, rt, cam, SpecularShading::Mode::toksvig),
                                  render_specular_reference(desc, rt, cam, 2)})
@@ -392,7 +366,7 @@ TEST_CASE("render::blinn_phong_lobe: the normalised lobe's energy is about 1", "
         for (int j = 0; j < np; ++j) {
             const double th = (i + 0.5) * (kPi / 2) / nt, ph = (j + 0.5) * 2 * kPi / np;
             const double dw = std::sin(th) * (kPi / 2) / nt * 2 * kPi / np;
-            desc.lights.push_back(directional(
+            desc.lights.push_back(sphbasis_test::directional_light(
                 {std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)},
                 {dw, dw, dw}));
         }
@@ -436,7 +410,7 @@ TEST_CASE("render::SpecularShading: the level of detail follows the pixel footpr
     Mesh quad = mapped_quad(2, 4, flat_normal_map(n, n), n, n, 16, {1, 1, 1});  // 1 tile/unit
     SceneDesc desc;
     desc.meshes = {quad.view()};
-    desc.lights = {directional({0, 0, 1}, {1, 1, 1})};
+    desc.lights = {sphbasis_test::directional_light({0, 0, 1}, {1, 1, 1})};
     Scene rt(desc.meshes);
     const SpecularShading sh(desc);
     REQUIRE(sh.mip_chains() == 1);
@@ -448,11 +422,7 @@ TEST_CASE("render::SpecularShading: the level of detail follows the pixel footpr
     CHECK(sh.level_of_detail(hit, 1.0 / 128) == 0);
     CHECK(sh.level_of_detail(hit, 100) == Approx(6));
     // The footprint of a pixel straight below a camera at height 5.
-    Camera cam;
-    cam.position = {0, 0, 5};
-    cam.look_at = {0, 0, 0};
-    cam.up = {0, 1, 0};
-    cam.width = cam.height = 64;
+    const Camera cam = sphbasis_test::camera_at({0, 0, 5}, {0, 0, 0}, 64, 64, 45);
     const PinholeCamera pc(cam);
     const Hit c = rt.intersect({0, 0, 5}, pc.ray(32, 32).direction);
     REQUIRE(c.valid);
@@ -464,13 +434,9 @@ TEST_CASE("render::specular: bad input throws", "[render]") {
     Mesh quad = mapped_quad(1, 1, flat_normal_map(4, 4), 4, 4, 8, {1, 1, 1});
     SceneDesc desc;
     desc.meshes = {quad.view()};
-    desc.lights = {directional({0, 0, 1}, {1, 1, 1})};
+    desc.lights = {sphbasis_test::directional_light({0, 0, 1}, {1, 1, 1})};
     Scene rt(desc.meshes);
-    Camera cam;
-    cam.position = {0, 0, 3};
-    cam.look_at = {0, 0, 0};
-    cam.up = {0, 1, 0};
-    cam.width = cam.height = 4;
+    const Camera cam = sphbasis_test::camera_at({0, 0, 3}, {0, 0, 0}, 4, 4, 45);
     CHECK_THROWS_WITH(render_specular_reference(desc, rt, cam, 0),
                       Catch::Contains("sphbasis::render::render_specular_reference()"));
     CHECK_THROWS_AS(render_specular_reference(desc, rt, cam, 65), std::invalid_argument);
@@ -563,13 +529,9 @@ TEST_CASE("render::render_specular_reference: deterministic whatever the thread 
     Mesh quad = mapped_quad(2, 4, bumpy_normal_map(32, 32, 4, 0.3, 2), 32, 32, 32, {1, 1, 1});
     SceneDesc desc;
     desc.meshes = {quad.view()};
-    desc.lights = {directional({0, 0.5, 0.8}, {1, 1, 1})};
+    desc.lights = {sphbasis_test::directional_light({0, 0.5, 0.8}, {1, 1, 1})};
     Scene rt(desc.meshes);
-    Camera cam;
-    cam.position = {0, -2, 2};
-    cam.look_at = {0, 0, 0};
-    cam.width = 40;
-    cam.height = 20;
+    const Camera cam = sphbasis_test::camera_at({0, -2, 2}, {0, 0, 0}, 40, 20, 45);
     const Image a = render_specular_reference(desc, rt, cam, 3);
     Image b;
     tbb::task_arena one(1);

@@ -52,8 +52,9 @@
 namespace {
 
 // Stated bound. Measured on Mesa 22.3.6 llvmpipe (LLVM 15, x86-64) against g++ 12 -O3
-// -march=native -ffp-contract=off: eval1..3 bit-identical, eval4 1, eval5 2, eval6..8 3 ulps,
-// irradiance 3 ulps (llvmpipe fuses some multiply-adds). The worst case is printed every run.
+// -march=native -ffp-contract=off: eval1..8 bit-identical since both sides write Q_{m+2}^m and
+// Q_{m+3}^m as polynomials in z^2 (with the recurrence there: up to 3 ulps), irradiance 3 ulps
+// (llvmpipe fuses some multiply-adds). The worst case is printed every run.
 // (With the C++ side also fusing, -ffp-contract=fast, the two disagree by up to 6 ulps.)
 constexpr double max_ulps = 4.0;
 // The other families, measured on the same driver and compiler:

@@ -4,8 +4,11 @@
 #if defined(__unix__) || defined(__APPLE__)
 #define SPHBASIS_TEST_HAVE_POPEN 1
 
+#include <algorithm>
+#include <catch2/catch.hpp>
 #include <cstdio>
 #include <fstream>
+#include <initializer_list>
 #include <string>
 
 namespace sphbasis::test {
@@ -29,6 +32,18 @@ inline std::string run_tool(const std::string& args, int& status) {
     while (std::fgets(buf, sizeof buf, p)) out += buf;
     status = pclose(p);
     return out;
+}
+
+/// Each of `bad` (the arguments after `command`) makes the tool exit non-zero with exactly one
+/// line of output (the error).
+inline void check_rejects(const std::string& command, std::initializer_list<const char*> bad) {
+    for (const char* args : bad) {
+        int st = 0;
+        const std::string out = run_tool(command + " " + args, st);
+        INFO(command << " " << args << " -> " << out);
+        CHECK(st != 0);
+        CHECK(std::count(out.begin(), out.end(), '\n') == 1);
+    }
 }
 
 }  // namespace sphbasis::test

@@ -71,11 +71,6 @@ namespace {
 constexpr int kGutter = 4;  // texels dilated around each chart
 constexpr char kShardMagic[8] = {'S', 'P', 'H', 'B', 'S', 'H', 'R', 'D'};
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
 const std::vector<std::pair<std::string, unsigned>>& quantity_names() {
     static const std::vector<std::pair<std::string, unsigned>> q = {
         {"ao", render::Quantity::ao},
@@ -482,10 +477,6 @@ std::uint64_t fnv1a_of_file(const std::string& path) {
 // ---------------------------------------------------------------------------------------------
 // Output files
 
-std::string join(const std::string& dir, const std::string& name) {
-    return dir.empty() || dir == "." ? name : (dir.back() == '/' ? dir + name : dir + "/" + name);
-}
-
 Json column_names(const std::vector<Column>& cols) {
     Json a = Json::array();
     for (const Column& c : cols) a.push_back(c.name);
@@ -516,7 +507,7 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
                 for (const Column& c : cols) vals.push_back(static_cast<float>(r[c.offset]));
             }
             const std::string file = scene.meshes[k].name + ".ply";
-            write_file_atomic(join(out_dir, file),
+            write_file_atomic(join_path(out_dir, file),
                               ply_binary(names, vals, m.vertex_count(), m.indices,
                                          {"sphbasis bake: " + scene.meshes[k].name}));
             outputs.push_back({{"file", file},
@@ -546,7 +537,7 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
             for (const Column& c : cols) names.push_back(c.name);
             names.push_back("coverage");
             const std::string file = scene.meshes[k].name + ".exr";
-            write_exr_channels(join(out_dir, file), lay.width, lay.height, names, img);
+            write_exr_channels(join_path(out_dir, file), lay.width, lay.height, names, img);
             Json cn = column_names(cols);
             cn.push_back("coverage");
             outputs.push_back({{"file", file},
@@ -586,7 +577,8 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
                     {"channels", names},
                     {"inside", inside},
                     {"probes", probes}};
-        write_file_atomic(join(out_dir, "probes.json"), dump_json(doc, {{"probes", 0}}) + "\n");
+        write_file_atomic(join_path(out_dir, "probes.json"),
+                          dump_json(doc, {{"probes", 0}}) + "\n");
         outputs.push_back({{"file", "probes.json"},
                            {"kind", "json"},
                            {"probes", w.points.size()},
@@ -731,14 +723,6 @@ render::BakeSettings settings_of(const BakeOptions& o) {
     return s;
 }
 
-void ensure_dir(const std::string& dir) {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec || !std::filesystem::is_directory(dir))
-        throw std::runtime_error("cannot create output directory '" + dir + "'" +
-                                 (ec ? ": " + ec.message() : std::string()));
-}
-
 void report_rate(std::size_t points, std::uint64_t rays, double secs) {
     std::fprintf(stderr, "sphbasis bake: %zu points, %llu rays in %.3f s: %.3g rays/s\n", points,
                  static_cast<unsigned long long>(rays), secs,
@@ -820,7 +804,7 @@ int run_bake(const BakeOptions& o) {
             header["seconds"] = {{"load", t_load}, {"layout", t_layout}, {"bake", t_bake}};
             const std::string name = "bake.shard-" + std::to_string(shard.index) + "-of-" +
                                      std::to_string(shard.count) + ".bin";
-            write_file_atomic(join(o.out, name), shard_bytes(header, rec, L.stride));
+            write_file_atomic(join_path(o.out, name), shard_bytes(header, rec, L.stride));
         } else {
             if (!points_mode) summary["outputs"] = write_outputs(scene, w, s, rec, o.out);
             summary["seconds"] = {{"load", t_load},
@@ -828,7 +812,7 @@ int run_bake(const BakeOptions& o) {
                                   {"bake", t_bake},
                                   {"write", seconds_since(t_write0)},
                                   {"total", seconds_since(t_start)}};
-            write_file_atomic(join(o.out, points_mode ? "bake-points.json" : "bake.json"),
+            write_file_atomic(join_path(o.out, points_mode ? "bake-points.json" : "bake.json"),
                               dump_json(summary, {{"plan", 2}, {"outputs", 2}}) + "\n");
         }
     }
@@ -934,7 +918,7 @@ int run_merge(const MergeOptions& o) {
         {"shards", count}};
     summary["outputs"] = write_outputs(scene, w, s, rec, o.out);
     summary["seconds"] = {{"bake_sum_over_shards", bake_seconds}, {"merge", seconds_since(t0)}};
-    write_file_atomic(join(o.out, "bake.json"),
+    write_file_atomic(join_path(o.out, "bake.json"),
                       dump_json(summary, {{"plan", 2}, {"outputs", 2}}) + "\n");
     std::fprintf(stderr, "sphbasis bake-merge: %lld shards, %zu points\n", count, w.points.size());
     return 0;
@@ -950,7 +934,7 @@ Run setup_bake(CLI::App& app) {
         "scene's probe grid (JSON) or at points (JSON lines on stdout). Writes OUT/bake.json\n"
         "with the pass plan, timings and settings. --shard I/N bakes 1/N of the points for\n"
         "`sphbasis bake-merge`.");
-    app.add_option("scene", o->scene, "the scene file (JSON)")->type_name("SCENE.json")->required();
+    add_scene(app, o->scene);
     app.add_option("--quantities", o->quantities,
                    "comma-separated: ao, bent, visibility, transfer, irradiance, radiance")
         ->type_name("LIST")

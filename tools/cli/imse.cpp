@@ -93,11 +93,6 @@ double reported_imse(double v) {
     return std::isfinite(v) && std::fabs(v) <= kRoundingFloor ? 0 : v;
 }
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
 struct Timing {
     double eval_ns = 0, eval_batch_ns = 0, project_ns = 0;
 };

@@ -57,11 +57,6 @@ namespace sphbasis::cli {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
 struct RenderOptions {
     std::string scene, representations = "all", out = ".", exposure, tonemap, rotate, noise;
     long long spp = 0, max_spp = 4096, width = 0, height = 0, threads = 0, seed = 0, rays = 256,
@@ -230,18 +225,6 @@ std::string png_bytes(const std::vector<std::uint8_t>& rgb, int w, int h) {
     return encode_png(rgb, w, h, 3);
 }
 
-std::string join(const std::string& dir, const std::string& name) {
-    return dir.empty() || dir == "." ? name : dir + "/" + name;
-}
-
-void ensure_dir(const std::string& dir) {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec || !std::filesystem::is_directory(dir))
-        throw std::runtime_error("cannot create output directory '" + dir + "'" +
-                                 (ec ? ": " + ec.message() : std::string()));
-}
-
 std::string scene_summary(const SceneFile& s) {
     std::size_t tris = 0, normal_maps = 0, shiny = 0;
     for (const SceneMesh& m : s.meshes) {
@@ -366,7 +349,7 @@ int run_render(const RenderOptions& o) {
 
     // --- The output directory, checked before any work.
     ensure_dir(o.out);
-    check_writable(join(o.out, "report.json"));
+    check_writable(join_path(o.out, "report.json"));
 
     // --- Settings.
     render::TraceSettings ts;
@@ -461,7 +444,7 @@ int run_render(const RenderOptions& o) {
 
     // --- Bakes.
     std::unique_ptr<DiskBakeCache> cache;
-    if (!o.no_cache) cache = std::make_unique<DiskBakeCache>(join(o.out, "cache"));
+    if (!o.no_cache) cache = std::make_unique<DiskBakeCache>(join_path(o.out, "cache"));
     std::vector<bool> cached_before(keys.size(), false);
     for (std::size_t i = 0; i < keys.size() && cache; ++i) {
         std::error_code ec;
@@ -507,22 +490,22 @@ int run_render(const RenderOptions& o) {
     const render::Image* mask = ref.coverage.data.empty() ? nullptr : &ref.coverage;
 
     OutputFiles files;
+    auto add_exr = [&](const std::string& base, const render::Image& img) {
+        files.add(join_path(o.out, base + ".exr"), exr_bytes(o.out, base + ".exr", img));
+    };
     auto add_image = [&](const std::string& base, const render::Image& img) {
-        files.add(join(o.out, base + ".exr"), exr_bytes(o.out, base + ".exr", img));
-        files.add(join(o.out, base + ".png"),
+        add_exr(base, img);
+        files.add(join_path(o.out, base + ".png"),
                   png_bytes(render::to_srgb8(img, exposure, rep.tonemap), img.width, img.height));
     };
     add_image("reference", ref.color);
-    files.add(join(o.out, "reference_stderr.exr"),
-              exr_bytes(o.out, "reference_stderr.exr", ref.stderr_));
+    add_exr("reference_stderr", ref.stderr_);
     if (o.aovs)
         for (const auto& [name, img] :
              {std::pair<const char*, const render::Image*>{"normal", &ref.normal},
               {"albedo", &ref.albedo},
               {"position", &ref.position}})
-            if (!img->data.empty())
-                files.add(join(o.out, std::string("aov_") + name + ".exr"),
-                          exr_bytes(o.out, std::string("aov_") + name + ".exr", *img));
+            if (!img->data.empty()) add_exr(std::string("aov_") + name, *img);
     rep.reference_image = "reference.png";
     rep.reference_exr = "reference.exr";
     rep.reference_stderr_exr = "reference_stderr.exr";
@@ -578,7 +561,7 @@ int run_render(const RenderOptions& o) {
                                "a rotated light (baked lighting)";
         add_image(n, img);
         const render::Image err = render::error_image(img, against, se, noise_limit, mask);
-        files.add(join(o.out, n + "_error.png"),
+        files.add(join_path(o.out, n + "_error.png"),
                   png_bytes(render::false_colour(err), err.width, err.height));
         row.image = n + ".png";
         row.error_image = n + "_error.png";
@@ -602,16 +585,16 @@ int run_render(const RenderOptions& o) {
     }
     rep.total_seconds = seconds_since(t_start);
     files.add(
-        join(o.out, "report.json"),
+        join_path(o.out, "report.json"),
         dump_json(report_json(rep), {{"plan", 2}, {"bakes", 2}, {"representations", 2}}) + "\n");
-    files.add(join(o.out, "report.md"), report_markdown(rep));
-    files.add(join(o.out, "report.html"), report_html(rep));
+    files.add(join_path(o.out, "report.md"), report_markdown(rep));
+    files.add(join_path(o.out, "report.html"), report_html(rep));
     files.commit();
     std::fprintf(stderr,
                  "sphbasis render: %zu representations, reference %d spp (noise %.3g) in %.3g s, "
                  "%zu bakes run, %zu from the cache; wrote %s\n",
                  names.size(), rep.spp, rep.relative_noise, rep.reference_seconds, rep.bakes_run,
-                 rep.bakes_loaded, join(o.out, "report.html").c_str());
+                 rep.bakes_loaded, join_path(o.out, "report.html").c_str());
     return 0;
 }
 
@@ -625,7 +608,7 @@ Run setup_render(CLI::App& app) {
         "reference_stderr.exr, NAME.{exr,png} and NAME_error.png per representation, and\n"
         "report.{json,md,html} (error, bake time, render time, memory, what it cannot show).\n"
         "Bakes are cached in DIR/cache. The plan is printed on stderr before any work.");
-    app.add_option("scene", o->scene, "the scene file (JSON)")->type_name("SCENE.json")->required();
+    add_scene(app, o->scene);
     app.add_option("--representations", o->representations,
                    "'all' or a comma-separated list (irradiance-sh9, ao, prt-vertex, ...)")
         ->type_name("LIST|all")

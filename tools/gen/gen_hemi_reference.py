@@ -49,6 +49,7 @@ about 5 minutes):
 """
 import math
 import multiprocessing
+import os
 import random
 import sys
 import time
@@ -56,6 +57,11 @@ import time
 import mpmath
 import sympy as sp
 from mpmath import mp, mpf
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+# The directions' normalisation and the value format are the SH reference's (same DIGITS_OUT
+# and DBL_MIN), so both files print numbers the same way.
+from gen_sh_reference import _clean, _unit, fmt_value  # noqa: E402,F401
 
 LOW_BANDS = 5  # all functions of bands 0..4 at every direction
 HIGH_L = [10, 31, 63, 64, 100, 255, 511, 1000, 2047]
@@ -74,16 +80,6 @@ def log(*a):
 # --------------------------------------------------------------------------------------------------
 # directions
 # --------------------------------------------------------------------------------------------------
-def _clean(v):
-    v = float(v)
-    return 0.0 if v == 0.0 else v  # no negative zeros
-
-
-def _unit(x, y, z):
-    n = math.sqrt(x * x + y * y + z * z)
-    return (_clean(x / n), _clean(y / n), _clean(z / n))
-
-
 def _polar(t, p):
     return _unit(math.sin(t) * math.cos(p), math.sin(t) * math.sin(p), math.cos(t))
 
@@ -264,12 +260,6 @@ def compute(job):
         if rel > mpf(10) ** (-REQUIRED_DIGITS):
             raise SystemExit("precision check failed: %s l=%d m=%d d=%r rel=%s" % (basis, l, m, d, rel))
         return (basis, l, m, d, v2, float(rel))
-
-
-def fmt_value(v):
-    if abs(v) < DBL_MIN:
-        return "0"
-    return mpmath.nstr(v, DIGITS_OUT, min_fixed=0, max_fixed=0)
 
 
 def fmt_dir(d):

@@ -16,10 +16,13 @@ eval_fixed_scaled_N(x, y, z, inv, store) gives the same values at a direction of
 with inv = 1/r (sh::eval<N>'s normalising kernel for N = 4..8): C_m, S_m from the raw x, y,
 then times inv^m; only z is normalised before the z recurrence. The powers of (x + i y) do not
 wait for the square root, which the one-call benchmark measured 1.1-1.5x faster at 4-8 bands.
-There Q_{m+2}^m and Q_{m+3}^m are written out as polynomials in z^2 (an FMA, or an FMA and a
-product, after one shared z^2, as Sloan's generated code does; the recurrence from Q_{m+4}^m):
-another 2-9% at 4-8 bands. eval_fixed_N keeps the recurrence everywhere: the shader twins follow
-its operation order, and the shader test's 4-ulp bound failed (7 ulps) with the short columns.
+In every kernel (eval_fixed_N, eval_fixed_scaled_N and the shader twins) Q_{m+2}^m and
+Q_{m+3}^m are written out as polynomials in z^2 (an FMA, or an FMA and a product, after one
+shared z^2, as Sloan's generated code does; the recurrence from Q_{m+4}^m): 2-9% at 4-8 bands.
+The shader twins emit the same short columns as eval_fixed_N (shader_kernel below): with the
+short columns in C++ only, the shaders' recurrence and the C++ polynomials differed by 7 ulps at
+7 bands, beyond the shader test's 4-ulp bound; with the same form on both sides only the
+driver's fused multiply-adds remain.
 
 Usage: /usr/bin/python3 tools/gen/gen_sh_fixed.py > include/sphbasis/basis/sh_fixed.hpp
        /usr/bin/python3 tools/gen/gen_sh_fixed.py --glsl > shaders/sphbasis.glsl
@@ -106,6 +109,8 @@ def kernel(n):
     w("SPHBASIS_FORCEINLINE void eval_fixed_%d(const V& x, const V& y, const V& z, Store&& store) noexcept {" % n)
     w("    using S = scalar_t<V>;")
     w("    (void)x; (void)y; (void)z;")
+    if n > 2:
+        w("    const V z2 = z * z;")
     # (x+iy)^m
     if n > 1:
         w("    const V c1 = x, s1 = y;")
@@ -122,6 +127,8 @@ def kernel(n):
             elif l == m + 1:
                 c = sp.sqrt(2 * m + 3) * qmm
                 w("    const V %s = V(%s) * z;  // %s z" % (name, lit(c), closed(sp.simplify(c))))
+            elif short_column(l, m, "z", "z2"):
+                w("    const V %s = %s" % (name, short_column(l, m, "z", "z2")))
             else:
                 A = a(l, m)
                 B = A * b(l, m)
@@ -155,30 +162,57 @@ def kernel_scaled(n):
         if n > 2:
             w("    const V zn2 = zn * zn;")
         w("    const V a1 = x, b1 = y;")
+    # Even powers by squaring, (a + i b)^2 = (a - b)(a + b) + i (a + a) b: two products and three
+    # additions (the additions go to the adder ports), odd ones times (x + i y).
     for m in range(2, n):
-        w("    const V a%d = x * a%d - y * b%d, b%d = x * b%d + y * a%d;" % (m, m - 1, m - 1, m, m - 1, m - 1))
+        if m % 2 == 0:
+            h = m // 2
+            w("    const V a%d = (a%d - b%d) * (a%d + b%d), b%d = (a%d + a%d) * b%d;" % (m, h, h, h, h, m, h, h, h))
+        else:
+            w("    const V a%d = x * a%d - y * b%d, b%d = x * b%d + y * a%d;" % (m, m - 1, m - 1, m, m - 1, m - 1))
     if n > 1:
         w("    const V p1 = inv;")
     for m in range(2, n):
         w("    const V p%d = p%d * p%d;" % (m, m // 2, m - m // 2))
+    # The sectoral constant Q_m^m (m >= 1) rides on the scaling: k_m = Q_m^m inv^m, so y_{m,+-m}
+    # = (a_m, b_m) k_m directly and the rest of column m uses Q_l^m / Q_m^m (the recurrence is
+    # linear): one multiplication per order fewer than scaling (a_m, b_m) and then multiplying by
+    # Q_m^m.
     for m in range(1, n):
-        w("    const V c%d = a%d * p%d, s%d = b%d * p%d;" % (m, m, m, m, m, m))
+        qmm = sectoral(m)
+        w("    const V k%d = V(%s) * p%d;  // %s inv^%d" % (m, lit(qmm), m, closed(qmm), m))
+        w("    const V c%d = a%d * k%d, s%d = b%d * k%d;" % (m, m, m, m, m, m))
     for m in range(0, n):
         qmm = sectoral(m)
+        scale = 1 if m == 0 else 1 / qmm  # column m is written as Q_l^m / Q_m^m for m >= 1
         for l in range(m, n):
             name = "q%d_%d" % (l, m)
+            k = l * (l + 1)
             if l == m:
-                w("    const V %s = V(%s);  // %s" % (name, lit(qmm), closed(qmm)))
-            elif l == m + 1:
-                c = sp.sqrt(2 * m + 3) * qmm
-                w("    const V %s = V(%s) * zn;  // %s z" % (name, lit(c), closed(sp.simplify(c))))
-            elif short_column(l, m, "zn", "zn2"):
-                w("    const V %s = %s" % (name, short_column(l, m, "zn", "zn2")))
+                if m == 0:
+                    w("    const V %s = V(%s);  // %s" % (name, lit(qmm), closed(qmm)))
+                    w("    store(%d, %s);" % (k, name))
+                else:
+                    w("    store(%d, c%d);" % (k + m, m))
+                    w("    store(%d, s%d);" % (k - m, m))
+                continue
+            if l == m + 1:
+                c = sp.simplify(sp.sqrt(2 * m + 3) * qmm * scale)
+                w("    const V %s = V(%s) * zn;  // %s z" % (name, lit(c), closed(c)))
+            elif l - m in (2, 3):
+                p = column_poly(l, m)
+                if l - m == 2:
+                    al = sp.simplify(p.coeff_monomial(_Z ** 2) * scale)
+                    be = sp.simplify(p.coeff_monomial(1) * scale)
+                    w("    const V %s = V(%s) * zn2 + V(%s);  // %s z^2 + %s" % (name, lit(al), lit(be), closed(al), closed(be)))
+                else:
+                    ga = sp.simplify(p.coeff_monomial(_Z ** 3) * scale)
+                    de = sp.simplify(p.coeff_monomial(_Z) * scale)
+                    w("    const V %s = zn * (V(%s) * zn2 + V(%s));  // z (%s z^2 + %s)" % (name, lit(ga), lit(de), closed(ga), closed(de)))
             else:
                 A = a(l, m)
                 B = A * b(l, m)
                 w("    const V %s = V(%s) * zn * q%d_%d - V(%s) * q%d_%d;" % (name, lit(A), l - 1, m, lit(B), l - 2, m))
-            k = l * (l + 1)
             if m == 0:
                 w("    store(%d, %s);" % (k, name))
             else:
@@ -285,6 +319,8 @@ def shader_kernel(n, lang):
     w("void sphbasis_sh_eval%d(%s d, out float sh[%d])" % (n, vec3, n * n))
     w("{")
     w("    float x = d.x; float y = d.y; float z = d.z;")
+    if n > 2:
+        w("    float z2 = z * z;")
     if n > 1:
         w("    float c1 = x; float s1 = y;")
     for m in range(2, n):
@@ -298,6 +334,14 @@ def shader_kernel(n, lang):
             elif l == m + 1:
                 c = sp.sqrt(2 * m + 3) * qmm
                 w("    float %s = %s * z;  // %s z" % (name, flit(c, lang), closed(sp.simplify(c))))
+            elif l - m == 2:
+                p = column_poly(l, m)
+                al, be = p.coeff_monomial(_Z ** 2), p.coeff_monomial(1)
+                w("    float %s = %s * z2 + %s;  // %s z^2 + %s" % (name, flit(al, lang), flit(be, lang), closed(sp.simplify(al)), closed(sp.simplify(be))))
+            elif l - m == 3:
+                p = column_poly(l, m)
+                ga, de = p.coeff_monomial(_Z ** 3), p.coeff_monomial(_Z)
+                w("    float %s = z * (%s * z2 + %s);  // z (%s z^2 + %s)" % (name, flit(ga, lang), flit(de, lang), closed(sp.simplify(ga)), closed(sp.simplify(de))))
             else:
                 A = a(l, m)
                 B = A * b(l, m)

@@ -171,4 +171,10 @@ CLI::Option* add_path(CLI::App& app, const std::string& name, std::string& out,
             "", ""));
 }
 
+CLI::Option* add_scene(CLI::App& app, std::string& out) {
+    return app.add_option("scene", out, "the scene file (JSON)")
+        ->type_name("SCENE.json")
+        ->required();
+}
+
 }  // namespace sphbasis::cli

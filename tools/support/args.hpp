@@ -74,4 +74,7 @@ CLI::Option* add_integer(CLI::App& app, const std::string& name, long long& out,
 CLI::Option* add_path(CLI::App& app, const std::string& name, std::string& out,
                       const std::string& help);
 
+/// Adds the required positional argument SCENE.json: the scene file (docs/scene-format.md).
+CLI::Option* add_scene(CLI::App& app, std::string& out);
+
 }  // namespace sphbasis::cli

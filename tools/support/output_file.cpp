@@ -8,7 +8,10 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
+#include <string>
+#include <system_error>
 #include <vector>
 
 namespace sphbasis::cli {
@@ -95,6 +98,18 @@ void OutputFiles::commit(bool sync) {
         }
     }
     files_.clear();
+}
+
+std::string join_path(const std::string& dir, const std::string& name) {
+    return dir.empty() || dir == "." ? name : (dir.back() == '/' ? dir + name : dir + "/" + name);
+}
+
+void ensure_dir(const std::string& dir) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !std::filesystem::is_directory(dir))
+        throw std::runtime_error("cannot create output directory '" + dir + "'" +
+                                 (ec ? ": " + ec.message() : std::string()));
 }
 
 }  // namespace sphbasis::cli

@@ -57,4 +57,10 @@ void commit_temporary(const std::string& temp, const std::string& path);
 /// Removes `temp` if it exists (after a failed write); never throws.
 void discard_temporary(const std::string& temp) noexcept;
 
+/// dir/name ("." or "" as dir: name alone; no doubled '/' when dir ends with one).
+std::string join_path(const std::string& dir, const std::string& name);
+/// Creates directory `dir` and its parents if missing. Throws std::runtime_error "cannot create
+/// output directory 'dir'[: reason]" when it cannot, or when `dir` is not a directory.
+void ensure_dir(const std::string& dir);
+
 }  // namespace sphbasis::cli

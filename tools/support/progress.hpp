@@ -13,6 +13,12 @@
 
 namespace sphbasis::cli {
 
+/// The clock of the tool's timings, and the seconds on it since t0.
+using Clock = std::chrono::steady_clock;
+inline double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
 class Progress {
   public:
     /// A bar for `total` units of work labelled `label`; draws the empty bar at once.

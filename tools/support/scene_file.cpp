@@ -670,24 +670,17 @@ SceneTexture load_texture(const std::string& path, bool srgb) {
     } else {
         int w = 0, h = 0, n = 0;
         const bool wide = stbi_is_16_bit(path.c_str()) != 0;
-        const std::size_t count = [&] {
-            if (wide) {
-                stbi_us* px = stbi_load_16(path.c_str(), &w, &h, &n, 3);
-                if (px == nullptr) return std::size_t(0);
-                texels->resize(std::size_t(w) * std::size_t(h) * 3);
-                for (std::size_t i = 0; i < texels->size(); ++i)
-                    (*texels)[i] = float(px[i]) / 65535.0f;
-                stbi_image_free(px);
-            } else {
-                stbi_uc* px = stbi_load(path.c_str(), &w, &h, &n, 3);
-                if (px == nullptr) return std::size_t(0);
-                texels->resize(std::size_t(w) * std::size_t(h) * 3);
-                for (std::size_t i = 0; i < texels->size(); ++i)
-                    (*texels)[i] = float(px[i]) / 255.0f;
-                stbi_image_free(px);
-            }
+        // RGB texels of 8 or 16 bits to floats in [0, 1] (px[i] / max); 0 when stb failed.
+        auto to_float = [&](auto* px, float max) {
+            if (px == nullptr) return std::size_t(0);
+            texels->resize(std::size_t(w) * std::size_t(h) * 3);
+            for (std::size_t i = 0; i < texels->size(); ++i) (*texels)[i] = float(px[i]) / max;
+            stbi_image_free(px);
             return texels->size();
-        }();
+        };
+        const std::size_t count =
+            wide ? to_float(stbi_load_16(path.c_str(), &w, &h, &n, 3), 65535.0f)
+                 : to_float(stbi_load(path.c_str(), &w, &h, &n, 3), 255.0f);
         if (count == 0)
             throw std::runtime_error("cannot read image '" + path + "': " + stbi_failure_reason());
         if (srgb)

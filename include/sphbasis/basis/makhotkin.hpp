@@ -85,15 +85,11 @@ struct MakhotkinFamily : hemi::Acn<MakhotkinFamily> {
         0};                   // q_m = q_{m-1} sqrt((2m+1)/(2m)), m >= 2
     // clang-format on
 
-    /// zc = max(z, 0), (X, Y) = 2 sqrt(zc/(1+zc)) (x, y), E = sqrt(zc) (0 below the horizon).
+    /// zc, (X, Y) as hemi::shifted_xy, E = sqrt(zc) (0 below the horizon).
     template <class V>
     static SPHBASIS_FORCEINLINE void prep(const V& x, const V& y, const V& z, V& zc, V& X, V& Y,
                                           V& E) noexcept {
-        using S = scalar_t<V>;
-        zc = vmax(z, V(S(0)));
-        const V g = V(S(2)) * vsqrt(zc / (V(S(1)) + zc));
-        X = x * g;
-        Y = y * g;
+        hemi::shifted_xy(x, y, z, zc, X, Y);
         E = vsqrt(zc);
     }
 };

@@ -397,25 +397,39 @@ inline constexpr T scaled_min_r2 = std::is_same_v<T, float> ? T(1e-8) : T(1e-30)
 template <class T>
 inline constexpr T scaled_max_r2 = std::is_same_v<T, float> ? T(1e8) : T(1e30);
 
-template <int N, class T, class Store>
-SPHBASIS_NOINLINE void eval_fixed_normalizing_slow(T x, T y, T z, Store store) noexcept {
+/// A direction outside the scaled kernels' range (zero, non-finite, tiny or huge), normalised
+/// by normalize_or_pole, out of line: the hot path keeps x, y, z in registers.
+template <class T>
+struct UnitDirection {
+    T x, y, z;
+};
+template <class T>
+SPHBASIS_NOINLINE UnitDirection<T> normalize_or_pole_slow(T x, T y, T z) noexcept {
     normalize_or_pole(x, y, z);
-    eval_fixed<N>(x, y, z, store);
+    return {x, y, z};
 }
 
 /// The normalising one-call kernel of exactly N <= 8 bands at a direction of any length, for
 /// float and double: the squared length, then eval_fixed_scaled with inv = 1/r, so the powers
 /// of (x + i y) are formed while the square root is computed (eval_fixed_scaled_N). Zero,
-/// non-finite, tiny or huge input goes to normalize_or_pole (out of line) and eval_fixed.
+/// non-finite, tiny or huge input is normalised out of line (normalize_or_pole_slow) and
+/// evaluated by the same inline kernel with inv = 1 (the values of eval_fixed: every scaling
+/// by 1 is exact), so the store is inlined once.
 template <int N>
 struct FixedNormalizingKernel {
     template <class T, class Store>
     SPHBASIS_FORCEINLINE void operator()(T x, T y, T z, Store&& s) const noexcept {
         const T r2 = x * x + y * y + z * z;
-        if (r2 > scaled_min_r2<T> && r2 < scaled_max_r2<T>)  // false for NaN
-            eval_fixed_scaled<N>(x, y, z, inverse_length(r2), s);
-        else
-            eval_fixed_normalizing_slow<N>(x, y, z, s);
+        T inv = T(1);
+        if (r2 > scaled_min_r2<T> && r2 < scaled_max_r2<T>) {  // false for NaN
+            inv = inverse_length(r2);
+        } else {
+            const UnitDirection<T> u = normalize_or_pole_slow(x, y, z);
+            x = u.x;
+            y = u.y;
+            z = u.z;
+        }
+        eval_fixed_scaled<N>(x, y, z, inv, s);
     }
 };
 struct RowKernel {

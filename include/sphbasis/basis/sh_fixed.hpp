@@ -45,13 +45,14 @@ template <class V, class Store>
 SPHBASIS_FORCEINLINE void eval_fixed_3(const V& x, const V& y, const V& z, Store&& store) noexcept {
     using S = scalar_t<V>;
     (void)x; (void)y; (void)z;
+    const V z2 = z * z;
     const V c1 = x, s1 = y;
     const V c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
     const V q0_0 = V(S(0.28209479177387814));  // 1/(2*sqrt(pi))
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * z;  // sqrt(3)/(2*sqrt(pi)) z
     store(2, q1_0);
-    const V q2_0 = V(S(1.9364916731037085)) * z * q1_0 - V(S(1.1180339887498949)) * q0_0;
+    const V q2_0 = V(S(0.94617469575755997)) * z2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     store(6, q2_0);
     const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
     store(3, q1_1 * c1);
@@ -69,6 +70,7 @@ template <class V, class Store>
 SPHBASIS_FORCEINLINE void eval_fixed_4(const V& x, const V& y, const V& z, Store&& store) noexcept {
     using S = scalar_t<V>;
     (void)x; (void)y; (void)z;
+    const V z2 = z * z;
     const V c1 = x, s1 = y;
     const V c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
     const V c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
@@ -76,9 +78,9 @@ SPHBASIS_FORCEINLINE void eval_fixed_4(const V& x, const V& y, const V& z, Store
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * z;  // sqrt(3)/(2*sqrt(pi)) z
     store(2, q1_0);
-    const V q2_0 = V(S(1.9364916731037085)) * z * q1_0 - V(S(1.1180339887498949)) * q0_0;
+    const V q2_0 = V(S(0.94617469575755997)) * z2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     store(6, q2_0);
-    const V q3_0 = V(S(1.9720265943665387)) * z * q2_0 - V(S(1.0183501544346312)) * q1_0;
+    const V q3_0 = z * (V(S(1.865881662950577)) * z2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     store(12, q3_0);
     const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
     store(3, q1_1 * c1);
@@ -86,7 +88,7 @@ SPHBASIS_FORCEINLINE void eval_fixed_4(const V& x, const V& y, const V& z, Store
     const V q2_1 = V(S(1.0925484305920792)) * z;  // sqrt(15)/(2*sqrt(pi)) z
     store(7, q2_1 * c1);
     store(5, q2_1 * s1);
-    const V q3_1 = V(S(2.0916500663351889)) * z * q2_1 - V(S(0.93541434669348533)) * q1_1;
+    const V q3_1 = V(S(2.2852289973223288)) * z2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     store(13, q3_1 * c1);
     store(11, q3_1 * s1);
     const V q2_2 = V(S(0.54627421529603959));  // sqrt(15)/(4*sqrt(pi))
@@ -105,6 +107,7 @@ template <class V, class Store>
 SPHBASIS_FORCEINLINE void eval_fixed_5(const V& x, const V& y, const V& z, Store&& store) noexcept {
     using S = scalar_t<V>;
     (void)x; (void)y; (void)z;
+    const V z2 = z * z;
     const V c1 = x, s1 = y;
     const V c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
     const V c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
@@ -113,9 +116,9 @@ SPHBASIS_FORCEINLINE void eval_fixed_5(const V& x, const V& y, const V& z, Store
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * z;  // sqrt(3)/(2*sqrt(pi)) z
     store(2, q1_0);
-    const V q2_0 = V(S(1.9364916731037085)) * z * q1_0 - V(S(1.1180339887498949)) * q0_0;
+    const V q2_0 = V(S(0.94617469575755997)) * z2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     store(6, q2_0);
-    const V q3_0 = V(S(1.9720265943665387)) * z * q2_0 - V(S(1.0183501544346312)) * q1_0;
+    const V q3_0 = z * (V(S(1.865881662950577)) * z2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     store(12, q3_0);
     const V q4_0 = V(S(1.984313483298443)) * z * q3_0 - V(S(1.0062305898749053)) * q2_0;
     store(20, q4_0);
@@ -125,10 +128,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_5(const V& x, const V& y, const V& z, Store
     const V q2_1 = V(S(1.0925484305920792)) * z;  // sqrt(15)/(2*sqrt(pi)) z
     store(7, q2_1 * c1);
     store(5, q2_1 * s1);
-    const V q3_1 = V(S(2.0916500663351889)) * z * q2_1 - V(S(0.93541434669348533)) * q1_1;
+    const V q3_1 = V(S(2.2852289973223288)) * z2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     store(13, q3_1 * c1);
     store(11, q3_1 * s1);
-    const V q4_1 = V(S(2.0493901531919199)) * z * q3_1 - V(S(0.9797958971132712)) * q2_1;
+    const V q4_1 = z * (V(S(4.683325804901024)) * z2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
     store(21, q4_1 * c1);
     store(19, q4_1 * s1);
     const V q2_2 = V(S(0.54627421529603959));  // sqrt(15)/(4*sqrt(pi))
@@ -137,7 +140,7 @@ SPHBASIS_FORCEINLINE void eval_fixed_5(const V& x, const V& y, const V& z, Store
     const V q3_2 = V(S(1.4453057213202771)) * z;  // sqrt(105)/(4*sqrt(pi)) z
     store(14, q3_2 * c2);
     store(10, q3_2 * s2);
-    const V q4_2 = V(S(2.2912878474779199)) * z * q3_2 - V(S(0.8660254037844386)) * q2_2;
+    const V q4_2 = V(S(3.3116114351514603)) * z2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
     store(22, q4_2 * c2);
     store(18, q4_2 * s2);
     const V q3_3 = V(S(0.59004358992664352));  // sqrt(70)/(8*sqrt(pi))
@@ -156,6 +159,7 @@ template <class V, class Store>
 SPHBASIS_FORCEINLINE void eval_fixed_6(const V& x, const V& y, const V& z, Store&& store) noexcept {
     using S = scalar_t<V>;
     (void)x; (void)y; (void)z;
+    const V z2 = z * z;
     const V c1 = x, s1 = y;
     const V c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
     const V c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
@@ -165,9 +169,9 @@ SPHBASIS_FORCEINLINE void eval_fixed_6(const V& x, const V& y, const V& z, Store
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * z;  // sqrt(3)/(2*sqrt(pi)) z
     store(2, q1_0);
-    const V q2_0 = V(S(1.9364916731037085)) * z * q1_0 - V(S(1.1180339887498949)) * q0_0;
+    const V q2_0 = V(S(0.94617469575755997)) * z2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     store(6, q2_0);
-    const V q3_0 = V(S(1.9720265943665387)) * z * q2_0 - V(S(1.0183501544346312)) * q1_0;
+    const V q3_0 = z * (V(S(1.865881662950577)) * z2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     store(12, q3_0);
     const V q4_0 = V(S(1.984313483298443)) * z * q3_0 - V(S(1.0062305898749053)) * q2_0;
     store(20, q4_0);
@@ -179,10 +183,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_6(const V& x, const V& y, const V& z, Store
     const V q2_1 = V(S(1.0925484305920792)) * z;  // sqrt(15)/(2*sqrt(pi)) z
     store(7, q2_1 * c1);
     store(5, q2_1 * s1);
-    const V q3_1 = V(S(2.0916500663351889)) * z * q2_1 - V(S(0.93541434669348533)) * q1_1;
+    const V q3_1 = V(S(2.2852289973223288)) * z2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     store(13, q3_1 * c1);
     store(11, q3_1 * s1);
-    const V q4_1 = V(S(2.0493901531919199)) * z * q3_1 - V(S(0.9797958971132712)) * q2_1;
+    const V q4_1 = z * (V(S(4.683325804901024)) * z2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
     store(21, q4_1 * c1);
     store(19, q4_1 * s1);
     const V q5_1 = V(S(2.0310096011589902)) * z * q4_1 - V(S(0.99103120896511487)) * q3_1;
@@ -194,10 +198,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_6(const V& x, const V& y, const V& z, Store
     const V q3_2 = V(S(1.4453057213202771)) * z;  // sqrt(105)/(4*sqrt(pi)) z
     store(14, q3_2 * c2);
     store(10, q3_2 * s2);
-    const V q4_2 = V(S(2.2912878474779199)) * z * q3_2 - V(S(0.8660254037844386)) * q2_2;
+    const V q4_2 = V(S(3.3116114351514603)) * z2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
     store(22, q4_2 * c2);
     store(18, q4_2 * s2);
-    const V q5_2 = V(S(2.1712405933672376)) * z * q4_2 - V(S(0.94760708295868568)) * q3_2;
+    const V q5_2 = z * (V(S(7.1903051774599858)) * z2 + V(S(-2.3967683924866621)));  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
     store(32, q5_2 * c2);
     store(28, q5_2 * s2);
     const V q3_3 = V(S(0.59004358992664352));  // sqrt(70)/(8*sqrt(pi))
@@ -206,7 +210,7 @@ SPHBASIS_FORCEINLINE void eval_fixed_6(const V& x, const V& y, const V& z, Store
     const V q4_3 = V(S(1.7701307697799304)) * z;  // 3*sqrt(70)/(8*sqrt(pi)) z
     store(23, q4_3 * c3);
     store(17, q4_3 * s3);
-    const V q5_3 = V(S(2.4874685927665499)) * z * q4_3 - V(S(0.82915619758884995)) * q3_3;
+    const V q5_3 = V(S(4.4031446949172537)) * z2 + V(S(-0.48923829943525038));  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
     store(33, q5_3 * c3);
     store(27, q5_3 * s3);
     const V q4_4 = V(S(0.62583573544917614));  // 3*sqrt(35)/(16*sqrt(pi))
@@ -225,6 +229,7 @@ template <class V, class Store>
 SPHBASIS_FORCEINLINE void eval_fixed_7(const V& x, const V& y, const V& z, Store&& store) noexcept {
     using S = scalar_t<V>;
     (void)x; (void)y; (void)z;
+    const V z2 = z * z;
     const V c1 = x, s1 = y;
     const V c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
     const V c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
@@ -235,9 +240,9 @@ SPHBASIS_FORCEINLINE void eval_fixed_7(const V& x, const V& y, const V& z, Store
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * z;  // sqrt(3)/(2*sqrt(pi)) z
     store(2, q1_0);
-    const V q2_0 = V(S(1.9364916731037085)) * z * q1_0 - V(S(1.1180339887498949)) * q0_0;
+    const V q2_0 = V(S(0.94617469575755997)) * z2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     store(6, q2_0);
-    const V q3_0 = V(S(1.9720265943665387)) * z * q2_0 - V(S(1.0183501544346312)) * q1_0;
+    const V q3_0 = z * (V(S(1.865881662950577)) * z2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     store(12, q3_0);
     const V q4_0 = V(S(1.984313483298443)) * z * q3_0 - V(S(1.0062305898749053)) * q2_0;
     store(20, q4_0);
@@ -251,10 +256,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_7(const V& x, const V& y, const V& z, Store
     const V q2_1 = V(S(1.0925484305920792)) * z;  // sqrt(15)/(2*sqrt(pi)) z
     store(7, q2_1 * c1);
     store(5, q2_1 * s1);
-    const V q3_1 = V(S(2.0916500663351889)) * z * q2_1 - V(S(0.93541434669348533)) * q1_1;
+    const V q3_1 = V(S(2.2852289973223288)) * z2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     store(13, q3_1 * c1);
     store(11, q3_1 * s1);
-    const V q4_1 = V(S(2.0493901531919199)) * z * q3_1 - V(S(0.9797958971132712)) * q2_1;
+    const V q4_1 = z * (V(S(4.683325804901024)) * z2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
     store(21, q4_1 * c1);
     store(19, q4_1 * s1);
     const V q5_1 = V(S(2.0310096011589902)) * z * q4_1 - V(S(0.99103120896511487)) * q3_1;
@@ -269,10 +274,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_7(const V& x, const V& y, const V& z, Store
     const V q3_2 = V(S(1.4453057213202771)) * z;  // sqrt(105)/(4*sqrt(pi)) z
     store(14, q3_2 * c2);
     store(10, q3_2 * s2);
-    const V q4_2 = V(S(2.2912878474779199)) * z * q3_2 - V(S(0.8660254037844386)) * q2_2;
+    const V q4_2 = V(S(3.3116114351514603)) * z2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
     store(22, q4_2 * c2);
     store(18, q4_2 * s2);
-    const V q5_2 = V(S(2.1712405933672376)) * z * q4_2 - V(S(0.94760708295868568)) * q3_2;
+    const V q5_2 = z * (V(S(7.1903051774599858)) * z2 + V(S(-2.3967683924866621)));  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
     store(32, q5_2 * c2);
     store(28, q5_2 * s2);
     const V q6_2 = V(S(2.1139418156609704)) * z * q5_2 - V(S(0.97361012046232687)) * q4_2;
@@ -284,10 +289,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_7(const V& x, const V& y, const V& z, Store
     const V q4_3 = V(S(1.7701307697799304)) * z;  // 3*sqrt(70)/(8*sqrt(pi)) z
     store(23, q4_3 * c3);
     store(17, q4_3 * s3);
-    const V q5_3 = V(S(2.4874685927665499)) * z * q4_3 - V(S(0.82915619758884995)) * q3_3;
+    const V q5_3 = V(S(4.4031446949172537)) * z2 + V(S(-0.48923829943525038));  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
     store(33, q5_3 * c3);
     store(27, q5_3 * s3);
-    const V q6_3 = V(S(2.3013683530231086)) * z * q5_3 - V(S(0.92518488865161452)) * q4_3;
+    const V q6_3 = z * (V(S(10.133257854664159)) * z2 + V(S(-2.7636157785447706)));  // z (11*sqrt(2730)/(32*sqrt(pi)) z^2 + -3*sqrt(2730)/(32*sqrt(pi)))
     store(45, q6_3 * c3);
     store(39, q6_3 * s3);
     const V q4_4 = V(S(0.62583573544917614));  // 3*sqrt(35)/(16*sqrt(pi))
@@ -296,7 +301,7 @@ SPHBASIS_FORCEINLINE void eval_fixed_7(const V& x, const V& y, const V& z, Store
     const V q5_4 = V(S(2.0756623148810411)) * z;  // 3*sqrt(385)/(16*sqrt(pi)) z
     store(34, q5_4 * c4);
     store(26, q5_4 * s4);
-    const V q6_4 = V(S(2.6739483914241875)) * z * q5_4 - V(S(0.80622577482985491)) * q4_4;
+    const V q6_4 = V(S(5.5502139080159658)) * z2 + V(S(-0.50456490072872417));  // 33*sqrt(91)/(32*sqrt(pi)) z^2 + -3*sqrt(91)/(32*sqrt(pi))
     store(46, q6_4 * c4);
     store(38, q6_4 * s4);
     const V q5_5 = V(S(0.65638205684017015));  // 3*sqrt(154)/(32*sqrt(pi))
@@ -315,6 +320,7 @@ template <class V, class Store>
 SPHBASIS_FORCEINLINE void eval_fixed_8(const V& x, const V& y, const V& z, Store&& store) noexcept {
     using S = scalar_t<V>;
     (void)x; (void)y; (void)z;
+    const V z2 = z * z;
     const V c1 = x, s1 = y;
     const V c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
     const V c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
@@ -326,9 +332,9 @@ SPHBASIS_FORCEINLINE void eval_fixed_8(const V& x, const V& y, const V& z, Store
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * z;  // sqrt(3)/(2*sqrt(pi)) z
     store(2, q1_0);
-    const V q2_0 = V(S(1.9364916731037085)) * z * q1_0 - V(S(1.1180339887498949)) * q0_0;
+    const V q2_0 = V(S(0.94617469575755997)) * z2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     store(6, q2_0);
-    const V q3_0 = V(S(1.9720265943665387)) * z * q2_0 - V(S(1.0183501544346312)) * q1_0;
+    const V q3_0 = z * (V(S(1.865881662950577)) * z2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     store(12, q3_0);
     const V q4_0 = V(S(1.984313483298443)) * z * q3_0 - V(S(1.0062305898749053)) * q2_0;
     store(20, q4_0);
@@ -344,10 +350,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_8(const V& x, const V& y, const V& z, Store
     const V q2_1 = V(S(1.0925484305920792)) * z;  // sqrt(15)/(2*sqrt(pi)) z
     store(7, q2_1 * c1);
     store(5, q2_1 * s1);
-    const V q3_1 = V(S(2.0916500663351889)) * z * q2_1 - V(S(0.93541434669348533)) * q1_1;
+    const V q3_1 = V(S(2.2852289973223288)) * z2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
     store(13, q3_1 * c1);
     store(11, q3_1 * s1);
-    const V q4_1 = V(S(2.0493901531919199)) * z * q3_1 - V(S(0.9797958971132712)) * q2_1;
+    const V q4_1 = z * (V(S(4.683325804901024)) * z2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
     store(21, q4_1 * c1);
     store(19, q4_1 * s1);
     const V q5_1 = V(S(2.0310096011589902)) * z * q4_1 - V(S(0.99103120896511487)) * q3_1;
@@ -365,10 +371,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_8(const V& x, const V& y, const V& z, Store
     const V q3_2 = V(S(1.4453057213202771)) * z;  // sqrt(105)/(4*sqrt(pi)) z
     store(14, q3_2 * c2);
     store(10, q3_2 * s2);
-    const V q4_2 = V(S(2.2912878474779199)) * z * q3_2 - V(S(0.8660254037844386)) * q2_2;
+    const V q4_2 = V(S(3.3116114351514603)) * z2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
     store(22, q4_2 * c2);
     store(18, q4_2 * s2);
-    const V q5_2 = V(S(2.1712405933672376)) * z * q4_2 - V(S(0.94760708295868568)) * q3_2;
+    const V q5_2 = z * (V(S(7.1903051774599858)) * z2 + V(S(-2.3967683924866621)));  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
     store(32, q5_2 * c2);
     store(28, q5_2 * s2);
     const V q6_2 = V(S(2.1139418156609704)) * z * q5_2 - V(S(0.97361012046232687)) * q4_2;
@@ -383,10 +389,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_8(const V& x, const V& y, const V& z, Store
     const V q4_3 = V(S(1.7701307697799304)) * z;  // 3*sqrt(70)/(8*sqrt(pi)) z
     store(23, q4_3 * c3);
     store(17, q4_3 * s3);
-    const V q5_3 = V(S(2.4874685927665499)) * z * q4_3 - V(S(0.82915619758884995)) * q3_3;
+    const V q5_3 = V(S(4.4031446949172537)) * z2 + V(S(-0.48923829943525038));  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
     store(33, q5_3 * c3);
     store(27, q5_3 * s3);
-    const V q6_3 = V(S(2.3013683530231086)) * z * q5_3 - V(S(0.92518488865161452)) * q4_3;
+    const V q6_3 = z * (V(S(10.133257854664159)) * z2 + V(S(-2.7636157785447706)));  // z (11*sqrt(2730)/(32*sqrt(pi)) z^2 + -3*sqrt(2730)/(32*sqrt(pi)))
     store(45, q6_3 * c3);
     store(39, q6_3 * s3);
     const V q7_3 = V(S(2.2079402165819619)) * z * q6_3 - V(S(0.95940322360024699)) * q5_3;
@@ -398,10 +404,10 @@ SPHBASIS_FORCEINLINE void eval_fixed_8(const V& x, const V& y, const V& z, Store
     const V q5_4 = V(S(2.0756623148810411)) * z;  // 3*sqrt(385)/(16*sqrt(pi)) z
     store(34, q5_4 * c4);
     store(26, q5_4 * s4);
-    const V q6_4 = V(S(2.6739483914241875)) * z * q5_4 - V(S(0.80622577482985491)) * q4_4;
+    const V q6_4 = V(S(5.5502139080159658)) * z2 + V(S(-0.50456490072872417));  // 33*sqrt(91)/(32*sqrt(pi)) z^2 + -3*sqrt(91)/(32*sqrt(pi))
     store(46, q6_4 * c4);
     store(38, q6_4 * s4);
-    const V q7_4 = V(S(2.4308621740219887)) * z * q6_4 - V(S(0.90909090909090906)) * q5_4;
+    const V q7_4 = z * (V(S(13.491805046726768)) * z2 + V(S(-3.1134934723215619)));  // z (39*sqrt(385)/(32*sqrt(pi)) z^2 + -9*sqrt(385)/(32*sqrt(pi)))
     store(60, q7_4 * c4);
     store(52, q7_4 * s4);
     const V q5_5 = V(S(0.65638205684017015));  // 3*sqrt(154)/(32*sqrt(pi))
@@ -410,7 +416,7 @@ SPHBASIS_FORCEINLINE void eval_fixed_8(const V& x, const V& y, const V& z, Store
     const V q6_5 = V(S(2.3666191622317521)) * z;  // 3*sqrt(2002)/(32*sqrt(pi)) z
     store(47, q6_5 * c5);
     store(37, q6_5 * s5);
-    const V q7_5 = V(S(2.8504385627478448)) * z * q6_5 - V(S(0.79056941504209488)) * q5_5;
+    const V q7_5 = V(S(6.7459025233633838)) * z2 + V(S(-0.51891557872026028));  // 39*sqrt(385)/(64*sqrt(pi)) z^2 + -3*sqrt(385)/(64*sqrt(pi))
     store(61, q7_5 * c5);
     store(51, q7_5 * s5);
     const V q6_6 = V(S(0.6831841051919143));  // sqrt(6006)/(64*sqrt(pi))
@@ -445,14 +451,14 @@ SPHBASIS_FORCEINLINE void eval_fixed_scaled_2(const V& x, const V& y, const V& z
     const V zn = z * inv;
     const V a1 = x, b1 = y;
     const V p1 = inv;
-    const V c1 = a1 * p1, s1 = b1 * p1;
+    const V k1 = V(S(0.48860251190291992)) * p1;  // sqrt(3)/(2*sqrt(pi)) inv^1
+    const V c1 = a1 * k1, s1 = b1 * k1;
     const V q0_0 = V(S(0.28209479177387814));  // 1/(2*sqrt(pi))
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * zn;  // sqrt(3)/(2*sqrt(pi)) z
     store(2, q1_0);
-    const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
-    store(3, q1_1 * c1);
-    store(1, q1_1 * s1);
+    store(3, c1);
+    store(1, s1);
 }
 
 /// 3 bands at (x, y, z) of any length r, inv = 1/r (r^2 neither over- nor underflows): the
@@ -465,26 +471,26 @@ SPHBASIS_FORCEINLINE void eval_fixed_scaled_3(const V& x, const V& y, const V& z
     const V zn = z * inv;
     const V zn2 = zn * zn;
     const V a1 = x, b1 = y;
-    const V a2 = x * a1 - y * b1, b2 = x * b1 + y * a1;
+    const V a2 = (a1 - b1) * (a1 + b1), b2 = (a1 + a1) * b1;
     const V p1 = inv;
     const V p2 = p1 * p1;
-    const V c1 = a1 * p1, s1 = b1 * p1;
-    const V c2 = a2 * p2, s2 = b2 * p2;
+    const V k1 = V(S(0.48860251190291992)) * p1;  // sqrt(3)/(2*sqrt(pi)) inv^1
+    const V c1 = a1 * k1, s1 = b1 * k1;
+    const V k2 = V(S(0.54627421529603959)) * p2;  // sqrt(15)/(4*sqrt(pi)) inv^2
+    const V c2 = a2 * k2, s2 = b2 * k2;
     const V q0_0 = V(S(0.28209479177387814));  // 1/(2*sqrt(pi))
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * zn;  // sqrt(3)/(2*sqrt(pi)) z
     store(2, q1_0);
     const V q2_0 = V(S(0.94617469575755997)) * zn2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
     store(6, q2_0);
-    const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
-    store(3, q1_1 * c1);
-    store(1, q1_1 * s1);
-    const V q2_1 = V(S(1.0925484305920792)) * zn;  // sqrt(15)/(2*sqrt(pi)) z
+    store(3, c1);
+    store(1, s1);
+    const V q2_1 = V(S(2.2360679774997898)) * zn;  // sqrt(5) z
     store(7, q2_1 * c1);
     store(5, q2_1 * s1);
-    const V q2_2 = V(S(0.54627421529603959));  // sqrt(15)/(4*sqrt(pi))
-    store(8, q2_2 * c2);
-    store(4, q2_2 * s2);
+    store(8, c2);
+    store(4, s2);
 }
 
 /// 4 bands at (x, y, z) of any length r, inv = 1/r (r^3 neither over- nor underflows): the
@@ -497,14 +503,17 @@ SPHBASIS_FORCEINLINE void eval_fixed_scaled_4(const V& x, const V& y, const V& z
     const V zn = z * inv;
     const V zn2 = zn * zn;
     const V a1 = x, b1 = y;
-    const V a2 = x * a1 - y * b1, b2 = x * b1 + y * a1;
+    const V a2 = (a1 - b1) * (a1 + b1), b2 = (a1 + a1) * b1;
     const V a3 = x * a2 - y * b2, b3 = x * b2 + y * a2;
     const V p1 = inv;
     const V p2 = p1 * p1;
     const V p3 = p1 * p2;
-    const V c1 = a1 * p1, s1 = b1 * p1;
-    const V c2 = a2 * p2, s2 = b2 * p2;
-    const V c3 = a3 * p3, s3 = b3 * p3;
+    const V k1 = V(S(0.48860251190291992)) * p1;  // sqrt(3)/(2*sqrt(pi)) inv^1
+    const V c1 = a1 * k1, s1 = b1 * k1;
+    const V k2 = V(S(0.54627421529603959)) * p2;  // sqrt(15)/(4*sqrt(pi)) inv^2
+    const V c2 = a2 * k2, s2 = b2 * k2;
+    const V k3 = V(S(0.59004358992664352)) * p3;  // sqrt(70)/(8*sqrt(pi)) inv^3
+    const V c3 = a3 * k3, s3 = b3 * k3;
     const V q0_0 = V(S(0.28209479177387814));  // 1/(2*sqrt(pi))
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * zn;  // sqrt(3)/(2*sqrt(pi)) z
@@ -513,24 +522,21 @@ SPHBASIS_FORCEINLINE void eval_fixed_scaled_4(const V& x, const V& y, const V& z
     store(6, q2_0);
     const V q3_0 = zn * (V(S(1.865881662950577)) * zn2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
     store(12, q3_0);
-    const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
-    store(3, q1_1 * c1);
-    store(1, q1_1 * s1);
-    const V q2_1 = V(S(1.0925484305920792)) * zn;  // sqrt(15)/(2*sqrt(pi)) z
+    store(3, c1);
+    store(1, s1);
+    const V q2_1 = V(S(2.2360679774997898)) * zn;  // sqrt(5) z
     store(7, q2_1 * c1);
     store(5, q2_1 * s1);
-    const V q3_1 = V(S(2.2852289973223288)) * zn2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
+    const V q3_1 = V(S(4.677071733467427)) * zn2 + V(S(-0.93541434669348533));  // 5*sqrt(14)/4 z^2 + -sqrt(14)/4
     store(13, q3_1 * c1);
     store(11, q3_1 * s1);
-    const V q2_2 = V(S(0.54627421529603959));  // sqrt(15)/(4*sqrt(pi))
-    store(8, q2_2 * c2);
-    store(4, q2_2 * s2);
-    const V q3_2 = V(S(1.4453057213202771)) * zn;  // sqrt(105)/(4*sqrt(pi)) z
+    store(8, c2);
+    store(4, s2);
+    const V q3_2 = V(S(2.6457513110645907)) * zn;  // sqrt(7) z
     store(14, q3_2 * c2);
     store(10, q3_2 * s2);
-    const V q3_3 = V(S(0.59004358992664352));  // sqrt(70)/(8*sqrt(pi))
-    store(15, q3_3 * c3);
-    store(9, q3_3 * s3);
+    store(15, c3);
+    store(9, s3);
 }
 
 /// 5 bands at (x, y, z) of any length r, inv = 1/r (r^4 neither over- nor underflows): the
@@ -543,17 +549,21 @@ SPHBASIS_FORCEINLINE void eval_fixed_scaled_5(const V& x, const V& y, const V& z
     const V zn = z * inv;
     const V zn2 = zn * zn;
     const V a1 = x, b1 = y;
-    const V a2 = x * a1 - y * b1, b2 = x * b1 + y * a1;
+    const V a2 = (a1 - b1) * (a1 + b1), b2 = (a1 + a1) * b1;
     const V a3 = x * a2 - y * b2, b3 = x * b2 + y * a2;
-    const V a4 = x * a3 - y * b3, b4 = x * b3 + y * a3;
+    const V a4 = (a2 - b2) * (a2 + b2), b4 = (a2 + a2) * b2;
     const V p1 = inv;
     const V p2 = p1 * p1;
     const V p3 = p1 * p2;
     const V p4 = p2 * p2;
-    const V c1 = a1 * p1, s1 = b1 * p1;
-    const V c2 = a2 * p2, s2 = b2 * p2;
-    const V c3 = a3 * p3, s3 = b3 * p3;
-    const V c4 = a4 * p4, s4 = b4 * p4;
+    const V k1 = V(S(0.48860251190291992)) * p1;  // sqrt(3)/(2*sqrt(pi)) inv^1
+    const V c1 = a1 * k1, s1 = b1 * k1;
+    const V k2 = V(S(0.54627421529603959)) * p2;  // sqrt(15)/(4*sqrt(pi)) inv^2
+    const V c2 = a2 * k2, s2 = b2 * k2;
+    const V k3 = V(S(0.59004358992664352)) * p3;  // sqrt(70)/(8*sqrt(pi)) inv^3
+    const V c3 = a3 * k3, s3 = b3 * k3;
+    const V k4 = V(S(0.62583573544917614)) * p4;  // 3*sqrt(35)/(16*sqrt(pi)) inv^4
+    const V c4 = a4 * k4, s4 = b4 * k4;
     const V q0_0 = V(S(0.28209479177387814));  // 1/(2*sqrt(pi))
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * zn;  // sqrt(3)/(2*sqrt(pi)) z
@@ -564,36 +574,32 @@ SPHBASIS_FORCEINLINE void eval_fixed_scaled_5(const V& x, const V& y, const V& z
     store(12, q3_0);
     const V q4_0 = V(S(1.984313483298443)) * zn * q3_0 - V(S(1.0062305898749053)) * q2_0;
     store(20, q4_0);
-    const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
-    store(3, q1_1 * c1);
-    store(1, q1_1 * s1);
-    const V q2_1 = V(S(1.0925484305920792)) * zn;  // sqrt(15)/(2*sqrt(pi)) z
+    store(3, c1);
+    store(1, s1);
+    const V q2_1 = V(S(2.2360679774997898)) * zn;  // sqrt(5) z
     store(7, q2_1 * c1);
     store(5, q2_1 * s1);
-    const V q3_1 = V(S(2.2852289973223288)) * zn2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
+    const V q3_1 = V(S(4.677071733467427)) * zn2 + V(S(-0.93541434669348533));  // 5*sqrt(14)/4 z^2 + -sqrt(14)/4
     store(13, q3_1 * c1);
     store(11, q3_1 * s1);
-    const V q4_1 = zn * (V(S(4.683325804901024)) * zn2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
+    const V q4_1 = zn * (V(S(9.5851447563404069)) * zn2 + V(S(-4.1079191812887457)));  // z (7*sqrt(30)/4 z^2 + -3*sqrt(30)/4)
     store(21, q4_1 * c1);
     store(19, q4_1 * s1);
-    const V q2_2 = V(S(0.54627421529603959));  // sqrt(15)/(4*sqrt(pi))
-    store(8, q2_2 * c2);
-    store(4, q2_2 * s2);
-    const V q3_2 = V(S(1.4453057213202771)) * zn;  // sqrt(105)/(4*sqrt(pi)) z
+    store(8, c2);
+    store(4, s2);
+    const V q3_2 = V(S(2.6457513110645907)) * zn;  // sqrt(7) z
     store(14, q3_2 * c2);
     store(10, q3_2 * s2);
-    const V q4_2 = V(S(3.3116114351514603)) * zn2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
+    const V q4_2 = V(S(6.0621778264910704)) * zn2 + V(S(-0.8660254037844386));  // 7*sqrt(3)/2 z^2 + -sqrt(3)/2
     store(22, q4_2 * c2);
     store(18, q4_2 * s2);
-    const V q3_3 = V(S(0.59004358992664352));  // sqrt(70)/(8*sqrt(pi))
-    store(15, q3_3 * c3);
-    store(9, q3_3 * s3);
-    const V q4_3 = V(S(1.7701307697799304)) * zn;  // 3*sqrt(70)/(8*sqrt(pi)) z
+    store(15, c3);
+    store(9, s3);
+    const V q4_3 = V(S(3.0)) * zn;  // 3 z
     store(23, q4_3 * c3);
     store(17, q4_3 * s3);
-    const V q4_4 = V(S(0.62583573544917614));  // 3*sqrt(35)/(16*sqrt(pi))
-    store(24, q4_4 * c4);
-    store(16, q4_4 * s4);
+    store(24, c4);
+    store(16, s4);
 }
 
 /// 6 bands at (x, y, z) of any length r, inv = 1/r (r^5 neither over- nor underflows): the
@@ -606,20 +612,25 @@ SPHBASIS_FORCEINLINE void eval_fixed_scaled_6(const V& x, const V& y, const V& z
     const V zn = z * inv;
     const V zn2 = zn * zn;
     const V a1 = x, b1 = y;
-    const V a2 = x * a1 - y * b1, b2 = x * b1 + y * a1;
+    const V a2 = (a1 - b1) * (a1 + b1), b2 = (a1 + a1) * b1;
     const V a3 = x * a2 - y * b2, b3 = x * b2 + y * a2;
-    const V a4 = x * a3 - y * b3, b4 = x * b3 + y * a3;
+    const V a4 = (a2 - b2) * (a2 + b2), b4 = (a2 + a2) * b2;
     const V a5 = x * a4 - y * b4, b5 = x * b4 + y * a4;
     const V p1 = inv;
     const V p2 = p1 * p1;
     const V p3 = p1 * p2;
     const V p4 = p2 * p2;
     const V p5 = p2 * p3;
-    const V c1 = a1 * p1, s1 = b1 * p1;
-    const V c2 = a2 * p2, s2 = b2 * p2;
-    const V c3 = a3 * p3, s3 = b3 * p3;
-    const V c4 = a4 * p4, s4 = b4 * p4;
-    const V c5 = a5 * p5, s5 = b5 * p5;
+    const V k1 = V(S(0.48860251190291992)) * p1;  // sqrt(3)/(2*sqrt(pi)) inv^1
+    const V c1 = a1 * k1, s1 = b1 * k1;
+    const V k2 = V(S(0.54627421529603959)) * p2;  // sqrt(15)/(4*sqrt(pi)) inv^2
+    const V c2 = a2 * k2, s2 = b2 * k2;
+    const V k3 = V(S(0.59004358992664352)) * p3;  // sqrt(70)/(8*sqrt(pi)) inv^3
+    const V c3 = a3 * k3, s3 = b3 * k3;
+    const V k4 = V(S(0.62583573544917614)) * p4;  // 3*sqrt(35)/(16*sqrt(pi)) inv^4
+    const V c4 = a4 * k4, s4 = b4 * k4;
+    const V k5 = V(S(0.65638205684017015)) * p5;  // 3*sqrt(154)/(32*sqrt(pi)) inv^5
+    const V c5 = a5 * k5, s5 = b5 * k5;
     const V q0_0 = V(S(0.28209479177387814));  // 1/(2*sqrt(pi))
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * zn;  // sqrt(3)/(2*sqrt(pi)) z
@@ -632,51 +643,46 @@ SPHBASIS_FORCEINLINE void eval_fixed_scaled_6(const V& x, const V& y, const V& z
     store(20, q4_0);
     const V q5_0 = V(S(1.9899748742132399)) * zn * q4_0 - V(S(1.002853072844814)) * q3_0;
     store(30, q5_0);
-    const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
-    store(3, q1_1 * c1);
-    store(1, q1_1 * s1);
-    const V q2_1 = V(S(1.0925484305920792)) * zn;  // sqrt(15)/(2*sqrt(pi)) z
+    store(3, c1);
+    store(1, s1);
+    const V q2_1 = V(S(2.2360679774997898)) * zn;  // sqrt(5) z
     store(7, q2_1 * c1);
     store(5, q2_1 * s1);
-    const V q3_1 = V(S(2.2852289973223288)) * zn2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
+    const V q3_1 = V(S(4.677071733467427)) * zn2 + V(S(-0.93541434669348533));  // 5*sqrt(14)/4 z^2 + -sqrt(14)/4
     store(13, q3_1 * c1);
     store(11, q3_1 * s1);
-    const V q4_1 = zn * (V(S(4.683325804901024)) * zn2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
+    const V q4_1 = zn * (V(S(9.5851447563404069)) * zn2 + V(S(-4.1079191812887457)));  // z (7*sqrt(30)/4 z^2 + -3*sqrt(30)/4)
     store(21, q4_1 * c1);
     store(19, q4_1 * s1);
     const V q5_1 = V(S(2.0310096011589902)) * zn * q4_1 - V(S(0.99103120896511487)) * q3_1;
     store(31, q5_1 * c1);
     store(29, q5_1 * s1);
-    const V q2_2 = V(S(0.54627421529603959));  // sqrt(15)/(4*sqrt(pi))
-    store(8, q2_2 * c2);
-    store(4, q2_2 * s2);
-    const V q3_2 = V(S(1.4453057213202771)) * zn;  // sqrt(105)/(4*sqrt(pi)) z
+    store(8, c2);
+    store(4, s2);
+    const V q3_2 = V(S(2.6457513110645907)) * zn;  // sqrt(7) z
     store(14, q3_2 * c2);
     store(10, q3_2 * s2);
-    const V q4_2 = V(S(3.3116114351514603)) * zn2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
+    const V q4_2 = V(S(6.0621778264910704)) * zn2 + V(S(-0.8660254037844386));  // 7*sqrt(3)/2 z^2 + -sqrt(3)/2
     store(22, q4_2 * c2);
     store(18, q4_2 * s2);
-    const V q5_2 = zn * (V(S(7.1903051774599858)) * zn2 + V(S(-2.3967683924866621)));  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
+    const V q5_2 = zn * (V(S(13.162446581088183)) * zn2 + V(S(-4.3874821936960613)));  // z (3*sqrt(77)/2 z^2 + -sqrt(77)/2)
     store(32, q5_2 * c2);
     store(28, q5_2 * s2);
-    const V q3_3 = V(S(0.59004358992664352));  // sqrt(70)/(8*sqrt(pi))
-    store(15, q3_3 * c3);
-    store(9, q3_3 * s3);
-    const V q4_3 = V(S(1.7701307697799304)) * zn;  // 3*sqrt(70)/(8*sqrt(pi)) z
+    store(15, c3);
+    store(9, s3);
+    const V q4_3 = V(S(3.0)) * zn;  // 3 z
     store(23, q4_3 * c3);
     store(17, q4_3 * s3);
-    const V q5_3 = V(S(4.4031446949172537)) * zn2 + V(S(-0.48923829943525038));  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
+    const V q5_3 = V(S(7.46240577829965)) * zn2 + V(S(-0.82915619758884995));  // 9*sqrt(11)/4 z^2 + -sqrt(11)/4
     store(33, q5_3 * c3);
     store(27, q5_3 * s3);
-    const V q4_4 = V(S(0.62583573544917614));  // 3*sqrt(35)/(16*sqrt(pi))
-    store(24, q4_4 * c4);
-    store(16, q4_4 * s4);
-    const V q5_4 = V(S(2.0756623148810411)) * zn;  // 3*sqrt(385)/(16*sqrt(pi)) z
+    store(24, c4);
+    store(16, s4);
+    const V q5_4 = V(S(3.3166247903553998)) * zn;  // sqrt(11) z
     store(34, q5_4 * c4);
     store(26, q5_4 * s4);
-    const V q5_5 = V(S(0.65638205684017015));  // 3*sqrt(154)/(32*sqrt(pi))
-    store(35, q5_5 * c5);
-    store(25, q5_5 * s5);
+    store(35, c5);
+    store(25, s5);
 }
 
 /// 7 bands at (x, y, z) of any length r, inv = 1/r (r^6 neither over- nor underflows): the
@@ -689,23 +695,29 @@ SPHBASIS_FORCEINLINE void eval_fixed_scaled_7(const V& x, const V& y, const V& z
     const V zn = z * inv;
     const V zn2 = zn * zn;
     const V a1 = x, b1 = y;
-    const V a2 = x * a1 - y * b1, b2 = x * b1 + y * a1;
+    const V a2 = (a1 - b1) * (a1 + b1), b2 = (a1 + a1) * b1;
     const V a3 = x * a2 - y * b2, b3 = x * b2 + y * a2;
-    const V a4 = x * a3 - y * b3, b4 = x * b3 + y * a3;
+    const V a4 = (a2 - b2) * (a2 + b2), b4 = (a2 + a2) * b2;
     const V a5 = x * a4 - y * b4, b5 = x * b4 + y * a4;
-    const V a6 = x * a5 - y * b5, b6 = x * b5 + y * a5;
+    const V a6 = (a3 - b3) * (a3 + b3), b6 = (a3 + a3) * b3;
     const V p1 = inv;
     const V p2 = p1 * p1;
     const V p3 = p1 * p2;
     const V p4 = p2 * p2;
     const V p5 = p2 * p3;
     const V p6 = p3 * p3;
-    const V c1 = a1 * p1, s1 = b1 * p1;
-    const V c2 = a2 * p2, s2 = b2 * p2;
-    const V c3 = a3 * p3, s3 = b3 * p3;
-    const V c4 = a4 * p4, s4 = b4 * p4;
-    const V c5 = a5 * p5, s5 = b5 * p5;
-    const V c6 = a6 * p6, s6 = b6 * p6;
+    const V k1 = V(S(0.48860251190291992)) * p1;  // sqrt(3)/(2*sqrt(pi)) inv^1
+    const V c1 = a1 * k1, s1 = b1 * k1;
+    const V k2 = V(S(0.54627421529603959)) * p2;  // sqrt(15)/(4*sqrt(pi)) inv^2
+    const V c2 = a2 * k2, s2 = b2 * k2;
+    const V k3 = V(S(0.59004358992664352)) * p3;  // sqrt(70)/(8*sqrt(pi)) inv^3
+    const V c3 = a3 * k3, s3 = b3 * k3;
+    const V k4 = V(S(0.62583573544917614)) * p4;  // 3*sqrt(35)/(16*sqrt(pi)) inv^4
+    const V c4 = a4 * k4, s4 = b4 * k4;
+    const V k5 = V(S(0.65638205684017015)) * p5;  // 3*sqrt(154)/(32*sqrt(pi)) inv^5
+    const V c5 = a5 * k5, s5 = b5 * k5;
+    const V k6 = V(S(0.6831841051919143)) * p6;  // sqrt(6006)/(64*sqrt(pi)) inv^6
+    const V c6 = a6 * k6, s6 = b6 * k6;
     const V q0_0 = V(S(0.28209479177387814));  // 1/(2*sqrt(pi))
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * zn;  // sqrt(3)/(2*sqrt(pi)) z
@@ -720,16 +732,15 @@ SPHBASIS_FORCEINLINE void eval_fixed_scaled_7(const V& x, const V& y, const V& z
     store(30, q5_0);
     const V q6_0 = V(S(1.9930434571835662)) * zn * q5_0 - V(S(1.0015420209622192)) * q4_0;
     store(42, q6_0);
-    const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
-    store(3, q1_1 * c1);
-    store(1, q1_1 * s1);
-    const V q2_1 = V(S(1.0925484305920792)) * zn;  // sqrt(15)/(2*sqrt(pi)) z
+    store(3, c1);
+    store(1, s1);
+    const V q2_1 = V(S(2.2360679774997898)) * zn;  // sqrt(5) z
     store(7, q2_1 * c1);
     store(5, q2_1 * s1);
-    const V q3_1 = V(S(2.2852289973223288)) * zn2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
+    const V q3_1 = V(S(4.677071733467427)) * zn2 + V(S(-0.93541434669348533));  // 5*sqrt(14)/4 z^2 + -sqrt(14)/4
     store(13, q3_1 * c1);
     store(11, q3_1 * s1);
-    const V q4_1 = zn * (V(S(4.683325804901024)) * zn2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
+    const V q4_1 = zn * (V(S(9.5851447563404069)) * zn2 + V(S(-4.1079191812887457)));  // z (7*sqrt(30)/4 z^2 + -3*sqrt(30)/4)
     store(21, q4_1 * c1);
     store(19, q4_1 * s1);
     const V q5_1 = V(S(2.0310096011589902)) * zn * q4_1 - V(S(0.99103120896511487)) * q3_1;
@@ -738,51 +749,46 @@ SPHBASIS_FORCEINLINE void eval_fixed_scaled_7(const V& x, const V& y, const V& z
     const V q6_1 = V(S(2.0213149892370277)) * zn * q5_1 - V(S(0.99522670305623862)) * q4_1;
     store(43, q6_1 * c1);
     store(41, q6_1 * s1);
-    const V q2_2 = V(S(0.54627421529603959));  // sqrt(15)/(4*sqrt(pi))
-    store(8, q2_2 * c2);
-    store(4, q2_2 * s2);
-    const V q3_2 = V(S(1.4453057213202771)) * zn;  // sqrt(105)/(4*sqrt(pi)) z
+    store(8, c2);
+    store(4, s2);
+    const V q3_2 = V(S(2.6457513110645907)) * zn;  // sqrt(7) z
     store(14, q3_2 * c2);
     store(10, q3_2 * s2);
-    const V q4_2 = V(S(3.3116114351514603)) * zn2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
+    const V q4_2 = V(S(6.0621778264910704)) * zn2 + V(S(-0.8660254037844386));  // 7*sqrt(3)/2 z^2 + -sqrt(3)/2
     store(22, q4_2 * c2);
     store(18, q4_2 * s2);
-    const V q5_2 = zn * (V(S(7.1903051774599858)) * zn2 + V(S(-2.3967683924866621)));  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
+    const V q5_2 = zn * (V(S(13.162446581088183)) * zn2 + V(S(-4.3874821936960613)));  // z (3*sqrt(77)/2 z^2 + -sqrt(77)/2)
     store(32, q5_2 * c2);
     store(28, q5_2 * s2);
     const V q6_2 = V(S(2.1139418156609704)) * zn * q5_2 - V(S(0.97361012046232687)) * q4_2;
     store(44, q6_2 * c2);
     store(40, q6_2 * s2);
-    const V q3_3 = V(S(0.59004358992664352));  // sqrt(70)/(8*sqrt(pi))
-    store(15, q3_3 * c3);
-    store(9, q3_3 * s3);
-    const V q4_3 = V(S(1.7701307697799304)) * zn;  // 3*sqrt(70)/(8*sqrt(pi)) z
+    store(15, c3);
+    store(9, s3);
+    const V q4_3 = V(S(3.0)) * zn;  // 3 z
     store(23, q4_3 * c3);
     store(17, q4_3 * s3);
-    const V q5_3 = V(S(4.4031446949172537)) * zn2 + V(S(-0.48923829943525038));  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
+    const V q5_3 = V(S(7.46240577829965)) * zn2 + V(S(-0.82915619758884995));  // 9*sqrt(11)/4 z^2 + -sqrt(11)/4
     store(33, q5_3 * c3);
     store(27, q5_3 * s3);
-    const V q6_3 = zn * (V(S(10.133257854664159)) * zn2 + V(S(-2.7636157785447706)));  // z (11*sqrt(2730)/(32*sqrt(pi)) z^2 + -3*sqrt(2730)/(32*sqrt(pi)))
+    const V q6_3 = zn * (V(S(17.173744495595596)) * zn2 + V(S(-4.6837484987987983)));  // z (11*sqrt(39)/4 z^2 + -3*sqrt(39)/4)
     store(45, q6_3 * c3);
     store(39, q6_3 * s3);
-    const V q4_4 = V(S(0.62583573544917614));  // 3*sqrt(35)/(16*sqrt(pi))
-    store(24, q4_4 * c4);
-    store(16, q4_4 * s4);
-    const V q5_4 = V(S(2.0756623148810411)) * zn;  // 3*sqrt(385)/(16*sqrt(pi)) z
+    store(24, c4);
+    store(16, s4);
+    const V q5_4 = V(S(3.3166247903553998)) * zn;  // sqrt(11) z
     store(34, q5_4 * c4);
     store(26, q5_4 * s4);
-    const V q6_4 = V(S(5.5502139080159658)) * zn2 + V(S(-0.50456490072872417));  // 33*sqrt(91)/(32*sqrt(pi)) z^2 + -3*sqrt(91)/(32*sqrt(pi))
+    const V q6_4 = V(S(8.868483523128404)) * zn2 + V(S(-0.80622577482985491));  // 11*sqrt(65)/10 z^2 + -sqrt(65)/10
     store(46, q6_4 * c4);
     store(38, q6_4 * s4);
-    const V q5_5 = V(S(0.65638205684017015));  // 3*sqrt(154)/(32*sqrt(pi))
-    store(35, q5_5 * c5);
-    store(25, q5_5 * s5);
-    const V q6_5 = V(S(2.3666191622317521)) * zn;  // 3*sqrt(2002)/(32*sqrt(pi)) z
+    store(35, c5);
+    store(25, s5);
+    const V q6_5 = V(S(3.6055512754639891)) * zn;  // sqrt(13) z
     store(47, q6_5 * c5);
     store(37, q6_5 * s5);
-    const V q6_6 = V(S(0.6831841051919143));  // sqrt(6006)/(64*sqrt(pi))
-    store(48, q6_6 * c6);
-    store(36, q6_6 * s6);
+    store(48, c6);
+    store(36, s6);
 }
 
 /// 8 bands at (x, y, z) of any length r, inv = 1/r (r^7 neither over- nor underflows): the
@@ -795,11 +801,11 @@ SPHBASIS_FORCEINLINE void eval_fixed_scaled_8(const V& x, const V& y, const V& z
     const V zn = z * inv;
     const V zn2 = zn * zn;
     const V a1 = x, b1 = y;
-    const V a2 = x * a1 - y * b1, b2 = x * b1 + y * a1;
+    const V a2 = (a1 - b1) * (a1 + b1), b2 = (a1 + a1) * b1;
     const V a3 = x * a2 - y * b2, b3 = x * b2 + y * a2;
-    const V a4 = x * a3 - y * b3, b4 = x * b3 + y * a3;
+    const V a4 = (a2 - b2) * (a2 + b2), b4 = (a2 + a2) * b2;
     const V a5 = x * a4 - y * b4, b5 = x * b4 + y * a4;
-    const V a6 = x * a5 - y * b5, b6 = x * b5 + y * a5;
+    const V a6 = (a3 - b3) * (a3 + b3), b6 = (a3 + a3) * b3;
     const V a7 = x * a6 - y * b6, b7 = x * b6 + y * a6;
     const V p1 = inv;
     const V p2 = p1 * p1;
@@ -808,13 +814,20 @@ SPHBASIS_FORCEINLINE void eval_fixed_scaled_8(const V& x, const V& y, const V& z
     const V p5 = p2 * p3;
     const V p6 = p3 * p3;
     const V p7 = p3 * p4;
-    const V c1 = a1 * p1, s1 = b1 * p1;
-    const V c2 = a2 * p2, s2 = b2 * p2;
-    const V c3 = a3 * p3, s3 = b3 * p3;
-    const V c4 = a4 * p4, s4 = b4 * p4;
-    const V c5 = a5 * p5, s5 = b5 * p5;
-    const V c6 = a6 * p6, s6 = b6 * p6;
-    const V c7 = a7 * p7, s7 = b7 * p7;
+    const V k1 = V(S(0.48860251190291992)) * p1;  // sqrt(3)/(2*sqrt(pi)) inv^1
+    const V c1 = a1 * k1, s1 = b1 * k1;
+    const V k2 = V(S(0.54627421529603959)) * p2;  // sqrt(15)/(4*sqrt(pi)) inv^2
+    const V c2 = a2 * k2, s2 = b2 * k2;
+    const V k3 = V(S(0.59004358992664352)) * p3;  // sqrt(70)/(8*sqrt(pi)) inv^3
+    const V c3 = a3 * k3, s3 = b3 * k3;
+    const V k4 = V(S(0.62583573544917614)) * p4;  // 3*sqrt(35)/(16*sqrt(pi)) inv^4
+    const V c4 = a4 * k4, s4 = b4 * k4;
+    const V k5 = V(S(0.65638205684017015)) * p5;  // 3*sqrt(154)/(32*sqrt(pi)) inv^5
+    const V c5 = a5 * k5, s5 = b5 * k5;
+    const V k6 = V(S(0.6831841051919143)) * p6;  // sqrt(6006)/(64*sqrt(pi)) inv^6
+    const V c6 = a6 * k6, s6 = b6 * k6;
+    const V k7 = V(S(0.70716273252459616)) * p7;  // 3*sqrt(715)/(64*sqrt(pi)) inv^7
+    const V c7 = a7 * k7, s7 = b7 * k7;
     const V q0_0 = V(S(0.28209479177387814));  // 1/(2*sqrt(pi))
     store(0, q0_0);
     const V q1_0 = V(S(0.48860251190291992)) * zn;  // sqrt(3)/(2*sqrt(pi)) z
@@ -831,16 +844,15 @@ SPHBASIS_FORCEINLINE void eval_fixed_scaled_8(const V& x, const V& y, const V& z
     store(42, q6_0);
     const V q7_0 = V(S(1.9948914348241344)) * zn * q6_0 - V(S(1.000927213921958)) * q5_0;
     store(56, q7_0);
-    const V q1_1 = V(S(0.48860251190291992));  // sqrt(3)/(2*sqrt(pi))
-    store(3, q1_1 * c1);
-    store(1, q1_1 * s1);
-    const V q2_1 = V(S(1.0925484305920792)) * zn;  // sqrt(15)/(2*sqrt(pi)) z
+    store(3, c1);
+    store(1, s1);
+    const V q2_1 = V(S(2.2360679774997898)) * zn;  // sqrt(5) z
     store(7, q2_1 * c1);
     store(5, q2_1 * s1);
-    const V q3_1 = V(S(2.2852289973223288)) * zn2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
+    const V q3_1 = V(S(4.677071733467427)) * zn2 + V(S(-0.93541434669348533));  // 5*sqrt(14)/4 z^2 + -sqrt(14)/4
     store(13, q3_1 * c1);
     store(11, q3_1 * s1);
-    const V q4_1 = zn * (V(S(4.683325804901024)) * zn2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
+    const V q4_1 = zn * (V(S(9.5851447563404069)) * zn2 + V(S(-4.1079191812887457)));  // z (7*sqrt(30)/4 z^2 + -3*sqrt(30)/4)
     store(21, q4_1 * c1);
     store(19, q4_1 * s1);
     const V q5_1 = V(S(2.0310096011589902)) * zn * q4_1 - V(S(0.99103120896511487)) * q3_1;
@@ -852,16 +864,15 @@ SPHBASIS_FORCEINLINE void eval_fixed_scaled_8(const V& x, const V& y, const V& z
     const V q7_1 = V(S(2.0155644370746373)) * zn * q6_1 - V(S(0.99715504402183208)) * q5_1;
     store(57, q7_1 * c1);
     store(55, q7_1 * s1);
-    const V q2_2 = V(S(0.54627421529603959));  // sqrt(15)/(4*sqrt(pi))
-    store(8, q2_2 * c2);
-    store(4, q2_2 * s2);
-    const V q3_2 = V(S(1.4453057213202771)) * zn;  // sqrt(105)/(4*sqrt(pi)) z
+    store(8, c2);
+    store(4, s2);
+    const V q3_2 = V(S(2.6457513110645907)) * zn;  // sqrt(7) z
     store(14, q3_2 * c2);
     store(10, q3_2 * s2);
-    const V q4_2 = V(S(3.3116114351514603)) * zn2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
+    const V q4_2 = V(S(6.0621778264910704)) * zn2 + V(S(-0.8660254037844386));  // 7*sqrt(3)/2 z^2 + -sqrt(3)/2
     store(22, q4_2 * c2);
     store(18, q4_2 * s2);
-    const V q5_2 = zn * (V(S(7.1903051774599858)) * zn2 + V(S(-2.3967683924866621)));  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
+    const V q5_2 = zn * (V(S(13.162446581088183)) * zn2 + V(S(-4.3874821936960613)));  // z (3*sqrt(77)/2 z^2 + -sqrt(77)/2)
     store(32, q5_2 * c2);
     store(28, q5_2 * s2);
     const V q6_2 = V(S(2.1139418156609704)) * zn * q5_2 - V(S(0.97361012046232687)) * q4_2;
@@ -870,51 +881,46 @@ SPHBASIS_FORCEINLINE void eval_fixed_scaled_8(const V& x, const V& y, const V& z
     const V q7_2 = V(S(2.0816659994661326)) * zn * q6_2 - V(S(0.9847319278346619)) * q5_2;
     store(58, q7_2 * c2);
     store(54, q7_2 * s2);
-    const V q3_3 = V(S(0.59004358992664352));  // sqrt(70)/(8*sqrt(pi))
-    store(15, q3_3 * c3);
-    store(9, q3_3 * s3);
-    const V q4_3 = V(S(1.7701307697799304)) * zn;  // 3*sqrt(70)/(8*sqrt(pi)) z
+    store(15, c3);
+    store(9, s3);
+    const V q4_3 = V(S(3.0)) * zn;  // 3 z
     store(23, q4_3 * c3);
     store(17, q4_3 * s3);
-    const V q5_3 = V(S(4.4031446949172537)) * zn2 + V(S(-0.48923829943525038));  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
+    const V q5_3 = V(S(7.46240577829965)) * zn2 + V(S(-0.82915619758884995));  // 9*sqrt(11)/4 z^2 + -sqrt(11)/4
     store(33, q5_3 * c3);
     store(27, q5_3 * s3);
-    const V q6_3 = zn * (V(S(10.133257854664159)) * zn2 + V(S(-2.7636157785447706)));  // z (11*sqrt(2730)/(32*sqrt(pi)) z^2 + -3*sqrt(2730)/(32*sqrt(pi)))
+    const V q6_3 = zn * (V(S(17.173744495595596)) * zn2 + V(S(-4.6837484987987983)));  // z (11*sqrt(39)/4 z^2 + -3*sqrt(39)/4)
     store(45, q6_3 * c3);
     store(39, q6_3 * s3);
     const V q7_3 = V(S(2.2079402165819619)) * zn * q6_3 - V(S(0.95940322360024699)) * q5_3;
     store(59, q7_3 * c3);
     store(53, q7_3 * s3);
-    const V q4_4 = V(S(0.62583573544917614));  // 3*sqrt(35)/(16*sqrt(pi))
-    store(24, q4_4 * c4);
-    store(16, q4_4 * s4);
-    const V q5_4 = V(S(2.0756623148810411)) * zn;  // 3*sqrt(385)/(16*sqrt(pi)) z
+    store(24, c4);
+    store(16, s4);
+    const V q5_4 = V(S(3.3166247903553998)) * zn;  // sqrt(11) z
     store(34, q5_4 * c4);
     store(26, q5_4 * s4);
-    const V q6_4 = V(S(5.5502139080159658)) * zn2 + V(S(-0.50456490072872417));  // 33*sqrt(91)/(32*sqrt(pi)) z^2 + -3*sqrt(91)/(32*sqrt(pi))
+    const V q6_4 = V(S(8.868483523128404)) * zn2 + V(S(-0.80622577482985491));  // 11*sqrt(65)/10 z^2 + -sqrt(65)/10
     store(46, q6_4 * c4);
     store(38, q6_4 * s4);
-    const V q7_4 = zn * (V(S(13.491805046726768)) * zn2 + V(S(-3.1134934723215619)));  // z (39*sqrt(385)/(32*sqrt(pi)) z^2 + -9*sqrt(385)/(32*sqrt(pi)))
+    const V q7_4 = zn * (V(S(21.558061137310098)) * zn2 + V(S(-4.9749371855330997)));  // z (13*sqrt(11)/2 z^2 + -3*sqrt(11)/2)
     store(60, q7_4 * c4);
     store(52, q7_4 * s4);
-    const V q5_5 = V(S(0.65638205684017015));  // 3*sqrt(154)/(32*sqrt(pi))
-    store(35, q5_5 * c5);
-    store(25, q5_5 * s5);
-    const V q6_5 = V(S(2.3666191622317521)) * zn;  // 3*sqrt(2002)/(32*sqrt(pi)) z
+    store(35, c5);
+    store(25, s5);
+    const V q6_5 = V(S(3.6055512754639891)) * zn;  // sqrt(13) z
     store(47, q6_5 * c5);
     store(37, q6_5 * s5);
-    const V q7_5 = V(S(6.7459025233633838)) * zn2 + V(S(-0.51891557872026028));  // 39*sqrt(385)/(64*sqrt(pi)) z^2 + -3*sqrt(385)/(64*sqrt(pi))
+    const V q7_5 = V(S(10.277402395547233)) * zn2 + V(S(-0.79056941504209488));  // 13*sqrt(10)/4 z^2 + -sqrt(10)/4
     store(61, q7_5 * c5);
     store(51, q7_5 * s5);
-    const V q6_6 = V(S(0.6831841051919143));  // sqrt(6006)/(64*sqrt(pi))
-    store(48, q6_6 * c6);
-    store(36, q6_6 * s6);
-    const V q7_6 = V(S(2.6459606618019)) * zn;  // 3*sqrt(10010)/(64*sqrt(pi)) z
+    store(48, c6);
+    store(36, s6);
+    const V q7_6 = V(S(3.872983346207417)) * zn;  // sqrt(15) z
     store(62, q7_6 * c6);
     store(50, q7_6 * s6);
-    const V q7_7 = V(S(0.70716273252459616));  // 3*sqrt(715)/(64*sqrt(pi))
-    store(63, q7_7 * c7);
-    store(49, q7_7 * s7);
+    store(63, c7);
+    store(49, s7);
 }
 
 /// Dispatch on a compile-time band count.

@@ -369,6 +369,15 @@ void kmeans(const MatrixX<Scalar>& x, const CpcaSettings& s, Cpca<Scalar>& model
     model.means = centres;
 }
 
+/// The static model of checked data x: k-means, then the per-cluster fits (error_history[0]).
+template <class Scalar>
+Cpca<Scalar> static_model(const MatrixX<Scalar>& x, const CpcaSettings& settings) {
+    Cpca<Scalar> model;
+    kmeans(x, settings, model);
+    model.error_history = {fit_all(x, settings.vectors, model)};
+    return model;
+}
+
 template <class Derived>
 MatrixX<typename Derived::Scalar> checked_cpca_input(const Eigen::MatrixBase<Derived>& data,
                                                      const CpcaSettings& s, const char* fn) {
@@ -438,11 +447,8 @@ Cpca<typename Derived::Scalar> cpca_static(const Eigen::MatrixBase<Derived>& dat
     using Scalar = typename Derived::Scalar;
     static_assert(std::is_floating_point_v<Scalar>,
                   "sphbasis::compress::cpca_static: the data must be float or double.");
-    const MatrixX<Scalar> x = detail::checked_cpca_input(data, settings, "compress::cpca_static");
-    Cpca<Scalar> model;
-    detail::kmeans(x, settings, model);
-    model.error_history = {detail::fit_all(x, settings.vectors, model)};
-    return model;
+    return detail::static_model(detail::checked_cpca_input(data, settings, "compress::cpca_static"),
+                                settings);
 }
 
 /// Iterative CPCA: cpca_static(), then reclassification of every point to the cluster whose
@@ -459,11 +465,9 @@ Cpca<typename Derived::Scalar> cpca_iterative(const Eigen::MatrixBase<Derived>& 
                   "sphbasis::compress::cpca_iterative: the data must be float or double.");
     const MatrixX<Scalar> x =
         detail::checked_cpca_input(data, settings, "compress::cpca_iterative");
-    Cpca<Scalar> model;
-    detail::kmeans(x, settings, model);
+    Cpca<Scalar> model = detail::static_model(x, settings);
     const int m = settings.vectors, nc = settings.clusters;
-    double err = detail::fit_all(x, m, model);
-    model.error_history = {err};
+    double err = model.error_history[0];
     const Eigen::Index np = x.rows();
     MatrixX<Scalar> resid(np, nc);
     for (int it = 0; it < settings.max_iterations; ++it) {

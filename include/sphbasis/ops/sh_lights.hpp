@@ -47,9 +47,11 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "../basis/sh.hpp"
@@ -94,6 +96,9 @@ void check_light(int bands, T x, T y, T z, const C* out, const char* fn) {
                   "C * coefficient_scalar_t<C> (specialise sphbasis::coefficient_scalar).");
     check_bands(bands, fn);
     sphbasis::detail::check_buffer(fn, "out", out, static_cast<std::size_t>(bands));
+    // A finite squared length > 0 (the normalising kernels compute it too) settles it at once.
+    const T r2 = x * x + y * y + z * z;
+    if (r2 > T(0) && r2 <= std::numeric_limits<T>::max()) return;
     if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) ||
         (x == T(0) && y == T(0) && z == T(0)))
         sphbasis::detail::throw_invalid(fn, "a finite non-zero direction");
@@ -153,6 +158,227 @@ SPHBASIS_FORCEINLINE O light_colour(const C& colour) {
 
 }  // namespace detail
 
+// ---------------------------------------------------------------------------------------------
+// The lights with a compile-time band count N (1..8): directional_light<N>, cone_light<N>,
+// spherical_light<N>, hemisphere_light<N>. The same coefficients as the run-time forms below
+// (which use them for 1..8 bands after their checks), for the hot path: the basis by the
+// unrolled normalising kernel (sh::eval<N>'s) in the coefficient's scalar (float for float or
+// float RGB coefficients, else double), written straight into out times one colour per band
+// (colour * factor, formed once per band), the zonal factors as constants (directional,
+// hemisphere; the hemisphere's zero bands are stored as zeros without evaluating them) or by
+// the cap recurrence unrolled (cone, sphere), no run-time checks (SPHBASIS_ASSERT in debug
+// builds), noexcept. Arguments outside the domain of the run-time forms give finite results
+// instead of throwing: a zero direction is taken as +z (sh::eval's pole), a half-angle is
+// clamped to [0, pi], a negative radius to 0.
+
+namespace detail {
+/// Floating-point type the fixed-band lights evaluate in: float for float coefficients, else
+/// double.
+template <class C>
+using light_eval_t =
+    std::conditional_t<std::is_same_v<coefficient_scalar_t<C>, float>, float, double>;
+
+/// The band l of ACN index k < 64 (a table, so a constant k folds).
+inline constexpr auto light_band_of = [] {
+    std::array<int, 64> b{};
+    for (int k = 0; k < 64; ++k)
+        while ((b[static_cast<std::size_t>(k)] + 1) * (b[static_cast<std::size_t>(k)] + 1) <= k)
+            ++b[static_cast<std::size_t>(k)];
+    return b;
+}();
+
+/// cap_factors() for a compile-time band count, in E (unrolled).
+template <int N, class E>
+SPHBASIS_FORCEINLINE void cap_factors_fixed(E u, E* out) noexcept {
+    const E two_pi = E(constants::two_pi);
+    out[0] = two_pi * u;
+    E p = 1, d = 0;
+    for (int l = 0; l + 1 < N; ++l) {
+        const E dn = l == 0 ? -u : (E(l) * d - E(2 * l + 1) * u * p) / E(l + 1);
+        p += dn;
+        d = dn;
+        out[l + 1] = two_pi * (u * p - d) / E(l + 2);
+    }
+}
+
+/// The hemisphere's factors (u = 1), exact at compile time: 2 pi, pi, 0, -pi/4, 0, pi/8, 0, ...
+/// (zero at every even l >= 2: Lambda_l = 2 pi (P_{l-1}(0) - P_{l+1}(0)) / (2l + 1)).
+template <int N>
+constexpr std::array<double, N> hemisphere_factors() noexcept {
+    std::array<double, N> f{};
+    f[0] = constants::two_pi;
+    double p = 1, d = 0;
+    for (int l = 0; l + 1 < N; ++l) {
+        const double dn = l == 0 ? -1.0 : (l * d - (2 * l + 1) * p) / (l + 1);
+        p += dn;
+        d = dn;
+        f[static_cast<std::size_t>(l + 1)] =
+            (l + 1) % 2 == 0 ? 0.0 : constants::two_pi * (p - d) / (l + 2);
+    }
+    return f;
+}
+
+/// Bit l set: band l of the hemisphere light is zero (even l >= 2).
+inline constexpr unsigned hemisphere_zero_bands = 0x55555554u;
+
+template <class C, class Band, std::size_t... Ls>
+SPHBASIS_FORCEINLINE std::array<C, sizeof...(Ls)> light_band_colours(Band&& band,
+                                                                     std::index_sequence<Ls...>) {
+    return {{band(static_cast<int>(Ls))...}};
+}
+
+/// out_k = band(l) * y_k(d) for the N^2 functions of N bands (l the band of k), y at the
+/// direction (x, y, z) of any length by the unrolled normalising kernel in E (a zero or
+/// non-finite direction: the pole). band(l) is called once per band; bands with bit l of
+/// ZeroBands set are stored as C{} and not evaluated.
+template <int N, unsigned ZeroBands = 0, class E, class C, class Band>
+SPHBASIS_FORCEINLINE void zonal_out_fixed(E x, E y, E z, Band&& band, C* out) noexcept {
+    static_assert(N >= 1 && N <= 8, "sphbasis::sh lights: N is a band count in 1..8.");
+    static_assert(sphbasis::detail::is_scalable<C, coefficient_scalar_t<C>>::value,
+                  "sphbasis::sh lights: the coefficient type C needs C + C and "
+                  "C * coefficient_scalar_t<C> (specialise sphbasis::coefficient_scalar).");
+    using S = coefficient_scalar_t<C>;
+    const std::array<C, N> colour = light_band_colours<C>(band, std::make_index_sequence<N>{});
+    FixedNormalizingKernel<N>{}(x, y, z, [&](int k, E v) {
+        const int l = light_band_of[static_cast<std::size_t>(k)];
+        if ((ZeroBands >> l) & 1u)
+            out[k] = C{};
+        else
+            out[k] = colour[static_cast<std::size_t>(l)] * static_cast<S>(v);
+    });
+}
+
+/// A uniform cap of 1 - cos(a) = u about (x, y, z), N bands, in E: the factors by the cap
+/// recurrence unrolled, then zonal_out_fixed.
+template <int N, class E, class C>
+SPHBASIS_FORCEINLINE void cap_light_fixed(E x, E y, E z, E u, const C& radiance, C* out) noexcept {
+    using S = coefficient_scalar_t<C>;
+    E f[N];
+    cap_factors_fixed<N>(u, f);
+    zonal_out_fixed<N>(
+        x, y, z, [&](int l) { return radiance * static_cast<S>(f[l]); }, out);
+}
+
+/// Calls f(std::integral_constant<int, N>{}) for 1 <= N = bands <= 8 and returns true, else
+/// returns false: the run-time lights' dispatch to the fixed-band forms.
+template <class F>
+SPHBASIS_FORCEINLINE bool with_light_bands(int bands, F&& f) {
+    switch (bands) {
+        case 1:
+            f(std::integral_constant<int, 1>{});
+            return true;
+        case 2:
+            f(std::integral_constant<int, 2>{});
+            return true;
+        case 3:
+            f(std::integral_constant<int, 3>{});
+            return true;
+        case 4:
+            f(std::integral_constant<int, 4>{});
+            return true;
+        case 5:
+            f(std::integral_constant<int, 5>{});
+            return true;
+        case 6:
+            f(std::integral_constant<int, 6>{});
+            return true;
+        case 7:
+            f(std::integral_constant<int, 7>{});
+            return true;
+        case 8:
+            f(std::integral_constant<int, 8>{});
+            return true;
+        default:
+            return false;
+    }
+}
+
+/// The run-time cap lights for 1..8 bands after their checks: cap_light_fixed with u given in
+/// double (computed there without cancellation), in the coefficient's evaluation type.
+template <class T, class U, class C>
+SPHBASIS_FORCEINLINE bool cap_light_dispatch(int bands, T x, T y, T z, U u, const C& radiance,
+                                             C* out) {
+    using E = light_eval_t<C>;
+    return with_light_bands(bands, [&](auto n) {
+        cap_light_fixed<decltype(n)::value>(static_cast<E>(x), static_cast<E>(y), static_cast<E>(z),
+                                            static_cast<E>(u), radiance, out);
+    });
+}
+}  // namespace detail
+
+/// directional_light() for a compile-time band count N: out_lm = irradiance * y_lm(d), N^2
+/// values. Unchecked (see above).
+template <int N, class T, class C, class C0 = C>
+SPHBASIS_FORCEINLINE void directional_light(T x, T y, T z, const C0& irradiance_in,
+                                            C* out) noexcept {
+    static_assert(N >= 1 && N <= 8, "sphbasis::sh::directional_light<N>: N is in 1..8.");
+    SPHBASIS_ASSERT(out != nullptr);
+    using E = detail::light_eval_t<C>;
+    const C irradiance = detail::light_colour<C>(irradiance_in);
+    detail::zonal_out_fixed<N>(
+        static_cast<E>(x), static_cast<E>(y), static_cast<E>(z), [&](int) { return irradiance; },
+        out);
+}
+
+/// cone_light() for a compile-time band count N (half_angle in radians, clamped to [0, pi]).
+template <int N, class T, class C, class C0 = C>
+SPHBASIS_FORCEINLINE void cone_light(T x, T y, T z, T half_angle, const C0& radiance_in,
+                                     C* out) noexcept {
+    static_assert(N >= 1 && N <= 8, "sphbasis::sh::cone_light<N>: N is in 1..8.");
+    SPHBASIS_ASSERT(out != nullptr);
+    using E = detail::light_eval_t<C>;
+    const E a = std::fmin(std::fmax(static_cast<E>(half_angle), E(0)), E(constants::pi));
+    const E s = std::sin(E(0.5) * a);
+    detail::cap_light_fixed<N>(static_cast<E>(x), static_cast<E>(y), static_cast<E>(z),
+                               E(2) * s * s,  // 1 - cos a = 2 sin^2(a/2)
+                               detail::light_colour<C>(radiance_in), out);
+}
+
+/// spherical_light() for a compile-time band count N (a ball of radius `radius` at (px, py, pz)
+/// relative to the receiver; the whole sphere when |p| <= radius).
+template <int N, class T, class C, class C0 = C>
+SPHBASIS_FORCEINLINE void spherical_light(T px, T py, T pz, T radius, const C0& radiance_in,
+                                          C* out) noexcept {
+    static_assert(N >= 1 && N <= 8, "sphbasis::sh::spherical_light<N>: N is in 1..8.");
+    SPHBASIS_ASSERT(out != nullptr);
+    using E = detail::light_eval_t<C>;
+    const E x = static_cast<E>(px), y = static_cast<E>(py), z = static_cast<E>(pz);
+    const E d2 = x * x + y * y + z * z;
+    const E r = std::fmax(static_cast<E>(radius), E(0));
+    E u = 2;  // inside the ball: everything
+    if (r * r < d2) {
+        const E s2 = r * r / d2;           // sin^2 a
+        u = s2 / (1 + std::sqrt(1 - s2));  // 1 - cos a without cancellation
+    }
+    detail::cap_light_fixed<N>(x, y, z, u, detail::light_colour<C>(radiance_in), out);
+}
+
+/// hemisphere_light() for a compile-time band count N: `sky` around the up direction (x, y,
+/// z), `ground` opposite; the factors are compile-time constants, the zero bands (even l >= 2)
+/// are stored without evaluating them.
+template <int N, class T, class C, class C0 = C, class C1 = C>
+SPHBASIS_FORCEINLINE void hemisphere_light(T x, T y, T z, const C0& sky_in, const C1& ground_in,
+                                           C* out) noexcept {
+    static_assert(N >= 1 && N <= 8, "sphbasis::sh::hemisphere_light<N>: N is in 1..8.");
+    SPHBASIS_ASSERT(out != nullptr);
+    using E = detail::light_eval_t<C>;
+    using S = coefficient_scalar_t<C>;
+    const C sky = detail::light_colour<C>(sky_in);
+    const C ground = detail::light_colour<C>(ground_in);
+    // sky * cap + ground * (sphere - cap); the sphere's factors are 4 pi, 0, 0, ..., so band
+    // l >= 1 is (sky - ground) * f_l.
+    constexpr std::array<double, N> f = detail::hemisphere_factors<N>();
+    const C diff = sky + ground * S(-1);
+    detail::zonal_out_fixed<N, detail::hemisphere_zero_bands>(
+        static_cast<E>(x), static_cast<E>(y), static_cast<E>(z),
+        [&](int l) {
+            return l == 0 ? sky * static_cast<S>(f[0]) +
+                                ground * static_cast<S>(constants::four_pi - f[0])
+                          : diff * static_cast<S>(f[static_cast<std::size_t>(l)]);
+        },
+        out);
+}
+
 /// Funk-Hecke factors Lambda_l (l < bands) of the indicator of a cap with 1 - cos(a) =
 /// one_minus_cos in [0, 2] (solid angle 2 pi one_minus_cos). Throws std::invalid_argument for
 /// bad bands or one_minus_cos outside [0, 2].
@@ -190,6 +416,10 @@ template <class T, class C, class C0 = C>
 void directional_light(int bands, T x, T y, T z, const C0& irradiance_in, C* out) {
     const C irradiance = detail::light_colour<C>(irradiance_in);
     detail::check_light(bands, x, y, z, out, "sh::directional_light");
+    if (detail::with_light_bands(bands, [&](auto n) {
+            directional_light<decltype(n)::value>(x, y, z, irradiance, out);
+        }))
+        return;
     detail::LightScratch a(static_cast<std::size_t>(bands));
     for (int l = 0; l < bands; ++l) a[static_cast<std::size_t>(l)] = 1.0;
     detail::zonal_out(bands, x, y, z, a.data(), irradiance, out);
@@ -222,8 +452,10 @@ void cone_light(int bands, T x, T y, T z, T half_angle, const C0& radiance_in, C
         sphbasis::detail::throw_invalid("sh::cone_light",
                                         "0 <= half_angle <= pi, got " + std::to_string(a));
     const double s = std::sin(0.5 * a);
+    const double u = 2 * s * s;  // 1 - cos a = 2 sin^2(a/2)
+    if (detail::cap_light_dispatch(bands, x, y, z, u, radiance, out)) return;
     detail::LightScratch f(static_cast<std::size_t>(bands));
-    detail::cap_factors(bands, 2 * s * s, f.data());  // 1 - cos a = 2 sin^2(a/2)
+    detail::cap_factors(bands, u, f.data());
     detail::zonal_out(bands, x, y, z, f.data(), radiance, out);
 }
 
@@ -239,6 +471,23 @@ void spherical_light(int bands, T px, T py, T pz, T radius, const C0& radiance_i
     if (!(r >= 0) || !std::isfinite(r))
         sphbasis::detail::throw_invalid("sh::spherical_light",
                                         "a finite radius >= 0, got " + std::to_string(r));
+    if (bands >= 1 && bands <= 8) {
+        // 1 - cos a = s^2 / (1 + sqrt(1 - s^2)), s^2 = r^2 / |p|^2, in the evaluation type where
+        // |p|^2 neither over- nor underflows.
+        using E = detail::light_eval_t<C>;
+        const E ex = static_cast<E>(px), ey = static_cast<E>(py), ez = static_cast<E>(pz);
+        const E d2 = ex * ex + ey * ey + ez * ez;
+        if (d2 > E(1e-30) && d2 < E(1e30)) {
+            const E er = static_cast<E>(r);
+            E u = 2;  // inside the ball: everything
+            if (er * er < d2) {
+                const E s2 = er * er / d2;
+                u = s2 / (1 + std::sqrt(1 - s2));
+            }
+            detail::cap_light_dispatch(bands, ex, ey, ez, u, radiance, out);
+            return;
+        }
+    }
     const double x = px, y = py, z = pz;
     const double big = std::max(std::fabs(x), std::max(std::fabs(y), std::fabs(z)));
     const double dist =
@@ -248,6 +497,7 @@ void spherical_light(int bands, T px, T py, T pz, T radius, const C0& radiance_i
         const double s = r / dist;
         u = s * s / (1 + std::sqrt((1 - s) * (1 + s)));  // 1 - cos a without cancellation
     }
+    if (detail::cap_light_dispatch(bands, px, py, pz, u, radiance, out)) return;
     detail::LightScratch f(static_cast<std::size_t>(bands));
     detail::cap_factors(bands, u, f.data());
     detail::zonal_out(bands, px, py, pz, f.data(), radiance, out);
@@ -264,6 +514,8 @@ void spherical_light_solid_angle(int bands, T x, T y, T z, T solid_angle, const 
     if (!(om >= 0 && om <= constants::four_pi))
         sphbasis::detail::throw_invalid("sh::spherical_light_solid_angle",
                                         "0 <= solid_angle <= 4 pi, got " + std::to_string(om));
+    if (detail::cap_light_dispatch(bands, x, y, z, om * constants::inv_two_pi, radiance, out))
+        return;
     detail::LightScratch f(static_cast<std::size_t>(bands));
     detail::cap_factors(bands, om * constants::inv_two_pi, f.data());
     detail::zonal_out(bands, x, y, z, f.data(), radiance, out);
@@ -276,6 +528,10 @@ void hemisphere_light(int bands, T x, T y, T z, const C0& sky_in, const C1& grou
     const C sky = detail::light_colour<C>(sky_in);
     const C ground = detail::light_colour<C>(ground_in);
     detail::check_light(bands, x, y, z, out, "sh::hemisphere_light");
+    if (detail::with_light_bands(bands, [&](auto n) {
+            hemisphere_light<decltype(n)::value>(x, y, z, sky, ground, out);
+        }))
+        return;
     using S = coefficient_scalar_t<C>;
     detail::LightScratch f(static_cast<std::size_t>(bands));
     detail::cap_factors(bands, 1.0, f.data());
@@ -349,143 +605,6 @@ void hemisphere_light(int bands, const D& up, const C& sky, const C1& ground, Ou
 }
 
 #undef SPHBASIS_LIGHT_DIRECTION_OVERLOAD_REQUIRES
-
-// ---------------------------------------------------------------------------------------------
-// The lights with a compile-time band count N (1..8): directional_light<N>, cone_light<N>,
-// spherical_light<N>, hemisphere_light<N>. The same coefficients as the run-time forms above,
-// for the hot path: the basis by the unrolled sh::eval<N> (normalising) in the coefficient's
-// scalar (float for float or float RGB coefficients, else double), the zonal factors as
-// constants (directional, hemisphere) or by the cap recurrence unrolled (cone, sphere), no
-// run-time checks (SPHBASIS_ASSERT in debug builds), noexcept. Arguments outside the domain of
-// the run-time forms give finite results instead of throwing: a zero direction is taken as +z
-// (sh::eval's pole), a half-angle is clamped to [0, pi], a negative radius to 0.
-
-namespace detail {
-/// Floating-point type the fixed-band lights evaluate in: float for float coefficients, else
-/// double.
-template <class C>
-using light_eval_t =
-    std::conditional_t<std::is_same_v<coefficient_scalar_t<C>, float>, float, double>;
-
-/// cap_factors() for a compile-time band count, in E (unrolled).
-template <int N, class E>
-SPHBASIS_FORCEINLINE void cap_factors_fixed(E u, E* out) noexcept {
-    const E two_pi = E(constants::two_pi);
-    out[0] = two_pi * u;
-    E p = 1, d = 0;
-    for (int l = 0; l + 1 < N; ++l) {
-        const E dn = l == 0 ? -u : (E(l) * d - E(2 * l + 1) * u * p) / E(l + 1);
-        p += dn;
-        d = dn;
-        out[l + 1] = two_pi * (u * p - d) / E(l + 2);
-    }
-}
-
-/// The hemisphere's factors (u = 1), exact at compile time: 2 pi, pi, 0, -pi/4, 0, pi/8, 0, ...
-template <int N>
-constexpr std::array<double, N> hemisphere_factors() noexcept {
-    std::array<double, N> f{};
-    f[0] = constants::two_pi;
-    double p = 1, d = 0;
-    for (int l = 0; l + 1 < N; ++l) {
-        const double dn = l == 0 ? -1.0 : (l * d - (2 * l + 1) * p) / (l + 1);
-        p += dn;
-        d = dn;
-        f[static_cast<std::size_t>(l + 1)] = constants::two_pi * (p - d) / (l + 2);
-    }
-    return f;
-}
-
-/// out_k = colour * (a_l y_k(d)) for N bands, y by the unrolled eval<N> in E.
-template <int N, class E, class T, class C>
-SPHBASIS_FORCEINLINE void zonal_out_fixed(T x, T y, T z, const E* a, const C& colour,
-                                          C* out) noexcept {
-    static_assert(N >= 1 && N <= 8, "sphbasis::sh lights: N is a band count in 1..8.");
-    static_assert(sphbasis::detail::is_scalable<C, coefficient_scalar_t<C>>::value,
-                  "sphbasis::sh lights: the coefficient type C needs C + C and "
-                  "C * coefficient_scalar_t<C> (specialise sphbasis::coefficient_scalar).");
-    using S = coefficient_scalar_t<C>;
-    E yv[N * N];
-    eval<N>(static_cast<E>(x), static_cast<E>(y), static_cast<E>(z), yv);
-    for (int l = 0; l < N; ++l)
-        for (int k = l * l; k < (l + 1) * (l + 1); ++k)
-            out[k] = colour * static_cast<S>(a[l] * yv[k]);
-}
-}  // namespace detail
-
-/// directional_light() for a compile-time band count N: out_lm = irradiance * y_lm(d), N^2
-/// values. Unchecked (see above).
-template <int N, class T, class C, class C0 = C>
-SPHBASIS_FORCEINLINE void directional_light(T x, T y, T z, const C0& irradiance_in,
-                                            C* out) noexcept {
-    const C irradiance = detail::light_colour<C>(irradiance_in);
-    static_assert(N >= 1 && N <= 8, "sphbasis::sh::directional_light<N>: N is in 1..8.");
-    SPHBASIS_ASSERT(out != nullptr);
-    using E = detail::light_eval_t<C>;
-    using S = coefficient_scalar_t<C>;
-    E yv[N * N];
-    eval<N>(static_cast<E>(x), static_cast<E>(y), static_cast<E>(z), yv);
-    for (int k = 0; k < N * N; ++k) out[k] = irradiance * static_cast<S>(yv[k]);
-}
-
-/// cone_light() for a compile-time band count N (half_angle in radians, clamped to [0, pi]).
-template <int N, class T, class C, class C0 = C>
-SPHBASIS_FORCEINLINE void cone_light(T x, T y, T z, T half_angle, const C0& radiance_in,
-                                     C* out) noexcept {
-    const C radiance = detail::light_colour<C>(radiance_in);
-    static_assert(N >= 1 && N <= 8, "sphbasis::sh::cone_light<N>: N is in 1..8.");
-    SPHBASIS_ASSERT(out != nullptr);
-    using E = detail::light_eval_t<C>;
-    const E a = std::fmin(std::fmax(static_cast<E>(half_angle), E(0)), E(constants::pi));
-    const E s = std::sin(E(0.5) * a);
-    E f[N];
-    detail::cap_factors_fixed<N>(E(2) * s * s, f);  // 1 - cos a = 2 sin^2(a/2)
-    detail::zonal_out_fixed<N>(x, y, z, f, radiance, out);
-}
-
-/// spherical_light() for a compile-time band count N (a ball of radius `radius` at (px, py, pz)
-/// relative to the receiver; the whole sphere when |p| <= radius).
-template <int N, class T, class C, class C0 = C>
-SPHBASIS_FORCEINLINE void spherical_light(T px, T py, T pz, T radius, const C0& radiance_in,
-                                          C* out) noexcept {
-    const C radiance = detail::light_colour<C>(radiance_in);
-    static_assert(N >= 1 && N <= 8, "sphbasis::sh::spherical_light<N>: N is in 1..8.");
-    SPHBASIS_ASSERT(out != nullptr);
-    using E = detail::light_eval_t<C>;
-    const E x = static_cast<E>(px), y = static_cast<E>(py), z = static_cast<E>(pz);
-    const E dist = std::sqrt(x * x + y * y + z * z);
-    const E r = std::fmax(static_cast<E>(radius), E(0));
-    E u = 2;  // inside the ball: everything
-    if (r < dist) {
-        const E s = r / dist;
-        u = s * s / (1 + std::sqrt((1 - s) * (1 + s)));  // 1 - cos a without cancellation
-    }
-    E f[N];
-    detail::cap_factors_fixed<N>(u, f);
-    detail::zonal_out_fixed<N>(x, y, z, f, radiance, out);
-}
-
-/// hemisphere_light() for a compile-time band count N: `sky` around the up direction (x, y,
-/// z), `ground` opposite; the factors are compile-time constants.
-template <int N, class T, class C, class C0 = C, class C1 = C>
-SPHBASIS_FORCEINLINE void hemisphere_light(T x, T y, T z, const C0& sky_in, const C1& ground_in,
-                                           C* out) noexcept {
-    const C sky = detail::light_colour<C>(sky_in);
-    const C ground = detail::light_colour<C>(ground_in);
-    static_assert(N >= 1 && N <= 8, "sphbasis::sh::hemisphere_light<N>: N is in 1..8.");
-    SPHBASIS_ASSERT(out != nullptr);
-    using E = detail::light_eval_t<C>;
-    using S = coefficient_scalar_t<C>;
-    constexpr std::array<double, N> f = detail::hemisphere_factors<N>();
-    E yv[N * N];
-    eval<N>(static_cast<E>(x), static_cast<E>(y), static_cast<E>(z), yv);
-    for (int l = 0; l < N; ++l) {
-        const E cs = E(f[static_cast<std::size_t>(l)]);
-        const E cg = E((l == 0 ? constants::four_pi : 0.0) - f[static_cast<std::size_t>(l)]);
-        for (int k = l * l; k < (l + 1) * (l + 1); ++k)
-            out[k] = sky * static_cast<S>(cs * yv[k]) + ground * static_cast<S>(cg * yv[k]);
-    }
-}
 
 // ---------------------------------------------------------------------------------------------
 // Environment maps

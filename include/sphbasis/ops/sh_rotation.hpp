@@ -76,6 +76,7 @@
 #include "../core/frame.hpp"
 #include "../core/small_buffer.hpp"
 #include "../core/vec.hpp"
+#include "sh_rotation_cos_sin.hpp"
 
 namespace sphbasis::sh {
 
@@ -802,75 +803,7 @@ void rotate_quaternion(int bands, const Q& q, const In& in, Out&& out) {
 }
 
 namespace detail {
-/// cos a and sin a in double, inline (the libm sincos call was 60% of a 3-band rotate_z): for
-/// |a| <= 1e5, a = k pi/2 + r with |r| <= pi/4 (Cody-Waite, pi/2 in three parts of at most 33
-/// significant bits, so k * part is exact for |k| < 2^20), then the Taylor polynomials of sin
-/// and cos: to degree 17 / 18 (Full: truncation below 1e-19 on |r| <= pi/4, about 1 ulp of
-/// double) or 11 / 12 (below 1e-11: for float results, 1000 times below their rounding). Larger
-/// |a| goes to std::cos / std::sin. a is finite.
-template <bool Full>
-SPHBASIS_FORCEINLINE void cos_sin(double a, double& c, double& s) noexcept {
-    if (!(std::fabs(a) <= 1e5)) {
-        c = std::cos(a);
-        s = std::sin(a);
-        return;
-    }
-    constexpr double two_over_pi = 0.63661977236758134;  // 2/pi
-    const double t = a * two_over_pi;
-    const long long q = static_cast<long long>(t + (t >= 0 ? 0.5 : -0.5));  // nearest, |q| < 2^17
-    const double k = static_cast<double>(q);
-    const double r = ((a - k * 1.5707963267341256) - k * 6.0771005063039660e-11) -
-                     k * 2.0222662487959507e-21;  // pi/2 = sum of the three
-    const double r2 = r * r;
-    // Horner in r^2: sin r = r + r^3 (-1/3! + r^2 (1/5! - ...)), cos r = 1 + r^2 (-1/2! + ...).
-    double ps, pc;
-    if constexpr (Full) {
-        ps = 2.8114572543455206e-15;             // 1/17!
-        ps = ps * r2 + -7.6471637318198164e-13;  // -1/15!
-        ps = ps * r2 + 1.6059043836821613e-10;   // 1/13!
-        ps = ps * r2 + -2.505210838544172e-08;   // -1/11!
-        ps = ps * r2 + 2.7557319223985893e-06;   // 1/9!
-        ps = ps * r2 + -0.00019841269841269841;  // -1/7!
-        ps = ps * r2 + 0.0083333333333333332;    // 1/5!
-        ps = ps * r2 + -0.16666666666666666;     // -1/3!
-        pc = -1.5619206968586225e-16;            // -1/18!
-        pc = pc * r2 + 4.7794773323873853e-14;   // 1/16!
-        pc = pc * r2 + -1.1470745597729725e-11;  // -1/14!
-        pc = pc * r2 + 2.08767569878681e-09;     // 1/12!
-        pc = pc * r2 + -2.7557319223985888e-07;  // -1/10!
-        pc = pc * r2 + 2.4801587301587302e-05;   // 1/8!
-        pc = pc * r2 + -0.0013888888888888889;   // -1/6!
-        pc = pc * r2 + 0.041666666666666664;     // 1/4!
-        pc = pc * r2 + -0.5;                     // -1/2!
-    } else {
-        ps = -2.505210838544172e-08;             // -1/11!
-        ps = ps * r2 + 2.7557319223985893e-06;   // 1/9!
-        ps = ps * r2 + -0.00019841269841269841;  // -1/7!
-        ps = ps * r2 + 0.0083333333333333332;    // 1/5!
-        ps = ps * r2 + -0.16666666666666666;     // -1/3!
-        pc = 2.08767569878681e-09;               // 1/12!
-        pc = pc * r2 + -2.7557319223985888e-07;  // -1/10!
-        pc = pc * r2 + 2.4801587301587302e-05;   // 1/8!
-        pc = pc * r2 + -0.0013888888888888889;   // -1/6!
-        pc = pc * r2 + 0.041666666666666664;     // 1/4!
-        pc = pc * r2 + -0.5;                     // -1/2!
-    }
-    const double sr = r + r * r2 * ps, cr = 1.0 + r2 * pc;
-    switch (q & 3) {
-        case 0:
-            c = cr, s = sr;
-            break;
-        case 1:
-            c = -sr, s = cr;
-            break;
-        case 2:
-            c = -cr, s = -sr;
-            break;
-        default:
-            c = sr, s = -cr;
-            break;
-    }
-}
+// cos_sin<Full>(a, c, s): generated, sh_rotation_cos_sin.hpp.
 
 template <class T, class C>
 void rotate_z_checked(int bands, T angle, const C* in, C* out) noexcept {

@@ -72,6 +72,7 @@
 #pragma once
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -99,6 +100,7 @@
 #include "../core/frame.hpp"
 #include "../core/quadrature.hpp"
 #include "../core/sampling.hpp"
+#include "../core/simd.hpp"
 #include "../core/vec.hpp"
 #include "../ops/projection.hpp"
 #include "detail/bake_lighting.hpp"
@@ -213,12 +215,14 @@ class Baker {
         check_points(points);
         std::vector<PointResult> out(points.size());
         const std::size_t grain = 4;
+        // Scratch and counters per thread, not per range: the ray and SH buffers are allocated
+        // once per thread and stay warm in its cache (results never depend on them).
+        tbb::enumerable_thread_specific<Local> locals([this] { return Local(stat_count()); });
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), grain),
                           [&](const tbb::blocked_range<std::size_t>& r) {
-                              Local local(stat_count());
+                              Local& local = locals.local();
                               for (std::size_t i = r.begin(); i != r.end(); ++i)
                                   bake_point(points[i], out[i], local);
-                              merge(local);
                               using P = std::decay_t<Progress>;
                               if constexpr (std::is_same_v<P, std::nullptr_t>) {
                               } else if constexpr (std::is_pointer_v<P>) {
@@ -227,6 +231,7 @@ class Baker {
                                   progress(r.size());
                               }
                           });
+        for (const Local& local : locals) merge(local);
         publish_plan();
         return out;
     }
@@ -284,7 +289,8 @@ class Baker {
         // scratch
         std::vector<RTCRay> ray;
         std::vector<RTCRayHit> rayhit;
-        std::vector<double> xs, ys, zs, ysh, w;
+        std::vector<double> xs, ys, zs, ysh, w, lanes;
+        std::vector<double> dx, dy, dz;  // the cosine pass's directions
         std::array<std::vector<double>, 3> wc;
         std::vector<std::array<double, 3>> entry_w;
         std::vector<std::uint32_t> entry_sample;
@@ -861,67 +867,129 @@ class Baker {
             if (!Scene::is_occluded(rays[i])) gather(contrib[i].first, contrib[i].second);
     }
 
+    /// acc[q] += sum of v_e and acc[lanes + q] += sum of v_e^2 over e = q mod lanes, e < n (n a
+    /// multiple of lanes), v_e = y[e] (w null) or w[e] y[e]: one SIMD register per `lanes`
+    /// partial sums where batches are that wide, the same sums in the same order otherwise.
+    template <std::size_t lanes>
+    static void accumulate_lanes(const double* y, const double* w, std::size_t n,
+                                 double* acc) noexcept {
+#if SPHBASIS_HAS_VECTOR_EXT
+        using B = batch<double>;
+        constexpr std::size_t W = static_cast<std::size_t>(B::size);
+        if constexpr (lanes % W == 0) {
+            constexpr std::size_t nb = lanes / W;
+            B a[nb], b[nb];
+            for (std::size_t i = 0; i < nb; ++i) {
+                a[i] = B::load(acc + i * W);
+                b[i] = B::load(acc + lanes + i * W);
+            }
+            for (std::size_t e = 0; e < n; e += lanes)
+                for (std::size_t i = 0; i < nb; ++i) {
+                    B v = B::load(y + e + i * W);
+                    if (w) v = v * B::load(w + e + i * W);
+                    a[i] += v;
+                    b[i] += v * v;
+                }
+            for (std::size_t i = 0; i < nb; ++i) {
+                a[i].store(acc + i * W);
+                b[i].store(acc + lanes + i * W);
+            }
+            return;
+        }
+#endif
+        for (std::size_t e = 0; e < n; e += lanes)
+            for (std::size_t q = 0; q < lanes; ++q) {
+                const double v = w ? w[e + q] * y[e + q] : y[e + q];
+                acc[q] += v;
+                acc[lanes + q] += v * v;
+            }
+    }
+
     /// SH accumulation of weighted directions: out_c[k] = scale * sum_e w_c[e] y_k(d_e) and the
-    /// standard error of the mean of per-sample values (samples without an entry are 0).
+    /// standard error of the mean of per-sample values (samples without an entry are 0). The
+    /// directions are L.xs, L.ys, L.zs[0..m); `unit`: every weight is 1 (w is not read).
+    /// The basis values come from sh::eval_batch a block of `block` directions at a time (the
+    /// block's values stay in L1 between evaluation and accumulation), summed in `lanes`
+    /// independent partial sums per coefficient and channel: a fixed order (entry e goes to lane
+    /// e mod lanes), so the result does not depend on threads, and the loop runs at SIMD width.
     void accumulate_sh(Local& L, std::size_t m, const std::vector<std::array<double, 3>>& w,
-                       const std::vector<std::uint32_t>& sample, std::size_t nsamples, double scale,
-                       bool rgb, std::array<std::vector<double>, 3>& out,
+                       bool unit, const std::vector<std::uint32_t>& sample, std::size_t nsamples,
+                       double scale, bool rgb, std::array<std::vector<double>, 3>& out,
                        std::vector<double>* stderr_out) const {
         const std::size_t K = nsh();
         for (auto& v : out) v.assign(K, 0.0);
         if (stderr_out) stderr_out->assign(K, 0.0);
         if (m == 0) return;
-        L.ysh.resize(K * m);
-        sh::eval_batch(settings_.bands, m, L.xs.data(), L.ys.data(), L.zs.data(), L.ysh.data(), m);
         const std::size_t nc = rgb ? 3 : 1;
         // Per-sample totals are needed for the error when a sample has several entries.
         bool unique = true;
         for (std::size_t e = 1; e < m && unique; ++e) unique = sample[e] != sample[e - 1];
-        std::vector<double> acc;
-        // Weights per channel, contiguous; sums in 4 independent lanes (a fixed order, so the
-        // result does not depend on threads; the lanes let the loop run at SIMD width instead of
-        // one dependent add chain).
         std::array<std::vector<double>, 3>& wc = L.wc;
-        for (std::size_t c = 0; c < nc; ++c) {
-            wc[c].resize(m);
-            for (std::size_t e = 0; e < m; ++e) wc[c][e] = w[e][c];
-        }
-        for (std::size_t k = 0; k < K; ++k) {
-            const double* yk = &L.ysh[k * m];
+        if (!unit)
             for (std::size_t c = 0; c < nc; ++c) {
-                double s = 0, s2 = 0;
-                if (unique || !stderr_out) {
-                    const double* wp = wc[c].data();
-                    double a[4] = {0, 0, 0, 0}, b[4] = {0, 0, 0, 0};
-                    std::size_t e = 0;
-                    for (; e + 4 <= m; e += 4)
-                        for (std::size_t q = 0; q < 4; ++q) {
-                            const double v = wp[e + q] * yk[e + q];
-                            a[q] += v;
-                            b[q] += v * v;
-                        }
-                    for (; e < m; ++e) {
-                        const double v = wp[e] * yk[e];
-                        a[0] += v;
-                        b[0] += v * v;
-                    }
-                    s = (a[0] + a[1]) + (a[2] + a[3]);
-                    s2 = (b[0] + b[1]) + (b[2] + b[3]);
-                } else {
+                wc[c].resize(m);
+                for (std::size_t e = 0; e < m; ++e) wc[c][e] = w[e][c];
+            }
+        const double N = double(nsamples);
+        auto finish = [&](std::size_t k, std::size_t c, double s, double s2) {
+            const double mean = s / N;
+            out[c][k] = scale * mean;
+            if (stderr_out && nsamples > 1) {
+                const double var = std::max(0.0, (s2 / N - mean * mean)) * N / (N - 1);
+                (*stderr_out)[k] = std::max((*stderr_out)[k], scale * std::sqrt(var / N));
+            }
+        };
+        if (!unique && stderr_out) {
+            // Entries of one sample summed first (bounce paths): all values at once.
+            L.ysh.resize(K * m);
+            sh::eval_batch(settings_.bands, m, L.xs.data(), L.ys.data(), L.zs.data(), L.ysh.data(),
+                           m);
+            std::vector<double> acc;
+            for (std::size_t k = 0; k < K; ++k) {
+                const double* yk = &L.ysh[k * m];
+                for (std::size_t c = 0; c < nc; ++c) {
                     acc.assign(nsamples, 0.0);
-                    for (std::size_t e = 0; e < m; ++e) acc[sample[e]] += wc[c][e] * yk[e];
+                    const double* wp = unit ? nullptr : wc[c].data();
+                    for (std::size_t e = 0; e < m; ++e)
+                        acc[sample[e]] += (unit ? 1.0 : wp[e]) * yk[e];
+                    double s = 0, s2 = 0;
                     for (double v : acc) {
                         s += v;
                         s2 += v * v;
                     }
+                    finish(k, c, s, s2);
                 }
-                const double N = double(nsamples);
-                const double mean = s / N;
-                out[c][k] = scale * mean;
-                if (stderr_out && nsamples > 1) {
-                    const double var = std::max(0.0, (s2 / N - mean * mean)) * N / (N - 1);
-                    (*stderr_out)[k] = std::max((*stderr_out)[k], scale * std::sqrt(var / N));
-                }
+                if (!rgb) out[1][k] = out[2][k] = out[0][k];
+            }
+            return;
+        }
+        constexpr std::size_t block = 64, lanes = 8;
+        const std::size_t padded = (m + lanes - 1) / lanes * lanes;
+        if (!unit)  // zero weights past m: the last block's padding adds exact zeros
+            for (std::size_t c = 0; c < nc; ++c) wc[c].resize(padded, 0.0);
+        L.lanes.assign(K * nc * 2 * lanes, 0.0);
+        L.ysh.resize(K * block);
+        for (std::size_t e0 = 0; e0 < m; e0 += block) {
+            const std::size_t mb = std::min(block, m - e0);
+            const std::size_t mp = std::min(block, padded - e0);  // mb rounded up to lanes
+            sh::eval_batch(settings_.bands, mb, L.xs.data() + e0, L.ys.data() + e0,
+                           L.zs.data() + e0, L.ysh.data(), block);
+            for (std::size_t k = 0; k < K; ++k)
+                for (std::size_t e = mb; e < mp; ++e) L.ysh[k * block + e] = 0;
+            for (std::size_t k = 0; k < K; ++k) {
+                const double* yk = &L.ysh[k * block];
+                for (std::size_t c = 0; c < nc; ++c)
+                    accumulate_lanes<lanes>(yk, unit ? nullptr : wc[c].data() + e0, mp,
+                                            &L.lanes[(k * nc + c) * 2 * lanes]);
+            }
+        }
+        for (std::size_t k = 0; k < K; ++k) {
+            for (std::size_t c = 0; c < nc; ++c) {
+                const double* a = &L.lanes[(k * nc + c) * 2 * lanes];
+                const double* b = a + lanes;
+                const double s = ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
+                const double s2 = ((b[0] + b[1]) + (b[2] + b[3])) + ((b[4] + b[5]) + (b[6] + b[7]));
+                finish(k, c, s, s2);
             }
             if (!rgb) out[1][k] = out[2][k] = out[0][k];
         }
@@ -938,6 +1006,11 @@ class Baker {
         L.zs.clear();
     }
 
+    /// ao, bent and transfer from cosine-weighted rays. The directions are generated as three
+    /// arrays (L.dx, L.dy, L.dz); without bounces (and without a finite max_distance beside
+    /// transfer) the rays are occlusion queries and every per-ray step after tracing is
+    /// branch-free: visibility is a 0/1 value, the unoccluded directions are compacted for the
+    /// SH accumulation.
     void cosine_pass(const BakePoint& bp, const detail::rt::V3& n, const Frame<double>& f,
                      std::uint64_t key, double cu, double cv, PointResult& res, Local& L) const {
         using namespace detail::rt;
@@ -949,19 +1022,22 @@ class Baker {
             tr && (bounces_ > 0 || (finite_max && wants(Quantity::ao | Quantity::bent)));
         const bool run = !dropped_.count("cosine");
         const V3 o = bp.p + n * scene_.epsilon();
-        std::vector<V3>& dirs = L.dirs;
         std::vector<char>& vis_ao = L.va;
         std::vector<char>& vis_tr = L.vt;
-        dirs.resize(N);
+        L.dx.resize(N);
+        L.dy.resize(N);
+        L.dz.resize(N);
+        const double *dx = L.dx.data(), *dy = L.dy.data(), *dz = L.dz.data();
         vis_ao.assign(N, 1);
-        vis_tr.assign(N, 1);
         std::vector<PathState> paths;
         {
             Timer t{L, cosine};
-            qmc_.directions(Warp::cosine, f, cu, cv, dirs.data());
+            qmc_.directions(Warp::cosine, f, cu, cv, L.dx.data(), L.dy.data(), L.dz.data());
             if (run && use_hits) {
+                vis_tr.assign(N, 1);
                 L.rayhit.resize(N);
-                for (std::size_t j = 0; j < N; ++j) Scene::set_ray(L.rayhit[j], o, dirs[j]);
+                for (std::size_t j = 0; j < N; ++j)
+                    Scene::set_ray(L.rayhit[j], o, V3{dx[j], dy[j], dz[j]});
                 scene_.intersect(L.rayhit.data(), N);
                 for (std::size_t j = 0; j < N; ++j) {
                     const RTCRayHit& r = L.rayhit[j];
@@ -972,55 +1048,88 @@ class Baker {
                         paths.push_back({std::uint32_t(j), RGB{1, 1, 1}, scene_.hit(r)});
                 }
             } else if (run) {
+                // One visibility serves both: tfar is max_distance for ao/bent alone and
+                // infinite with transfer (whose finite max_distance case traces hits above).
                 L.ray.resize(N);
                 const double tfar = tr ? std::numeric_limits<double>::infinity() : maxd;
-                for (std::size_t j = 0; j < N; ++j) Scene::set_ray(L.ray[j], o, dirs[j], 0, tfar);
-                scene_.occluded(L.ray.data(), N);
-                for (std::size_t j = 0; j < N; ++j)
-                    if (Scene::is_occluded(L.ray[j])) vis_ao[j] = vis_tr[j] = 0;
+                RTCRay proto;
+                Scene::set_ray(proto, o, V3{0, 0, 1}, 0, tfar);
+                RTCRay* rays = L.ray.data();
+                for (std::size_t j = 0; j < N; ++j) {
+                    RTCRay r = proto;
+                    r.dir_x = static_cast<float>(dx[j]);
+                    r.dir_y = static_cast<float>(dy[j]);
+                    r.dir_z = static_cast<float>(dz[j]);
+                    rays[j] = r;
+                }
+                scene_.occluded(rays, N);
+                char* va = vis_ao.data();
+                for (std::size_t j = 0; j < N; ++j) va[j] = !Scene::is_occluded(rays[j]);
             }
             if (run) L.rays[cosine] += N;
-            if (wants(Quantity::ao | Quantity::bent)) ao_bent(N, dirs, vis_ao, n, res);
+            if (wants(Quantity::ao | Quantity::bent)) ao_bent(N, L, vis_ao, n, res);
         }
         if (!tr) return;
-        transfer_part(N, dirs, vis_tr, paths, key, res, L);
+        transfer_part(N, L, use_hits && run ? vis_tr : vis_ao, paths, key, res);
     }
 
-    void ao_bent(std::size_t N, const std::vector<detail::rt::V3>& dirs,
-                 const std::vector<char>& vis_ao, const detail::rt::V3& n, PointResult& res) const {
+    void ao_bent(std::size_t N, const Local& L, const std::vector<char>& vis_ao,
+                 const detail::rt::V3& n, PointResult& res) const {
         using namespace detail::rt;
-        {
-            double s = 0;
-            V3 b{0, 0, 0};
-            for (std::size_t j = 0; j < N; ++j)
-                if (vis_ao[j]) {
-                    s += 1;
-                    b = b + dirs[j];
-                }
-            if (wants(Quantity::ao)) {
-                res.ao = s / double(N);
-                res.ao_stderr = N > 1 ? std::sqrt(res.ao * (1 - res.ao) / double(N - 1)) : 0;
-            }
-            if (wants(Quantity::bent)) res.bent = normalized(b, n);
+        const double *dx = L.dx.data(), *dy = L.dy.data(), *dz = L.dz.data();
+        double s = 0, bx = 0, by = 0, bz = 0;
+        for (std::size_t j = 0; j < N; ++j) {
+            const double v = vis_ao[j];
+            s += v;
+            bx += v * dx[j];
+            by += v * dy[j];
+            bz += v * dz[j];
         }
+        if (wants(Quantity::ao)) {
+            res.ao = s / double(N);
+            res.ao_stderr = N > 1 ? std::sqrt(res.ao * (1 - res.ao) / double(N - 1)) : 0;
+        }
+        if (wants(Quantity::bent)) res.bent = normalized(V3{bx, by, bz}, n);
     }
 
-    void transfer_part(std::size_t N, const std::vector<detail::rt::V3>& dirs,
-                       const std::vector<char>& vis_tr, std::vector<PathState>& paths,
-                       std::uint64_t key, PointResult& res, Local& L) const {
+    void transfer_part(std::size_t N, Local& L, const std::vector<char>& vis_tr,
+                       std::vector<PathState>& paths, std::uint64_t key, PointResult& res) const {
         using namespace detail::rt;
-        // Transfer: entries (sample, direction, weight) for direct escapes, then bounces.
-        clear_dirs(L);
+        // Transfer: entries (sample, direction, weight) for direct escapes, then bounces. The
+        // escapes are compacted without branches (every direction is written, the end moves
+        // by its visibility).
         std::vector<std::array<double, 3>>& w = L.entry_w;
         std::vector<std::uint32_t>& smp = L.entry_sample;
-        w.clear();
-        smp.clear();
-        for (std::size_t j = 0; j < N; ++j)
-            if (vis_tr[j]) {
-                push_dir(L, dirs[j]);
-                w.push_back({1, 1, 1});
-                smp.push_back(std::uint32_t(j));
+        L.xs.resize(N);
+        L.ys.resize(N);
+        L.zs.resize(N);
+        smp.resize(N);
+        {
+            const double *dx = L.dx.data(), *dy = L.dy.data(), *dz = L.dz.data();
+            double *xs = L.xs.data(), *ys = L.ys.data(), *zs = L.zs.data();
+            std::uint32_t* sp = smp.data();
+            const char* vis = vis_tr.data();
+            std::size_t m = 0;
+            for (std::size_t j = 0; j < N; ++j) {
+                xs[m] = dx[j];
+                ys[m] = dy[j];
+                zs[m] = dz[j];
+                sp[m] = std::uint32_t(j);
+                m += std::size_t(vis[j] != 0);
             }
+            L.xs.resize(m);
+            L.ys.resize(m);
+            L.zs.resize(m);
+            smp.resize(m);
+        }
+        if (paths.empty()) {
+            // Direct escapes only: every weight is 1, one entry per sample, in sample order.
+            accumulate_sh(L, smp.size(), w, true, smp, N, 1.0, false, res.transfer,
+                          &res.transfer_stderr);
+            res.transfer_rgb = false;
+            return;
+        }
+        w.assign(smp.size(), {1, 1, 1});
         continue_paths(
             paths, N, hash(key, 0x7472ull), false, L,
             [&](std::uint32_t sample, const V3& d, const RGB& T, const V3&, double tmax) {
@@ -1034,7 +1143,8 @@ class Baker {
         sort_entries(L, w, smp);
         bool rgb = false;
         for (const auto& x : w) rgb = rgb || x[0] != x[1] || x[1] != x[2];
-        accumulate_sh(L, smp.size(), w, smp, N, 1.0, rgb, res.transfer, &res.transfer_stderr);
+        accumulate_sh(L, smp.size(), w, false, smp, N, 1.0, rgb, res.transfer,
+                      &res.transfer_stderr);
         res.transfer_rgb = rgb;
     }
 
@@ -1151,11 +1261,10 @@ class Baker {
             for (std::size_t j = 0; j < N; ++j)
                 if (vis[j]) {
                     push_dir(L, dirs[j]);
-                    w.push_back({1, 1, 1});
                     smp.push_back(std::uint32_t(j));
                 }
             std::array<std::vector<double>, 3> v3;
-            accumulate_sh(L, smp.size(), w, smp, N, constants::two_pi, false, v3,
+            accumulate_sh(L, smp.size(), w, true, smp, N, constants::two_pi, false, v3,
                           &res.visibility_stderr);
             res.visibility = v3[0];
         }
@@ -1259,7 +1368,8 @@ class Baker {
                 w.push_back(Ls[j]);
                 smp.push_back(std::uint32_t(j));
             }
-        accumulate_sh(L, smp.size(), w, smp, N, constants::four_pi, true, res.radiance, nullptr);
+        accumulate_sh(L, smp.size(), w, false, smp, N, constants::four_pi, true, res.radiance,
+                      nullptr);
         std::vector<double> y(nsh());
         for (const auto& [light, visible] : directional_visibility(o, nullptr, L)) {
             if (!visible) continue;

@@ -1681,6 +1681,25 @@ class Representations {
         s.seed = settings_.seed;
         return s;
     }
+    /// One request per mesh with triangles (r.mesh_bake[m], -1 for the others): settings `s`
+    /// (with `bands` when positive), at the lightmap's texels where `texels` and the mesh has
+    /// UVs, else at the vertices.
+    void request_per_mesh(Rep& r, BakeSettings s, bool texels, int bands = 0) {
+        if (bands > 0) s.bands = bands;
+        const std::size_t nm = scene_.meshes.size();
+        r.mesh_bake.assign(nm, -1);
+        for (std::size_t m = 0; m < nm; ++m) {
+            if (scene_.meshes[m].triangle_count == 0) continue;
+            BakeRequest q;
+            q.mesh = m;
+            q.settings = s;
+            if (texels && has_uvs(scene_.meshes[m])) {
+                q.where = BakeRequest::Where::texel;
+                q.lightmap_size = settings_.lightmap_size;
+            }
+            r.mesh_bake[m] = add_request(q);
+        }
+    }
 
     void plan() {
         const std::size_t nm = scene_.meshes.size();
@@ -1693,35 +1712,13 @@ class Representations {
                 case Kind::ao:
                 case Kind::bent:
                     needs_sh_ = true;
-                    r.mesh_bake.assign(nm, -1);
-                    for (std::size_t m = 0; m < nm; ++m) {
-                        if (scene_.meshes[m].triangle_count == 0) continue;
-                        BakeRequest q;
-                        q.mesh = m;
-                        q.settings = base_settings(Quantity::ao | Quantity::bent, 0);
-                        if (has_uvs(scene_.meshes[m])) {
-                            q.where = BakeRequest::Where::texel;
-                            q.lightmap_size = settings_.lightmap_size;
-                        }
-                        r.mesh_bake[m] = add_request(q);
-                    }
+                    request_per_mesh(r, base_settings(Quantity::ao | Quantity::bent, 0), true);
                     break;
                 case Kind::prt_vertex:
                 case Kind::prt_texel:
                     needs_sh_ = true;  // the lighting's SH (prt_light_)
-                    r.mesh_bake.assign(nm, -1);
-                    for (std::size_t m = 0; m < nm; ++m) {
-                        if (scene_.meshes[m].triangle_count == 0) continue;
-                        BakeRequest q;
-                        q.mesh = m;
-                        q.settings = base_settings(Quantity::transfer, settings_.bounces);
-                        q.settings.bands = settings_.prt_bands;
-                        if (r.kind == Kind::prt_texel && has_uvs(scene_.meshes[m])) {
-                            q.where = BakeRequest::Where::texel;
-                            q.lightmap_size = settings_.lightmap_size;
-                        }
-                        r.mesh_bake[m] = add_request(q);
-                    }
+                    request_per_mesh(r, base_settings(Quantity::transfer, settings_.bounces),
+                                     r.kind == Kind::prt_texel, settings_.prt_bands);
                     break;
                 case Kind::lightmap:
                     r.mesh_bake.assign(nm, -1);
@@ -1760,19 +1757,7 @@ class Representations {
                 }
                 case Kind::lxh_unc:
                 case Kind::lxh_pca:
-                    r.mesh_bake.assign(nm, -1);
-                    for (std::size_t m = 0; m < nm; ++m) {
-                        if (scene_.meshes[m].triangle_count == 0) continue;
-                        BakeRequest q;
-                        q.mesh = m;
-                        q.settings = base_settings(Quantity::visibility, 0);
-                        q.settings.bands = r.vis_bands;
-                        if (has_uvs(scene_.meshes[m])) {
-                            q.where = BakeRequest::Where::texel;
-                            q.lightmap_size = settings_.lightmap_size;
-                        }
-                        r.mesh_bake[m] = add_request(q);
-                    }
+                    request_per_mesh(r, base_settings(Quantity::visibility, 0), true, r.vis_bands);
                     break;
                 case Kind::specular_toksvig:
                 case Kind::specular_aliased:
@@ -1784,22 +1769,12 @@ class Representations {
             if (r.kind == Kind::prt_ratio || r.kind == Kind::prt_normalmap ||
                 r.kind == Kind::prt_cpca) {
                 needs_sh_ = true;
-                r.mesh_bake.assign(nm, -1);
-                for (std::size_t m = 0; m < nm; ++m) {
-                    if (scene_.meshes[m].triangle_count == 0) continue;
-                    BakeRequest q;
-                    q.mesh = m;
-                    q.settings =
-                        base_settings(r.kind == Kind::prt_normalmap ? Quantity::transfer_matrix
-                                                                    : Quantity::transfer,
-                                      settings_.bounces);
-                    q.settings.bands = settings_.prt_bands;
-                    if (has_uvs(scene_.meshes[m])) {
-                        q.where = BakeRequest::Where::texel;
-                        q.lightmap_size = settings_.lightmap_size;
-                    }
-                    r.mesh_bake[m] = add_request(q);
-                }
+                request_per_mesh(
+                    r,
+                    base_settings(r.kind == Kind::prt_normalmap ? Quantity::transfer_matrix
+                                                                : Quantity::transfer,
+                                  settings_.bounces),
+                    true, settings_.prt_bands);
             }
             r.reads_bakes = r.probe_bake >= 0;
             for (int b : r.mesh_bake) r.reads_bakes = r.reads_bakes || b >= 0;

@@ -199,26 +199,18 @@ class Scene {
     }
     /// Occlusion of n rays as one stream: an occluded ray's tfar becomes -inf.
     void occluded(RTCRay* rays, std::size_t n) const {
-        if (n == 0) return;
-        sphbasis::detail::check_buffer("render::Scene::occluded", "rays", rays, n);
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        for (std::size_t i = 0; i < n; i += chunk) {
-            const auto m = static_cast<unsigned>(std::min(chunk, n - i));
-            rtcOccluded1M(scene_, &ctx, rays + i, m, sizeof(RTCRay));
-        }
+        trace_stream("render::Scene::occluded", rays, n,
+                     [this](RTCIntersectContext* ctx, RTCRay* r, unsigned m) {
+                         rtcOccluded1M(scene_, ctx, r, m, sizeof(RTCRay));
+                     });
     }
     static bool is_occluded(const RTCRay& r) noexcept { return !(r.tfar >= 0); }
     /// Closest hits of n rays as one stream (hit.geomID stays RTC_INVALID_GEOMETRY_ID on a miss).
     void intersect(RTCRayHit* rays, std::size_t n) const {
-        if (n == 0) return;
-        sphbasis::detail::check_buffer("render::Scene::intersect", "rays", rays, n);
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        for (std::size_t i = 0; i < n; i += chunk) {
-            const auto m = static_cast<unsigned>(std::min(chunk, n - i));
-            rtcIntersect1M(scene_, &ctx, rays + i, m, sizeof(RTCRayHit));
-        }
+        trace_stream("render::Scene::intersect", rays, n,
+                     [this](RTCIntersectContext* ctx, RTCRayHit* r, unsigned m) {
+                         rtcIntersect1M(scene_, ctx, r, m, sizeof(RTCRayHit));
+                     });
     }
     /// One ray (convenience for tests and tools; the bake uses the streams).
     Hit intersect(const vec3<double>& o, const vec3<double>& d,
@@ -357,6 +349,18 @@ class Scene {
   private:
     static constexpr std::size_t chunk = 1024;
 
+    /// Checks the buffer, then traces the n rays as streams of at most `chunk`:
+    /// trace(ctx, first ray, count) per stream.
+    template <class Ray, class Trace>
+    void trace_stream(const char* fn, Ray* rays, std::size_t n, Trace trace) const {
+        if (n == 0) return;
+        sphbasis::detail::check_buffer(fn, "rays", rays, n);
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        for (std::size_t i = 0; i < n; i += chunk)
+            trace(&ctx, rays + i, static_cast<unsigned>(std::min(chunk, n - i)));
+    }
+
     struct MeshData {
         std::vector<float> positions, normals, uvs, tangents;
         std::vector<std::uint32_t> indices;  // kept (non-degenerate) triangles
@@ -397,24 +401,18 @@ class Scene {
             bad(m, "fewer than 2^32 vertices, got " + std::to_string(v.vertex_count));
         MeshData& d = meshes_[m];
         const std::size_t nv = v.vertex_count;
-        if (nv) d.positions.assign(v.positions, v.positions + 3 * nv);
-        if (!all_finite(d.positions.data(), d.positions.size()))
-            bad(m, "finite vertex positions, got a NaN or an infinity");
-        if (v.normals && nv) {
-            d.normals.assign(v.normals, v.normals + 3 * nv);
-            if (!all_finite(d.normals.data(), d.normals.size()))
-                bad(m, "finite normals, got a NaN or an infinity");
-        }
-        if (v.uvs && nv) {
-            d.uvs.assign(v.uvs, v.uvs + 2 * nv);
-            if (!all_finite(d.uvs.data(), d.uvs.size()))
-                bad(m, "finite UVs, got a NaN or an infinity");
-        }
-        if (v.tangents && nv) {
-            d.tangents.assign(v.tangents, v.tangents + 4 * nv);
-            if (!all_finite(d.tangents.data(), d.tangents.size()))
-                bad(m, "finite tangents, got a NaN or an infinity");
-        }
+        // Copies `per` floats a vertex of an optional array, all finite.
+        auto copy = [m, nv](const float* src, std::size_t per, std::vector<float>& dst,
+                            const char* what) {
+            if (!src || nv == 0) return;
+            dst.assign(src, src + per * nv);
+            if (!all_finite(dst.data(), dst.size()))
+                bad(m, std::string("finite ") + what + ", got a NaN or an infinity");
+        };
+        copy(v.positions, 3, d.positions, "vertex positions");
+        copy(v.normals, 3, d.normals, "normals");
+        copy(v.uvs, 2, d.uvs, "UVs");
+        copy(v.tangents, 4, d.tangents, "tangents");
         if (!(v.shininess >= 0 && std::isfinite(v.shininess)))
             bad(m, "a finite shininess >= 0, got " + std::to_string(v.shininess));
         d.shininess = v.shininess;

@@ -307,4 +307,17 @@ SPHBASIS_FORCEINLINE V upper(const V& z) noexcept {
     return select(z >= V(S(0)), V(S(1)), V(S(0)));
 }
 
+/// The inputs of the families advanced in w = 2z - 1 (HSH, Makhotkin): zc = max(z, 0) and
+/// (X, Y) = 2 sqrt(zc/(1+zc)) (x, y) = sin' (cos phi, sin phi), sin' the sine of the angle
+/// whose cosine is 2 zc - 1.
+template <class V>
+SPHBASIS_FORCEINLINE void shifted_xy(const V& x, const V& y, const V& z, V& zc, V& X,
+                                     V& Y) noexcept {
+    using S = scalar_t<V>;
+    zc = vmax(z, V(S(0)));
+    const V g = V(S(2)) * vsqrt(zc / (V(S(1)) + zc));
+    X = x * g;
+    Y = y * g;
+}
+
 }  // namespace sphbasis::detail::hemi
