@@ -26,7 +26,7 @@ std::vector<double> eval_d(int bands, double x, double y, double z) {
 }
 
 /// Directions over the whole sphere.
-std::vector<test::Dir> random_dirs(int n, unsigned seed) {
+std::vector<test::Dir> sphere_dirs(int n, unsigned seed) {
     return test::random_dirs(n, seed, false);
 }
 
@@ -84,7 +84,7 @@ TEST_CASE("sh: Gram matrix is the identity by exact quadrature, 40 bands", "[sh]
 }
 
 TEST_CASE("sh: addition theorem sum_m y_lm^2 = (2l+1)/(4 pi) to 100 bands", "[sh]") {
-    for (const auto& d : random_dirs(20, 7)) {
+    for (const auto& d : sphere_dirs(20, 7)) {
         const auto v = eval_d(100, d[0], d[1], d[2]);
         for (int l = 0; l < 100; ++l) {
             double s = 0;
@@ -98,7 +98,7 @@ TEST_CASE("sh: addition theorem sum_m y_lm^2 = (2l+1)/(4 pi) to 100 bands", "[sh
 }
 
 TEST_CASE("sh: unrolled kernels, row recurrence and column recurrence agree", "[sh]") {
-    auto dirs = random_dirs(200, 11);
+    auto dirs = sphere_dirs(200, 11);
     dirs.push_back({0, 0, 1});
     dirs.push_back({0, 0, -1});
     dirs.push_back({1, 0, 0});
@@ -124,7 +124,7 @@ TEST_CASE("sh: unrolled kernels, row recurrence and column recurrence agree", "[
         }
     }
     // Row (<= 64 bands) against column recurrence at the switch-over.
-    for (const auto& d : random_dirs(20, 12)) {
+    for (const auto& d : sphere_dirs(20, 12)) {
         std::vector<double> rows(64 * 64), cols(64 * 64);
         sh::detail::eval_rows(64, d[0], d[1], d[2],
                               [&](int k, double x) { rows[static_cast<std::size_t>(k)] = x; });
@@ -138,7 +138,7 @@ TEST_CASE("sh: unrolled kernels, row recurrence and column recurrence agree", "[
 }
 
 TEST_CASE("sh: prefix property and eval_lm", "[sh]") {
-    const auto d = random_dirs(1, 3)[0];
+    const auto d = sphere_dirs(1, 3)[0];
     const auto big = eval_d(70, d[0], d[1], d[2]);
     for (int k : {1, 2, 3, 8, 9, 31, 64, 65}) {
         const auto small = eval_d(k, d[0], d[1], d[2]);
@@ -168,7 +168,7 @@ TEST_CASE("sh: compile-time band count and vector adapters", "[sh]") {
 TEMPLATE_TEST_CASE("sh: batch path equals scalar path", "[sh]", float, double) {
     using T = TestType;
     // 37: not a multiple of any SIMD width; * 3: non-unit on purpose, both paths normalise.
-    const auto in = test::scaled_inputs<T>(random_dirs(37, 5), 3);
+    const auto in = test::scaled_inputs<T>(sphere_dirs(37, 5), 3);
     const auto &xs = in.xs, &ys = in.ys, &zs = in.zs;
     const std::size_t n = in.size();
     for (int bands : {1, 2, 3, 5, 8, 9, 17, 64, 66}) {
@@ -196,7 +196,7 @@ TEMPLATE_TEST_CASE("sh: batch path equals scalar path", "[sh]", float, double) {
 
 TEST_CASE("sh: float is within a stated bound of double", "[sh]") {
     // Bound: |float - double| <= 8 (l + 1) ulp(float) * S_l, measured worst ~2(l+1) ulp.
-    for (const auto& d : random_dirs(100, 9)) {
+    for (const auto& d : sphere_dirs(100, 9)) {
         for (int bands : {3, 8, 31}) {
             std::vector<float> f(static_cast<std::size_t>(bands * bands));
             std::vector<double> dd(f.size());
@@ -351,7 +351,7 @@ TEST_CASE("sh: the double row path (65..256 bands) agrees with the column path",
     // Two different recurrences (rows on Q = Pbar / sin^m in z, columns on Pbar in l with
     // exponent-carried sectoral starts) must agree within the accuracy bound, near the poles
     // too, where the rows multiply a large Q by an underflowing sin^m.
-    auto dirs = random_dirs(20, 17);
+    auto dirs = sphere_dirs(20, 17);
     for (double e : {1e-12, 1e-9, 1e-6, 1e-3}) {
         dirs.push_back({e, 0, std::sqrt(1 - e * e)});
         dirs.push_back({0.6 * e, -0.8 * e, -std::sqrt(1 - e * e)});
@@ -439,7 +439,7 @@ TEMPLATE_TEST_CASE("sh: eval_batch_aos (interleaved x y z) equals eval_batch (So
     // more than two blocks of the deinterleaving (sh::detail::aos_block);
     // inputs * 3: not unit length, both paths normalise.
     for (const int n : {0, 1, W - 1, W, W + 1, 3 * W + 5, 2 * 256 + 7}) {
-        const auto in = test::scaled_inputs<T>(random_dirs(std::max(n, 1), 11), 3);
+        const auto in = test::scaled_inputs<T>(sphere_dirs(std::max(n, 1), 11), 3);
         const std::size_t nd = static_cast<std::size_t>(n);
         std::vector<T> xyz(3 * nd);
         for (std::size_t i = 0; i < nd; ++i) {

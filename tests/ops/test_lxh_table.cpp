@@ -19,6 +19,8 @@
 #include <sphbasis/param/octahedral.hpp>
 #include <vector>
 
+#include "../support/sh_checks.hpp"
+
 using namespace sphbasis;
 
 namespace {
@@ -72,11 +74,7 @@ std::vector<double> quadrature_lxh(int nb, const std::vector<double>& rgb, int k
     return out;
 }
 
-double max_abs(const std::vector<double>& v) {
-    double m = 0;
-    for (double x : v) m = std::max(m, std::fabs(x));
-    return m;
-}
+using sphbasis::test::max_abs;
 
 std::array<double, 3> random_unit(std::mt19937& rng) {
     std::normal_distribution<double> g;

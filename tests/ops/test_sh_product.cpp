@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "../support/cli_runner.hpp"
+#include "../support/sh_checks.hpp"
 
 using namespace sphbasis;
 
@@ -115,11 +116,7 @@ std::vector<double> quadrature_product(int na, const std::vector<double>& a, int
     return out;
 }
 
-double max_abs(const std::vector<double>& v) {
-    double m = 0;
-    for (double x : v) m = std::max(m, std::fabs(x));
-    return m;
-}
+using sphbasis::test::max_abs;
 
 // Tolerances of gaunt() against exact values: with the x87 long double working precision the
 // results are within an ulp or so; with double (MSVC, ARM) a few ulp of the largest symbol.

@@ -19,6 +19,12 @@ namespace sphbasis_test {
 
 using sphbasis::render::Image;
 
+/// v / |v|.
+inline sphbasis::vec3<double> unit(sphbasis::vec3<double> v) {
+    const double l = std::sqrt(sphbasis::dot(v, v));
+    return {v.x / l, v.y / l, v.z / l};
+}
+
 /// Largest |a - b| over all pixels and channels (same sizes).
 inline double max_abs_diff(const Image& a, const Image& b) {
     double d = 0;

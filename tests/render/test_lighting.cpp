@@ -26,10 +26,7 @@ namespace constants = sphbasis::constants;
 
 namespace {
 
-vec3<double> unit(vec3<double> v) {
-    const double l = std::sqrt(sphbasis::dot(v, v));
-    return {v.x / l, v.y / l, v.z / l};
-}
+using sphbasis_test::unit;
 
 /// A direction at angle beta from d, in the plane of d and an arbitrary perpendicular.
 vec3<double> tilted(const vec3<double>& d, double beta) {

@@ -32,10 +32,7 @@ namespace constants = sphbasis::constants;
 
 namespace {
 
-vec3<double> unit(vec3<double> v) {
-    const double l = std::sqrt(sphbasis::dot(v, v));
-    return {v.x / l, v.y / l, v.z / l};
-}
+using sphbasis_test::unit;
 
 Environment constant_sky(double L) { return sphbasis_test::constant_environment({L, L, L}); }
 

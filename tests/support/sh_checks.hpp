@@ -3,6 +3,7 @@
 // unit directions, and pi.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <random>
@@ -25,6 +26,13 @@ inline RGB operator-(const RGB& a) { return {-a.r, -a.g, -a.b}; }
 inline vec3<double> unit(double x, double y, double z) {
     const double r = std::sqrt(x * x + y * y + z * z);
     return {x / r, y / r, z / r};
+}
+
+/// Largest |v_i|.
+inline double max_abs(const std::vector<double>& v) {
+    double m = 0;
+    for (double x : v) m = std::max(m, std::fabs(x));
+    return m;
 }
 
 /// bands^2 coefficients, standard normal, drawn from rng.
