@@ -36,6 +36,16 @@
 //                occludes, L_in is integrated by quadrature (hemisphere_rule(48)) instead of
 //                rays: exact for the environment's smooth part, approximate at the edge of a
 //                small cone or sphere light.
+//                irradiance_stderr (coeffs, max over R, G, B): the Monte Carlo standard error of
+//                that estimator. The fit is linear in the samples: e = M L_lm + (directional
+//                part), M = irr_map (coeffs x 64: least-squares projector times the clamped-cosine
+//                convolution), L_lm = (1/N) sum_j 2pi L_in(w_j) y_lm(w_j) (tangent frame), so
+//                e = (1/N) sum_j s_j with s_j,kc = 2pi L_in,c(w_j) (M y(w_j))_k, and
+//                irradiance_stderr_k = max_c sqrt(var_j(s_j,kc) / N), var with the N - 1
+//                denominator (samples with L_in = 0 count as s_j = 0). The directional lights
+//                (one deterministic shadow ray each) add no error; at points nothing occludes
+//                (quadrature, no rays) it is 0. Like ao_stderr it bounds the QMC error, which is
+//                usually smaller.
 //   transfer_matrix = the incident-transfer matrix of normal-mapped PRT (Sloan, Lehtinen and
 //                Kautz, the normal-mapping slides): the 3-band SH (world frame) of the incident
 //                radiance, L_in,i = sum_j M_ij l_j for distant radiance sum_j l_j y_j (bands
@@ -49,6 +59,10 @@
 //                sphere: r_i = 4pi/N sum L_in(w_j) y_i(w_j); directional lights add
 //                V(l) color y_i(l). `inside`: more than half the rays hit back faces
 //                (the side opposite a triangle's counter-clockwise normal).
+//                radiance_stderr (bands^2, max over R, G, B): sqrt(var_j(4pi L_in,c(w_j)
+//                y_i(w_j)) / N), var with the N - 1 denominator; directional lights (one shadow
+//                ray each) add no error, and with no geometry (quadrature and closed forms, no
+//                rays) it is 0.
 // Sampling: QMC (the R2 sequence of core/sampling.hpp), shifted per point by a Cranley-Patterson
 // rotation hashed from (seed, id) (render/detail/qmc.hpp: the shift in azimuth is applied as a
 // rotation of the tangent frame, so no trigonometry per ray); continuation directions of bounces
@@ -160,7 +174,9 @@ struct PointResult {
     std::vector<double> transfer_stderr;                // bands^2 (max over channels)
     bool transfer_rgb = false;  // false: the three channels are equal (print one list)
     std::array<std::vector<double>, 3> irradiance;  // R, G, B (coeffs each)
+    std::vector<double> irradiance_stderr;          // coeffs (max over channels)
     std::array<std::vector<double>, 3> radiance;    // R, G, B (bands^2 each)
+    std::vector<double> radiance_stderr;            // bands^2 (max over channels)
     /// R, G, B: 9 x bands^2, row-major (row i: incident coefficient i, column j: lighting j).
     std::array<std::vector<double>, 3> transfer_matrix;
     bool inside = false;  // the point is inside closed geometry (probes leak)
@@ -249,8 +265,8 @@ class Baker {
         std::size_t b = sizeof(PointResult);
         if (s.quantities & Quantity::visibility) b += 2 * n * d;
         if (s.quantities & Quantity::transfer) b += 4 * n * d;
-        if (s.quantities & Quantity::irradiance) b += 3 * std::size_t(std::max(s.coeffs, 0)) * d;
-        if (s.quantities & Quantity::radiance) b += 3 * n * d;
+        if (s.quantities & Quantity::irradiance) b += 4 * std::size_t(std::max(s.coeffs, 0)) * d;
+        if (s.quantities & Quantity::radiance) b += 4 * n * d;
         if (s.quantities & Quantity::transfer_matrix) b += 27 * n * d;
         return b;
     }
@@ -296,6 +312,8 @@ class Baker {
         std::vector<std::uint32_t> entry_sample;
         std::vector<detail::rt::V3> dirs, local;
         std::vector<char> va, vt;
+        Eigen::MatrixXd irr_y, irr_g;  // irradiance error: y(local_j) columns, M y(local_j)
+        std::vector<double> irr_l;     // their samples' L_in, RGB interleaved
     };
     /// Exclusive pass timing: a Timer started inside another pauses the outer one, so nested
     /// work (the shadow rays of a bounce) counts for the inner pass only and the passes'
@@ -669,6 +687,7 @@ class Baker {
                 if (l.type == Light::Type::directional && dot(l.direction, n) > 0)
                     dir.push_back({f.to_local(l.direction), l.color});
             finish_irradiance(Llm, dir, res);
+            res.irradiance_stderr.assign(std::size_t(settings_.coeffs), 0.0);
         }
     }
 
@@ -720,6 +739,7 @@ class Baker {
     void radiance_closed_form(const detail::rt::V3& p, PointResult& res) const {
         using namespace detail::rt;
         for (auto& v : res.radiance) v.assign(nsh(), 0.0);
+        res.radiance_stderr.assign(nsh(), 0.0);
         std::vector<double> y(nsh());
         if (env_.kind != Environment::Kind::none)
             for (std::size_t q = 0; q < sphere_rule_.size(); ++q) {
@@ -1272,12 +1292,18 @@ class Baker {
             const std::size_t n8 = std::size_t(irr_bands * irr_bands);
             std::array<std::vector<double>, 3> Llm;
             for (auto& v : Llm) v.assign(n8, 0.0);
-            std::vector<double> yy(n8);
+            // The basis values of the lit samples are kept (columns of L.irr_y) for the error.
+            L.irr_y.resize(Eigen::Index(n8), Eigen::Index(N));
+            L.irr_l.clear();
+            Eigen::Index m = 0;
             for (std::size_t j = 0; j < N; ++j) {
                 if (Ls[j][0] == 0 && Ls[j][1] == 0 && Ls[j][2] == 0) continue;
-                sh::eval_unit(irr_bands, local[j].x, local[j].y, local[j].z, yy.data());
-                for (std::size_t c = 0; c < 3; ++c)
+                double* yy = L.irr_y.col(m++).data();
+                sh::eval_unit(irr_bands, local[j].x, local[j].y, local[j].z, yy);
+                for (std::size_t c = 0; c < 3; ++c) {
+                    L.irr_l.push_back(Ls[j][c]);
                     for (std::size_t k = 0; k < n8; ++k) Llm[c][k] += Ls[j][c] * yy[k];
+                }
             }
             for (auto& v : Llm)
                 for (double& x : v) x *= constants::two_pi / double(N);
@@ -1285,7 +1311,41 @@ class Baker {
             for (const auto& [light, visible] : directional_visibility(o, &n, L))
                 if (visible) dl.push_back({f.to_local(light->direction), light->color});
             finish_irradiance(Llm, dl, res);
+            irradiance_error(N, m, L, res.irradiance_stderr);
         }
+    }
+
+    /// irradiance_stderr (header comment) from the m lit samples of N: g_j = M y(w_j) for the
+    /// columns of L.irr_y, s_j,kc = 2pi L_jc g_jk, two-pass variance over all N samples.
+    void irradiance_error(std::size_t N, Eigen::Index m, Local& L,
+                          std::vector<double>& out) const {
+        const Eigen::Index K = irr_map_.rows();
+        out.assign(std::size_t(K), 0.0);
+        if (N < 2 || m == 0) return;
+        L.irr_g.noalias() = irr_map_ * L.irr_y.leftCols(m);  // K x m, column j = g_j
+        const double* l = L.irr_l.data();
+        const std::size_t nk = std::size_t(K), mm = std::size_t(m);
+        std::vector<double> mean(3 * nk, 0.0), ss(3 * nk, 0.0);
+        for (std::size_t j = 0; j < mm; ++j) {
+            const double* g = L.irr_g.col(Eigen::Index(j)).data();
+            for (std::size_t k = 0; k < nk; ++k)
+                for (std::size_t c = 0; c < 3; ++c) mean[3 * k + c] += l[3 * j + c] * g[k];
+        }
+        const double dn = double(N), a = constants::two_pi;
+        for (std::size_t i = 0; i < 3 * nk; ++i) {
+            mean[i] *= a / dn;
+            ss[i] = double(N - mm) * mean[i] * mean[i];  // the N - m unlit samples are 0
+        }
+        for (std::size_t j = 0; j < mm; ++j) {
+            const double* g = L.irr_g.col(Eigen::Index(j)).data();
+            for (std::size_t k = 0; k < nk; ++k)
+                for (std::size_t c = 0; c < 3; ++c) {
+                    const double d = a * l[3 * j + c] * g[k] - mean[3 * k + c];
+                    ss[3 * k + c] += d * d;
+                }
+        }
+        for (std::size_t k = 0; k < nk; ++k)
+            out[k] = std::sqrt(std::max({ss[3 * k], ss[3 * k + 1], ss[3 * k + 2]}) / (dn - 1) / dn);
     }
 
     /// transfer_matrix (header comment): M = I + 2pi/N sum over occluded hemisphere samples j
@@ -1369,7 +1429,7 @@ class Baker {
                 smp.push_back(std::uint32_t(j));
             }
         accumulate_sh(L, smp.size(), w, false, smp, N, constants::four_pi, true, res.radiance,
-                      nullptr);
+                      &res.radiance_stderr);
         std::vector<double> y(nsh());
         for (const auto& [light, visible] : directional_visibility(o, nullptr, L)) {
             if (!visible) continue;
