@@ -34,8 +34,8 @@ std::vector<float> gradient_sky() {
     return t;
 }
 
-std::vector<PointResult> bake_one(const SceneDesc& d, BakeSettings s, int rays,
-                                  std::uint64_t seed, const BakePoint& p) {
+std::vector<PointResult> bake_one(const SceneDesc& d, BakeSettings s, int rays, std::uint64_t seed,
+                                  const BakePoint& p) {
     s.rays = rays;
     s.seed = seed;
     Baker b(d, s);
@@ -167,8 +167,8 @@ TEST_CASE("bake stderr: irradiance stderr against quadrature of the estimator's 
         const IrradianceFit fit("sh", 9, hemisphere_rule_sqrt(32, 32));
         const DirectionalRule& fr = fit.rule();
         const Eigen::Index m = Eigen::Index(fr.size());
-        const Eigen::MatrixXd P = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic,
-                                                                 Eigen::Dynamic, Eigen::RowMajor>>(
+        const Eigen::MatrixXd P = Eigen::Map<
+            const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
             fit.projector().data(), 9, m);
         double a[8];
         clamped_cosine_factors(8, a);

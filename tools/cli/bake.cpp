@@ -909,8 +909,9 @@ int run_merge(const MergeOptions& o) {
         const ShardData& d = *by_index[i];
         const Json& sh = d.header.at("shard");
         if (d.stride != L.stride)
-            throw std::runtime_error("shard " + std::to_string(i) + ": records of " + std::to_string(d.stride) +
-                                     " numbers, the settings give " + std::to_string(L.stride));
+            throw std::runtime_error("shard " + std::to_string(i) + ": records of " +
+                                     std::to_string(d.stride) + " numbers, the settings give " +
+                                     std::to_string(L.stride));
         if (sh.at("begin").get<std::size_t>() * L.stride != rec.size() ||
             (sh.at("end").get<std::size_t>() - sh.at("begin").get<std::size_t>()) * L.stride !=
                 d.rec.size())

@@ -312,8 +312,9 @@ class Baker {
         std::vector<std::uint32_t> entry_sample;
         std::vector<detail::rt::V3> dirs, local;
         std::vector<char> va, vt;
-        Eigen::MatrixXd irr_y, irr_g;  // irradiance error: y(local_j) columns, M y(local_j)
-        std::vector<double> irr_l;     // their samples' L_in, RGB interleaved
+        // irradiance error: y(local_j), g_j = M y(local_j) (coefficient k's plane of stride
+        // rays) and L_in of the lit samples (R, G, B planes of stride rays)
+        std::vector<double> irr_y, irr_g, irr_l;
     };
     /// Exclusive pass timing: a Timer started inside another pauses the outer one, so nested
     /// work (the shadow rays of a bounce) counts for the inner pass only and the passes'
@@ -576,6 +577,10 @@ class Baker {
                     m(Eigen::Index(i), k) = constants::pi * a[l] * y[std::size_t(k)];
         }
         irr_map_ = irr_projector_ * m;  // coeffs x n: L_lm (local) -> fitted E
+        irr_map_rows_.resize(std::size_t(irr_map_.size()));
+        for (Eigen::Index k = 0; k < irr_map_.rows(); ++k)
+            for (Eigen::Index i = 0; i < n; ++i)
+                irr_map_rows_[std::size_t(k * n + i)] = irr_map_(k, i);
     }
     void prepare_quadrature() {
         // Hemisphere rule in the tangent frame (irradiance of unoccluded points) and sphere
@@ -1293,17 +1298,22 @@ class Baker {
             std::array<std::vector<double>, 3> Llm;
             for (auto& v : Llm) v.assign(n8, 0.0);
             // The basis values of the lit samples are kept (columns of L.irr_y) for the error.
-            L.irr_y.resize(Eigen::Index(n8), Eigen::Index(N));
-            L.irr_l.clear();
-            Eigen::Index m = 0;
+            const std::size_t nk = std::size_t(settings_.coeffs);
+            L.irr_y.resize(n8);
+            L.irr_l.resize(3 * N);
+            L.irr_g.resize(nk * N);
+            double* yy = L.irr_y.data();
+            std::size_t m = 0;
             for (std::size_t j = 0; j < N; ++j) {
                 if (Ls[j][0] == 0 && Ls[j][1] == 0 && Ls[j][2] == 0) continue;
-                double* yy = L.irr_y.col(m++).data();
                 sh::eval_unit(irr_bands, local[j].x, local[j].y, local[j].z, yy);
                 for (std::size_t c = 0; c < 3; ++c) {
-                    L.irr_l.push_back(Ls[j][c]);
+                    L.irr_l[c * N + m] = Ls[j][c];
                     for (std::size_t k = 0; k < n8; ++k) Llm[c][k] += Ls[j][c] * yy[k];
                 }
+                for (std::size_t k = 0; k < nk; ++k)
+                    L.irr_g[k * N + m] = dot_lanes(&irr_map_rows_[k * n8], yy);
+                ++m;
             }
             for (auto& v : Llm)
                 for (double& x : v) x *= constants::two_pi / double(N);
@@ -1311,41 +1321,55 @@ class Baker {
             for (const auto& [light, visible] : directional_visibility(o, &n, L))
                 if (visible) dl.push_back({f.to_local(light->direction), light->color});
             finish_irradiance(Llm, dl, res);
-            irradiance_error(N, m, L, res.irradiance_stderr);
+            irradiance_error(N, m, Llm, L, res.irradiance_stderr);
         }
     }
 
-    /// irradiance_stderr (header comment) from the m lit samples of N: g_j = M y(w_j) for the
-    /// columns of L.irr_y, s_j,kc = 2pi L_jc g_jk, two-pass variance over all N samples.
-    void irradiance_error(std::size_t N, Eigen::Index m, Local& L,
+    /// sum_i a[i] b[i] over the 64 coefficients of irr_bands, in 8 lanes (vectorises).
+    static double dot_lanes(const double* a, const double* b) noexcept {
+        constexpr std::size_t lanes = 8, n = std::size_t(irr_bands * irr_bands);
+        double acc[lanes] = {};
+        for (std::size_t i = 0; i < n; i += lanes)
+            for (std::size_t q = 0; q < lanes; ++q) acc[q] += a[i + q] * b[i + q];
+        return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+    }
+
+    /// irradiance_stderr (header comment) from the m lit samples of N: g_jk = (M y(w_j))_k
+    /// (L.irr_g), s_j,kc = 2pi L_jc g_jk (L.irr_l), about the mean M L_lm (two-pass variance
+    /// over all N samples, the unlit ones s = 0), in 8 independent lanes so that the sums
+    /// vectorise. Cost with the g_j: 64 coeffs + 3 coeffs multiply-adds per lit sample.
+    void irradiance_error(std::size_t N, std::size_t m,
+                          const std::array<std::vector<double>, 3>& Llm, Local& L,
                           std::vector<double>& out) const {
         const Eigen::Index K = irr_map_.rows();
         out.assign(std::size_t(K), 0.0);
         if (N < 2 || m == 0) return;
-        L.irr_g.noalias() = irr_map_ * L.irr_y.leftCols(m);  // K x m, column j = g_j
-        const double* l = L.irr_l.data();
-        const std::size_t nk = std::size_t(K), mm = std::size_t(m);
-        std::vector<double> mean(3 * nk, 0.0), ss(3 * nk, 0.0);
-        for (std::size_t j = 0; j < mm; ++j) {
-            const double* g = L.irr_g.col(Eigen::Index(j)).data();
-            for (std::size_t k = 0; k < nk; ++k)
-                for (std::size_t c = 0; c < 3; ++c) mean[3 * k + c] += l[3 * j + c] * g[k];
-        }
-        const double dn = double(N), a = constants::two_pi;
-        for (std::size_t i = 0; i < 3 * nk; ++i) {
-            mean[i] *= a / dn;
-            ss[i] = double(N - mm) * mean[i] * mean[i];  // the N - m unlit samples are 0
-        }
-        for (std::size_t j = 0; j < mm; ++j) {
-            const double* g = L.irr_g.col(Eigen::Index(j)).data();
-            for (std::size_t k = 0; k < nk; ++k)
-                for (std::size_t c = 0; c < 3; ++c) {
-                    const double d = a * l[3 * j + c] * g[k] - mean[3 * k + c];
-                    ss[3 * k + c] += d * d;
+        const double a = constants::two_pi, dn = double(N);
+        constexpr std::size_t lanes = 8;
+        for (std::size_t c = 0; c < 3; ++c) {
+            const Eigen::VectorXd mean = irr_map_ * Eigen::Map<const Eigen::VectorXd>(
+                                                        Llm[c].data(), Eigen::Index(Llm[c].size()));
+            const double* l = L.irr_l.data() + c * N;
+            for (Eigen::Index k = 0; k < K; ++k) {
+                const double* g = L.irr_g.data() + std::size_t(k) * N;
+                const double mu = mean(k);
+                double acc[lanes] = {};
+                std::size_t j = 0;
+                for (; j + lanes <= m; j += lanes)
+                    for (std::size_t q = 0; q < lanes; ++q) {
+                        const double d = a * l[j + q] * g[j + q] - mu;
+                        acc[q] += d * d;
+                    }
+                for (; j < m; ++j) {
+                    const double d = a * l[j] * g[j] - mu;
+                    acc[j % lanes] += d * d;
                 }
+                double ss = double(N - m) * mu * mu;
+                for (double x : acc) ss += x;
+                double& o = out[std::size_t(k)];
+                o = std::max(o, std::sqrt(ss / (dn - 1) / dn));
+            }
         }
-        for (std::size_t k = 0; k < nk; ++k)
-            out[k] = std::sqrt(std::max({ss[3 * k], ss[3 * k + 1], ss[3 * k + 2]}) / (dn - 1) / dn);
     }
 
     /// transfer_matrix (header comment): M = I + 2pi/N sum over occluded hemisphere samples j
@@ -1455,6 +1479,7 @@ class Baker {
     DirectionalRule irr_rule_, hemi_rule_, sphere_rule_;
     std::shared_ptr<const IrradianceFit> irr_fit_;
     Eigen::MatrixXd irr_projector_, irr_map_;
+    std::vector<double> irr_map_rows_;  // irr_map_, row-major
     detail::rt::QmcTable qmc_;
 };
 
