@@ -23,8 +23,10 @@
 //                {"p":[x,y,z],"n":[nx,ny,nz],"ao":a,"ao_stderr":s,"bent":[...],
 //                 "visibility":[...],"transfer":[...]} with the requested keys only ("n" only
 //                for surface points; "transfer" is three lists R, G, B when the channels
-//                differ; "irradiance" and "radiance" are three lists; "inside" comes with
-//                "radiance"). Numbers with 17 significant digits.
+//                differ; "irradiance" and "radiance" are three lists, each followed by its
+//                standard error, one list (max over R, G, B): "irradiance_stderr",
+//                "radiance_stderr"; "inside" comes with "radiance"). Numbers with 17
+//                significant digits.
 // Every file bake also writes OUT/bake.json: scene, target, settings, seed, the pass plan (each
 // pass's name, reason, rays and seconds), timings and the output files with their channels.
 // Files are written to a temporary name and renamed (support/output_file.hpp).
@@ -70,6 +72,10 @@ namespace {
 
 constexpr int kGutter = 4;  // texels dilated around each chart
 constexpr char kShardMagic[8] = {'S', 'P', 'H', 'B', 'S', 'H', 'R', 'D'};
+// The layout of a result record (struct Layout), recorded in each shard's header as
+// "record_format" and checked by bake-merge. 2: irr_stderr and rad_stderr added (shards without
+// the key are format 1 and are refused).
+constexpr int kRecordFormat = 2;
 
 const std::vector<std::pair<std::string, unsigned>>& quantity_names() {
     static const std::vector<std::pair<std::string, unsigned>> q = {
@@ -332,7 +338,7 @@ Work make_work(const SceneFile& scene, const Target& t, const std::string& point
 struct Layout {
     std::size_t b2 = 0, nc = 0;  // bands^2, irradiance coefficients
     std::size_t ao = 0, bent = 2, vis = 5, vis_se = 0, tr = 0, tr_se = 0, tr_rgb = 0, irr = 0,
-                rad = 0, inside = 0, stride = 0;
+                irr_se = 0, rad = 0, rad_se = 0, inside = 0, stride = 0;
     explicit Layout(const render::BakeSettings& s)
         : b2(std::size_t(s.bands) * std::size_t(s.bands)), nc(std::size_t(s.coeffs)) {
         vis_se = vis + b2;
@@ -340,8 +346,10 @@ struct Layout {
         tr_se = tr + 3 * b2;
         tr_rgb = tr_se + b2;
         irr = tr_rgb + 1;
-        rad = irr + 3 * nc;
-        inside = rad + 3 * b2;
+        irr_se = irr + 3 * nc;
+        rad = irr_se + nc;
+        rad_se = rad + 3 * b2;
+        inside = rad_se + b2;
         stride = inside + 1;
     }
 };
@@ -370,6 +378,8 @@ std::vector<double> pack(const Layout& L, const std::vector<render::PointResult>
             copy_n(r.radiance[c], L.b2, o + L.rad + c * L.b2);
         }
         copy_n(r.transfer_stderr, L.b2, o + L.tr_se);
+        copy_n(r.irradiance_stderr, L.nc, o + L.irr_se);
+        copy_n(r.radiance_stderr, L.b2, o + L.rad_se);
         o[L.tr_rgb] = r.transfer_rgb ? 1.0 : 0.0;
         o[L.inside] = r.inside ? 1.0 : 0.0;
     }
@@ -415,11 +425,13 @@ std::vector<Column> columns(const render::BakeSettings& s, const Layout& L, bool
         list("irr_r_", L.irr, L.nc);
         list("irr_g_", L.irr + L.nc, L.nc);
         list("irr_b_", L.irr + 2 * L.nc, L.nc);
+        list("irr_stderr_", L.irr_se, L.nc);
     }
     if (q & render::Quantity::radiance) {
         list("rad_r_", L.rad, L.b2);
         list("rad_g_", L.rad + L.b2, L.b2);
         list("rad_b_", L.rad + 2 * L.b2, L.b2);
+        list("rad_stderr_", L.rad_se, L.b2);
         c.push_back({"inside", L.inside});
     }
     return c;
@@ -614,9 +626,13 @@ void print_points(const Work& w, const render::BakeSettings& s, const std::vecto
         if (q & render::Quantity::visibility) line["visibility"] = list(r + L.vis, L.b2);
         if (q & render::Quantity::transfer)
             line["transfer"] = r[L.tr_rgb] != 0 ? rgb(r + L.tr, L.b2) : list(r + L.tr, L.b2);
-        if (q & render::Quantity::irradiance) line["irradiance"] = rgb(r + L.irr, L.nc);
+        if (q & render::Quantity::irradiance) {
+            line["irradiance"] = rgb(r + L.irr, L.nc);
+            line["irradiance_stderr"] = list(r + L.irr_se, L.nc);
+        }
         if (q & render::Quantity::radiance) {
             line["radiance"] = rgb(r + L.rad, L.b2);
+            line["radiance_stderr"] = list(r + L.rad_se, L.b2);
             line["inside"] = r[L.inside] != 0;
         }
         std::cout << dump_json(line) << '\n';
@@ -657,6 +673,7 @@ std::string shard_bytes(const Json& header, const std::vector<double>& rec, std:
 struct ShardData {
     Json header;
     std::vector<double> rec;
+    std::uint64_t stride = 0;  // doubles per record
 };
 
 ShardData read_shard(const std::string& file) {
@@ -676,10 +693,19 @@ ShardData read_shard(const std::string& file) {
     } catch (const std::exception&) {
         throw std::runtime_error(file + ": corrupt shard header");
     }
+    const int format = d.header.is_object() && d.header.contains("record_format") &&
+                               d.header["record_format"].is_number_integer()
+                           ? d.header["record_format"].get<int>()
+                           : 1;
+    if (format != kRecordFormat)
+        throw std::runtime_error(file + ": a shard of record format " + std::to_string(format) +
+                                 ", this sphbasis reads format " + std::to_string(kRecordFormat) +
+                                 ": bake the shards again with this version");
     pos += hl;
     const std::uint64_t n = get_u64(in, pos, file), stride = get_u64(in, pos, file);
     if (stride == 0 || n > (in.size() - pos) / 8 / stride || pos + n * stride * 8 != in.size())
         throw std::runtime_error(file + ": truncated shard file");
+    d.stride = stride;
     d.rec.resize(n * stride);
     for (double& x : d.rec) {
         const std::uint64_t u = get_u64(in, pos, file);
@@ -801,6 +827,7 @@ int run_bake(const BakeOptions& o) {
             Json header = summary;
             header["scene_file"] = std::filesystem::absolute(scene.path, ec).string();
             header["scene_fnv1a"] = fnv1a_of_file(scene.path);
+            header["record_format"] = kRecordFormat;
             header["seconds"] = {{"load", t_load}, {"layout", t_layout}, {"bake", t_bake}};
             const std::string name = "bake.shard-" + std::to_string(shard.index) + "-of-" +
                                      std::to_string(shard.count) + ".bin";
@@ -881,6 +908,10 @@ int run_merge(const MergeOptions& o) {
     for (std::size_t i = 0; i < by_index.size(); ++i) {
         const ShardData& d = *by_index[i];
         const Json& sh = d.header.at("shard");
+        if (d.stride != L.stride)
+            throw std::runtime_error("shard " + std::to_string(i) + ": records of " +
+                                     std::to_string(d.stride) + " numbers, the settings give " +
+                                     std::to_string(L.stride));
         if (sh.at("begin").get<std::size_t>() * L.stride != rec.size() ||
             (sh.at("end").get<std::size_t>() - sh.at("begin").get<std::size_t>()) * L.stride !=
                 d.rec.size())

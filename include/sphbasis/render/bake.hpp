@@ -36,6 +36,16 @@
 //                occludes, L_in is integrated by quadrature (hemisphere_rule(48)) instead of
 //                rays: exact for the environment's smooth part, approximate at the edge of a
 //                small cone or sphere light.
+//                irradiance_stderr (coeffs, max over R, G, B): the Monte Carlo standard error of
+//                that estimator. The fit is linear in the samples: e = M L_lm + (directional
+//                part), M = irr_map (coeffs x 64: least-squares projector times the clamped-cosine
+//                convolution), L_lm = (1/N) sum_j 2pi L_in(w_j) y_lm(w_j) (tangent frame), so
+//                e = (1/N) sum_j s_j with s_j,kc = 2pi L_in,c(w_j) (M y(w_j))_k, and
+//                irradiance_stderr_k = max_c sqrt(var_j(s_j,kc) / N), var with the N - 1
+//                denominator (samples with L_in = 0 count as s_j = 0). The directional lights
+//                (one deterministic shadow ray each) add no error; at points nothing occludes
+//                (quadrature, no rays) it is 0. Like ao_stderr it bounds the QMC error, which is
+//                usually smaller.
 //   transfer_matrix = the incident-transfer matrix of normal-mapped PRT (Sloan, Lehtinen and
 //                Kautz, the normal-mapping slides): the 3-band SH (world frame) of the incident
 //                radiance, L_in,i = sum_j M_ij l_j for distant radiance sum_j l_j y_j (bands
@@ -49,6 +59,10 @@
 //                sphere: r_i = 4pi/N sum L_in(w_j) y_i(w_j); directional lights add
 //                V(l) color y_i(l). `inside`: more than half the rays hit back faces
 //                (the side opposite a triangle's counter-clockwise normal).
+//                radiance_stderr (bands^2, max over R, G, B): sqrt(var_j(4pi L_in,c(w_j)
+//                y_i(w_j)) / N), var with the N - 1 denominator; directional lights (one shadow
+//                ray each) add no error, and with no geometry (quadrature and closed forms, no
+//                rays) it is 0.
 // Sampling: QMC (the R2 sequence of core/sampling.hpp), shifted per point by a Cranley-Patterson
 // rotation hashed from (seed, id) (render/detail/qmc.hpp: the shift in azimuth is applied as a
 // rotation of the tangent frame, so no trigonometry per ray); continuation directions of bounces
@@ -160,7 +174,9 @@ struct PointResult {
     std::vector<double> transfer_stderr;                // bands^2 (max over channels)
     bool transfer_rgb = false;  // false: the three channels are equal (print one list)
     std::array<std::vector<double>, 3> irradiance;  // R, G, B (coeffs each)
+    std::vector<double> irradiance_stderr;          // coeffs (max over channels)
     std::array<std::vector<double>, 3> radiance;    // R, G, B (bands^2 each)
+    std::vector<double> radiance_stderr;            // bands^2 (max over channels)
     /// R, G, B: 9 x bands^2, row-major (row i: incident coefficient i, column j: lighting j).
     std::array<std::vector<double>, 3> transfer_matrix;
     bool inside = false;  // the point is inside closed geometry (probes leak)
@@ -249,8 +265,8 @@ class Baker {
         std::size_t b = sizeof(PointResult);
         if (s.quantities & Quantity::visibility) b += 2 * n * d;
         if (s.quantities & Quantity::transfer) b += 4 * n * d;
-        if (s.quantities & Quantity::irradiance) b += 3 * std::size_t(std::max(s.coeffs, 0)) * d;
-        if (s.quantities & Quantity::radiance) b += 3 * n * d;
+        if (s.quantities & Quantity::irradiance) b += 4 * std::size_t(std::max(s.coeffs, 0)) * d;
+        if (s.quantities & Quantity::radiance) b += 4 * n * d;
         if (s.quantities & Quantity::transfer_matrix) b += 27 * n * d;
         return b;
     }
@@ -296,6 +312,9 @@ class Baker {
         std::vector<std::uint32_t> entry_sample;
         std::vector<detail::rt::V3> dirs, local;
         std::vector<char> va, vt;
+        // irradiance error: y(local_j), g_j = M y(local_j) (coefficient k's plane of stride
+        // rays) and L_in of the lit samples (R, G, B planes of stride rays)
+        std::vector<double> irr_y, irr_g, irr_l;
     };
     /// Exclusive pass timing: a Timer started inside another pauses the outer one, so nested
     /// work (the shadow rays of a bounce) counts for the inner pass only and the passes'
@@ -558,6 +577,10 @@ class Baker {
                     m(Eigen::Index(i), k) = constants::pi * a[l] * y[std::size_t(k)];
         }
         irr_map_ = irr_projector_ * m;  // coeffs x n: L_lm (local) -> fitted E
+        irr_map_rows_.resize(std::size_t(irr_map_.size()));
+        for (Eigen::Index k = 0; k < irr_map_.rows(); ++k)
+            for (Eigen::Index i = 0; i < n; ++i)
+                irr_map_rows_[std::size_t(k * n + i)] = irr_map_(k, i);
     }
     void prepare_quadrature() {
         // Hemisphere rule in the tangent frame (irradiance of unoccluded points) and sphere
@@ -669,6 +692,7 @@ class Baker {
                 if (l.type == Light::Type::directional && dot(l.direction, n) > 0)
                     dir.push_back({f.to_local(l.direction), l.color});
             finish_irradiance(Llm, dir, res);
+            res.irradiance_stderr.assign(std::size_t(settings_.coeffs), 0.0);
         }
     }
 
@@ -720,6 +744,7 @@ class Baker {
     void radiance_closed_form(const detail::rt::V3& p, PointResult& res) const {
         using namespace detail::rt;
         for (auto& v : res.radiance) v.assign(nsh(), 0.0);
+        res.radiance_stderr.assign(nsh(), 0.0);
         std::vector<double> y(nsh());
         if (env_.kind != Environment::Kind::none)
             for (std::size_t q = 0; q < sphere_rule_.size(); ++q) {
@@ -1272,12 +1297,23 @@ class Baker {
             const std::size_t n8 = std::size_t(irr_bands * irr_bands);
             std::array<std::vector<double>, 3> Llm;
             for (auto& v : Llm) v.assign(n8, 0.0);
-            std::vector<double> yy(n8);
+            // The basis values of the lit samples are kept (columns of L.irr_y) for the error.
+            const std::size_t nk = std::size_t(settings_.coeffs);
+            L.irr_y.resize(n8);
+            L.irr_l.resize(3 * N);
+            L.irr_g.resize(nk * N);
+            double* yy = L.irr_y.data();
+            std::size_t m = 0;
             for (std::size_t j = 0; j < N; ++j) {
                 if (Ls[j][0] == 0 && Ls[j][1] == 0 && Ls[j][2] == 0) continue;
-                sh::eval_unit(irr_bands, local[j].x, local[j].y, local[j].z, yy.data());
-                for (std::size_t c = 0; c < 3; ++c)
+                sh::eval_unit(irr_bands, local[j].x, local[j].y, local[j].z, yy);
+                for (std::size_t c = 0; c < 3; ++c) {
+                    L.irr_l[c * N + m] = Ls[j][c];
                     for (std::size_t k = 0; k < n8; ++k) Llm[c][k] += Ls[j][c] * yy[k];
+                }
+                for (std::size_t k = 0; k < nk; ++k)
+                    L.irr_g[k * N + m] = dot_lanes(&irr_map_rows_[k * n8], yy);
+                ++m;
             }
             for (auto& v : Llm)
                 for (double& x : v) x *= constants::two_pi / double(N);
@@ -1285,6 +1321,54 @@ class Baker {
             for (const auto& [light, visible] : directional_visibility(o, &n, L))
                 if (visible) dl.push_back({f.to_local(light->direction), light->color});
             finish_irradiance(Llm, dl, res);
+            irradiance_error(N, m, Llm, L, res.irradiance_stderr);
+        }
+    }
+
+    /// sum_i a[i] b[i] over the 64 coefficients of irr_bands, in 8 lanes (vectorises).
+    static double dot_lanes(const double* a, const double* b) noexcept {
+        constexpr std::size_t lanes = 8, n = std::size_t(irr_bands * irr_bands);
+        double acc[lanes] = {};
+        for (std::size_t i = 0; i < n; i += lanes)
+            for (std::size_t q = 0; q < lanes; ++q) acc[q] += a[i + q] * b[i + q];
+        return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+    }
+
+    /// irradiance_stderr (header comment) from the m lit samples of N: g_jk = (M y(w_j))_k
+    /// (L.irr_g), s_j,kc = 2pi L_jc g_jk (L.irr_l), about the mean M L_lm (two-pass variance
+    /// over all N samples, the unlit ones s = 0), in 8 independent lanes so that the sums
+    /// vectorise. Cost with the g_j: 64 coeffs + 3 coeffs multiply-adds per lit sample.
+    void irradiance_error(std::size_t N, std::size_t m,
+                          const std::array<std::vector<double>, 3>& Llm, Local& L,
+                          std::vector<double>& out) const {
+        const Eigen::Index K = irr_map_.rows();
+        out.assign(std::size_t(K), 0.0);
+        if (N < 2 || m == 0) return;
+        const double a = constants::two_pi, dn = double(N);
+        constexpr std::size_t lanes = 8;
+        for (std::size_t c = 0; c < 3; ++c) {
+            const Eigen::VectorXd mean = irr_map_ * Eigen::Map<const Eigen::VectorXd>(
+                                                        Llm[c].data(), Eigen::Index(Llm[c].size()));
+            const double* l = L.irr_l.data() + c * N;
+            for (Eigen::Index k = 0; k < K; ++k) {
+                const double* g = L.irr_g.data() + std::size_t(k) * N;
+                const double mu = mean(k);
+                double acc[lanes] = {};
+                std::size_t j = 0;
+                for (; j + lanes <= m; j += lanes)
+                    for (std::size_t q = 0; q < lanes; ++q) {
+                        const double d = a * l[j + q] * g[j + q] - mu;
+                        acc[q] += d * d;
+                    }
+                for (; j < m; ++j) {
+                    const double d = a * l[j] * g[j] - mu;
+                    acc[j % lanes] += d * d;
+                }
+                double ss = double(N - m) * mu * mu;
+                for (double x : acc) ss += x;
+                double& o = out[std::size_t(k)];
+                o = std::max(o, std::sqrt(ss / (dn - 1) / dn));
+            }
         }
     }
 
@@ -1369,7 +1453,7 @@ class Baker {
                 smp.push_back(std::uint32_t(j));
             }
         accumulate_sh(L, smp.size(), w, false, smp, N, constants::four_pi, true, res.radiance,
-                      nullptr);
+                      &res.radiance_stderr);
         std::vector<double> y(nsh());
         for (const auto& [light, visible] : directional_visibility(o, nullptr, L)) {
             if (!visible) continue;
@@ -1395,6 +1479,7 @@ class Baker {
     DirectionalRule irr_rule_, hemi_rule_, sphere_rule_;
     std::shared_ptr<const IrradianceFit> irr_fit_;
     Eigen::MatrixXd irr_projector_, irr_map_;
+    std::vector<double> irr_map_rows_;  // irr_map_, row-major
     detail::rt::QmcTable qmc_;
 };
 
