@@ -16,7 +16,7 @@ using namespace sphbasis::render;
 namespace {
 
 using V = vec3<double>;
-const double pi = 3.14159265358979323846;
+using sphbasis::constants::pi;
 
 double legendre(int l, double x) {
     double p0 = 1, p1 = x;

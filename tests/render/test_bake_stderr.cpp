@@ -17,7 +17,7 @@ using namespace sphbasis::render;
 
 namespace {
 
-const double pi = 3.14159265358979323846;
+using sphbasis::constants::pi;
 
 /// A smooth lat-long sky whose channels differ (64 x 32 texels).
 std::vector<float> gradient_sky() {
