@@ -26,6 +26,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <sphbasis/render/bake.hpp>
 #include <sphbasis/render/path_tracer.hpp>
@@ -282,8 +283,9 @@ BENCHMARK(transfer6)->Apply(args);
 
 // ---------------------------------------------------------------------------------------------
 // The path tracer (render/path_tracer.hpp) against a bare Embree loop of the same rays.
-//   trace/<threads>:     PathTracer::render of the procedural scene (constant sky and a sun,
-//                        2 bounces, 96 x 96 pixels, 8 samples per pixel, fixed), items = every
+//   trace/<threads>/<tile>: PathTracer::render of the procedural scene (constant sky and a sun,
+//                        2 bounces, 96 x 96 pixels, 8 samples per pixel, fixed; tiles of
+//                        8 x 8 or 16 x 16 pixels, the default), items = every
 //                        ray it traced (camera, bounce and shadow rays: TraceCounters::rays()).
 //   trace_bare/<threads>: the rays of one such render, recorded by PathTracer::record_rays and
 //                        replayed the way the tracer traces them: the same streams in the same
@@ -331,11 +333,18 @@ const TraceBench& trace_bench() {
     return t;
 }
 
+/// The bench's settings with the tile size of argument 1.
+TraceSettings trace_settings(const benchmark::State& state) {
+    TraceSettings s = trace_bench().settings;
+    s.tile = int(state.range(1));
+    return s;
+}
+
 void trace(benchmark::State& state) {
     const TraceBench& b = trace_bench();
     tbb::global_control gc(tbb::global_control::max_allowed_parallelism,
                            std::size_t(state.range(0)));
-    const PathTracer t(*b.scene, b.env, b.lights, b.settings);
+    const PathTracer t(*b.scene, b.env, b.lights, trace_settings(state));
     std::uint64_t rays = 0;
     for (auto _ : state) {
         const TraceResult r = t.render(b.camera);
@@ -354,11 +363,15 @@ struct TraceLog {
     std::size_t longest = 0;
 };
 
-const TraceLog& trace_log() {
-    static const TraceLog t = [] {
+const TraceLog& trace_log(const TraceSettings& settings) {
+    static std::map<int, TraceLog> logs;  // by tile size (benchmarks run one at a time)
+    const auto found = logs.find(settings.tile);
+    if (found != logs.end()) return found->second;
+    TraceLog& t = logs[settings.tile];
+    t = [&] {
         const TraceBench& b = trace_bench();
         TraceLog l;
-        PathTracer tracer(*b.scene, b.env, b.lights, b.settings);
+        PathTracer tracer(*b.scene, b.env, b.lights, settings);
         tracer.record_rays(&l.log);
         tracer.render(b.camera);
         for (std::size_t i = 0; i < l.log.size();) {
@@ -377,7 +390,7 @@ const TraceLog& trace_log() {
 /// measure what they cost the bare loop), traced the way the tracer traced it.
 void replay(benchmark::State& state, bool trace) {
     const TraceBench& b = trace_bench();
-    const TraceLog& tl = trace_log();
+    const TraceLog& tl = trace_log(trace_settings(state));
     const auto& log = tl.log;
     const auto& streams = tl.streams;
     tbb::global_control gc(tbb::global_control::max_allowed_parallelism,
@@ -439,8 +452,9 @@ void trace_bare(benchmark::State& state) { replay(state, true); }
 void trace_copies(benchmark::State& state) { replay(state, false); }
 
 void trace_args(benchmark::internal::Benchmark* b) {
-    b->ArgNames({"threads"});
-    for (int threads : {1, 2}) b->Args({threads});
+    b->ArgNames({"threads", "tile"});
+    for (int threads : {1, 2})
+        for (int tile : {8, 16}) b->Args({threads, tile});
     b->Unit(benchmark::kMillisecond)->UseRealTime();
 }
 
