@@ -405,47 +405,47 @@ void replay(benchmark::State& state, bool trace) {
     });
     std::atomic<std::uint64_t> hits{0};
     for (auto _ : state) {
-        tbb::parallel_for(
-            tbb::blocked_range<std::size_t>(0, streams.size(), 1),
-            [&](const tbb::blocked_range<std::size_t>& r) {
-                Buffers& buf = buffers.local();
-                std::uint64_t h = 0;
-                for (std::size_t s = r.begin(); s != r.end(); ++s) {
-                    const auto [i0, i1] = streams[s];
-                    const std::size_t n = i1 - i0;
-                    const PathTracer::RayRecord& head = log[i0];
-                    if (head.kind == 2) {
-                        RTCRay* occl = buf.occl.data();
-                        for (std::size_t i = 0; i < n; ++i) occl[i] = log[i0 + i].ray.ray;
-                        if (trace) rt.occluded(occl, n);
-                        h += std::uint64_t(Scene::is_occluded(occl[0]));
-                        continue;
-                    }
-                    RTCRayHit* work = buf.work.data();
-                    for (std::size_t i = 0; i < n; ++i) work[i] = log[i0 + i].ray;
-                    if (!trace) {
-                    } else if (!head.coherent) {
-                        rt.intersect(work, n);
-                    } else {
-                        RTCIntersectContext ctx;
-                        rtcInitIntersectContext(&ctx);
-                        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-                        for (std::size_t i = 0; i < n; i += 1024)
-                            rtcIntersect1M(rt.handle(), &ctx, work + i,
-                                           unsigned(std::min<std::size_t>(1024, n - i)),
-                                           sizeof(RTCRayHit));
-                    }
-                    h += std::uint64_t(work[0].hit.geomID != RTC_INVALID_GEOMETRY_ID);
-                }
-                hits += h;
-            });
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, streams.size(), 1),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              Buffers& buf = buffers.local();
+                              std::uint64_t h = 0;
+                              for (std::size_t s = r.begin(); s != r.end(); ++s) {
+                                  const auto [i0, i1] = streams[s];
+                                  const std::size_t n = i1 - i0;
+                                  const PathTracer::RayRecord& head = log[i0];
+                                  if (head.kind == 2) {
+                                      RTCRay* occl = buf.occl.data();
+                                      for (std::size_t i = 0; i < n; ++i)
+                                          occl[i] = log[i0 + i].ray.ray;
+                                      if (trace) rt.occluded(occl, n);
+                                      h += std::uint64_t(Scene::is_occluded(occl[0]));
+                                      continue;
+                                  }
+                                  RTCRayHit* work = buf.work.data();
+                                  for (std::size_t i = 0; i < n; ++i) work[i] = log[i0 + i].ray;
+                                  if (!trace) {
+                                  } else if (!head.coherent) {
+                                      rt.intersect(work, n);
+                                  } else {
+                                      RTCIntersectContext ctx;
+                                      rtcInitIntersectContext(&ctx);
+                                      ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+                                      for (std::size_t i = 0; i < n; i += 1024)
+                                          rtcIntersect1M(
+                                              rt.handle(), &ctx, work + i,
+                                              unsigned(std::min<std::size_t>(1024, n - i)),
+                                              sizeof(RTCRayHit));
+                                  }
+                                  h += std::uint64_t(work[0].hit.geomID != RTC_INVALID_GEOMETRY_ID);
+                              }
+                              hits += h;
+                          });
     }
     std::uint64_t total = hits.load();
     benchmark::DoNotOptimize(total);
     state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(log.size()));
     // The same rays as trace: its rays_per_path counter must equal this one.
-    state.counters["rays_per_path"] =
-        double(log.size()) / (96.0 * 96.0 * b.settings.spp_max);
+    state.counters["rays_per_path"] = double(log.size()) / (96.0 * 96.0 * b.settings.spp_max);
 }
 
 void trace_bare(benchmark::State& state) { replay(state, true); }

@@ -196,8 +196,8 @@ inline void cos_sin_turn(double v, double& c, double& s) noexcept {
     const double st =
         t * (1 + t2 * (-1.0 / 6 + t2 * (1.0 / 120 + t2 * (-1.0 / 5040 + t2 * (1.0 / 362880)))));
     const double ct =
-        1 + t2 * (-0.5 + t2 * (1.0 / 24 +
-                               t2 * (-1.0 / 720 + t2 * (1.0 / 40320 + t2 * (-1.0 / 3628800)))));
+        1 + t2 * (-0.5 +
+                  t2 * (1.0 / 24 + t2 * (-1.0 / 720 + t2 * (1.0 / 40320 + t2 * (-1.0 / 3628800)))));
     static constexpr double sign_c[4] = {1, -1, -1, 1}, sign_s[4] = {1, 1, -1, -1};
     const auto i = static_cast<std::size_t>(static_cast<int>(q) & 3);
     const double a[2] = {ct, st};
@@ -628,30 +628,30 @@ class PathTracer {
             sc.next_path.reserve(n);
         }
         std::size_t alive = 0;
-        detail::pt::prefetched(n, [&](std::size_t k, int stage) {
-            scene_.prefetch_hit(primary[k], stage);
-        }, [&](std::size_t k) {
-            PathState& P = sc.paths[k];
-            const V3 dir0{primary[k].ray.dir_x, primary[k].ray.dir_y, primary[k].ray.dir_z};
-            if (first) first[k] = First{};
-            P.h = scene_.shading_hit(primary[k]);
-            if (!P.h.valid) {
-                P.alive = false;
-                P.L = env_.radiance(normalized(dir0));
-                return;
-            }
-            P.alive = true;
-            ++alive;
-            P.L = {0, 0, 0};
-            P.beta = {1, 1, 1};
-            P.wo = -normalized(dir0);
-            P.key = mix64(detail::pt::hash_mixed(mixed[k], sample));
-            if (first) {
-                first[k].hit = true;
-                first[k].albedo = {P.h.albedo[0], P.h.albedo[1], P.h.albedo[2]};
-                first[k].position = P.h.position;
-            }
-        });
+        detail::pt::prefetched(
+            n, [&](std::size_t k, int stage) { scene_.prefetch_hit(primary[k], stage); },
+            [&](std::size_t k) {
+                PathState& P = sc.paths[k];
+                const V3 dir0{primary[k].ray.dir_x, primary[k].ray.dir_y, primary[k].ray.dir_z};
+                if (first) first[k] = First{};
+                P.h = scene_.shading_hit(primary[k]);
+                if (!P.h.valid) {
+                    P.alive = false;
+                    P.L = env_.radiance(normalized(dir0));
+                    return;
+                }
+                P.alive = true;
+                ++alive;
+                P.L = {0, 0, 0};
+                P.beta = {1, 1, 1};
+                P.wo = -normalized(dir0);
+                P.key = mix64(detail::pt::hash_mixed(mixed[k], sample));
+                if (first) {
+                    first[k].hit = true;
+                    first[k].albedo = {P.h.albedo[0], P.h.albedo[1], P.h.albedo[2]};
+                    first[k].position = P.h.position;
+                }
+            });
         const std::uint64_t stride = 8 + 2 * lights_.size();
         const int bounces = settings_.bounces;
         constexpr double inf = std::numeric_limits<double>::infinity();
@@ -842,14 +842,15 @@ class PathTracer {
             }
             // The next vertices, in a loop of their own (their loads overlap).
             if (more)
-                detail::pt::prefetched(sc.next.size(), [&](std::size_t j, int stage) {
-                    scene_.prefetch_hit(sc.next[j], stage);
-                }, [&](std::size_t j) {
-                    PathState& P = sc.paths[sc.next_path[j]];
-                    if (!P.alive) return;
-                    P.h = scene_.shading_hit(sc.next[j]);
-                    if (!P.h.valid) kill(P);
-                });
+                detail::pt::prefetched(
+                    sc.next.size(),
+                    [&](std::size_t j, int stage) { scene_.prefetch_hit(sc.next[j], stage); },
+                    [&](std::size_t j) {
+                        PathState& P = sc.paths[sc.next_path[j]];
+                        if (!P.alive) return;
+                        P.h = scene_.shading_hit(sc.next[j]);
+                        if (!P.h.valid) kill(P);
+                    });
         }
         for (std::size_t k = 0; k < n; ++k) L[k] = sc.paths[k].L;
     }

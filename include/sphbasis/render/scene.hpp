@@ -355,7 +355,6 @@ class Scene {
     }
 
   public:
-
     /// The normal-mapped shading normal at a hit: the normal map (bilinear, wrapping) decoded
     /// as 2c - 1 in the hit's tangent frame (tangent, bitangent, shading_normal), normalised.
     /// Without a normal map or UVs, or when the decoded vector is zero or not finite, the
