@@ -26,6 +26,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <sphbasis/render/bake.hpp>
 #include <sphbasis/render/path_tracer.hpp>
@@ -282,16 +283,21 @@ BENCHMARK(transfer6)->Apply(args);
 
 // ---------------------------------------------------------------------------------------------
 // The path tracer (render/path_tracer.hpp) against a bare Embree loop of the same rays.
-//   trace/<threads>:     PathTracer::render of the procedural scene (constant sky and a sun,
-//                        2 bounces, 96 x 96 pixels, 8 samples per pixel, fixed), items = every
+//   trace/<threads>/<tile>: PathTracer::render of the procedural scene (constant sky and a sun,
+//                        2 bounces, 96 x 96 pixels, 8 samples per pixel, fixed; tiles of
+//                        8 x 8 or 16 x 16 pixels, the default), items = every
 //                        ray it traced (camera, bounce and shadow rays: TraceCounters::rays()).
 //   trace_bare/<threads>: the rays of one such render, recorded by PathTracer::record_rays and
 //                        replayed the way the tracer traces them: the same streams in the same
 //                        order (a tile's camera rays as one coherent stream, then per path depth
 //                        its shadow rays as one rtcOccluded1M stream and its BRDF rays as one
 //                        rtcIntersect1M stream, or rtcOccluded1M at the last depth when no light
-//                        needs a hit distance), tbb::parallel_for over the streams.
-// The ratio of the two items_per_second is the tracer's efficiency (the goal is >= 70%).
+//                        needs a hit distance), tbb::parallel_for over the streams; each
+//                        stream is copied from the log into a per-thread buffer first.
+//   trace_copies/<threads>: trace_bare without the tracing (the copies from the log alone:
+//                        what the replay costs beyond Embree; the tracer builds its rays).
+// The ratio of trace's and trace_bare's items_per_second is the tracer's efficiency (the goal
+// is >= 70%); both report rays_per_path, equal when they trace the same rays.
 
 namespace {
 
@@ -327,11 +333,18 @@ const TraceBench& trace_bench() {
     return t;
 }
 
+/// The bench's settings with the tile size of argument 1.
+TraceSettings trace_settings(const benchmark::State& state) {
+    TraceSettings s = trace_bench().settings;
+    s.tile = int(state.range(1));
+    return s;
+}
+
 void trace(benchmark::State& state) {
     const TraceBench& b = trace_bench();
     tbb::global_control gc(tbb::global_control::max_allowed_parallelism,
                            std::size_t(state.range(0)));
-    const PathTracer t(*b.scene, b.env, b.lights, b.settings);
+    const PathTracer t(*b.scene, b.env, b.lights, trace_settings(state));
     std::uint64_t rays = 0;
     for (auto _ : state) {
         const TraceResult r = t.render(b.camera);
@@ -343,68 +356,111 @@ void trace(benchmark::State& state) {
         double(rays) / (double(state.iterations()) * 96 * 96 * b.settings.spp_max);
 }
 
-void trace_bare(benchmark::State& state) {
-    const TraceBench& b = trace_bench();
-    static const std::vector<PathTracer::RayRecord> log = [&] {
-        std::vector<PathTracer::RayRecord> l;
-        PathTracer t(*b.scene, b.env, b.lights, b.settings);
-        t.record_rays(&l);
-        t.render(b.camera);
+/// The rays of one trace render, as trace_bare replays them (recorded once).
+struct TraceLog {
+    std::vector<PathTracer::RayRecord> log;
+    std::vector<std::pair<std::size_t, std::size_t>> streams;  // [begin, end) of the log
+    std::size_t longest = 0;
+};
+
+const TraceLog& trace_log(const TraceSettings& settings) {
+    static std::map<int, TraceLog> logs;  // by tile size (benchmarks run one at a time)
+    const auto found = logs.find(settings.tile);
+    if (found != logs.end()) return found->second;
+    TraceLog& t = logs[settings.tile];
+    t = [&] {
+        const TraceBench& b = trace_bench();
+        TraceLog l;
+        PathTracer tracer(*b.scene, b.env, b.lights, settings);
+        tracer.record_rays(&l.log);
+        tracer.render(b.camera);
+        for (std::size_t i = 0; i < l.log.size();) {
+            const std::size_t n = std::max<std::uint32_t>(1, l.log[i].stream);
+            l.streams.emplace_back(i, i + n);
+            l.longest = std::max(l.longest, n);
+            i += n;
+        }
         return l;
     }();
-    // The streams: [begin, end) of the log.
-    static const std::vector<std::pair<std::size_t, std::size_t>> streams = [] {
-        std::vector<std::pair<std::size_t, std::size_t>> s;
-        for (std::size_t i = 0; i < log.size(); i += std::max<std::uint32_t>(1, log[i].stream))
-            s.emplace_back(i, i + std::max<std::uint32_t>(1, log[i].stream));
-        return s;
-    }();
+    return t;
+}
+
+/// Replays the log: each stream is copied from the log into a per-thread buffer (as the tracer
+/// builds each stream in its per-tile buffers) and, when `trace` (false: the copies alone, to
+/// measure what they cost the bare loop), traced the way the tracer traced it.
+void replay(benchmark::State& state, bool trace) {
+    const TraceBench& b = trace_bench();
+    const TraceLog& tl = trace_log(trace_settings(state));
+    const auto& log = tl.log;
+    const auto& streams = tl.streams;
     tbb::global_control gc(tbb::global_control::max_allowed_parallelism,
                            std::size_t(state.range(0)));
     const Scene& rt = *b.scene;
-    std::vector<RTCRayHit> work(log.size());
-    std::vector<RTCRay> occl(log.size());
-    std::uint64_t hits = 0;
+    struct Buffers {
+        std::vector<RTCRayHit> work;
+        std::vector<RTCRay> occl;
+    };
+    tbb::enumerable_thread_specific<Buffers> buffers([&] {
+        return Buffers{std::vector<RTCRayHit>(tl.longest), std::vector<RTCRay>(tl.longest)};
+    });
+    std::atomic<std::uint64_t> hits{0};
     for (auto _ : state) {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, streams.size(), 1),
                           [&](const tbb::blocked_range<std::size_t>& r) {
+                              Buffers& buf = buffers.local();
+                              std::uint64_t h = 0;
                               for (std::size_t s = r.begin(); s != r.end(); ++s) {
                                   const auto [i0, i1] = streams[s];
+                                  const std::size_t n = i1 - i0;
                                   const PathTracer::RayRecord& head = log[i0];
                                   if (head.kind == 2) {
-                                      for (std::size_t i = i0; i < i1; ++i)
-                                          occl[i] = log[i].ray.ray;
-                                      rt.occluded(&occl[i0], i1 - i0);
+                                      RTCRay* occl = buf.occl.data();
+                                      for (std::size_t i = 0; i < n; ++i)
+                                          occl[i] = log[i0 + i].ray.ray;
+                                      if (trace) rt.occluded(occl, n);
+                                      h += std::uint64_t(Scene::is_occluded(occl[0]));
                                       continue;
                                   }
-                                  for (std::size_t i = i0; i < i1; ++i) work[i] = log[i].ray;
-                                  if (!head.coherent) {
-                                      rt.intersect(&work[i0], i1 - i0);
-                                      continue;
+                                  RTCRayHit* work = buf.work.data();
+                                  for (std::size_t i = 0; i < n; ++i) work[i] = log[i0 + i].ray;
+                                  if (!trace) {
+                                  } else if (!head.coherent) {
+                                      rt.intersect(work, n);
+                                  } else {
+                                      RTCIntersectContext ctx;
+                                      rtcInitIntersectContext(&ctx);
+                                      ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+                                      for (std::size_t i = 0; i < n; i += 1024)
+                                          rtcIntersect1M(
+                                              rt.handle(), &ctx, work + i,
+                                              unsigned(std::min<std::size_t>(1024, n - i)),
+                                              sizeof(RTCRayHit));
                                   }
-                                  RTCIntersectContext ctx;
-                                  rtcInitIntersectContext(&ctx);
-                                  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-                                  for (std::size_t i = i0; i < i1; i += 1024)
-                                      rtcIntersect1M(rt.handle(), &ctx, &work[i],
-                                                     unsigned(std::min<std::size_t>(1024, i1 - i)),
-                                                     sizeof(RTCRayHit));
+                                  h += std::uint64_t(work[0].hit.geomID != RTC_INVALID_GEOMETRY_ID);
                               }
+                              hits += h;
                           });
-        hits += std::size_t(work[0].hit.geomID != RTC_INVALID_GEOMETRY_ID);
     }
-    benchmark::DoNotOptimize(hits);
+    std::uint64_t total = hits.load();
+    benchmark::DoNotOptimize(total);
     state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(log.size()));
+    // The same rays as trace: its rays_per_path counter must equal this one.
+    state.counters["rays_per_path"] = double(log.size()) / (96.0 * 96.0 * b.settings.spp_max);
 }
 
+void trace_bare(benchmark::State& state) { replay(state, true); }
+void trace_copies(benchmark::State& state) { replay(state, false); }
+
 void trace_args(benchmark::internal::Benchmark* b) {
-    b->ArgNames({"threads"});
-    for (int threads : {1, 2}) b->Args({threads});
+    b->ArgNames({"threads", "tile"});
+    for (int threads : {1, 2})
+        for (int tile : {8, 16}) b->Args({threads, tile});
     b->Unit(benchmark::kMillisecond)->UseRealTime();
 }
 
 BENCHMARK(trace_bare)->Apply(trace_args);
 BENCHMARK(trace)->Apply(trace_args);
+BENCHMARK(trace_copies)->Apply(trace_args);
 
 }  // namespace
 

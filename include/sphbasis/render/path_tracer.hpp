@@ -50,7 +50,11 @@
 //     queries at the last vertex when no non-delta light needs the hit distance), and each
 //     path then adds its contributions in the order above. Camera rays are one coherent stream
 //     per tile (RTC_INTERSECT_CONTEXT_FLAG_COHERENT: Embree traces them as packets). Buffers
-//     are per tile, reused across samples.
+//     are per tile, reused across samples. Hit records (Scene::shading_hit: no tangent frame
+//     without a normal map) are made with their triangles' data prefetched a few hits ahead
+//     (Scene::prefetch_hit).
+//   * Cosine-lobe BRDF samples take the azimuth's cosine and sine from a polynomial
+//     (detail::pt::cos_sin_turn, within 2e-9 of libm's, far below any estimate's noise).
 //   * Unbounded paths (bounces < 0): Russian roulette at every vertex from the fourth on.
 //   * No emitter at all (no environment, no lights): surfaces are black and no secondary ray
 //     is traced.
@@ -166,6 +170,49 @@ std::pair<int, int> count_materials(const S& scene) {
     }
 }
 
+/// body(k) for k in [0, n), with prefetch(k, stage) issued ahead of it: stage 0 at k + 2 d,
+/// stage 1 (which reads what stage 0 fetched) at k + d, d = 8 (about a memory latency of
+/// hit-record work): Scene::prefetch_hit's two stages, software-pipelined.
+template <class Prefetch, class Body>
+void prefetched(std::size_t n, Prefetch&& prefetch, Body&& body) {
+    constexpr std::size_t d = 8;
+    for (std::size_t k = 0; k < std::min(n, 2 * d); ++k) prefetch(k, 0);
+    for (std::size_t k = 0; k < std::min(n, d); ++k) prefetch(k, 1);
+    for (std::size_t k = 0; k < n; ++k) {
+        if (k + 2 * d < n) prefetch(k + 2 * d, 0);
+        if (k + d < n) prefetch(k + d, 1);
+        body(k);
+    }
+}
+
+/// cos(2 pi v) and sin(2 pi v) for v in [0, 1], within 2e-9: the octant reduction
+/// q = floor(4 v + 1/2), theta = 2 pi (v - q / 4) in [-pi/4, pi/4], Taylor polynomials (sin to
+/// theta^9: error below (pi/4)^11 / 11! = 1.8e-9; cos to theta^10: below 1.2e-10), then a
+/// rotation by q quarter turns, without branches (q is random: a branch would mispredict).
+/// libm's sincos was 4-5% of the tracer's time.
+inline void cos_sin_turn(double v, double& c, double& s) noexcept {
+    const double q = std::floor(4 * v + 0.5);
+    const double t = constants::two_pi * (v - 0.25 * q), t2 = t * t;
+    const double st =
+        t * (1 + t2 * (-1.0 / 6 + t2 * (1.0 / 120 + t2 * (-1.0 / 5040 + t2 * (1.0 / 362880)))));
+    const double ct =
+        1 + t2 * (-0.5 +
+                  t2 * (1.0 / 24 + t2 * (-1.0 / 720 + t2 * (1.0 / 40320 + t2 * (-1.0 / 3628800)))));
+    static constexpr double sign_c[4] = {1, -1, -1, 1}, sign_s[4] = {1, 1, -1, -1};
+    const auto i = static_cast<std::size_t>(static_cast<int>(q) & 3);
+    const double a[2] = {ct, st};
+    c = sign_c[i] * a[i & 1];
+    s = sign_s[i] * a[(i & 1) ^ 1];
+}
+
+/// square_to_cosine_hemisphere (core/sampling.hpp) with cos_sin_turn for the azimuth.
+inline V3 cosine_hemisphere(double u, double v) noexcept {
+    const double r = std::sqrt(u);
+    double c, s;
+    cos_sin_turn(v, c, s);
+    return {r * c, r * s, std::sqrt(std::fmax(0.0, 1 - u))};
+}
+
 /// Diffuse plus (shininess > 0 only) the energy-normalised Blinn-Phong lobe.
 struct Bsdf {
     RGB albedo{0, 0, 0}, ks{0, 0, 0};
@@ -223,7 +270,7 @@ struct Bsdf {
             const V3 h = f.to_world(V3{st * std::cos(phi), st * std::sin(phi), ct});
             return normalized(h * (2 * dot(wo, h)) - wo, n);
         }
-        return normalized(f.to_world(square_to_cosine_hemisphere(u1, u2)), n);
+        return normalized(f.to_world(cosine_hemisphere(u1, u2)), n);
     }
 };
 
@@ -581,28 +628,30 @@ class PathTracer {
             sc.next_path.reserve(n);
         }
         std::size_t alive = 0;
-        for (std::size_t k = 0; k < n; ++k) {
-            PathState& P = sc.paths[k];
-            const V3 dir0{primary[k].ray.dir_x, primary[k].ray.dir_y, primary[k].ray.dir_z};
-            if (first) first[k] = First{};
-            P.h = scene_.hit(primary[k]);
-            if (!P.h.valid) {
-                P.alive = false;
-                P.L = env_.radiance(normalized(dir0));
-                continue;
-            }
-            P.alive = true;
-            ++alive;
-            P.L = {0, 0, 0};
-            P.beta = {1, 1, 1};
-            P.wo = -normalized(dir0);
-            P.key = mix64(detail::pt::hash_mixed(mixed[k], sample));
-            if (first) {
-                first[k].hit = true;
-                first[k].albedo = {P.h.albedo[0], P.h.albedo[1], P.h.albedo[2]};
-                first[k].position = P.h.position;
-            }
-        }
+        detail::pt::prefetched(
+            n, [&](std::size_t k, int stage) { scene_.prefetch_hit(primary[k], stage); },
+            [&](std::size_t k) {
+                PathState& P = sc.paths[k];
+                const V3 dir0{primary[k].ray.dir_x, primary[k].ray.dir_y, primary[k].ray.dir_z};
+                if (first) first[k] = First{};
+                P.h = scene_.shading_hit(primary[k]);
+                if (!P.h.valid) {
+                    P.alive = false;
+                    P.L = env_.radiance(normalized(dir0));
+                    return;
+                }
+                P.alive = true;
+                ++alive;
+                P.L = {0, 0, 0};
+                P.beta = {1, 1, 1};
+                P.wo = -normalized(dir0);
+                P.key = mix64(detail::pt::hash_mixed(mixed[k], sample));
+                if (first) {
+                    first[k].hit = true;
+                    first[k].albedo = {P.h.albedo[0], P.h.albedo[1], P.h.albedo[2]};
+                    first[k].position = P.h.position;
+                }
+            });
         const std::uint64_t stride = 8 + 2 * lights_.size();
         const int bounces = settings_.bounces;
         constexpr double inf = std::numeric_limits<double>::infinity();
@@ -792,12 +841,16 @@ class PathTracer {
                 P.wo = -wi;
             }
             // The next vertices, in a loop of their own (their loads overlap).
-            for (std::size_t j = 0; j < sc.next.size(); ++j) {
-                PathState& P = sc.paths[sc.next_path[j]];
-                if (!P.alive) continue;
-                P.h = scene_.hit(sc.next[j]);
-                if (!P.h.valid) kill(P);
-            }
+            if (more)
+                detail::pt::prefetched(
+                    sc.next.size(),
+                    [&](std::size_t j, int stage) { scene_.prefetch_hit(sc.next[j], stage); },
+                    [&](std::size_t j) {
+                        PathState& P = sc.paths[sc.next_path[j]];
+                        if (!P.alive) return;
+                        P.h = scene_.shading_hit(sc.next[j]);
+                        if (!P.h.valid) kill(P);
+                    });
         }
         for (std::size_t k = 0; k < n; ++k) L[k] = sc.paths[k].L;
     }
