@@ -63,6 +63,14 @@ std::vector<std::array<float, 4>> quaternions() {
     return q;
 }
 
+/// The rotation matrices of quaternions().
+std::vector<sh::Mat3<float>> matrices() {
+    std::vector<sh::Mat3<float>> m;
+    for (const auto& v : quaternions())
+        m.push_back(sh::matrix_from_quaternion(v[0], v[1], v[2], v[3]));
+    return m;
+}
+
 std::vector<sphbasis::vec3<float>> directions() {
     std::mt19937 rng(2);
     std::normal_distribution<float> g;
@@ -98,9 +106,7 @@ void rotation_build_apply(benchmark::State& st) {
 /// kCount precomputed matrices (at N <= 8: the checks, then rotate<N>; D never formed).
 template <int N>
 void rotation_from_matrix_apply(benchmark::State& st) {
-    std::vector<sh::Mat3<float>> m;
-    for (const auto& v : quaternions())
-        m.push_back(sh::matrix_from_quaternion(v[0], v[1], v[2], v[3]));
+    const std::vector<sh::Mat3<float>> m = matrices();
     std::vector<float> in(N * N, 0.5f), out(N * N);
     for (auto _ : st) {
         for (const auto& r : m) {
@@ -116,9 +122,7 @@ void rotation_from_matrix_apply(benchmark::State& st) {
 /// precomputed matrices; compare with fixed_rotate<N> (no checks) for the cost of the checks.
 template <int N>
 void rotate_matrix(benchmark::State& st) {
-    std::vector<sh::Mat3<float>> m;
-    for (const auto& v : quaternions())
-        m.push_back(sh::matrix_from_quaternion(v[0], v[1], v[2], v[3]));
+    const std::vector<sh::Mat3<float>> m = matrices();
     std::vector<float> in(N * N, 0.5f), out(N * N);
     for (auto _ : st) {
         for (const auto& r : m) {
@@ -133,9 +137,7 @@ void rotate_matrix(benchmark::State& st) {
 /// points (Fast) against the generic loop of core/frame.hpp.
 template <bool Fast>
 void orthonormal_check(benchmark::State& st) {
-    std::vector<sh::Mat3<float>> m;
-    for (const auto& v : quaternions())
-        m.push_back(sh::matrix_from_quaternion(v[0], v[1], v[2], v[3]));
+    const std::vector<sh::Mat3<float>> m = matrices();
     const float tol = sphbasis::detail::default_orthonormal_tolerance<float>();
     for (auto _ : st) {
         for (const auto& r : m) {
@@ -194,9 +196,7 @@ void fixed_rotation_build_apply(benchmark::State& st) {
 /// sh::rotate<N> of N^2 coefficients of type C (all `fill`) by kCount precomputed matrices.
 template <int N, class C>
 void fixed_rotate_of(benchmark::State& st, const C& fill) {
-    std::vector<sh::Mat3<float>> m;
-    for (const auto& v : quaternions())
-        m.push_back(sh::matrix_from_quaternion(v[0], v[1], v[2], v[3]));
+    const std::vector<sh::Mat3<float>> m = matrices();
     std::vector<C> in(N * N, fill), out(N * N);
     for (auto _ : st) {
         for (const auto& r : m) {
