@@ -92,6 +92,42 @@ inline int bands_of_count(int n) noexcept {
 
 namespace detail {
 
+/// Calls f(std::integral_constant<int, N>{}) for N = bands in 1..max_fixed_bands and returns
+/// true, else returns false: the run-time entry points' dispatch to their compile-time-band
+/// forms (the lights, rotation).
+template <class F>
+SPHBASIS_FORCEINLINE bool with_fixed_bands(int bands, F&& f) {
+    switch (bands) {
+        case 1:
+            f(std::integral_constant<int, 1>{});
+            return true;
+        case 2:
+            f(std::integral_constant<int, 2>{});
+            return true;
+        case 3:
+            f(std::integral_constant<int, 3>{});
+            return true;
+        case 4:
+            f(std::integral_constant<int, 4>{});
+            return true;
+        case 5:
+            f(std::integral_constant<int, 5>{});
+            return true;
+        case 6:
+            f(std::integral_constant<int, 6>{});
+            return true;
+        case 7:
+            f(std::integral_constant<int, 7>{});
+            return true;
+        case 8:
+            f(std::integral_constant<int, 8>{});
+            return true;
+        default:
+            return false;
+    }
+}
+static_assert(max_fixed_bands == 8, "with_fixed_bands covers the generated kernels' 1..8 bands");
+
 /// Band count at or below which the row recurrence on Q_l^m is used. Q_l^m = Pbar_l^m/sin^m
 /// stays below 1e13 here, so it cannot overflow even in float.
 inline constexpr int max_row_bands = 64;

@@ -259,47 +259,13 @@ SPHBASIS_FORCEINLINE void cap_light_fixed(E x, E y, E z, E u, const C& radiance,
         x, y, z, [&](int l) { return radiance * static_cast<S>(f[l]); }, out);
 }
 
-/// Calls f(std::integral_constant<int, N>{}) for 1 <= N = bands <= 8 and returns true, else
-/// returns false: the run-time lights' dispatch to the fixed-band forms.
-template <class F>
-SPHBASIS_FORCEINLINE bool with_light_bands(int bands, F&& f) {
-    switch (bands) {
-        case 1:
-            f(std::integral_constant<int, 1>{});
-            return true;
-        case 2:
-            f(std::integral_constant<int, 2>{});
-            return true;
-        case 3:
-            f(std::integral_constant<int, 3>{});
-            return true;
-        case 4:
-            f(std::integral_constant<int, 4>{});
-            return true;
-        case 5:
-            f(std::integral_constant<int, 5>{});
-            return true;
-        case 6:
-            f(std::integral_constant<int, 6>{});
-            return true;
-        case 7:
-            f(std::integral_constant<int, 7>{});
-            return true;
-        case 8:
-            f(std::integral_constant<int, 8>{});
-            return true;
-        default:
-            return false;
-    }
-}
-
 /// The run-time cap lights for 1..8 bands after their checks: cap_light_fixed with u given in
 /// double (computed there without cancellation), in the coefficient's evaluation type.
 template <class T, class U, class C>
 SPHBASIS_FORCEINLINE bool cap_light_dispatch(int bands, T x, T y, T z, U u, const C& radiance,
                                              C* out) {
     using E = light_eval_t<C>;
-    return with_light_bands(bands, [&](auto n) {
+    return with_fixed_bands(bands, [&](auto n) {
         cap_light_fixed<decltype(n)::value>(static_cast<E>(x), static_cast<E>(y), static_cast<E>(z),
                                             static_cast<E>(u), radiance, out);
     });
@@ -416,7 +382,7 @@ template <class T, class C, class C0 = C>
 void directional_light(int bands, T x, T y, T z, const C0& irradiance_in, C* out) {
     const C irradiance = detail::light_colour<C>(irradiance_in);
     detail::check_light(bands, x, y, z, out, "sh::directional_light");
-    if (detail::with_light_bands(bands, [&](auto n) {
+    if (detail::with_fixed_bands(bands, [&](auto n) {
             directional_light<decltype(n)::value>(x, y, z, irradiance, out);
         }))
         return;
@@ -528,7 +494,7 @@ void hemisphere_light(int bands, T x, T y, T z, const C0& sky_in, const C1& grou
     const C sky = detail::light_colour<C>(sky_in);
     const C ground = detail::light_colour<C>(ground_in);
     detail::check_light(bands, x, y, z, out, "sh::hemisphere_light");
-    if (detail::with_light_bands(bands, [&](auto n) {
+    if (detail::with_fixed_bands(bands, [&](auto n) {
             hemisphere_light<decltype(n)::value>(x, y, z, sky, ground, out);
         }))
         return;

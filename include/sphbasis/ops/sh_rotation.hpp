@@ -449,35 +449,10 @@ namespace detail {
 /// rotate<bands>(r, in, out) for bands in 1..max_fixed_rotation_bands (a run-time switch).
 template <class T, class C>
 void rotate_fixed_dispatch(int bands, const Mat3<T>& r, const C* in, C* out) noexcept {
-    switch (bands) {
-        case 1:
-            sh::rotate<1, T, C>(r, in, out);
-            return;
-        case 2:
-            sh::rotate<2, T, C>(r, in, out);
-            return;
-        case 3:
-            sh::rotate<3, T, C>(r, in, out);
-            return;
-        case 4:
-            sh::rotate<4, T, C>(r, in, out);
-            return;
-        case 5:
-            sh::rotate<5, T, C>(r, in, out);
-            return;
-        case 6:
-            sh::rotate<6, T, C>(r, in, out);
-            return;
-        case 7:
-            sh::rotate<7, T, C>(r, in, out);
-            return;
-        case 8:
-            sh::rotate<8, T, C>(r, in, out);
-            return;
-        default:
-            SPHBASIS_ASSERT(false);
-            return;
-    }
+    const bool done =
+        with_fixed_bands(bands, [&](auto n) { sh::rotate<decltype(n)::value, T, C>(r, in, out); });
+    SPHBASIS_ASSERT(done);
+    (void)done;
 }
 
 /// True when every entry of R is finite and max |R R^T - I| <= tol, as straight-line code (the
