@@ -73,8 +73,8 @@ sphbasis_bake_bad(merge_not_a_shard "[^ ]*lone_sphere.json: not a shard file" ba
 # against their closed forms (check_bake_points.py documents them).
 sphbasis_bake_test(points_closed_form "points-closed-form-ok 5"
   "printf '0 0 0 0 0 1\\n0.5 0 0 0 0 2\\n1 1 0 0 0 1\\n-2 0.5 0 0 0 1\\n4 0 0 0 0 1\\n' | \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --points - --quantities ao,bent --rays 4096 --seed 3 | python3 ${_check_points} 2 1")
-# The output line format: exactly these keys in this order, "n" echoed as given (only for a
-# surface point), 17 significant digits.
+# The output line format: exactly these keys in this order (each quantity followed by its
+# standard error), "n" echoed as given (only for a surface point), 17 significant digits.
 sphbasis_bake_test(points_format "\\{\"p\":\\[0.5,0,0\\],\"n\":\\[0,0,2\\],\"ao\":.*\n\\{\"p\":\\[1,0,0\\],\"n\":\\[0,0,1\\],\"ao\":.*points-format-ok 2"
   "printf '0.5 0 0 0 0 2\\n1 0 0 0 0 1\\n' | \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --points - --quantities ao,bent,visibility,transfer --bands 3 --rays 64 | tee bake_points_format.txt && python3 ${_check_points} format 3 < bake_points_format.txt")
 # A free point (x y z): no "n"; radiance as three lists (R, G, B), its standard error (one list)
@@ -90,10 +90,10 @@ sphbasis_bake_test(stderr_channels "stderr-channels-ok"
   "rm -rf bake_se && \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --quantities irradiance,radiance --basis hbasis --coeffs 4 --bands 2 --rays 16 --out bake_se && grep -a -q 'property float irr_stderr_3' bake_se/ground.ply && grep -a -q 'property float rad_stderr_3' bake_se/ball.ply && grep -q '\"irr_stderr_0\"' bake_se/bake.json && grep -q '\"rad_stderr_3\"' bake_se/bake.json && echo stderr-channels-ok")
 # Vertex bake: one PLY per mesh with the documented properties, and the summary with a plan.
 sphbasis_bake_test(vertices_files "vertices-ok"
-  "rm -rf bake_v && \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --quantities ao,bent,visibility --rays 32 --out bake_v && grep -a -q 'property float ao_stderr' bake_v/ground.ply && grep -a -q 'property float vis_8' bake_v/ball.ply && grep -a -q 'property float bent_z' bake_v/ball.ply && grep -q '\"plan\":\\[' bake_v/bake.json && grep -q '\"reason\":' bake_v/bake.json && ! ls -a bake_v | grep -q tmp && echo vertices-ok")
+  "rm -rf bake_v && \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --quantities ao,bent,visibility --rays 32 --out bake_v && grep -a -q 'property float ao_stderr' bake_v/ground.ply && grep -a -q 'property float vis_8' bake_v/ball.ply && grep -a -q 'property float bent_z' bake_v/ball.ply && grep -a -q 'property float bent_stderr' bake_v/ball.ply && grep -q '\"plan\":\\[' bake_v/bake.json && grep -q '\"reason\":' bake_v/bake.json && ! ls -a bake_v | grep -q tmp && echo vertices-ok")
 # Texel bake: a multi-channel EXR per mesh (the OBJ mesh and the procedural floor).
 sphbasis_bake_test(texels_files "texels-ok"
-  "rm -rf bake_t && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:32 --quantities ao,transfer --bands 2 --rays 32 --out bake_t && test -s bake_t/mesh0.exr && test -s bake_t/floor.exr && grep -q '\"coverage\"' bake_t/bake.json && grep -q '\"transfer_stderr_3\"' bake_t/bake.json && echo texels-ok")
+  "rm -rf bake_t && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:32 --quantities ao,bent,transfer --bands 2 --rays 32 --out bake_t && test -s bake_t/mesh0.exr && test -s bake_t/floor.exr && grep -q '\"coverage\"' bake_t/bake.json && grep -q '\"transfer_stderr_3\"' bake_t/bake.json && grep -q '\"bent_stderr\"' bake_t/bake.json && grep -a -q 'bent_stderr' bake_t/floor.exr && echo texels-ok")
 # Probes: the grid around a lone sphere; the centre probe is inside it.
 sphbasis_bake_test(probes_file "probes-ok"
   "rm -rf bake_p && \"${_bake}\" bake ${_scenes}/lone_sphere.json --target probes --quantities radiance --bands 2 --rays 64 --out bake_p && grep -q '\"index\":13,\"p\":\\[0,0,0\\],\"inside\":true' bake_p/probes.json && echo probes-ok")
@@ -102,10 +102,10 @@ sphbasis_bake_test(shard_merge_vertices "shard-vertices-ok"
   "rm -rf bake_s1 bake_sh bake_sm && \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --quantities ao,bent,transfer --bands 3 --rays 64 --seed 5 --out bake_s1 && printf '0/2\\n1/2\\n' | xargs -P 2 -I{} \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --quantities ao,bent,transfer --bands 3 --rays 64 --seed 5 --out bake_sh --shard {} && \"${_bake}\" bake-merge bake_sh/bake.shard-0-of-2.bin bake_sh/bake.shard-1-of-2.bin --out bake_sm && cmp bake_s1/ground.ply bake_sm/ground.ply && cmp bake_s1/ball.ply bake_sm/ball.ply && echo shard-vertices-ok")
 sphbasis_bake_test(shard_merge_texels "shard-texels-ok"
   "rm -rf bake_t1 bake_th bake_tm && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:16 --quantities ao,irradiance --basis hbasis --coeffs 6 --rays 64 --out bake_t1 && printf '0/2\\n1/2\\n' | xargs -P 2 -I{} \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:16 --quantities ao,irradiance --basis hbasis --coeffs 6 --rays 64 --out bake_th --shard {} && \"${_bake}\" bake-merge bake_th/bake.shard-1-of-2.bin bake_th/bake.shard-0-of-2.bin --out bake_tm && cmp bake_t1/mesh0.exr bake_tm/mesh0.exr && cmp bake_t1/floor.exr bake_tm/floor.exr && echo shard-texels-ok")
-# A shard of an older record layout (record_format 1: no irradiance/radiance errors) is refused
-# with a message, not misread.
-sphbasis_bake_test(merge_old_record_format "bake-merge: .*bake.shard-0-of-2.bin: a shard of record format 1, this sphbasis reads format 2"
-  "rm -rf bake_of && \"${_bake}\" bake ${_scenes}/lone_sphere.json --rays 16 --out bake_of --shard 0/2 && \"${_bake}\" bake ${_scenes}/lone_sphere.json --rays 16 --out bake_of --shard 1/2 && python3 -c \"import sys; p=sys.argv[1]; b=open(p,'rb').read(); assert b.count(b'\\\"record_format\\\":2')==1; open(p,'wb').write(b.replace(b'\\\"record_format\\\":2', b'\\\"record_format\\\":1'))\" bake_of/bake.shard-0-of-2.bin && ! \"${_bake}\" bake-merge bake_of/bake.shard-0-of-2.bin bake_of/bake.shard-1-of-2.bin --out bake_of/m 2>&1")
+# A shard of an older record layout (record_format 2: no bent_stderr; 1: no irradiance/radiance
+# errors either) is refused with a message, not misread.
+sphbasis_bake_test(merge_old_record_format "bake-merge: .*bake.shard-0-of-2.bin: a shard of record format 2, this sphbasis reads format 3"
+  "rm -rf bake_of && \"${_bake}\" bake ${_scenes}/lone_sphere.json --rays 16 --out bake_of --shard 0/2 && \"${_bake}\" bake ${_scenes}/lone_sphere.json --rays 16 --out bake_of --shard 1/2 && python3 -c \"import sys; p=sys.argv[1]; b=open(p,'rb').read(); assert b.count(b'\\\"record_format\\\":3')==1; open(p,'wb').write(b.replace(b'\\\"record_format\\\":3', b'\\\"record_format\\\":2'))\" bake_of/bake.shard-0-of-2.bin && ! \"${_bake}\" bake-merge bake_of/bake.shard-0-of-2.bin bake_of/bake.shard-1-of-2.bin --out bake_of/m 2>&1")
 # A missing shard is an error, not a partial file.
 sphbasis_bake_test(merge_missing_shard "missing-shard-ok"
   "rm -rf bake_ms && \"${_bake}\" bake ${_scenes}/lone_sphere.json --rays 16 --out bake_ms --shard 0/3 && ! \"${_bake}\" bake-merge bake_ms/bake.shard-0-of-3.bin --out bake_ms/merged 2>/dev/null && ! test -e bake_ms/merged/mesh0.ply && echo missing-shard-ok")

@@ -11,12 +11,14 @@ centre (0, 0, H) (H > R: the sphere is above the horizon of every point) and che
          int_cap w w^T dw = A c c^T + B (I - c c^T), A = 2 pi (1 - cos^3 a) / 3,
          B = pi ((1 - cos a) - (1 - cos^3 a) / 3), and int_H w cos dw = (0, 0, 2 pi / 3).
 Tolerances: ao within 5 reported standard errors plus 0.004 (the tessellated sphere is
-slightly smaller than the true one); bent within 0.05 per component.
+slightly smaller than the true one); bent within 0.05 per component and, when the line has
+"bent_stderr" (radians), its angle to the closed form within 5 reported standard errors plus
+0.01, with 0 < bent_stderr < 0.5.
 Usage: check_bake_points.py H R < lines; prints "points-closed-form-ok N" on success.
        check_bake_points.py format BANDS < lines: checks the line format of
-       --quantities ao,bent,visibility,transfer: the keys in order, "n" only for surface
-       points, list lengths, numbers written with up to 17 significant digits; prints
-       "points-format-ok N".
+       --quantities ao,bent,visibility,transfer: the keys in order (p, n, ao, ao_stderr, bent,
+       bent_stderr, visibility, visibility_stderr, transfer, transfer_stderr), "n" only for
+       surface points, list lengths, no spaces; prints "points-format-ok N".
 """
 import json
 import math
@@ -29,14 +31,19 @@ def check_format(bands):
         o = json.loads(line, object_pairs_hook=lambda kv: kv)
         keys = [k for k, _ in o]
         d = dict(o)
-        want = ["p", "n"] if len(keys) == 7 else ["p"]
-        want += ["ao", "ao_stderr", "bent", "visibility", "transfer"]
+        want = ["p", "n"] if "n" in d else ["p"]
+        want += ["ao", "ao_stderr", "bent", "bent_stderr", "visibility", "visibility_stderr",
+                 "transfer", "transfer_stderr"]
         if keys != want or len(d["p"]) != 3 or len(d["bent"]) != 3:
             print(f"FAIL keys {keys}")
             sys.exit(1)
-        if len(d["visibility"]) != bands * bands or len(d["transfer"]) != bands * bands:
-            print(f"FAIL lengths in {line}")
+        if not isinstance(d["bent_stderr"], (int, float)) or not 0 <= d["bent_stderr"] <= math.pi:
+            print(f"FAIL bent_stderr in {line}")
             sys.exit(1)
+        for k in ["visibility", "visibility_stderr", "transfer", "transfer_stderr"]:
+            if len(d[k]) != bands * bands:
+                print(f"FAIL length of {k} in {line}")
+                sys.exit(1)
         if " " in line.strip():
             print("FAIL: spaces in the line")
             sys.exit(1)
@@ -75,6 +82,16 @@ def main():
             if max(abs(v[i] - o["bent"][i]) for i in range(3)) > 0.05:
                 print(f"FAIL bent at {o['p']}: {o['bent']} vs closed form {v}")
                 sys.exit(1)
+            if "bent_stderr" in o:
+                b = o["bent"]
+                cr = [b[1] * v[2] - b[2] * v[1], b[2] * v[0] - b[0] * v[2],
+                      b[0] * v[1] - b[1] * v[0]]
+                ang = math.atan2(math.sqrt(sum(t * t for t in cr)), sum(b[i] * v[i] for i in range(3)))
+                se = o["bent_stderr"]
+                if not (0 < se < 0.5 and ang <= 5 * se + 0.01):
+                    print(f"FAIL bent_stderr at {o['p']}: angle {ang} to the closed form, "
+                          f"stderr {se}")
+                    sys.exit(1)
         n += 1
     if n == 0:
         print("FAIL: no points")

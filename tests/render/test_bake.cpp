@@ -384,6 +384,7 @@ TEST_CASE("render::Baker: deterministic for any thread count and point order", "
         for (const auto* r : {&r2[i], &r3[j]}) {
             CHECK(r->ao == r1[i].ao);
             CHECK(r->bent.x == r1[i].bent.x);
+            CHECK(r->bent_stderr == r1[i].bent_stderr);
             CHECK(r->transfer[2] == r1[i].transfer[2]);
             CHECK(r->visibility == r1[i].visibility);
             CHECK(r->irradiance[1] == r1[i].irradiance[1]);

@@ -23,10 +23,11 @@
 //                {"p":[x,y,z],"n":[nx,ny,nz],"ao":a,"ao_stderr":s,"bent":[...],
 //                 "visibility":[...],"transfer":[...]} with the requested keys only ("n" only
 //                for surface points; "transfer" is three lists R, G, B when the channels
-//                differ; "irradiance" and "radiance" are three lists, each followed by its
-//                standard error, one list (max over R, G, B): "irradiance_stderr",
-//                "radiance_stderr"; "inside" comes with "radiance"). Numbers with 17
-//                significant digits.
+//                differ; "irradiance" and "radiance" are three lists). Each quantity is
+//                followed by its standard error, as "ao_stderr" follows "ao": "bent_stderr"
+//                (one number, radians), "visibility_stderr", "transfer_stderr",
+//                "irradiance_stderr", "radiance_stderr" (one list each, the max over R, G, B);
+//                "inside" comes with "radiance". Numbers with 17 significant digits.
 // Every file bake also writes OUT/bake.json: scene, target, settings, seed, the pass plan (each
 // pass's name, reason, rays and seconds), timings and the output files with their channels.
 // Files are written to a temporary name and renamed (support/output_file.hpp).
@@ -74,8 +75,8 @@ constexpr int kGutter = 4;  // texels dilated around each chart
 constexpr char kShardMagic[8] = {'S', 'P', 'H', 'B', 'S', 'H', 'R', 'D'};
 // The layout of a result record (struct Layout), recorded in each shard's header as
 // "record_format" and checked by bake-merge. 2: irr_stderr and rad_stderr added (shards without
-// the key are format 1 and are refused).
-constexpr int kRecordFormat = 2;
+// the key are format 1 and are refused). 3: bent_stderr added after bent.
+constexpr int kRecordFormat = 3;
 
 const std::vector<std::pair<std::string, unsigned>>& quantity_names() {
     static const std::vector<std::pair<std::string, unsigned>> q = {
@@ -337,7 +338,7 @@ Work make_work(const SceneFile& scene, const Target& t, const std::string& point
 
 struct Layout {
     std::size_t b2 = 0, nc = 0;  // bands^2, irradiance coefficients
-    std::size_t ao = 0, bent = 2, vis = 5, vis_se = 0, tr = 0, tr_se = 0, tr_rgb = 0, irr = 0,
+    std::size_t ao = 0, bent = 2, bent_se = 5, vis = 6, vis_se = 0, tr = 0, tr_se = 0, tr_rgb = 0, irr = 0,
                 irr_se = 0, rad = 0, rad_se = 0, inside = 0, stride = 0;
     explicit Layout(const render::BakeSettings& s)
         : b2(std::size_t(s.bands) * std::size_t(s.bands)), nc(std::size_t(s.coeffs)) {
@@ -368,6 +369,7 @@ std::vector<double> pack(const Layout& L, const std::vector<render::PointResult>
         o[L.bent] = r.bent.x;
         o[L.bent + 1] = r.bent.y;
         o[L.bent + 2] = r.bent.z;
+        o[L.bent_se] = r.bent_stderr;
         copy_n(r.visibility, L.b2, o + L.vis);
         copy_n(r.visibility_stderr, L.b2, o + L.vis_se);
         for (std::size_t c = 0; c < 3; ++c) {
@@ -406,7 +408,10 @@ std::vector<Column> columns(const render::BakeSettings& s, const Layout& L, bool
     };
     if (q & render::Quantity::ao) c.insert(c.end(), {{"ao", L.ao}, {"ao_stderr", L.ao + 1}});
     if (q & render::Quantity::bent)
-        c.insert(c.end(), {{"bent_x", L.bent}, {"bent_y", L.bent + 1}, {"bent_z", L.bent + 2}});
+        c.insert(c.end(), {{"bent_x", L.bent},
+                           {"bent_y", L.bent + 1},
+                           {"bent_z", L.bent + 2},
+                           {"bent_stderr", L.bent_se}});
     if (q & render::Quantity::visibility) {
         list("vis_", L.vis, L.b2);
         list("vis_stderr_", L.vis_se, L.b2);
@@ -622,10 +627,18 @@ void print_points(const Work& w, const render::BakeSettings& s, const std::vecto
             line["ao"] = r[L.ao];
             line["ao_stderr"] = r[L.ao + 1];
         }
-        if (q & render::Quantity::bent) line["bent"] = list(r + L.bent, 3);
-        if (q & render::Quantity::visibility) line["visibility"] = list(r + L.vis, L.b2);
-        if (q & render::Quantity::transfer)
+        if (q & render::Quantity::bent) {
+            line["bent"] = list(r + L.bent, 3);
+            line["bent_stderr"] = r[L.bent_se];
+        }
+        if (q & render::Quantity::visibility) {
+            line["visibility"] = list(r + L.vis, L.b2);
+            line["visibility_stderr"] = list(r + L.vis_se, L.b2);
+        }
+        if (q & render::Quantity::transfer) {
             line["transfer"] = r[L.tr_rgb] != 0 ? rgb(r + L.tr, L.b2) : list(r + L.tr, L.b2);
+            line["transfer_stderr"] = list(r + L.tr_se, L.b2);
+        }
         if (q & render::Quantity::irradiance) {
             line["irradiance"] = rgb(r + L.irr, L.nc);
             line["irradiance_stderr"] = list(r + L.irr_se, L.nc);

@@ -13,6 +13,21 @@
 //                standard error (the QMC error is usually smaller).
 //   bent       = normalize(int V(w) w max(n.w, 0) dw): the mean unoccluded cosine-sampled
 //                direction (same V as ao); n when every sample is occluded.
+//                bent_stderr (radians): the angular standard error of bent by the delta method.
+//                With the cosine-weighted samples u_j = V(w_j) w_j, m = (1/N) sum u_j (so
+//                bent = m/|m|), b = m/|m|, S their sample covariance (N - 1 denominator) and
+//                P = I - b b^T: the Jacobian of m -> m/|m| is P/|m| and Cov(m) = S/N, so the
+//                covariance of bent is P S P / (N |m|^2), whose trace is the expected squared
+//                angle (bent moves in the tangent plane of b): bent_stderr =
+//                sqrt(trace(P S P) / N) / |m|. trace(P S P) = (N / (N - 1)) (trace(Q) - b^T Q b)
+//                with Q = (1/N) sum u_j u_j^T (the m m^T part of S cancels), so no cancellation
+//                against the mean. Unoccluded with V = 1 (cosine pdf): m = (0, 0, 2/3) in the
+//                tangent frame, E[x^2] = E[y^2] = 1/4, bent_stderr -> sqrt(1/(2N)) / (2/3).
+//                Points nothing can occlude (the analytic pass: bent = n exactly): 0. No
+//                unoccluded sample (bent = n by convention, no information on the direction), or
+//                fewer than 2 rays: pi, the largest angle between two directions; the delta
+//                method's value is capped at pi too (it grows without bound as |m| -> 0, where
+//                the linearisation fails).
 //   visibility = v_i = int_{n.w > 0} V(w) y_i(w) dw (V = 0 below the tangent plane;
 //                Iwanicki and Sloan section 3.1). Directions uniform on the hemisphere of n
 //                (the uniform sphere with the lower half known to be 0): v_i = 2pi/N sum V y_i.
@@ -55,6 +70,13 @@
 //                analytic pass): M_ij = delta_ij - int_{n.w > 0} (1 - V) y_i y_j dw + the
 //                bounce paths of occluded directions (as transfer's, continued from the hit).
 //                Directions uniform on the hemisphere.
+//                transfer_matrix_stderr (9 x bands^2, max over R, G, B): M - I is the mean over
+//                the N samples of s_j = 2pi y3(w_j) r_j^T, r_j = sum over the escapes of sample
+//                j's bounce paths of T y(w_esc) - y(w_j) for an occluded w_j, s_j = 0 for an
+//                unoccluded one; the error is sqrt(var_j(s_j,ik) / N) per element, var with the
+//                N - 1 denominator. The analytic M = I (nothing occludes) reports 0. Without
+//                bounces s_j,00 = -1/2 on occluded samples, so stderr_00 =
+//                (1/2) sqrt(p (1 - p) / (N - 1)) with p = 2 (1 - M_00) the occluded fraction.
 //   radiance   = r_i = int L_in(w) y_i(w) dw at any point, RGB, directions uniform on the
 //                sphere: r_i = 4pi/N sum L_in(w_j) y_i(w_j); directional lights add
 //                V(l) color y_i(l). `inside`: more than half the rays hit back faces
@@ -169,6 +191,7 @@ struct BakePoint {
 struct PointResult {
     double ao = 0, ao_stderr = 0;
     vec3<double> bent{0, 0, 0};
+    double bent_stderr = 0;  // radians (header comment)
     std::vector<double> visibility, visibility_stderr;  // bands^2
     std::array<std::vector<double>, 3> transfer;        // R, G, B (bands^2 each)
     std::vector<double> transfer_stderr;                // bands^2 (max over channels)
@@ -179,6 +202,7 @@ struct PointResult {
     std::vector<double> radiance_stderr;            // bands^2 (max over channels)
     /// R, G, B: 9 x bands^2, row-major (row i: incident coefficient i, column j: lighting j).
     std::array<std::vector<double>, 3> transfer_matrix;
+    std::vector<double> transfer_matrix_stderr;  // 9 x bands^2 (max over channels)
     bool inside = false;  // the point is inside closed geometry (probes leak)
 };
 
@@ -267,7 +291,7 @@ class Baker {
         if (s.quantities & Quantity::transfer) b += 4 * n * d;
         if (s.quantities & Quantity::irradiance) b += 4 * std::size_t(std::max(s.coeffs, 0)) * d;
         if (s.quantities & Quantity::radiance) b += 4 * n * d;
-        if (s.quantities & Quantity::transfer_matrix) b += 27 * n * d;
+        if (s.quantities & Quantity::transfer_matrix) b += 36 * n * d;
         return b;
     }
     /// The ray-tracing scene.
@@ -647,7 +671,10 @@ class Baker {
             res.ao = 1;
             res.ao_stderr = 0;
         }
-        if (wants(Quantity::bent)) res.bent = n;
+        if (wants(Quantity::bent)) {
+            res.bent = n;
+            res.bent_stderr = 0;
+        }
         if (wants(Quantity::transfer)) {
             std::vector<double> t(nsh());
             for (int l = 0; l < B; ++l)
@@ -661,6 +688,7 @@ class Baker {
             std::vector<double> m(9 * nsh(), 0.0);
             for (std::size_t i = 0; i < 9 && i < nsh(); ++i) m[i * nsh() + i] = 1;
             res.transfer_matrix = {m, m, m};
+            res.transfer_matrix_stderr.assign(9 * nsh(), 0.0);
         }
         if (wants(Quantity::visibility)) {
             res.visibility.assign(nsh(), 0.0);
@@ -1102,19 +1130,59 @@ class Baker {
                  const detail::rt::V3& n, PointResult& res) const {
         using namespace detail::rt;
         const double *dx = L.dx.data(), *dy = L.dy.data(), *dz = L.dz.data();
+        const char* va = vis_ao.data();
         double s = 0, bx = 0, by = 0, bz = 0;
-        for (std::size_t j = 0; j < N; ++j) {
-            const double v = vis_ao[j];
-            s += v;
-            bx += v * dx[j];
-            by += v * dy[j];
-            bz += v * dz[j];
+        if (!wants(Quantity::bent)) {
+            for (std::size_t j = 0; j < N; ++j) s += va[j];
+        } else {
+            // The second moments of V_j w_j (V in {0, 1}: V w w^T = V (w w^T)) beside the sums,
+            // for bent_stderr; still one branch-free loop.
+            double sxx = 0, syy = 0, szz = 0, sxy = 0, sxz = 0, syz = 0;
+            for (std::size_t j = 0; j < N; ++j) {
+                const double v = va[j];
+                const double x = v * dx[j], y = v * dy[j], z = v * dz[j];
+                s += v;
+                bx += x;
+                by += y;
+                bz += z;
+                sxx += x * dx[j];
+                syy += y * dy[j];
+                szz += z * dz[j];
+                sxy += x * dy[j];
+                sxz += x * dz[j];
+                syz += y * dz[j];
+            }
+            res.bent = normalized(V3{bx, by, bz}, n);
+            res.bent_stderr =
+                bent_error(N, s, V3{bx, by, bz}, {sxx, syy, szz, sxy, sxz, syz});
         }
         if (wants(Quantity::ao)) {
             res.ao = s / double(N);
             res.ao_stderr = N > 1 ? std::sqrt(res.ao * (1 - res.ao) / double(N - 1)) : 0;
         }
-        if (wants(Quantity::bent)) res.bent = normalized(V3{bx, by, bz}, n);
+    }
+
+    /// bent_stderr (header comment) from the sums over N cosine-weighted samples of V_j w_j
+    /// (sum) and of V_j w_j w_j^T (second: xx, yy, zz, xy, xz, yz); `hits` = sum of V_j.
+    static double bent_error(std::size_t N, double hits, const detail::rt::V3& sum,
+                             const std::array<double, 6>& second) noexcept {
+        using namespace detail::rt;
+        const double pi = constants::pi;
+        if (N < 2 || !(hits > 0)) return pi;  // no variance estimate / no unoccluded sample
+        const double dn = double(N);
+        const V3 m = sum * (1 / dn);
+        const double lm = length(m);
+        if (!(lm > 0)) return pi;
+        const V3 b = m * (1 / lm);
+        // S = (second / N - m m^T) N / (N - 1); trace(P S P) = trace(S) - b^T S b (P = I - b b^T
+        // is a symmetric projector), with the m m^T part 0 in both: trace(m m^T) = |m|^2 =
+        // b^T m m^T b. So trace(P S P) = (trace(Q) - b^T Q b) N / (N - 1), Q = second / N.
+        const double qxx = second[0] / dn, qyy = second[1] / dn, qzz = second[2] / dn;
+        const double qxy = second[3] / dn, qxz = second[4] / dn, qyz = second[5] / dn;
+        const double bqb = b.x * b.x * qxx + b.y * b.y * qyy + b.z * b.z * qzz +
+                           2 * (b.x * b.y * qxy + b.x * b.z * qxz + b.y * b.z * qyz);
+        const double tr = std::max(0.0, (qxx + qyy + qzz - bqb) * dn / (dn - 1));
+        return std::min(pi, std::sqrt(tr / dn) / lm);
     }
 
     void transfer_part(std::size_t N, Local& L, const std::vector<char>& vis_tr,
@@ -1399,12 +1467,23 @@ class Baker {
         }
         std::array<std::vector<double>, 3>& M = res.transfer_matrix;
         for (auto& m : M) m.assign(9 * nl, 0.0);
+        // r_j per occluded sample and channel (slot[j]: its row in R, 3 nl doubles) for the
+        // error; M itself is summed in the same order as ever.
+        std::vector<std::uint32_t> slot(N, std::uint32_t(-1));
+        std::vector<std::uint32_t> slot_sample;
+        for (std::size_t j = 0; j < N; ++j)
+            if (occluded[j]) {
+                slot[j] = std::uint32_t(slot_sample.size());
+                slot_sample.push_back(std::uint32_t(j));
+            }
+        std::vector<double> R(slot_sample.size() * 3 * nl, 0.0);
         std::vector<double> yi(9), yj(nl);
         const double scale = constants::two_pi / double(N);
         auto add = [&](std::size_t sample, const V3& d, const RGB& w) {
             const V3& ws = dirs[sample];
             sh::eval_unit(3, ws.x, ws.y, ws.z, yi.data());
             sh::eval_unit(settings_.bands, d.x, d.y, d.z, yj.data());
+            double* r = R.data() + std::size_t(slot[sample]) * 3 * nl;
             for (std::size_t c = 0; c < 3; ++c) {
                 if (w[c] == 0) continue;
                 for (std::size_t i = 0; i < 9; ++i) {
@@ -1412,6 +1491,7 @@ class Baker {
                     double* row = M[c].data() + i * nl;
                     for (std::size_t k = 0; k < nl; ++k) row[k] += a * yj[k];
                 }
+                for (std::size_t k = 0; k < nl; ++k) r[c * nl + k] += w[c] * yj[k];
             }
         };
         {
@@ -1426,8 +1506,44 @@ class Baker {
                 add(sample, d, T);
             },
             [](std::uint32_t, const RGB&) {});
+        Timer t{L, hemisphere};
+        matrix_error(N, nl, dirs, slot_sample, R, M, res.transfer_matrix_stderr);
         for (auto& m : M)
             for (std::size_t i = 0; i < 9 && i < nl; ++i) m[i * nl + i] += 1;
+    }
+
+    /// transfer_matrix_stderr (header comment) from the r_j of the occluded samples (R: 3 nl
+    /// per sample, channel-major) and M - I (the mean of s_j, before the identity is added).
+    static void matrix_error(std::size_t N, std::size_t nl, const std::vector<detail::rt::V3>& dirs,
+                             const std::vector<std::uint32_t>& samples, const std::vector<double>& R,
+                             const std::array<std::vector<double>, 3>& M,
+                             std::vector<double>& out) {
+        out.assign(9 * nl, 0.0);
+        if (N < 2 || samples.empty()) return;
+        const double dn = double(N), a = constants::two_pi;
+        std::vector<double> ss(27 * nl, 0.0);  // channel c, element (i, k): sum_j s_j,ik^2
+        double yi[9];
+        for (std::size_t q = 0; q < samples.size(); ++q) {
+            const detail::rt::V3& ws = dirs[samples[q]];
+            sh::eval_unit(3, ws.x, ws.y, ws.z, yi);
+            const double* r = R.data() + q * 3 * nl;
+            for (std::size_t c = 0; c < 3; ++c)
+                for (std::size_t i = 0; i < 9; ++i) {
+                    double* o = ss.data() + (c * 9 + i) * nl;
+                    const double ay = a * yi[i];
+                    for (std::size_t k = 0; k < nl; ++k) {
+                        const double v = ay * r[c * nl + k];
+                        o[k] += v * v;
+                    }
+                }
+        }
+        for (std::size_t c = 0; c < 3; ++c)
+            for (std::size_t e = 0; e < 9 * nl; ++e) {
+                const double mean = M[c][e];
+                const double var = std::max(0.0, ss[c * 9 * nl + e] / dn - mean * mean) * dn /
+                                   (dn - 1);
+                out[e] = std::max(out[e], std::sqrt(var / dn));
+            }
     }
 
     void sphere_pass(const BakePoint& bp, const detail::rt::V3& n, std::uint64_t key, double cu,

@@ -407,7 +407,9 @@ inline std::vector<std::uint8_t> settings_bytes(const BakeSettings& s) {
 }
 
 constexpr char magic[8] = {'S', 'P', 'H', 'B', 'B', 'A', 'K', 'E'};
-constexpr std::uint32_t format_version = 2;  // 2: transfer_matrix
+// 2: transfer_matrix; 3: the standard errors bent_stderr, irradiance_stderr, radiance_stderr,
+// transfer_matrix_stderr (a cache file of version 2 is refused and baked again).
+constexpr std::uint32_t format_version = 3;
 
 }  // namespace repr_detail
 
@@ -465,7 +467,7 @@ inline std::uint64_t bake_key(const SceneDesc& scene, const BakeRequest& request
 
 /// Bytes of a BakeData (versioned, little-endian) and back; deserialize throws
 /// std::runtime_error for truncated or foreign bytes. Format: the magic "SPHBBAKE", a 32-bit
-/// version (1), the request, the layout, the results, the plan, seconds and rays; integers
+/// version (repr_detail::format_version), the request, the layout, the results, the plan, seconds and rays; integers
 /// little-endian, doubles as their IEEE-754 bits, vectors and strings length-prefixed (64-bit).
 /// from_cache is not stored (deserialize sets it).
 inline std::vector<std::uint8_t> serialize(const BakeData& data) {
@@ -502,14 +504,18 @@ inline std::vector<std::uint8_t> serialize(const BakeData& data) {
         w.f64(r.ao);
         w.f64(r.ao_stderr);
         w.v3(r.bent);
+        w.f64(r.bent_stderr);
         w.vec(r.visibility);
         w.vec(r.visibility_stderr);
         for (const auto& v : r.transfer) w.vec(v);
         w.vec(r.transfer_stderr);
         w.u8(r.transfer_rgb ? 1 : 0);
         for (const auto& v : r.irradiance) w.vec(v);
+        w.vec(r.irradiance_stderr);
         for (const auto& v : r.radiance) w.vec(v);
+        w.vec(r.radiance_stderr);
         for (const auto& v : r.transfer_matrix) w.vec(v);
+        w.vec(r.transfer_matrix_stderr);
         w.u8(r.inside ? 1 : 0);
     }
     w.u64(data.plan.size());
@@ -563,19 +569,23 @@ inline BakeData deserialize(const std::vector<std::uint8_t>& bytes) {
     r.pos += nc;
     L.skipped_triangles = static_cast<std::size_t>(r.u64());
     L.degenerate_triangles = static_cast<std::size_t>(r.u64());
-    d.results.resize(r.count(8 * 5 + 8 * 15 + 2));
+    d.results.resize(r.count(8 * 6 + 8 * 18 + 2));
     for (PointResult& p : d.results) {
         p.ao = r.f64();
         p.ao_stderr = r.f64();
         p.bent = r.v3();
+        p.bent_stderr = r.f64();
         p.visibility = r.vec();
         p.visibility_stderr = r.vec();
         for (auto& v : p.transfer) v = r.vec();
         p.transfer_stderr = r.vec();
         p.transfer_rgb = r.u8() != 0;
         for (auto& v : p.irradiance) v = r.vec();
+        p.irradiance_stderr = r.vec();
         for (auto& v : p.radiance) v = r.vec();
+        p.radiance_stderr = r.vec();
         for (auto& v : p.transfer_matrix) v = r.vec();
+        p.transfer_matrix_stderr = r.vec();
         p.inside = r.u8() != 0;
     }
     d.plan.resize(r.count(32));
