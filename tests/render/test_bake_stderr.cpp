@@ -298,8 +298,8 @@ TEST_CASE("bake stderr: bent normal stderr, sphere over a plane at 1024, 4096, 1
                       << bent_angle(a[i].bent, ref[i].bent));
         CHECK(a[i].bent_stderr > 0);
         CHECK(a[i].bent_stderr < 0.1);
-        const double joint =
-            std::sqrt(a[i].bent_stderr * a[i].bent_stderr + ref[i].bent_stderr * ref[i].bent_stderr);
+        const double joint = std::sqrt(a[i].bent_stderr * a[i].bent_stderr +
+                                       ref[i].bent_stderr * ref[i].bent_stderr);
         CHECK(bent_angle(a[i].bent, ref[i].bent) <= 4 * joint);
         CHECK(a[i].bent_stderr / q[i].bent_stderr == Approx(2).epsilon(0.15));
         CHECK(a[i].bent_stderr / ref[i].bent_stderr == Approx(4).epsilon(0.2));
@@ -345,8 +345,8 @@ TEST_CASE("bake stderr: transfer_matrix stderr, closed form and convergence", "[
         const PointResult ref = bake_one(d, s, 16 * n, 2, p)[0];
         std::vector<double> ratio;
         for (std::size_t e = 0; e < 9 * nl; ++e) {
-            INFO("element " << e / nl << ", " << e % nl << ": stderr " << a.transfer_matrix_stderr[e]
-                            << ", " << q.transfer_matrix_stderr[e]);
+            INFO("element " << e / nl << ", " << e % nl << ": stderr "
+                            << a.transfer_matrix_stderr[e] << ", " << q.transfer_matrix_stderr[e]);
             const double se = a.transfer_matrix_stderr[e], se4 = q.transfer_matrix_stderr[e],
                          ser = ref.transfer_matrix_stderr[e];
             CHECK(se > 0);

@@ -338,8 +338,8 @@ Work make_work(const SceneFile& scene, const Target& t, const std::string& point
 
 struct Layout {
     std::size_t b2 = 0, nc = 0;  // bands^2, irradiance coefficients
-    std::size_t ao = 0, bent = 2, bent_se = 5, vis = 6, vis_se = 0, tr = 0, tr_se = 0, tr_rgb = 0, irr = 0,
-                irr_se = 0, rad = 0, rad_se = 0, inside = 0, stride = 0;
+    std::size_t ao = 0, bent = 2, bent_se = 5, vis = 6, vis_se = 0, tr = 0, tr_se = 0, tr_rgb = 0,
+                irr = 0, irr_se = 0, rad = 0, rad_se = 0, inside = 0, stride = 0;
     explicit Layout(const render::BakeSettings& s)
         : b2(std::size_t(s.bands) * std::size_t(s.bands)), nc(std::size_t(s.coeffs)) {
         vis_se = vis + b2;

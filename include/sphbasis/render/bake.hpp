@@ -191,7 +191,7 @@ struct BakePoint {
 struct PointResult {
     double ao = 0, ao_stderr = 0;
     vec3<double> bent{0, 0, 0};
-    double bent_stderr = 0;  // radians (header comment)
+    double bent_stderr = 0;                             // radians (header comment)
     std::vector<double> visibility, visibility_stderr;  // bands^2
     std::array<std::vector<double>, 3> transfer;        // R, G, B (bands^2 each)
     std::vector<double> transfer_stderr;                // bands^2 (max over channels)
@@ -339,6 +339,10 @@ class Baker {
         // irradiance error: y(local_j), g_j = M y(local_j) (coefficient k's plane of stride
         // rays) and L_in of the lit samples (R, G, B planes of stride rays)
         std::vector<double> irr_y, irr_g, irr_l;
+        // transfer_matrix error: r_j of the occluded samples, their sums of squares, the
+        // occluded samples' slots
+        std::vector<double> mat_r, mat_ss;
+        std::vector<std::uint32_t> mat_slot, mat_samples;
     };
     /// Exclusive pass timing: a Timer started inside another pauses the outer one, so nested
     /// work (the shadow rays of a bounce) counts for the inner pass only and the passes'
@@ -1153,8 +1157,7 @@ class Baker {
                 syz += y * dz[j];
             }
             res.bent = normalized(V3{bx, by, bz}, n);
-            res.bent_stderr =
-                bent_error(N, s, V3{bx, by, bz}, {sxx, syy, szz, sxy, sxz, syz});
+            res.bent_stderr = bent_error(N, s, V3{bx, by, bz}, {sxx, syy, szz, sxy, sxz, syz});
         }
         if (wants(Quantity::ao)) {
             res.ao = s / double(N);
@@ -1469,14 +1472,17 @@ class Baker {
         for (auto& m : M) m.assign(9 * nl, 0.0);
         // r_j per occluded sample and channel (slot[j]: its row in R, 3 nl doubles) for the
         // error; M itself is summed in the same order as ever.
-        std::vector<std::uint32_t> slot(N, std::uint32_t(-1));
-        std::vector<std::uint32_t> slot_sample;
+        std::vector<std::uint32_t>& slot = L.mat_slot;
+        std::vector<std::uint32_t>& slot_sample = L.mat_samples;
+        slot.assign(N, std::uint32_t(-1));
+        slot_sample.clear();
         for (std::size_t j = 0; j < N; ++j)
             if (occluded[j]) {
                 slot[j] = std::uint32_t(slot_sample.size());
                 slot_sample.push_back(std::uint32_t(j));
             }
-        std::vector<double> R(slot_sample.size() * 3 * nl, 0.0);
+        std::vector<double>& R = L.mat_r;
+        R.assign(slot_sample.size() * 3 * nl, 0.0);
         std::vector<double> yi(9), yj(nl);
         const double scale = constants::two_pi / double(N);
         auto add = [&](std::size_t sample, const V3& d, const RGB& w) {
@@ -1507,7 +1513,7 @@ class Baker {
             },
             [](std::uint32_t, const RGB&) {});
         Timer t{L, hemisphere};
-        matrix_error(N, nl, dirs, slot_sample, R, M, res.transfer_matrix_stderr);
+        matrix_error(N, nl, dirs, slot_sample, R, M, L.mat_ss, res.transfer_matrix_stderr);
         for (auto& m : M)
             for (std::size_t i = 0; i < 9 && i < nl; ++i) m[i * nl + i] += 1;
     }
@@ -1515,19 +1521,28 @@ class Baker {
     /// transfer_matrix_stderr (header comment) from the r_j of the occluded samples (R: 3 nl
     /// per sample, channel-major) and M - I (the mean of s_j, before the identity is added).
     static void matrix_error(std::size_t N, std::size_t nl, const std::vector<detail::rt::V3>& dirs,
-                             const std::vector<std::uint32_t>& samples, const std::vector<double>& R,
-                             const std::array<std::vector<double>, 3>& M,
+                             const std::vector<std::uint32_t>& samples,
+                             const std::vector<double>& R,
+                             const std::array<std::vector<double>, 3>& M, std::vector<double>& ss,
                              std::vector<double>& out) {
         out.assign(9 * nl, 0.0);
         if (N < 2 || samples.empty()) return;
+        // Equal channels (no bounces, or grey albedos): one channel's sums serve all three.
+        bool same = true;
+        for (std::size_t q = 0; q < samples.size() && same; ++q) {
+            const double* r = R.data() + q * 3 * nl;
+            for (std::size_t k = 0; k < nl && same; ++k)
+                same = r[k] == r[nl + k] && r[k] == r[2 * nl + k];
+        }
+        const std::size_t nc = same ? 1 : 3;
         const double dn = double(N), a = constants::two_pi;
-        std::vector<double> ss(27 * nl, 0.0);  // channel c, element (i, k): sum_j s_j,ik^2
+        ss.assign(27 * nl, 0.0);  // channel c, element (i, k): sum_j s_j,ik^2
         double yi[9];
         for (std::size_t q = 0; q < samples.size(); ++q) {
             const detail::rt::V3& ws = dirs[samples[q]];
             sh::eval_unit(3, ws.x, ws.y, ws.z, yi);
             const double* r = R.data() + q * 3 * nl;
-            for (std::size_t c = 0; c < 3; ++c)
+            for (std::size_t c = 0; c < nc; ++c)
                 for (std::size_t i = 0; i < 9; ++i) {
                     double* o = ss.data() + (c * 9 + i) * nl;
                     const double ay = a * yi[i];
@@ -1537,11 +1552,11 @@ class Baker {
                     }
                 }
         }
-        for (std::size_t c = 0; c < 3; ++c)
+        for (std::size_t c = 0; c < nc; ++c)
             for (std::size_t e = 0; e < 9 * nl; ++e) {
                 const double mean = M[c][e];
-                const double var = std::max(0.0, ss[c * 9 * nl + e] / dn - mean * mean) * dn /
-                                   (dn - 1);
+                const double var =
+                    std::max(0.0, ss[c * 9 * nl + e] / dn - mean * mean) * dn / (dn - 1);
                 out[e] = std::max(out[e], std::sqrt(var / dn));
             }
     }

@@ -467,9 +467,9 @@ inline std::uint64_t bake_key(const SceneDesc& scene, const BakeRequest& request
 
 /// Bytes of a BakeData (versioned, little-endian) and back; deserialize throws
 /// std::runtime_error for truncated or foreign bytes. Format: the magic "SPHBBAKE", a 32-bit
-/// version (repr_detail::format_version), the request, the layout, the results, the plan, seconds and rays; integers
-/// little-endian, doubles as their IEEE-754 bits, vectors and strings length-prefixed (64-bit).
-/// from_cache is not stored (deserialize sets it).
+/// version (repr_detail::format_version), the request, the layout, the results, the plan, seconds
+/// and rays; integers little-endian, doubles as their IEEE-754 bits, vectors and strings
+/// length-prefixed (64-bit). from_cache is not stored (deserialize sets it).
 inline std::vector<std::uint8_t> serialize(const BakeData& data) {
     repr_detail::Writer w;
     for (char c : repr_detail::magic) w.u8(static_cast<std::uint8_t>(c));
