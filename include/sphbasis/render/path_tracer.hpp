@@ -54,7 +54,10 @@
 //     without a normal map) are made with their triangles' data prefetched a few hits ahead
 //     (Scene::prefetch_hit).
 //   * Cosine-lobe BRDF samples take the azimuth's cosine and sine from a polynomial
-//     (detail::pt::cos_sin_turn, within 2e-9 of libm's, far below any estimate's noise).
+//     (sphbasis::detail::cos_sin_turn, core/cos_sin_turn.hpp, within 2e-9 of libm's, far below
+//     any estimate's noise). Lambertian vertices draw them for all of a tile's paths at once in
+//     loops the compiler vectorises (detail::pt::cosine_lobe); their weight f cos / pdf is the
+//     albedo itself.
 //   * Unbounded paths (bounces < 0): Russian roulette at every vertex from the fourth on.
 //   * No emitter at all (no environment, no lights): surfaces are black and no secondary ray
 //     is traced.
@@ -87,6 +90,7 @@
 #include <vector>
 
 #include "../core/constants.hpp"
+#include "../core/cos_sin_turn.hpp"
 #include "../core/error.hpp"
 #include "../core/frame.hpp"
 #include "../core/sampling.hpp"
@@ -193,29 +197,9 @@ void prefetched(std::size_t n, Prefetch&& prefetch, Body&& body) {
     }
 }
 
-/// cos(2 pi v) and sin(2 pi v) for v in [0, 1], within 2e-9: the octant reduction
-/// q = floor(4 v + 1/2), theta = 2 pi (v - q / 4) in [-pi/4, pi/4], Taylor polynomials (sin to
-/// theta^9: error below (pi/4)^11 / 11! = 1.8e-9; cos to theta^10: below 1.2e-10), then a
-/// rotation by q quarter turns, without branches (q is random: a branch would mispredict): the
-/// swap of cos and sin and the two signs are selects, not loads from a table indexed by q (a
-/// store-to-load round trip). libm's sincos was 4-5% of the tracer's time.
-inline void cos_sin_turn(double v, double& c, double& s) noexcept {
-    // floor by truncation (4 v + 1/2 >= 0): a conversion vectorises, std::floor does not (GCC
-    // keeps it a call while math may trap).
-    const int qi = static_cast<int>(4 * v + 0.5);
-    const double q = qi;
-    const double t = constants::two_pi * (v - 0.25 * q), t2 = t * t;
-    const double st =
-        t * (1 + t2 * (-1.0 / 6 + t2 * (1.0 / 120 + t2 * (-1.0 / 5040 + t2 * (1.0 / 362880)))));
-    const double ct =
-        1 + t2 * (-0.5 +
-                  t2 * (1.0 / 24 + t2 * (-1.0 / 720 + t2 * (1.0 / 40320 + t2 * (-1.0 / 3628800)))));
-    const int i = qi & 3;
-    const bool odd = (i & 1) != 0;
-    const double cc = odd ? st : ct, ss = odd ? ct : st;
-    c = ((i + 1) & 2) ? -cc : cc;  // q = 1, 2: cos < 0
-    s = (i & 2) ? -ss : ss;        // q = 2, 3: sin < 0
-}
+/// cos(2 pi v), sin(2 pi v) on [0, 1] (core/cos_sin_turn.hpp, generated): a polynomial without
+/// branches or libm calls (libm's sincos was 4-5% of the tracer's time).
+using sphbasis::detail::cos_sin_turn;
 
 /// square_to_cosine_hemisphere (core/sampling.hpp) with cos_sin_turn for the azimuth.
 inline V3 cosine_hemisphere(double u, double v) noexcept {
@@ -643,12 +627,12 @@ class PathTracer {
 
     /// The state of one path of a batch (shade()).
     struct PathState {
-        Hit h;
+        bool alive = false;
+        std::uint64_t key = 0;  // mix64 of the path's random-number key
+        double pb = 0;
         RGB L{0, 0, 0}, beta{1, 1, 1}, w{0, 0, 0};
         V3 wo{0, 0, 1}, wi{0, 0, 1}, x{0, 0, 0};
-        double pb = 0;
-        std::uint64_t key = 0;  // mix64 of the path's random-number key
-        bool alive = false;
+        Hit h;  // its hot fields first (render::Hit)
     };
     /// A next-event contribution beta f Le (times k) of path `path`, added unless shadow ray
     /// `ray` (none: no shadow test) is occluded.

@@ -58,25 +58,31 @@ namespace sphbasis::render {
 
 /// What a ray hit. Barycentrics: position = (1 - u - v) p0 + u p1 + v p2 of the mesh's
 /// triangle `primitive` (index into the mesh's own triangle list, degenerate ones included).
+/// The fields a renderer reads at every path vertex come first (two cache lines).
 struct Hit {
     bool valid = false;
+    /// The ray arrived at the back: the side opposite the counter-clockwise normal
+    /// (p1 - p0) x (p2 - p0).
+    bool back_face = false;
+    /// Interpolated UV (has_uv: the mesh has UVs; otherwise {0, 0}).
+    bool has_uv = false;
     std::uint32_t mesh = 0, primitive = 0;
-    double t = 0, u = 0, v = 0;
     vec3<double> position{0, 0, 0};
     /// Unit geometric normal, flipped to face the ray (dot(geometric_normal, d) <= 0).
     vec3<double> geometric_normal{0, 0, 1};
     /// Unit interpolated shading normal (geometric without normals), flipped with the geometric
     /// normal (meshes are two-sided).
     vec3<double> shading_normal{0, 0, 1};
-    /// The ray arrived at the back: the side opposite the counter-clockwise normal
-    /// (p1 - p0) x (p2 - p0).
-    bool back_face = false;
     /// Mesh albedo times the albedo map at the interpolated UV (bilinear, wrapping), per channel.
     std::array<double, 3> albedo{0, 0, 0};
+    /// The mesh's material (mesh.hpp): normal map (null: none), Blinn-Phong exponent (0: none)
+    /// and specular reflectance.
+    const TextureView* normal_map = nullptr;
+    double shininess = 0;
+    std::array<double, 3> specular{0, 0, 0};
+    double t = 0, u = 0, v = 0;
     /// The triangle's vertex indices in the mesh (for per-vertex data: weights 1 - u - v, u, v).
     std::array<std::uint32_t, 3> vertices{0, 0, 0};
-    /// Interpolated UV (has_uv: the mesh has UVs; otherwise {0, 0}).
-    bool has_uv = false;
     std::array<double, 2> uv{0, 0};
     /// Unit tangent orthogonal to shading_normal and the bitangent's handedness: bitangent =
     /// bitangent_sign * cross(shading_normal, tangent). From the mesh's tangents (interpolated),
@@ -84,11 +90,6 @@ struct Hit {
     /// the normal. On a back face the normal is flipped and the tangent kept, so the sign flips.
     vec3<double> tangent{1, 0, 0};
     double bitangent_sign = 1;
-    /// The mesh's material (mesh.hpp): normal map (null: none), Blinn-Phong exponent (0: none)
-    /// and specular reflectance.
-    const TextureView* normal_map = nullptr;
-    double shininess = 0;
-    std::array<double, 3> specular{0, 0, 0};
 };
 
 class Scene {
