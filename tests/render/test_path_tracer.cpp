@@ -652,7 +652,8 @@ TEST_CASE("PathTracer: the cosine lobe's polynomial cos/sin and its batch form",
             CHECK(std::fabs(wy[k] - w.y) < 1e-14);
             CHECK(std::fabs(wz[k] - w.z) < 1e-14);
             CHECK(std::fabs(cz[k] - l.z) < 1e-14);
-            CHECK(std::fabs(wx[k] * wx[k] + wy[k] * wy[k] + wz[k] * wz[k] - 1) < 1e-14);
+            // Unit within the polynomial's error (no renormalisation): |w|^2 - 1 ~ 2 (2e-9).
+            CHECK(std::fabs(wx[k] * wx[k] + wy[k] * wy[k] + wz[k] * wz[k] - 1) < 5e-9);
         }
     }
 }
