@@ -64,6 +64,7 @@
 #pragma once
 
 #include <embree3/rtcore.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -432,6 +433,7 @@ class PathTracer {
         std::mutex merge;
         std::atomic<std::uint64_t> done{0};
         const std::uint64_t total = std::uint64_t(N) * std::uint64_t(settings_.spp_max);
+        tbb::enumerable_thread_specific<TileBuffers> buffers;
         int spp = 0, target = settings_.spp_min;
         double noise = std::numeric_limits<double>::infinity();
         for (;;) {
@@ -439,14 +441,16 @@ class PathTracer {
             for_each_tile(W, H, settings_.tile, [&](int x0, int y0, int x1, int y1) {
                 TraceCounters c;
                 const std::size_t tw = std::size_t(x1 - x0), n = tw * std::size_t(y1 - y0);
-                // Per-tile buffers, reused by every sample of the pass.
-                std::vector<RTCRayHit> rays(n);
-                std::vector<double> jitter(2 * n);
-                std::vector<std::uint64_t> pixel(n), mixed(n);
-                std::vector<double> corner(2 * n);  // the pixel's integer coordinates
-                std::vector<RGB> radiance(n);
-                std::vector<First> first(settings_.aovs ? n : 0);
-                Scratch scratch;
+                // The thread's buffers (kept across tiles and passes; at least n long).
+                TileBuffers& B = buffers.local();
+                B.reserve(n, settings_.aovs);
+                std::vector<RTCRayHit>& rays = B.rays;
+                std::vector<double>& jitter = B.jitter;
+                std::vector<std::uint64_t>&pixel = B.pixel, &mixed = B.mixed;
+                std::vector<double>& corner = B.corner;  // the pixel's integer coordinates
+                std::vector<RGB>& radiance = B.radiance;
+                std::vector<First>& first = B.first;
+                Scratch& scratch = B.scratch;
                 for (std::size_t k = 0; k < n; ++k) {
                     const std::size_t px = std::size_t(x0) + k % tw, py = std::size_t(y0) + k / tw;
                     pixel[k] = py * std::size_t(W) + px;
@@ -652,6 +656,26 @@ class PathTracer {
         // The BRDF sample's inputs and outputs by path (structure of arrays).
         std::vector<std::uint64_t> key;
         std::vector<double> nx, ny, nz, wx, wy, wz, cz, tmp;
+    };
+
+    /// A thread's per-tile buffers in render(), kept across its tiles (no allocation per tile).
+    struct TileBuffers {
+        std::vector<RTCRayHit> rays;
+        std::vector<double> jitter, corner;
+        std::vector<std::uint64_t> pixel, mixed;
+        std::vector<RGB> radiance;
+        std::vector<First> first;
+        Scratch scratch;
+        void reserve(std::size_t n, bool aovs) {
+            if (rays.size() >= n && (!aovs || first.size() >= n)) return;
+            rays.resize(n);
+            jitter.resize(2 * n);
+            corner.resize(2 * n);
+            pixel.resize(n);
+            mixed.resize(n);
+            radiance.resize(n);
+            if (aovs) first.resize(n);
+        }
     };
 
     /// Camera rays of a tile: one stream with Embree's coherent flag (it traces them as packets).
