@@ -735,7 +735,8 @@ class PathTracer {
                 ++alive;
                 P.L = {0, 0, 0};
                 P.beta = {1, 1, 1};
-                P.wo = -normalized(dir0);
+                // The outgoing direction matters only to the Blinn-Phong lobe.
+                P.wo = P.h.shininess > 0 ? -normalized(dir0) : -dir0;
                 P.key = mix64(detail::pt::hash_mixed(mixed[k], sample));
                 if (first) {
                     first[k].hit = true;
