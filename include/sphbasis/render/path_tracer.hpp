@@ -389,6 +389,9 @@ class PathTracer {
         for (std::size_t li = 0; li < lights_.size(); ++li)
             if (lights_[li].type == Light::Type::directional)
                 fixed_samples_[li] = sample_light(lights_[li], {0, 0, 0}, 0.5, 0.5);
+        fixed_ok_.resize(lights_.size());
+        for (std::size_t li = 0; li < lights_.size(); ++li)
+            fixed_ok_[li] = usable(fixed_samples_[li]);
         emitters_ = env_any_ || !lights_.empty();
         if (env_nee_)
             effects_.push_back("environment: importance-sampled (" + std::to_string(env_.width) +
@@ -814,12 +817,18 @@ class PathTracer {
                     const Light& light = lights_[li];
                     ++c.light_samples;
                     const std::uint64_t dl = d0 + 8 + 2 * li;
-                    // A directional light's sample depends on nothing: computed once.
-                    const LightSample ls = light.type == Light::Type::directional
-                                               ? fixed_samples_[li]
-                                               : sample_light(light, x, rnd(dl), rnd(dl + 1));
-                    if (!(ls.pdf > 0) || !std::isfinite(ls.pdf) || detail::pt::is_zero(ls.radiance))
-                        continue;
+                    // A directional light's sample depends on nothing: computed (and checked)
+                    // once.
+                    LightSample drawn;
+                    const LightSample* lsp = &drawn;
+                    if (light.type == Light::Type::directional) {
+                        if (!fixed_ok_[li]) continue;
+                        lsp = &fixed_samples_[li];
+                    } else {
+                        drawn = sample_light(light, x, rnd(dl), rnd(dl + 1));
+                        if (!usable(drawn)) continue;
+                    }
+                    const LightSample& ls = *lsp;
                     const double cs = dot(ns, ls.w);
                     if (!(cs > 0) || !(dot(ng, ls.w) > 0)) continue;
                     const RGB f = bsdf.eval(P.wo, ls.w, c);
@@ -988,6 +997,11 @@ class PathTracer {
         for (std::size_t k = 0; k < n; ++k) L[k] = sc.paths[k].L;
     }
 
+    /// A light sample that can contribute: a positive finite pdf and some radiance.
+    static bool usable(const LightSample& ls) noexcept {
+        return ls.pdf > 0 && std::isfinite(ls.pdf) && !detail::pt::is_zero(ls.radiance);
+    }
+
     /// The environment's radiance towards w (a constant without the call).
     RGB env_radiance(const V3& w) const noexcept {
         return env_constant_ ? env_c_ : env_.radiance(w);
@@ -1013,6 +1027,7 @@ class PathTracer {
     Environment env_;
     std::vector<Light> lights_;
     std::vector<LightSample> fixed_samples_;  // of the directional lights (by light index)
+    std::vector<char> fixed_ok_;              // usable(fixed_samples_[i])
     TraceSettings settings_;
     EnvironmentSampler sampler_;
     std::vector<std::string> effects_;
