@@ -293,15 +293,12 @@ inline void sqrt_array(const double* in, double* out, std::size_t n) noexcept {
 /// w[k] = Frame(n[k]).to_world(l[k]) for unit normals n and local directions
 /// l = (r cs, r sn, z), k < n, the frame by coordinate_system (Duff et al.) written out: GCC
 /// does not vectorise the loop through a Frame object. No array overlaps another.
-inline void lobe_to_world(std::size_t n, const double* SPHBASIS_PT_RESTRICT nx,
-                          const double* SPHBASIS_PT_RESTRICT ny,
-                          const double* SPHBASIS_PT_RESTRICT nz,
-                          const double* SPHBASIS_PT_RESTRICT r,
-                          const double* SPHBASIS_PT_RESTRICT cs,
-                          const double* SPHBASIS_PT_RESTRICT sn,
-                          const double* SPHBASIS_PT_RESTRICT z, double* SPHBASIS_PT_RESTRICT wx,
-                          double* SPHBASIS_PT_RESTRICT wy,
-                          double* SPHBASIS_PT_RESTRICT wz) noexcept {
+inline void lobe_to_world(
+    std::size_t n, const double* SPHBASIS_PT_RESTRICT nx, const double* SPHBASIS_PT_RESTRICT ny,
+    const double* SPHBASIS_PT_RESTRICT nz, const double* SPHBASIS_PT_RESTRICT r,
+    const double* SPHBASIS_PT_RESTRICT cs, const double* SPHBASIS_PT_RESTRICT sn,
+    const double* SPHBASIS_PT_RESTRICT z, double* SPHBASIS_PT_RESTRICT wx,
+    double* SPHBASIS_PT_RESTRICT wy, double* SPHBASIS_PT_RESTRICT wz) noexcept {
     for (std::size_t k = 0; k < n; ++k) {
         const double x = nx[k], y = ny[k], zn = nz[k];
         const double sign = std::copysign(1.0, zn);
@@ -321,9 +318,9 @@ inline void lobe_to_world(std::size_t n, const double* SPHBASIS_PT_RESTRICT nx,
 /// world direction w = Frame(n_k).to_world(cosine_hemisphere(u, v)) (frame of the unit normal
 /// (nx, ny, nz)[k]) into (wx, wy, wz)[k] and its local z (the cosine with n_k) into cz[k].
 /// tmp holds 3 n doubles; no array overlaps another.
-inline void cosine_lobe(std::size_t n, std::uint64_t d0, const std::uint64_t* key,
-                        const double* nx, const double* ny, const double* nz, double* wx,
-                        double* wy, double* wz, double* cz, double* tmp) noexcept {
+inline void cosine_lobe(std::size_t n, std::uint64_t d0, const std::uint64_t* key, const double* nx,
+                        const double* ny, const double* nz, double* wx, double* wy, double* wz,
+                        double* cz, double* tmp) noexcept {
     double *r = tmp, *cs = tmp + n, *sn = tmp + 2 * n;
     for (std::size_t k = 0; k < n; ++k) {
         const double uk = rt::unit(hash_mixed(key[k], d0 + 3));
@@ -468,8 +465,7 @@ class PathTracer {
                     double r2u, r2v;
                     r2_sequence(std::uint64_t(s), r2u, r2v);
                     for (std::size_t k = 0; k < n; ++k) {
-                        const double px =
-                            corner[2 * k] + detail::rt::rotate01(r2u, jitter[2 * k]);
+                        const double px = corner[2 * k] + detail::rt::rotate01(r2u, jitter[2 * k]);
                         const double py =
                             corner[2 * k + 1] + detail::rt::rotate01(r2v, jitter[2 * k + 1]);
                         const CameraRay cr = cam.ray(px, py);
@@ -862,9 +858,9 @@ class PathTracer {
             // arrays, by loops the compiler vectorises: hashes, the azimuth's polynomial and the
             // frame of the normal; the square roots by detail::pt::sqrt_array (std::sqrt keeps
             // a libm call for errno, which stops vectorisation).
-            detail::pt::cosine_lobe(n, d0, sc.key.data(), sc.nx.data(), sc.ny.data(),
-                                    sc.nz.data(), sc.wx.data(), sc.wy.data(), sc.wz.data(),
-                                    sc.cz.data(), sc.tmp.data());
+            detail::pt::cosine_lobe(n, d0, sc.key.data(), sc.nx.data(), sc.ny.data(), sc.nz.data(),
+                                    sc.wx.data(), sc.wy.data(), sc.wz.data(), sc.cz.data(),
+                                    sc.tmp.data());
             for (std::size_t k = 0; k < n; ++k) {
                 PathState& P = sc.paths[k];
                 if (!P.alive) continue;
