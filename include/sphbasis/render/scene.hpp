@@ -2,7 +2,8 @@
 //
 // render::Scene copies the positions and indices of a list of MeshView into Embree triangle
 // geometries (one geometry per mesh, geometry ID = mesh index) and keeps its own copies of the
-// normals and UVs it needs for hit records, so the MeshView arrays may be freed after
+// normals and UVs it needs for hit records (and each triangle's unit normal in double, 24 bytes
+// a triangle, so a hit record does not recompute it), so the MeshView arrays may be freed after
 // construction (the albedo_map texels stay borrowed). Queries are batched: occluded() and
 // intersect() take arrays of Embree rays and trace them as ray streams (rtcOccluded1M,
 // rtcIntersect1M); hit() turns an Embree hit into a Hit record.
