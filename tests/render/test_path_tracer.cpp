@@ -4,9 +4,11 @@
 // sphere's cap; a lit point adds the sun), a white furnace in an open box (albedo 1, unbounded
 // bounces: 1 everywhere), a tilted normal map and the Blinn-Phong lobe under a sun, the MIS
 // irradiance of a lat-long map against quadrature, convergence (error halves when samples
-// quadruple), determinism across thread counts, and the counters of work not called for.
+// quadruple), determinism across thread counts, the counters of work not called for, and the
+// cosine lobe's generated polynomial cos/sin (max error) and its vectorised batch form.
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
@@ -605,5 +607,54 @@ TEST_CASE("PathTracer: recorded rays are the streams it traced, one record per c
         CHECK(kinds[2] + kinds[3] == r.counters.shadow_rays);
         // The last vertex's BRDF rays need a hit distance only with a sphere light.
         CHECK((kinds[3] > 0) == (lights == 1));
+    }
+}
+
+TEST_CASE("PathTracer: the cosine lobe's polynomial cos/sin and its batch form",
+          "[render][path_tracer]") {
+    // sphbasis::detail::cos_sin_turn (core/cos_sin_turn.hpp) within 2e-9 of libm over [0, 1],
+    // the octant boundaries included; detail::pt::cosine_lobe equals Frame(n).to_world of
+    // cosine_hemisphere path by path (to rounding), for any array length (SIMD remainders).
+    double worst = 0;
+    const int N = 1 << 17;
+    auto check = [&](double v) {
+        double c, s;
+        sphbasis::detail::cos_sin_turn(v, c, s);
+        const double a = constants::two_pi * v;
+        worst = std::max({worst, std::fabs(c - std::cos(a)), std::fabs(s - std::sin(a))});
+    };
+    for (int i = 0; i <= N; ++i) check(double(i) / N);
+    for (int q = 0; q <= 8; ++q)
+        for (double e : {-1e-15, 0.0, 1e-15}) check(std::min(1.0, std::max(0.0, q / 8.0 + e)));
+    CHECK(worst < 2e-9);
+    CHECK(worst > 1e-12);  // a polynomial, not libm
+
+    namespace pt = render::detail::pt;
+    for (std::size_t n : {std::size_t(1), std::size_t(7), std::size_t(33)}) {
+        std::vector<std::uint64_t> key(n);
+        std::vector<double> nx(n), ny(n), nz(n), wx(n), wy(n), wz(n), cz(n), tmp(3 * n);
+        for (std::size_t k = 0; k < n; ++k) {
+            key[k] = render::detail::rt::mix64(k + 17);
+            const auto d = unit({std::sin(1.3 * double(k)), std::cos(0.7 * double(k) + 0.2),
+                                 k % 3 == 0 ? -0.9 : 0.4});
+            nx[k] = d.x;
+            ny[k] = d.y;
+            nz[k] = d.z;
+        }
+        pt::cosine_lobe(n, 42, key.data(), nx.data(), ny.data(), nz.data(), wx.data(), wy.data(),
+                        wz.data(), cz.data(), tmp.data());
+        for (std::size_t k = 0; k < n; ++k) {
+            const sphbasis::Frame<double> f(vec3<double>{nx[k], ny[k], nz[k]});
+            const auto l =
+                pt::cosine_hemisphere(render::detail::rt::unit(pt::hash_mixed(key[k], 45)),
+                                      render::detail::rt::unit(pt::hash_mixed(key[k], 46)));
+            const auto w = f.to_world(l);
+            CHECK(std::fabs(wx[k] - w.x) < 1e-14);
+            CHECK(std::fabs(wy[k] - w.y) < 1e-14);
+            CHECK(std::fabs(wz[k] - w.z) < 1e-14);
+            CHECK(std::fabs(cz[k] - l.z) < 1e-14);
+            // Unit within the polynomial's error (no renormalisation): |w|^2 - 1 ~ 2 (2e-9).
+            CHECK(std::fabs(wx[k] * wx[k] + wy[k] * wy[k] + wz[k] * wz[k] - 1) < 5e-9);
+        }
     }
 }

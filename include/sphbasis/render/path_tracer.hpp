@@ -54,14 +54,26 @@
 //     without a normal map) are made with their triangles' data prefetched a few hits ahead
 //     (Scene::prefetch_hit).
 //   * Cosine-lobe BRDF samples take the azimuth's cosine and sine from a polynomial
-//     (detail::pt::cos_sin_turn, within 2e-9 of libm's, far below any estimate's noise).
+//     (sphbasis::detail::cos_sin_turn, core/cos_sin_turn.hpp, within 2e-9 of libm's, far below
+//     any estimate's noise). Lambertian vertices draw them for all of a tile's paths at once in
+//     loops the compiler vectorises (detail::pt::cosine_lobe); their weight f cos / pdf is the
+//     albedo itself.
 //   * Unbounded paths (bounces < 0): Russian roulette at every vertex from the fourth on.
 //   * No emitter at all (no environment, no lights): surfaces are black and no secondary ray
 //     is traced.
 #pragma once
 
 #include <embree3/rtcore.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+#if defined(__GNUC__) || defined(__clang__) || defined(_MSC_VER)
+#define SPHBASIS_PT_RESTRICT __restrict
+#else
+#define SPHBASIS_PT_RESTRICT
+#endif
 
 #include <algorithm>
 #include <array>
@@ -79,6 +91,7 @@
 #include <vector>
 
 #include "../core/constants.hpp"
+#include "../core/cos_sin_turn.hpp"
 #include "../core/error.hpp"
 #include "../core/frame.hpp"
 #include "../core/sampling.hpp"
@@ -185,32 +198,16 @@ void prefetched(std::size_t n, Prefetch&& prefetch, Body&& body) {
     }
 }
 
-/// cos(2 pi v) and sin(2 pi v) for v in [0, 1], within 2e-9: the octant reduction
-/// q = floor(4 v + 1/2), theta = 2 pi (v - q / 4) in [-pi/4, pi/4], Taylor polynomials (sin to
-/// theta^9: error below (pi/4)^11 / 11! = 1.8e-9; cos to theta^10: below 1.2e-10), then a
-/// rotation by q quarter turns, without branches (q is random: a branch would mispredict).
-/// libm's sincos was 4-5% of the tracer's time.
-inline void cos_sin_turn(double v, double& c, double& s) noexcept {
-    const double q = std::floor(4 * v + 0.5);
-    const double t = constants::two_pi * (v - 0.25 * q), t2 = t * t;
-    const double st =
-        t * (1 + t2 * (-1.0 / 6 + t2 * (1.0 / 120 + t2 * (-1.0 / 5040 + t2 * (1.0 / 362880)))));
-    const double ct =
-        1 + t2 * (-0.5 +
-                  t2 * (1.0 / 24 + t2 * (-1.0 / 720 + t2 * (1.0 / 40320 + t2 * (-1.0 / 3628800)))));
-    static constexpr double sign_c[4] = {1, -1, -1, 1}, sign_s[4] = {1, 1, -1, -1};
-    const auto i = static_cast<std::size_t>(static_cast<int>(q) & 3);
-    const double a[2] = {ct, st};
-    c = sign_c[i] * a[i & 1];
-    s = sign_s[i] * a[(i & 1) ^ 1];
-}
+/// cos(2 pi v), sin(2 pi v) on [0, 1] (core/cos_sin_turn.hpp, generated): a polynomial without
+/// branches or libm calls (libm's sincos was 4-5% of the tracer's time).
+using sphbasis::detail::cos_sin_turn;
 
 /// square_to_cosine_hemisphere (core/sampling.hpp) with cos_sin_turn for the azimuth.
 inline V3 cosine_hemisphere(double u, double v) noexcept {
     const double r = std::sqrt(u);
     double c, s;
     cos_sin_turn(v, c, s);
-    return {r * c, r * s, std::sqrt(std::fmax(0.0, 1 - u))};
+    return {r * c, r * s, std::sqrt(std::max(0.0, 1 - u))};
 }
 
 /// Diffuse plus (shininess > 0 only) the energy-normalised Blinn-Phong lobe.
@@ -280,6 +277,62 @@ inline std::uint64_t hash_mixed(std::uint64_t mixed_a, std::uint64_t b) noexcept
     return rt::mix64(mixed_a ^ (b + 0x632be59bd9b4e019ull));
 }
 
+/// out[k] = sqrt(in[k]) for in[k] >= 0, k < n (in place allowed), in SIMD registers where the
+/// compiler targets them (std::sqrt in a loop stays a libm call while math sets errno).
+inline void sqrt_array(const double* in, double* out, std::size_t n) noexcept {
+    std::size_t k = 0;
+#if defined(__AVX__)
+    for (; k + 4 <= n; k += 4) _mm256_storeu_pd(out + k, _mm256_sqrt_pd(_mm256_loadu_pd(in + k)));
+#endif
+#if defined(__SSE2__)
+    for (; k + 2 <= n; k += 2) _mm_storeu_pd(out + k, _mm_sqrt_pd(_mm_loadu_pd(in + k)));
+#endif
+    for (; k < n; ++k) out[k] = std::sqrt(in[k]);
+}
+
+/// w[k] = Frame(n[k]).to_world(l[k]) for unit normals n and local directions
+/// l = (r cs, r sn, z), k < n, the frame by coordinate_system (Duff et al.) written out: GCC
+/// does not vectorise the loop through a Frame object. No array overlaps another.
+inline void lobe_to_world(
+    std::size_t n, const double* SPHBASIS_PT_RESTRICT nx, const double* SPHBASIS_PT_RESTRICT ny,
+    const double* SPHBASIS_PT_RESTRICT nz, const double* SPHBASIS_PT_RESTRICT r,
+    const double* SPHBASIS_PT_RESTRICT cs, const double* SPHBASIS_PT_RESTRICT sn,
+    const double* SPHBASIS_PT_RESTRICT z, double* SPHBASIS_PT_RESTRICT wx,
+    double* SPHBASIS_PT_RESTRICT wy, double* SPHBASIS_PT_RESTRICT wz) noexcept {
+    for (std::size_t k = 0; k < n; ++k) {
+        const double x = nx[k], y = ny[k], zn = nz[k];
+        const double sign = std::copysign(1.0, zn);
+        const double a = -1.0 / (sign + zn);
+        const double b = x * y * a;
+        const double sx = 1.0 + sign * x * x * a, sy = sign * b, sz = -sign * x;
+        const double tx = b, ty = sign + y * y * a, tz = -y;
+        const double lx = r[k] * cs[k], ly = r[k] * sn[k], lz = z[k];
+        wx[k] = sx * lx + tx * ly + x * lz;
+        wy[k] = sy * lx + ty * ly + y * lz;
+        wz[k] = sz * lx + tz * ly + zn * lz;
+    }
+}
+
+/// The cosine-lobe samples of n paths (render::PathTracer::shade), as arrays: for path k, with
+/// u = unit(hash_mixed(key[k], d0 + 3)) and v = unit(hash_mixed(key[k], d0 + 4)), the
+/// world direction w = Frame(n_k).to_world(cosine_hemisphere(u, v)) (frame of the unit normal
+/// (nx, ny, nz)[k]) into (wx, wy, wz)[k] and its local z (the cosine with n_k) into cz[k].
+/// tmp holds 3 n doubles; no array overlaps another.
+inline void cosine_lobe(std::size_t n, std::uint64_t d0, const std::uint64_t* key, const double* nx,
+                        const double* ny, const double* nz, double* wx, double* wy, double* wz,
+                        double* cz, double* tmp) noexcept {
+    double *r = tmp, *cs = tmp + n, *sn = tmp + 2 * n;
+    for (std::size_t k = 0; k < n; ++k) {
+        const double uk = rt::unit(hash_mixed(key[k], d0 + 3));
+        r[k] = uk;
+        cz[k] = 1 - uk;  // >= 2^-53
+        cos_sin_turn(rt::unit(hash_mixed(key[k], d0 + 4)), cs[k], sn[k]);
+    }
+    sqrt_array(r, r, n);
+    sqrt_array(cz, cz, n);
+    lobe_to_world(n, nx, ny, nz, r, cs, sn, cz, wx, wy, wz);
+}
+
 inline RGB mul(const RGB& a, const RGB& b) noexcept {
     return {a[0] * b[0], a[1] * b[1], a[2] * b[2]};
 }
@@ -319,6 +372,8 @@ class PathTracer {
         for (const Light& l : lights_) validate(l);
         env_nee_ = sampler_.emits() && !sampler_.is_constant();
         env_any_ = sampler_.emits();
+        env_constant_ = env_.kind == Environment::Kind::constant;
+        if (env_constant_) env_c_ = env_.radiance({0, 0, 1});
         int directional = 0, other = 0;
         for (const Light& l : lights_) {
             if (l.type == Light::Type::directional)
@@ -331,6 +386,9 @@ class PathTracer {
         for (std::size_t li = 0; li < lights_.size(); ++li)
             if (lights_[li].type == Light::Type::directional)
                 fixed_samples_[li] = sample_light(lights_[li], {0, 0, 0}, 0.5, 0.5);
+        fixed_ok_.resize(lights_.size());
+        for (std::size_t li = 0; li < lights_.size(); ++li)
+            fixed_ok_[li] = usable(fixed_samples_[li]);
         emitters_ = env_any_ || !lights_.empty();
         if (env_nee_)
             effects_.push_back("environment: importance-sampled (" + std::to_string(env_.width) +
@@ -375,6 +433,7 @@ class PathTracer {
         std::mutex merge;
         std::atomic<std::uint64_t> done{0};
         const std::uint64_t total = std::uint64_t(N) * std::uint64_t(settings_.spp_max);
+        tbb::enumerable_thread_specific<TileBuffers> buffers;
         int spp = 0, target = settings_.spp_min;
         double noise = std::numeric_limits<double>::infinity();
         for (;;) {
@@ -382,16 +441,21 @@ class PathTracer {
             for_each_tile(W, H, settings_.tile, [&](int x0, int y0, int x1, int y1) {
                 TraceCounters c;
                 const std::size_t tw = std::size_t(x1 - x0), n = tw * std::size_t(y1 - y0);
-                // Per-tile buffers, reused by every sample of the pass.
-                std::vector<RTCRayHit> rays(n);
-                std::vector<double> jitter(2 * n);
-                std::vector<std::uint64_t> pixel(n), mixed(n);
-                std::vector<RGB> radiance(n);
-                std::vector<First> first(settings_.aovs ? n : 0);
-                Scratch scratch;
+                // The thread's buffers (kept across tiles and passes; at least n long).
+                TileBuffers& B = buffers.local();
+                B.reserve(n, settings_.aovs);
+                std::vector<RTCRayHit>& rays = B.rays;
+                std::vector<double>& jitter = B.jitter;
+                std::vector<std::uint64_t>&pixel = B.pixel, &mixed = B.mixed;
+                std::vector<double>& corner = B.corner;  // the pixel's integer coordinates
+                std::vector<RGB>& radiance = B.radiance;
+                std::vector<First>& first = B.first;
+                Scratch& scratch = B.scratch;
                 for (std::size_t k = 0; k < n; ++k) {
                     const std::size_t px = std::size_t(x0) + k % tw, py = std::size_t(y0) + k / tw;
                     pixel[k] = py * std::size_t(W) + px;
+                    corner[2 * k] = double(px);
+                    corner[2 * k + 1] = double(py);
                     const std::uint64_t key = pixel_key(pixel[k]);
                     mixed[k] = detail::rt::mix64(key);
                     jitter[2 * k] = detail::rt::unit(detail::rt::hash(key, 0x6a09e667u));
@@ -401,10 +465,9 @@ class PathTracer {
                     double r2u, r2v;
                     r2_sequence(std::uint64_t(s), r2u, r2v);
                     for (std::size_t k = 0; k < n; ++k) {
-                        const double px = double(std::size_t(x0) + k % tw) +
-                                          detail::rt::rotate01(r2u, jitter[2 * k]);
-                        const double py = double(std::size_t(y0) + k / tw) +
-                                          detail::rt::rotate01(r2v, jitter[2 * k + 1]);
+                        const double px = corner[2 * k] + detail::rt::rotate01(r2u, jitter[2 * k]);
+                        const double py =
+                            corner[2 * k + 1] + detail::rt::rotate01(r2v, jitter[2 * k + 1]);
                         const CameraRay cr = cam.ray(px, py);
                         Scene::set_ray(rays[k], cr.origin, cr.direction);
                     }
@@ -567,12 +630,12 @@ class PathTracer {
 
     /// The state of one path of a batch (shade()).
     struct PathState {
-        Hit h;
+        bool alive = false;
+        std::uint64_t key = 0;  // mix64 of the path's random-number key
+        double pb = 0;
         RGB L{0, 0, 0}, beta{1, 1, 1}, w{0, 0, 0};
         V3 wo{0, 0, 1}, wi{0, 0, 1}, x{0, 0, 0};
-        double pb = 0;
-        std::uint64_t key = 0;  // mix64 of the path's random-number key
-        bool alive = false;
+        Hit h;  // its hot fields first (render::Hit)
     };
     /// A next-event contribution beta f Le (times k) of path `path`, added unless shadow ray
     /// `ray` (none: no shadow test) is occluded.
@@ -589,6 +652,29 @@ class PathTracer {
         std::vector<Pending> pending;
         std::vector<RTCRayHit> next;
         std::vector<std::uint32_t> next_path;
+        // The BRDF sample's inputs and outputs by path (structure of arrays).
+        std::vector<std::uint64_t> key;
+        std::vector<double> nx, ny, nz, wx, wy, wz, cz, tmp;
+    };
+
+    /// A thread's per-tile buffers in render(), kept across its tiles (no allocation per tile).
+    struct TileBuffers {
+        std::vector<RTCRayHit> rays;
+        std::vector<double> jitter, corner;
+        std::vector<std::uint64_t> pixel, mixed;
+        std::vector<RGB> radiance;
+        std::vector<First> first;
+        Scratch scratch;
+        void reserve(std::size_t n, bool aovs) {
+            if (rays.size() >= n && (!aovs || first.size() >= n)) return;
+            rays.resize(n);
+            jitter.resize(2 * n);
+            corner.resize(2 * n);
+            pixel.resize(n);
+            mixed.resize(n);
+            radiance.resize(n);
+            if (aovs) first.resize(n);
+        }
     };
 
     /// Camera rays of a tile: one stream with Embree's coherent flag (it traces them as packets).
@@ -626,6 +712,10 @@ class PathTracer {
             sc.pending.reserve(n * (1 + lights_.size()));
             sc.next.reserve(n);
             sc.next_path.reserve(n);
+            sc.key.assign(n, 0);
+            for (auto* v : {&sc.nx, &sc.ny, &sc.wx, &sc.wy, &sc.wz, &sc.cz}) v->assign(n, 0.0);
+            sc.nz.assign(n, 1.0);
+            sc.tmp.assign(3 * n, 0.0);
         }
         std::size_t alive = 0;
         detail::pt::prefetched(
@@ -634,17 +724,18 @@ class PathTracer {
                 PathState& P = sc.paths[k];
                 const V3 dir0{primary[k].ray.dir_x, primary[k].ray.dir_y, primary[k].ray.dir_z};
                 if (first) first[k] = First{};
-                P.h = scene_.shading_hit(primary[k]);
+                scene_.shading_hit(primary[k], P.h);
                 if (!P.h.valid) {
                     P.alive = false;
-                    P.L = env_.radiance(normalized(dir0));
+                    P.L = env_radiance(normalized(dir0));
                     return;
                 }
                 P.alive = true;
                 ++alive;
                 P.L = {0, 0, 0};
                 P.beta = {1, 1, 1};
-                P.wo = -normalized(dir0);
+                // The outgoing direction matters only to the Blinn-Phong lobe.
+                P.wo = P.h.shininess > 0 ? -normalized(dir0) : -dir0;
                 P.key = mix64(detail::pt::hash_mixed(mixed[k], sample));
                 if (first) {
                     first[k].hit = true;
@@ -722,12 +813,18 @@ class PathTracer {
                     const Light& light = lights_[li];
                     ++c.light_samples;
                     const std::uint64_t dl = d0 + 8 + 2 * li;
-                    // A directional light's sample depends on nothing: computed once.
-                    const LightSample ls = light.type == Light::Type::directional
-                                               ? fixed_samples_[li]
-                                               : sample_light(light, x, rnd(dl), rnd(dl + 1));
-                    if (!(ls.pdf > 0) || !std::isfinite(ls.pdf) || detail::pt::is_zero(ls.radiance))
-                        continue;
+                    // A directional light's sample depends on nothing: computed (and checked)
+                    // once.
+                    LightSample drawn;
+                    const LightSample* lsp = &drawn;
+                    if (light.type == Light::Type::directional) {
+                        if (!fixed_ok_[li]) continue;
+                        lsp = &fixed_samples_[li];
+                    } else {
+                        drawn = sample_light(light, x, rnd(dl), rnd(dl + 1));
+                        if (!usable(drawn)) continue;
+                    }
+                    const LightSample& ls = *lsp;
                     const double cs = dot(ns, ls.w);
                     if (!(cs > 0) || !(dot(ng, ls.w) > 0)) continue;
                     const RGB f = bsdf.eval(P.wo, ls.w, c);
@@ -746,25 +843,66 @@ class PathTracer {
                     pe.k = k;
                     for (std::size_t i = 0; i < 3; ++i) pe.a[i] = P.beta[i] * f[i] * ls.radiance[i];
                 }
-                // BRDF sample: continues the path and/or reaches the emitters.
+                // BRDF sample: continues the path and/or reaches the emitters. Drawn below for
+                // every live path at once.
                 if (!more && !env_any_ && !nondelta_) {
                     kill(P);
                     continue;
                 }
-                const V3 wi = bsdf.sample(P.wo, rnd(d0 + 2), rnd(d0 + 3), rnd(d0 + 4));
-                const double cs = dot(ns, wi);
-                if (!(cs > 0) || !(dot(ng, wi) > 0)) {
-                    kill(P);
-                    continue;
+                sc.key[k] = key;
+                sc.nx[k] = ns.x;
+                sc.ny[k] = ns.y;
+                sc.nz[k] = ns.z;
+            }
+            // The cosine-lobe directions of all n paths (dead ones included: no branch), in
+            // arrays, by loops the compiler vectorises: hashes, the azimuth's polynomial and the
+            // frame of the normal; the square roots by detail::pt::sqrt_array (std::sqrt keeps
+            // a libm call for errno, which stops vectorisation).
+            detail::pt::cosine_lobe(n, d0, sc.key.data(), sc.nx.data(), sc.ny.data(), sc.nz.data(),
+                                    sc.wx.data(), sc.wy.data(), sc.wz.data(), sc.cz.data(),
+                                    sc.tmp.data());
+            for (std::size_t k = 0; k < n; ++k) {
+                PathState& P = sc.paths[k];
+                if (!P.alive) continue;
+                const Hit& h = P.h;
+                const auto path = static_cast<std::uint32_t>(k);
+                const V3 ng = h.geometric_normal, x = P.x;
+                V3 wi;
+                double pb;
+                RGB w;
+                if (!(h.shininess > 0)) {
+                    // Lambertian: the cosine lobe's weight f cos / pdf is the albedo; its local
+                    // z is the cosine (the frame is orthonormal: no renormalisation).
+                    wi = {sc.wx[k], sc.wy[k], sc.wz[k]};
+                    const double cs = sc.cz[k];
+                    if (!(cs > 0) || !(dot(ng, wi) > 0)) {
+                        kill(P);
+                        continue;
+                    }
+                    pb = cs * constants::inv_pi;
+                    w = detail::pt::mul(P.beta, h.albedo);
+                } else {
+                    const V3 ns{sc.nx[k], sc.ny[k], sc.nz[k]};
+                    bsdf.init(h, ns);
+                    const std::uint64_t key = P.key;
+                    auto rnd = [key](std::uint64_t dim) {
+                        return unit(detail::pt::hash_mixed(key, dim));
+                    };
+                    wi = bsdf.sample(P.wo, rnd(d0 + 2), rnd(d0 + 3), rnd(d0 + 4));
+                    const double cs = dot(ns, wi);
+                    if (!(cs > 0) || !(dot(ng, wi) > 0)) {
+                        kill(P);
+                        continue;
+                    }
+                    pb = bsdf.pdf(P.wo, wi, c);
+                    if (!(pb > 0)) {
+                        kill(P);
+                        continue;
+                    }
+                    const RGB f = bsdf.eval(P.wo, wi, c);
+                    w = {f[0] * cs / pb, f[1] * cs / pb, f[2] * cs / pb};
+                    for (std::size_t i = 0; i < 3; ++i) w[i] *= P.beta[i];
                 }
-                const double pb = bsdf.pdf(P.wo, wi, c);
-                if (!(pb > 0)) {
-                    kill(P);
-                    continue;
-                }
-                const RGB f = bsdf.eval(P.wo, wi, c);
-                RGB w{f[0] * cs / pb, f[1] * cs / pb, f[2] * cs / pb};
-                for (std::size_t i = 0; i < 3; ++i) w[i] *= P.beta[i];
                 P.w = w;
                 P.wi = wi;
                 P.pb = pb;
@@ -805,7 +943,7 @@ class PathTracer {
                     query ? !Scene::is_occluded(r.ray) : r.hit.geomID == RTC_INVALID_GEOMETRY_ID;
                 const double t = miss ? inf : double(r.ray.tfar);
                 if (miss && env_any_) {
-                    const RGB Le = env_.radiance(wi);
+                    const RGB Le = env_radiance(wi);
                     const double k = env_nee_ ? pb / (pb + sampler_.pdf(wi)) : 1.0;
                     for (std::size_t i = 0; i < 3; ++i) P.L[i] += w[i] * Le[i] * k;
                 }
@@ -848,11 +986,21 @@ class PathTracer {
                     [&](std::size_t j) {
                         PathState& P = sc.paths[sc.next_path[j]];
                         if (!P.alive) return;
-                        P.h = scene_.shading_hit(sc.next[j]);
+                        scene_.shading_hit(sc.next[j], P.h);
                         if (!P.h.valid) kill(P);
                     });
         }
         for (std::size_t k = 0; k < n; ++k) L[k] = sc.paths[k].L;
+    }
+
+    /// A light sample that can contribute: a positive finite pdf and some radiance.
+    static bool usable(const LightSample& ls) noexcept {
+        return ls.pdf > 0 && std::isfinite(ls.pdf) && !detail::pt::is_zero(ls.radiance);
+    }
+
+    /// The environment's radiance towards w (a constant without the call).
+    RGB env_radiance(const V3& w) const noexcept {
+        return env_constant_ ? env_c_ : env_.radiance(w);
     }
 
     /// Appends a traced stream (as it was before tracing) to the log under one lock.
@@ -875,10 +1023,13 @@ class PathTracer {
     Environment env_;
     std::vector<Light> lights_;
     std::vector<LightSample> fixed_samples_;  // of the directional lights (by light index)
+    std::vector<char> fixed_ok_;              // usable(fixed_samples_[i])
     TraceSettings settings_;
     EnvironmentSampler sampler_;
     std::vector<std::string> effects_;
     bool env_nee_ = false, env_any_ = false, nondelta_ = false, emitters_ = false;
+    bool env_constant_ = false;  // env_.kind == constant: its radiance is env_c_
+    RGB env_c_{0, 0, 0};
     std::unique_ptr<std::mutex> mutex_;
     mutable TraceCounters counters_;
     std::vector<RayRecord>* log_ = nullptr;

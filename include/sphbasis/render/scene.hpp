@@ -2,7 +2,8 @@
 //
 // render::Scene copies the positions and indices of a list of MeshView into Embree triangle
 // geometries (one geometry per mesh, geometry ID = mesh index) and keeps its own copies of the
-// normals and UVs it needs for hit records, so the MeshView arrays may be freed after
+// normals and UVs it needs for hit records (and each triangle's unit normal in double, 24 bytes
+// a triangle, so a hit record does not recompute it), so the MeshView arrays may be freed after
 // construction (the albedo_map texels stay borrowed). Queries are batched: occluded() and
 // intersect() take arrays of Embree rays and trace them as ray streams (rtcOccluded1M,
 // rtcIntersect1M); hit() turns an Embree hit into a Hit record.
@@ -58,25 +59,31 @@ namespace sphbasis::render {
 
 /// What a ray hit. Barycentrics: position = (1 - u - v) p0 + u p1 + v p2 of the mesh's
 /// triangle `primitive` (index into the mesh's own triangle list, degenerate ones included).
+/// The fields a renderer reads at every path vertex come first (two cache lines).
 struct Hit {
     bool valid = false;
+    /// The ray arrived at the back: the side opposite the counter-clockwise normal
+    /// (p1 - p0) x (p2 - p0).
+    bool back_face = false;
+    /// Interpolated UV (has_uv: the mesh has UVs; otherwise {0, 0}).
+    bool has_uv = false;
     std::uint32_t mesh = 0, primitive = 0;
-    double t = 0, u = 0, v = 0;
     vec3<double> position{0, 0, 0};
     /// Unit geometric normal, flipped to face the ray (dot(geometric_normal, d) <= 0).
     vec3<double> geometric_normal{0, 0, 1};
     /// Unit interpolated shading normal (geometric without normals), flipped with the geometric
     /// normal (meshes are two-sided).
     vec3<double> shading_normal{0, 0, 1};
-    /// The ray arrived at the back: the side opposite the counter-clockwise normal
-    /// (p1 - p0) x (p2 - p0).
-    bool back_face = false;
     /// Mesh albedo times the albedo map at the interpolated UV (bilinear, wrapping), per channel.
     std::array<double, 3> albedo{0, 0, 0};
+    /// The mesh's material (mesh.hpp): normal map (null: none), Blinn-Phong exponent (0: none)
+    /// and specular reflectance.
+    const TextureView* normal_map = nullptr;
+    double shininess = 0;
+    std::array<double, 3> specular{0, 0, 0};
+    double t = 0, u = 0, v = 0;
     /// The triangle's vertex indices in the mesh (for per-vertex data: weights 1 - u - v, u, v).
     std::array<std::uint32_t, 3> vertices{0, 0, 0};
-    /// Interpolated UV (has_uv: the mesh has UVs; otherwise {0, 0}).
-    bool has_uv = false;
     std::array<double, 2> uv{0, 0};
     /// Unit tangent orthogonal to shading_normal and the bitangent's handedness: bitangent =
     /// bitangent_sign * cross(shading_normal, tangent). From the mesh's tangents (interpolated),
@@ -84,11 +91,6 @@ struct Hit {
     /// the normal. On a back face the normal is flipped and the tangent kept, so the sign flips.
     vec3<double> tangent{1, 0, 0};
     double bitangent_sign = 1;
-    /// The mesh's material (mesh.hpp): normal map (null: none), Blinn-Phong exponent (0: none)
-    /// and specular reflectance.
-    const TextureView* normal_map = nullptr;
-    double shininess = 0;
-    std::array<double, 3> specular{0, 0, 0};
 };
 
 class Scene {
@@ -229,11 +231,21 @@ class Scene {
     }
 
     /// The hit record of a traced ray (valid = false on a miss).
-    Hit hit(const RTCRayHit& r) const noexcept { return make_hit(r, true); }
+    Hit hit(const RTCRayHit& r) const noexcept {
+        Hit h;
+        make_hit(r, true, h);
+        return h;
+    }
     /// hit() for a renderer that needs the tangent frame only for normal mapping: equal to
     /// hit(r) except that, on a mesh without a normal map, tangent and bitangent_sign keep
     /// their defaults ({1, 0, 0} and 1) and are not computed.
-    Hit shading_hit(const RTCRayHit& r) const noexcept { return make_hit(r, false); }
+    Hit shading_hit(const RTCRayHit& r) const noexcept {
+        Hit h;
+        make_hit(r, false, h);
+        return h;
+    }
+    /// shading_hit(r) written into `out` (a renderer's per-path record: no copy of the record).
+    void shading_hit(const RTCRayHit& r, Hit& out) const noexcept { make_hit(r, false, out); }
     /// Prefetches the mesh data hit() will read for a traced ray, in two stages: stage 0 the
     /// triangle's entries (indices and original index), stage 1 its vertices' positions,
     /// normals and UVs (it reads the indices). A caller about to turn a batch of hits into
@@ -246,6 +258,7 @@ class Scene {
         if (stage == 0) {
             prefetch(&m.indices[3 * f]);
             prefetch(&m.prim[f]);
+            prefetch(&m.face_normals[3 * f]);
             return;
         }
         for (std::size_t k = 0; k < 3; ++k) {
@@ -269,11 +282,14 @@ class Scene {
         (void)p;
 #endif
     }
-    Hit make_hit(const RTCRayHit& r, bool frame) const noexcept {
-        Hit h;
-        if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID || r.hit.geomID >= meshes_.size()) return h;
+    /// The hit record into h (every field written). frame: the tangent frame also without a
+    /// normal map.
+    void make_hit(const RTCRayHit& r, bool frame, Hit& h) const noexcept {
+        h = Hit{};
+        if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID || r.hit.geomID >= meshes_.size()) return;
         const MeshData& m = meshes_[r.hit.geomID];
-        if (r.hit.primID >= m.prim.size()) return h;
+        if (r.hit.primID >= m.prim.size()) return;
+        const bool need_frame = frame || m.normal_map.texels;
         using namespace detail::rt;
         h.valid = true;
         h.mesh = r.hit.geomID;
@@ -286,7 +302,8 @@ class Scene {
         const V3 p0 = m.pos(tri[0]), p1 = m.pos(tri[1]), p2 = m.pos(tri[2]);
         h.position = p0 * w0 + p1 * w1 + p2 * w2;
         const V3 d{r.ray.dir_x, r.ray.dir_y, r.ray.dir_z};
-        V3 ng = normalized(cross(p1 - p0, p2 - p0));
+        const double* fn = &m.face_normals[3 * std::size_t(r.hit.primID)];
+        V3 ng{fn[0], fn[1], fn[2]};
         h.back_face = dot(ng, d) > 0;
         if (h.back_face) ng = -ng;
         h.geometric_normal = ng;
@@ -311,7 +328,7 @@ class Scene {
                 const auto t = texture(m.map, h.uv[0], h.uv[1]);
                 for (int k = 0; k < 3; ++k) h.albedo[std::size_t(k)] *= t[std::size_t(k)];
             }
-            if (!frame && !m.normal_map.texels) return h;
+            if (!need_frame) return;
             if (m.tangents.empty()) {  // dp/du of the triangle from its UVs
                 const double du1 = m.uvs[2 * b] - m.uvs[2 * a],
                              dv1 = m.uvs[2 * b + 1] - m.uvs[2 * a + 1];
@@ -322,12 +339,12 @@ class Scene {
                     dpdu = ((p1 - p0) * dv2 - (p2 - p0) * dv1) * (1 / det);
                     // The bitangent dp/dv decides the handedness.
                     const V3 dpdv = ((p2 - p0) * du1 - (p1 - p0) * du2) * (1 / det);
-                    const V3 nc = normalized(cross(p1 - p0, p2 - p0));
+                    const V3 nc{fn[0], fn[1], fn[2]};
                     h.bitangent_sign = dot(cross(nc, dpdu), dpdv) < 0 ? -1 : 1;
                 }
             }
         }
-        if (!frame && !m.normal_map.texels) return h;
+        if (!need_frame) return;
         if (!m.tangents.empty()) {
             dpdu = m.tan(tri[0]) * w0 + m.tan(tri[1]) * w1 + m.tan(tri[2]) * w2;
             h.bitangent_sign = m.tangents[4 * a + 3] < 0 ? -1 : 1;
@@ -343,7 +360,6 @@ class Scene {
             h.bitangent_sign = 1;
         }
         if (h.back_face) h.bitangent_sign = -h.bitangent_sign;
-        return h;
     }
 
   public:
@@ -408,6 +424,9 @@ class Scene {
         std::vector<float> positions, normals, uvs, tangents;
         std::vector<std::uint32_t> indices;  // kept (non-degenerate) triangles
         std::vector<std::uint32_t> prim;     // kept triangle -> original triangle
+        // Unit counter-clockwise normal of each kept triangle, normalized((p1 - p0) x (p2 - p0))
+        // in double (hit records read it instead of recomputing it: 24 bytes a triangle).
+        std::vector<double> face_normals;
         std::array<double, 3> albedo{0, 0, 0};
         TextureView map{}, normal_map{};
         double shininess = 0;
@@ -527,6 +546,8 @@ class Scene {
             }
             d.indices.insert(d.indices.end(), {a, b, c});
             d.prim.push_back(static_cast<std::uint32_t>(f));
+            const V3 ng = normalized(c2);
+            d.face_normals.insert(d.face_normals.end(), {ng.x, ng.y, ng.z});
         }
         triangles_ += d.prim.size();
     }
