@@ -751,14 +751,10 @@ SPHBASIS_FORCEINLINE void rotate_direct_scalar(const T* SPHBASIS_RESTRICT r, con
 template <int L, class T>
 SPHBASIS_FORCEINLINE void rotate_direct_vec(const T* SPHBASIS_RESTRICT r, const T* in, T* out) noexcept {
     static_assert(L >= 4, "rotate_direct_vec: L >= 4");
+    T lo[9];
 #if SPHBASIS_SH_ROTATION_AVX512
     // float: bands 0..2 in one register (rotate_low_bands_avx512, ops/sh_rotation.hpp)
     constexpr bool low_vec = std::is_same_v<T, float>;
-#else
-    constexpr bool low_vec = false;
-#endif
-    T lo[9];
-#if SPHBASIS_SH_ROTATION_AVX512
     __m512 lov;
     if constexpr (low_vec)
         lov = rotate_low_bands_avx512(_mm512_setr_ps(r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8], 0, 0, 0, 0, 0, 0, 0), in);
