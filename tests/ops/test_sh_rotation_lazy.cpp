@@ -227,6 +227,45 @@ TEST_CASE("rotation lazy: float from_quaternion / from_matrix at 1..8 bands matc
     CHECK_NOTHROW(sh::Rotation<float>::from_matrix(3, skew, 1e-3f));
 }
 
+template <class T>
+void check_prepared(std::mt19937& rng) {
+    double worst = 0, worst_t = 0;
+    for (int trial = 0; trial < 4; ++trial) {
+        const sh::Mat3<T> r = random_matrix<T>(rng, trial % 2 == 1);
+        for (int n = 1; n <= 8; ++n) {
+            auto rot = sh::Rotation<T>::from_matrix(n, r);
+            REQUIRE_FALSE(rot.prepared());
+            rot.prepare();
+            REQUIRE(rot.prepared());
+            REQUIRE_FALSE(rot.lazy());  // D formed
+            const std::vector<T> in = random_coeffs<T>(rng, n);
+            std::vector<T> out(in.size()), tout(in.size());
+            rot.apply(in.data(), out.data());
+            rot.apply_transposed(in.data(), tout.data());
+            worst = std::max(worst, max_diff(out, d_product(rot, in, false)));
+            worst_t = std::max(worst_t, max_diff(tout, d_product(rot, in, true)));
+            std::vector<T> inplace = in;
+            rot.apply(inplace.data(), inplace.data());
+            CHECK(inplace == out);
+            const sh::Rotation<T> copy = rot;  // copies stay prepared
+            CHECK(copy.prepared());
+            std::vector<T> out2(in.size());
+            copy.apply(in.data(), out2.data());
+            CHECK(out2 == out);
+        }
+    }
+    INFO("max |prepared apply - D in| " << worst << ", transposed " << worst_t);
+    // the same products as d_product up to the order of the float sums
+    CHECK(worst <= apply_tol<T>());
+    CHECK(worst_t <= apply_tol<T>());
+}
+
+TEST_CASE("rotation lazy: prepare() makes apply multiply by D", "[rotation][lazy]") {
+    std::mt19937 rng(1405);
+    check_prepared<float>(rng);
+    check_prepared<double>(rng);
+}
+
 TEST_CASE("rotation lazy: copies, moves and two threads reading D see the same D",
           "[rotation][lazy]") {
     std::mt19937 rng(1404);
