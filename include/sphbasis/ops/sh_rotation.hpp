@@ -933,15 +933,16 @@ class Rotation {
         SPHBASIS_ASSERT(l >= 0 && l < bands_ && m >= -l && m <= l && n >= -l && n <= l);
         return d()[offset(l) + static_cast<std::size_t>((m + l) * (2 * l + 1) + n + l)];
     }
-    /// At 1..8 bands: forms D (if it is not formed yet) and from then on apply() and
-    /// apply_transposed() multiply by D, block after block (column-major copies of the blocks;
-    /// for float/double coefficients 16-lane column vectors times broadcast inputs) instead of
-    /// running the factored rotate<bands>. For a rotation applied to many vectors: at 3 bands
-    /// the factored form is as fast, at 6 bands the product is several times faster (see
-    /// bench/bench_sh_ops.cpp). Not thread-safe against concurrent use of this object (like any
-    /// non-const call); a no-op above 8 bands (D is always used there) and when prepared.
+    /// For a rotation applied to many vectors, at 4..8 bands: forms D (if it is not formed yet)
+    /// and from then on apply() and apply_transposed() multiply by D, block after block
+    /// (column-major copies of the blocks; for float/double coefficients 16-lane column vectors
+    /// times broadcast inputs) instead of running the factored rotate<bands> (measured, float,
+    /// 6 bands: 20 against 30 ns per vector). A no-op at 1..3 bands, where the factored form is
+    /// the faster one (3 bands: 4.4 ns, the product 14 ns), above 8 bands (D is always used
+    /// there) and when prepared. Not thread-safe against concurrent use of this object (like any
+    /// non-const call).
     void prepare() {
-        if (!fixed_ || !cols_.empty()) return;
+        if (!fixed_ || bands_ <= 3 || !cols_.empty()) return;
         const std::vector<T>& dm = d();
         cols_.assign(offset(bands_) + 16, T(0));
         for (int l = 0; l < bands_; ++l) {
@@ -952,7 +953,7 @@ class Rotation {
                 for (int j = 0; j < w; ++j) c[j * w + i] = b[i * w + j];
         }
     }
-    /// True after prepare() (apply() multiplies by D).
+    /// True after prepare() at 4..8 bands (apply() multiplies by D).
     bool prepared() const noexcept { return !cols_.empty(); }
 
     /// True while D has not been formed (apply runs rotate<bands>); false above 8 bands.
