@@ -542,6 +542,12 @@ SPHBASIS_FORCEINLINE Mat3<T> quaternion_matrix(T w, T x, T y, T z) {
 
 #if SPHBASIS_SH_ROTATION_AVX512
 /// A row-major 3x3 float matrix in lanes 0..8 of a 16-lane register (lanes 9..15 zero).
+// The maskz_ forms with a full mask throughout (as core/simd.hpp does): GCC 12's unmasked
+// intrinsics pass an undefined vector through and trip -Wuninitialized in users' -Wall builds.
+SPHBASIS_FORCEINLINE __m512 perm16(__m512i idx, __m512 v) noexcept {
+    return _mm512_maskz_permutexvar_ps(__mmask16(0xFFFF), idx, v);
+}
+
 /// Read from memory at rest (a user's matrix): one masked load. A matrix just written by scalar
 /// stores would stall that load (no store forwarding into it): use mat3_avx512 for those.
 SPHBASIS_FORCEINLINE __m512 load_mat3_avx512(const float* r) noexcept {
@@ -562,9 +568,9 @@ SPHBASIS_FORCEINLINE bool orthonormal_within_avx512(__m512 rv, float tol) noexce
     const __m512i ia1 = _mm512_add_epi32(ia, one), ib1 = _mm512_add_epi32(ib, one);
     const __m512i ia2 = _mm512_add_epi32(ia1, one), ib2 = _mm512_add_epi32(ib1, one);
     __m512 e = _mm512_setr_ps(-1, -1, -1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
-    e = _mm512_fmadd_ps(_mm512_permutexvar_ps(ia, rv), _mm512_permutexvar_ps(ib, rv), e);
-    e = _mm512_fmadd_ps(_mm512_permutexvar_ps(ia1, rv), _mm512_permutexvar_ps(ib1, rv), e);
-    e = _mm512_fmadd_ps(_mm512_permutexvar_ps(ia2, rv), _mm512_permutexvar_ps(ib2, rv), e);
+    e = _mm512_fmadd_ps(perm16(ia, rv), perm16(ib, rv), e);
+    e = _mm512_fmadd_ps(perm16(ia1, rv), perm16(ib1, rv), e);
+    e = _mm512_fmadd_ps(perm16(ia2, rv), perm16(ib2, rv), e);
     // |e| <= tol, false for NaN (ordered compare): all six lanes must pass.
     const __m512 ae = _mm512_abs_ps(e);
     return _mm512_mask_cmp_ps_mask(0x3f, ae, _mm512_set1_ps(tol), _CMP_LE_OQ) == 0x3f;
@@ -584,7 +590,7 @@ SPHBASIS_FORCEINLINE __m512 quaternion_matrix_avx512(float w, float x, float y, 
         return load_mat3_avx512(m.data());
     }
     const float s = 2.0f / n2;
-    const __m512 q = _mm512_castps128_ps512(_mm_setr_ps(w, x, y, z));
+    const __m512 q = _mm512_zextps128_ps512(_mm_setr_ps(w, x, y, z));
     const __m512i ip = _mm512_setr_epi32(2, 1, 1, 1, 1, 2, 1, 2, 1, 0, 0, 0, 0, 0, 0, 0);
     const __m512i iq = _mm512_setr_epi32(2, 2, 3, 2, 1, 3, 3, 3, 1, 0, 0, 0, 0, 0, 0, 0);
     const __m512i iu = _mm512_setr_epi32(3, 0, 0, 0, 3, 0, 0, 0, 2, 0, 0, 0, 0, 0, 0, 0);
@@ -592,10 +598,10 @@ SPHBASIS_FORCEINLINE __m512 quaternion_matrix_avx512(float w, float x, float y, 
     const __m512 s1 = _mm512_setr_ps(-1, 1, 1, 1, -1, 1, 1, 1, -1, 0, 0, 0, 0, 0, 0, 0);
     const __m512 s2 = _mm512_setr_ps(-1, -1, 1, 1, -1, -1, -1, 1, -1, 0, 0, 0, 0, 0, 0, 0);
     const __m512 id = _mm512_setr_ps(1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0);
-    __m512 t = _mm512_mul_ps(_mm512_permutexvar_ps(ip, q), _mm512_permutexvar_ps(iq, q));
+    __m512 t = _mm512_mul_ps(perm16(ip, q), perm16(iq, q));
     t = _mm512_mul_ps(t, s1);
-    t = _mm512_fmadd_ps(_mm512_mul_ps(_mm512_permutexvar_ps(iu, q), s2),
-                        _mm512_permutexvar_ps(iv, q), t);
+    t = _mm512_fmadd_ps(_mm512_mul_ps(perm16(iu, q), s2),
+                        perm16(iv, q), t);
     return _mm512_fmadd_ps(t, _mm512_set1_ps(s), id);
 }
 
@@ -612,8 +618,8 @@ SPHBASIS_FORCEINLINE __m512 rotate_low_bands_avx512(__m512 rv, const float* in) 
     const __m512i ia1 = _mm512_add_epi32(ia0, one), ia2 = _mm512_add_epi32(ia1, one);
     const __m512i ib1 = _mm512_add_epi32(ib0, one), ib2 = _mm512_add_epi32(ib1, one);
     const __mmask16 band2 = 0x3f0, band1 = 0x00e;
-    const __m512 a0 = _mm512_permutexvar_ps(ia0, rv), a1 = _mm512_permutexvar_ps(ia1, rv),
-                 a2 = _mm512_permutexvar_ps(ia2, rv);
+    const __m512 a0 = perm16(ia0, rv), a1 = perm16(ia1, rv),
+                 a2 = perm16(ia2, rv);
     const __m512 b0 = _mm512_maskz_permutexvar_ps(band2, ib0, rv),
                  b1 = _mm512_maskz_permutexvar_ps(band2, ib1, rv),
                  b2 = _mm512_maskz_permutexvar_ps(band2, ib2, rv);
@@ -639,7 +645,8 @@ SPHBASIS_FORCEINLINE __m512 rotate_low_bands_avx512(__m512 rv, const float* in) 
     const float k = 0.86602540378443865f, h = 0.5f;  // sqrt(3)/2, 1/2
     o = _mm512_mul_ps(o, _mm512_setr_ps(1, 1, 1, 1, 1, 1, k, 1, h, -h, 0, 0, 0, 0, 0, 0));
     const __m512i oi = _mm512_castps_si512(o);
-    const __m512 next = _mm512_castsi512_ps(_mm512_alignr_epi32(oi, oi, 1));  // lane L+1 -> L
+    const __m512 next =  // lane L+1 -> L
+        _mm512_castsi512_ps(_mm512_maskz_alignr_epi32(__mmask16(0xFFFF), oi, oi, 1));
     o = _mm512_mask_add_ps(o, 0x100, o, next);
     return _mm512_mask_mov_ps(o, 0x1, _mm512_set1_ps(in[0]));
 }
@@ -648,8 +655,9 @@ SPHBASIS_FORCEINLINE __m512 rotate_low_bands_avx512(__m512 rv, const float* in) 
 /// store (whose 64-byte span, masked-off lanes included, blocks later loads of whatever data
 /// follows out until it retires).
 SPHBASIS_FORCEINLINE void store_low_bands_avx512(float* out, __m512 v) noexcept {
-    _mm256_storeu_ps(out, _mm512_castps512_ps256(v));
-    _mm_store_ss(out + 8, _mm512_extractf32x4_ps(v, 2));
+    const __m256d lo = _mm512_maskz_extractf64x4_pd(__mmask8(0xF), _mm512_castps_pd(v), 0);
+    _mm256_storeu_ps(out, _mm256_castpd_ps(lo));
+    _mm_store_ss(out + 8, _mm512_maskz_extractf32x4_ps(__mmask8(0xF), v, 2));
 }
 #endif
 
