@@ -787,7 +787,7 @@ class Rotation {
     /// entries of T (double: 256 bands 179 MB, 1024 bands 11.5 GB), checked against
     /// SPHBASIS_MAX_TABLE_BYTES before allocating.
     template <class M>
-    static Rotation from_matrix(int bands, const M& r,
+    SPHBASIS_FORCEINLINE static Rotation from_matrix(int bands, const M& r,
                                 T tolerance = detail::default_orthonormal_tolerance<T>()) {
         const char* fn = "sh::Rotation::from_matrix";
         sphbasis::detail::check_range(fn, "bands", bands, 0, max_rotation_matrix_bands);
@@ -805,7 +805,7 @@ class Rotation {
     }
 
     /// D of the quaternion (w, x, y, z): normalised if not unit; zero or non-finite throws.
-    static Rotation from_quaternion(int bands, T w, T x, T y, T z) {
+    SPHBASIS_FORCEINLINE static Rotation from_quaternion(int bands, T w, T x, T y, T z) {
         sphbasis::detail::check_range("sh::Rotation::from_quaternion", "bands", bands, 0,
                                       max_rotation_matrix_bands);
 #if SPHBASIS_SH_ROTATION_AVX512
@@ -835,7 +835,7 @@ class Rotation {
     }
 #if SPHBASIS_SH_ROTATION_AVX512
     /// build() from R in lanes 0..8 of rv (one 16-lane store, read back by apply() as one load).
-    static Rotation build_vec(int bands, __m512 rv) {
+    SPHBASIS_FORCEINLINE static Rotation build_vec(int bands, __m512 rv) {
         Rotation out;  // one named result: returned without a move
         if (bands >= 1 && bands <= max_fixed_rotation_bands) {
             out.bands_ = bands;
@@ -1105,7 +1105,7 @@ class Rotation {
 /// D(R) of an orthogonal matrix (std::array<T, 9> row-major, glm::mat3 / dmat3, Eigen::Matrix3f
 /// / d); see Rotation::from_matrix. The scalar type is that of the matrix.
 template <class M>
-Rotation<rotation_scalar_t<M>> rotation_from_matrix(
+SPHBASIS_FORCEINLINE Rotation<rotation_scalar_t<M>> rotation_from_matrix(
     int bands, const M& r,
     rotation_scalar_t<M> tolerance =
         detail::default_orthonormal_tolerance<rotation_scalar_t<M>>()) {
@@ -1115,7 +1115,7 @@ Rotation<rotation_scalar_t<M>> rotation_from_matrix(
 /// D of the quaternion (w, x, y, z); a non-unit quaternion is normalised, a zero or
 /// non-finite one throws std::invalid_argument.
 template <class T>
-Rotation<T> rotation_from_quaternion(int bands, T w, T x, T y, T z) {
+SPHBASIS_FORCEINLINE Rotation<T> rotation_from_quaternion(int bands, T w, T x, T y, T z) {
     return Rotation<T>::from_quaternion(bands, w, x, y, z);
 }
 /// D of a quaternion type (glm::quat / dquat, Eigen::Quaternionf / d, sphbasis::Quat).
