@@ -11,9 +11,9 @@
 #include <random>
 #include <vector>
 
+#include "../support/rotation_checks.hpp"
 #include "sphbasis/ops/sh_rotation.hpp"
 #include "sphbasis/ops/sh_rotation_fixed.hpp"
-#include "../support/rotation_checks.hpp"
 
 namespace sh = sphbasis::sh;
 

@@ -14,8 +14,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "sphbasis/ops/sh_rotation.hpp"
 #include "../support/rotation_checks.hpp"
+#include "sphbasis/ops/sh_rotation.hpp"
 
 namespace sh = sphbasis::sh;
 

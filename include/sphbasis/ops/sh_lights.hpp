@@ -239,7 +239,7 @@ SPHBASIS_FORCEINLINE std::array<C, sizeof...(Ls)> light_band_colours(Band&& band
 /// struct) take the vector fan-out of zonal_out_fixed at 3 bands.
 template <class C>
 inline constexpr bool maybe_packed_rgb_v =
-    std::is_trivially_copyable_v<C> && std::is_default_constructible_v<C> &&
+    std::is_trivially_copyable_v<C>&& std::is_default_constructible_v<C> &&
     sizeof(C) == 3 * sizeof(float) && std::is_same_v<coefficient_scalar_t<C>, float>;
 template <class C>
 bool packed_rgb() {
@@ -292,8 +292,7 @@ SPHBASIS_FORCEINLINE void zonal_out_fixed(E x, E y, E z, Band&& band, C* out) no
     using S = coefficient_scalar_t<C>;
     const std::array<C, N> colour = light_band_colours<C>(band, std::make_index_sequence<N>{});
 #if defined(__AVX512F__) && (defined(__GNUC__) || defined(__clang__))
-    if constexpr (N == 3 && ZeroBands == 0 && std::is_same_v<E, float> &&
-                  maybe_packed_rgb_v<C>) {
+    if constexpr (N == 3 && ZeroBands == 0 && std::is_same_v<E, float> && maybe_packed_rgb_v<C>) {
         if (packed_rgb<C>()) {
             float yv[9];
             FixedNormalizingKernel<N>{}(x, y, z, [&](int k, E v) { yv[k] = v; });

@@ -519,8 +519,7 @@ SPHBASIS_FORCEINLINE bool orthonormal_within(const Mat3<T>& r, T tol) noexcept {
     const T e02 = std::fabs(a0 * c0 + a1 * c1 + a2 * c2);
     const T e12 = std::fabs(b0 * c0 + b1 * c1 + b2 * c2);
     // One branch for the caller: & (not &&) evaluates every comparison.
-    return (e00 <= tol) & (e11 <= tol) & (e22 <= tol) & (e01 <= tol) & (e02 <= tol) &
-           (e12 <= tol);
+    return (e00 <= tol) & (e11 <= tol) & (e22 <= tol) & (e01 <= tol) & (e02 <= tol) & (e12 <= tol);
 }
 
 /// matrix_from_quaternion() (core/frame.hpp) with a fast path: when the squared norm is in
@@ -600,8 +599,7 @@ SPHBASIS_FORCEINLINE __m512 quaternion_matrix_avx512(float w, float x, float y, 
     const __m512 id = _mm512_setr_ps(1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0);
     __m512 t = _mm512_mul_ps(perm16(ip, q), perm16(iq, q));
     t = _mm512_mul_ps(t, s1);
-    t = _mm512_fmadd_ps(_mm512_mul_ps(perm16(iu, q), s2),
-                        perm16(iv, q), t);
+    t = _mm512_fmadd_ps(_mm512_mul_ps(perm16(iu, q), s2), perm16(iv, q), t);
     return _mm512_fmadd_ps(t, _mm512_set1_ps(s), id);
 }
 
@@ -618,8 +616,7 @@ SPHBASIS_FORCEINLINE __m512 rotate_low_bands_avx512(__m512 rv, const float* in) 
     const __m512i ia1 = _mm512_add_epi32(ia0, one), ia2 = _mm512_add_epi32(ia1, one);
     const __m512i ib1 = _mm512_add_epi32(ib0, one), ib2 = _mm512_add_epi32(ib1, one);
     const __mmask16 band2 = 0x3f0, band1 = 0x00e;
-    const __m512 a0 = perm16(ia0, rv), a1 = perm16(ia1, rv),
-                 a2 = perm16(ia2, rv);
+    const __m512 a0 = perm16(ia0, rv), a1 = perm16(ia1, rv), a2 = perm16(ia2, rv);
     const __m512 b0 = _mm512_maskz_permutexvar_ps(band2, ib0, rv),
                  b1 = _mm512_maskz_permutexvar_ps(band2, ib1, rv),
                  b2 = _mm512_maskz_permutexvar_ps(band2, ib2, rv);
@@ -787,8 +784,8 @@ class Rotation {
     /// entries of T (double: 256 bands 179 MB, 1024 bands 11.5 GB), checked against
     /// SPHBASIS_MAX_TABLE_BYTES before allocating.
     template <class M>
-    SPHBASIS_FORCEINLINE static Rotation from_matrix(int bands, const M& r,
-                                T tolerance = detail::default_orthonormal_tolerance<T>()) {
+    SPHBASIS_FORCEINLINE static Rotation from_matrix(
+        int bands, const M& r, T tolerance = detail::default_orthonormal_tolerance<T>()) {
         const char* fn = "sh::Rotation::from_matrix";
         sphbasis::detail::check_range(fn, "bands", bands, 0, max_rotation_matrix_bands);
 #if SPHBASIS_SH_ROTATION_AVX512
@@ -1097,8 +1094,8 @@ class Rotation {
     int bands_ = 0;
     bool fixed_ = false;  // 1..8 bands from a matrix: apply through rotate<bands_>(mat())
     std::array<T, vec_ ? 16 : 9> r_{};  // the checked matrix (row-major; float: zero-padded)
-    std::vector<T> data_;  // D when !fixed_
-    std::vector<T> cols_;  // after prepare(): D's blocks column-major, then 16 zeros
+    std::vector<T> data_;               // D when !fixed_
+    std::vector<T> cols_;               // after prepare(): D's blocks column-major, then 16 zeros
     mutable std::atomic<std::vector<T>*> lazy_{nullptr};  // D when fixed_, once built
 };
 
