@@ -9,6 +9,7 @@
 //   orthonormal_check<Fast>: max |R R^T - I| check alone, straight-line vs generic loop
 //   rotate_streaming<N>:     sh::rotate_quaternion (<= 8 bands: rotate<N>; above: band by band)
 //   rotation_apply<N>:       apply of a prebuilt rotation (one channel, and RGB)
+//   rotation_prepared_apply<N>: the same after Rotation::prepare() (apply multiplies by D)
 //   fixed_rotation_build_apply<N>: FixedRotation<N, float>::from_quaternion + apply (generated)
 //   fixed_rotate<N>:         sh::rotate<N>(Mat3, in, out), the matrices precomputed (D never
 //                            formed: R, R Q R^T, Euler factorisation; one channel, and RGB)
@@ -183,6 +184,17 @@ void rotation_apply_of(benchmark::State& st, const C& fill) {
 }
 SPHBASIS_BENCH_ONE_AND_RGB(rotation_apply)
 
+/// The same rotation after prepare(): apply multiplies by D (compare with rotation_apply, the
+/// factored rotate<N>, and with rotation_from_matrix_apply, build + apply).
+template <int N, class C>
+void rotation_prepared_apply_of(benchmark::State& st, const C& fill) {
+    const auto q = quaternions();
+    auto d = sh::rotation_from_quaternion(N, q[0][0], q[0][1], q[0][2], q[0][3]);
+    d.prepare();
+    apply_prebuilt<N>(st, d, fill);
+}
+SPHBASIS_BENCH_ONE_AND_RGB(rotation_prepared_apply)
+
 template <int N>
 void fixed_rotation_build_apply(benchmark::State& st) {
     std::vector<float> in(N * N, 0.5f), out(N * N);
@@ -356,6 +368,10 @@ BENCHMARK_TEMPLATE(rotation_apply, 3);
 BENCHMARK_TEMPLATE(rotation_apply, 6);
 BENCHMARK_TEMPLATE(rotation_apply_rgb, 3);
 BENCHMARK_TEMPLATE(rotation_apply_rgb, 6);
+BENCHMARK_TEMPLATE(rotation_prepared_apply, 3);
+BENCHMARK_TEMPLATE(rotation_prepared_apply, 6);
+BENCHMARK_TEMPLATE(rotation_prepared_apply_rgb, 3);
+BENCHMARK_TEMPLATE(rotation_prepared_apply_rgb, 6);
 BENCHMARK_TEMPLATE(fixed_rotation_build_apply, 3);
 BENCHMARK_TEMPLATE(fixed_rotation_build_apply, 6);
 BENCHMARK_TEMPLATE(fixed_rotate, 3);

@@ -540,3 +540,33 @@ TEST_CASE("lights: the colour's type and the output's are deduced separately", "
     sh::cone_light<3>(0.0, 0.0, 1.0, 0.3, {1.0, 1.0, 1.0}, rgb);
     CHECK(rgb[0].r > 0);
 }
+
+// A float RGB colour (RGBf above) as users write it: the 3-band lights fan it out with 16-lane
+// vector products on AVX-512 targets (detail::fan_out_rgb3); every channel must equal the light
+// of that channel alone (the same float basis values times the same float colour: exact).
+TEST_CASE("lights: float RGB at 3 bands equals each channel", "[lights]") {
+    std::mt19937 rng(1406);
+    std::normal_distribution<float> nd;
+    for (int trial = 0; trial < 32; ++trial) {
+        const float x = nd(rng), y = nd(rng), z = nd(rng);
+        const RGBf c{nd(rng), nd(rng), nd(rng)};
+        const float ch[3] = {c.r, c.g, c.b};
+        RGBf out[4][9];
+        sphbasis::sh::directional_light(3, x, y, z, c, out[0]);
+        sphbasis::sh::cone_light(3, x, y, z, 0.4f, c, out[1]);
+        sphbasis::sh::spherical_light(3, 3 * x, 3 * y, 3 * z, 0.7f, c, out[2]);
+        sphbasis::sh::directional_light<3>(x, y, z, c, out[3]);
+        for (int k = 0; k < 3; ++k) {
+            float ref[4][9];
+            sphbasis::sh::directional_light(3, x, y, z, ch[k], ref[0]);
+            sphbasis::sh::cone_light(3, x, y, z, 0.4f, ch[k], ref[1]);
+            sphbasis::sh::spherical_light(3, 3 * x, 3 * y, 3 * z, 0.7f, ch[k], ref[2]);
+            sphbasis::sh::directional_light<3>(x, y, z, ch[k], ref[3]);
+            for (int f = 0; f < 4; ++f)
+                for (int i = 0; i < 9; ++i) {
+                    const float got = k == 0 ? out[f][i].r : k == 1 ? out[f][i].g : out[f][i].b;
+                    CHECK(got == ref[f][i]);
+                }
+        }
+    }
+}

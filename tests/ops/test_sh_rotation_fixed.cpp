@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "../support/rotation_checks.hpp"
 #include "sphbasis/ops/sh_rotation.hpp"
 #include "sphbasis/ops/sh_rotation_fixed.hpp"
 
@@ -20,15 +21,8 @@ namespace {
 
 template <class T>
 sh::Mat3<T> random_rotation(std::mt19937& rng, bool improper) {
-    std::normal_distribution<double> nd;
-    const double w = nd(rng), x = nd(rng), y = nd(rng), z = nd(rng);
-    sh::Mat3<double> r = sh::matrix_from_quaternion(w, x, y, z);
-    if (improper)
-        for (int k = 6; k < 9; ++k)
-            r[static_cast<std::size_t>(k)] = -r[static_cast<std::size_t>(k)];
-    sh::Mat3<T> out;
-    for (std::size_t k = 0; k < 9; ++k) out[k] = T(r[k]);
-    return out;
+    return sphbasis::test::random_rotation_matrix<T>(
+        rng, improper ? sphbasis::test::Improper::reflect_z : sphbasis::test::Improper::no);
 }
 
 template <class T>

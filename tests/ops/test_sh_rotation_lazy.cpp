@@ -4,14 +4,17 @@
 // 9-band D (same recurrence; a block does not depend on the band count), apply() must agree
 // with the product by D within the accuracy of rotate<N>, copies and two threads reading D at
 // once must see the same values, and apply_transposed() must invert apply().
+#include <algorithm>
 #include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 #include <thread>
 #include <type_traits>
 #include <vector>
 
+#include "../support/rotation_checks.hpp"
 #include "sphbasis/ops/sh_rotation.hpp"
 
 namespace sh = sphbasis::sh;
@@ -20,14 +23,8 @@ namespace {
 
 template <class T>
 sh::Mat3<T> random_matrix(std::mt19937& rng, bool improper) {
-    std::normal_distribution<double> nd;
-    const double w = nd(rng), x = nd(rng), y = nd(rng), z = nd(rng);
-    sh::Mat3<double> r = sh::matrix_from_quaternion(w, x, y, z);
-    if (improper)
-        for (std::size_t k = 0; k < 9; ++k) r[k] = -r[k];
-    sh::Mat3<T> out;
-    for (std::size_t k = 0; k < 9; ++k) out[k] = T(r[k]);
-    return out;
+    return sphbasis::test::random_rotation_matrix<T>(
+        rng, improper ? sphbasis::test::Improper::negate : sphbasis::test::Improper::no);
 }
 
 template <class T>
@@ -174,6 +171,99 @@ TEST_CASE("rotation lazy: sh::rotate and rotate_quaternion at 1..8 bands match D
             CHECK(max_diff(d, ref) <= apply_tol<double>());
         }
     }
+}
+
+TEST_CASE("rotation lazy: float from_quaternion / from_matrix at 1..8 bands match D",
+          "[rotation][lazy]") {
+    // The float paths with their own code (AVX-512 where enabled): the quaternion-to-matrix in
+    // registers (non-unit quaternions are normalised), the orthonormality check, the 3-band
+    // kernel. Reference: the leading blocks of an eager 9-band D in double.
+    std::mt19937 rng(1404);
+    std::normal_distribution<double> nd;
+    double worst_q = 0, worst_m = 0, worst_r = 0;
+    for (int trial = 0; trial < 8; ++trial) {
+        const double s = trial % 3 == 0 ? 1e-3 : trial % 3 == 1 ? 1.0 : 1e3;  // |q| scales
+        const double w = s * nd(rng), x = s * nd(rng), y = s * nd(rng), z = s * nd(rng);
+        const sh::Mat3<double> rd = sh::matrix_from_quaternion(w, x, y, z);
+        sh::Mat3<float> rf;
+        for (std::size_t k = 0; k < 9; ++k) rf[k] = float(rd[k]);
+        const auto eager = sh::Rotation<double>::from_matrix(9, rd);
+        for (int n = 1; n <= 8; ++n) {
+            const std::vector<float> in = random_coeffs<float>(rng, n);
+            std::vector<float> a(in.size()), b(in.size()), c(in.size());
+            sh::Rotation<float>::from_quaternion(n, float(w), float(x), float(y), float(z))
+                .apply(in.data(), a.data());
+            sh::Rotation<float>::from_matrix(n, rf).apply(in.data(), b.data());
+            sh::rotate(n, rf, in.data(), c.data());
+            std::vector<double> ref(in.size(), 0.0);
+            for (int l = 0; l < n; ++l)
+                for (int m = -l; m <= l; ++m) {
+                    double acc = 0;
+                    for (int k = -l; k <= l; ++k)
+                        acc += eager(l, m, k) * in[static_cast<std::size_t>(sh::index(l, k))];
+                    ref[static_cast<std::size_t>(sh::index(l, m))] = acc;
+                }
+            worst_q = std::max(worst_q, max_diff(a, ref));
+            worst_m = std::max(worst_m, max_diff(b, ref));
+            worst_r = std::max(worst_r, max_diff(c, ref));
+        }
+    }
+    INFO("max error: quaternion " << worst_q << ", matrix " << worst_m << ", rotate " << worst_r);
+    CHECK(worst_q <= apply_tol<float>());
+    CHECK(worst_m <= apply_tol<float>());
+    CHECK(worst_r <= apply_tol<float>());
+    // the checks still run: a zero quaternion, a scaled or a NaN matrix throw
+    CHECK_THROWS_AS(sh::Rotation<float>::from_quaternion(3, 0.f, 0.f, 0.f, 0.f),
+                    std::invalid_argument);
+    sh::Mat3<float> bad = random_matrix<float>(rng, false);
+    for (float& v : bad) v *= 1.01f;
+    CHECK_THROWS_AS(sh::Rotation<float>::from_matrix(3, bad), std::invalid_argument);
+    bad = random_matrix<float>(rng, false);
+    bad[8] = std::nanf("");
+    CHECK_THROWS_AS(sh::Rotation<float>::from_matrix(3, bad), std::invalid_argument);
+    // one off-diagonal error of R R^T (2e-4) above the float tolerance 3e-5, the rest exact
+    const sh::Mat3<float> skew{1, 0, 2e-4f, 0, 1, 0, 0, 0, 1};
+    CHECK_THROWS_AS(sh::Rotation<float>::from_matrix(3, skew), std::invalid_argument);
+    CHECK_NOTHROW(sh::Rotation<float>::from_matrix(3, skew, 1e-3f));
+}
+
+template <class T>
+void check_prepared(std::mt19937& rng) {
+    double worst = 0, worst_t = 0;
+    for (int trial = 0; trial < 4; ++trial) {
+        const sh::Mat3<T> r = random_matrix<T>(rng, trial % 2 == 1);
+        for (int n = 1; n <= 8; ++n) {
+            auto rot = sh::Rotation<T>::from_matrix(n, r);
+            REQUIRE_FALSE(rot.prepared());
+            rot.prepare();
+            REQUIRE(rot.prepared() == (n >= 4));  // 1..3 bands: the factored form stays
+            REQUIRE(rot.lazy() == (n < 4));       // D formed at 4..8 bands
+            const std::vector<T> in = random_coeffs<T>(rng, n);
+            std::vector<T> out(in.size()), tout(in.size());
+            rot.apply(in.data(), out.data());
+            rot.apply_transposed(in.data(), tout.data());
+            worst = std::max(worst, max_diff(out, d_product(rot, in, false)));
+            worst_t = std::max(worst_t, max_diff(tout, d_product(rot, in, true)));
+            std::vector<T> inplace = in;
+            rot.apply(inplace.data(), inplace.data());
+            CHECK(inplace == out);
+            const sh::Rotation<T> copy = rot;  // copies stay prepared
+            CHECK(copy.prepared() == rot.prepared());
+            std::vector<T> out2(in.size());
+            copy.apply(in.data(), out2.data());
+            CHECK(out2 == out);
+        }
+    }
+    INFO("max |prepared apply - D in| " << worst << ", transposed " << worst_t);
+    // the same products as d_product up to the order of the float sums
+    CHECK(worst <= apply_tol<T>());
+    CHECK(worst_t <= apply_tol<T>());
+}
+
+TEST_CASE("rotation lazy: prepare() makes apply multiply by D at 4..8 bands", "[rotation][lazy]") {
+    std::mt19937 rng(1405);
+    check_prepared<float>(rng);
+    check_prepared<double>(rng);
 }
 
 TEST_CASE("rotation lazy: copies, moves and two threads reading D see the same D",

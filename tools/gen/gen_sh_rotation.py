@@ -752,7 +752,15 @@ template <int L, class T>
 SPHBASIS_FORCEINLINE void rotate_direct_vec(const T* SPHBASIS_RESTRICT r, const T* in, T* out) noexcept {
     static_assert(L >= 4, "rotate_direct_vec: L >= 4");
     T lo[9];
-    rotate_low_bands<L>(r, in, lo);
+#if SPHBASIS_SH_ROTATION_AVX512
+    // float: bands 0..2 in one register (rotate_low_bands_avx512, ops/sh_rotation.hpp)
+    constexpr bool low_vec = std::is_same_v<T, float>;
+    __m512 lov;
+    if constexpr (low_vec)
+        lov = rotate_low_bands_avx512(_mm512_setr_ps(r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8], 0, 0, 0, 0, 0, 0, 0), in);
+    else
+#endif
+        rotate_low_bands<L>(r, in, lo);
     T ca[L - 1], sa[L - 1], cb[L - 1], sb[L - 1], cg[L - 1], sg[L - 1];
     const bool improper = zyz_multiples<L>(r, ca, sa, cb, sb, cg, sg);
     if constexpr (L == 4) rotate_zyz_vec_4(ca, sa, cb, sb, cg, sg, in, out);
@@ -761,6 +769,12 @@ SPHBASIS_FORCEINLINE void rotate_direct_vec(const T* SPHBASIS_RESTRICT r, const 
     if constexpr (L == 7) rotate_zyz_vec_7(ca, sa, cb, sb, cg, sg, in, out);
     if constexpr (L == 8) rotate_zyz_vec_8(ca, sa, cb, sb, cg, sg, in, out);
     if (improper) negate_odd_high_bands<L, T>(out);
+#if SPHBASIS_SH_ROTATION_AVX512
+    if constexpr (low_vec) {
+        store_low_bands_avx512(out, lov);
+        return;
+    }
+#endif
     for (int k = 0; k < 9; ++k) out[k] = lo[k];
 }
 #endif
@@ -785,10 +799,19 @@ SPHBASIS_FORCEINLINE void rotate_direct_vec(const T* SPHBASIS_RESTRICT r, const 
 ///     recurrence gives); bands 1 and 2 are homogeneous in R and need nothing.
 /// For C = T with AVX-512 the bands >= 3 run in 16-lane vectors (rotate_direct_vec; the lanes
 /// pair m with -m so that a z rotation is lane-wise and the quarter turn is a few lane
-/// permutations times constants); otherwise straight-line scalar code (rotate_direct_scalar).
-/// in == out is allowed: every input is read before the first write.
+/// permutations times constants), and for C = T = float bands 0..2 in one 16-lane register
+/// (rotate_low_bands_avx512, ops/sh_rotation.hpp: R R-permuted for band 1 and the bilinear
+/// forms of R Q R^T for band 2, lane-wise); otherwise straight-line scalar code
+/// (rotate_direct_scalar). in == out is allowed: every input is read before the first write.
 template <int L, class T, class C>
 SPHBASIS_FORCEINLINE void rotate_direct(const T* SPHBASIS_RESTRICT r, const C* in, C* out) noexcept {
+#if SPHBASIS_SH_ROTATION_AVX512
+    if constexpr (L == 3 && std::is_same_v<T, float> && std::is_same_v<C, float>) {
+        const __m512 rv = _mm512_setr_ps(r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8], 0, 0, 0, 0, 0, 0, 0);
+        store_low_bands_avx512(out, rotate_low_bands_avx512(rv, in));
+        return;
+    }
+#endif
 #if SPHBASIS_SH_ROTATION_VECTOR && defined(__AVX512F__)
     if constexpr (L >= 4 && std::is_same_v<C, T>) {
         rotate_direct_vec<L>(r, in, out);

@@ -47,6 +47,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -231,6 +232,57 @@ SPHBASIS_FORCEINLINE std::array<C, sizeof...(Ls)> light_band_colours(Band&& band
 /// direction (x, y, z) of any length by the unrolled normalising kernel in E (a zero or
 /// non-finite direction: the pole). band(l) is called once per band; bands with bit l of
 /// ZeroBands set are stored as C{} and not evaluated.
+#if defined(__AVX512F__) && (defined(__GNUC__) || defined(__clang__))
+/// C is three packed floats that C * float scales one by one: trivially copyable, 12 bytes,
+/// float scalar, and (checked once per type at run time, on the values 1, 2, 4 times 0.5) its
+/// operator* acting on the three floats of its representation. Such colours (any float RGB
+/// struct) take the vector fan-out of zonal_out_fixed at 3 bands.
+template <class C>
+inline constexpr bool maybe_packed_rgb_v =
+    std::is_trivially_copyable_v<C>&& std::is_default_constructible_v<C> &&
+    sizeof(C) == 3 * sizeof(float) && std::is_same_v<coefficient_scalar_t<C>, float>;
+template <class C>
+bool packed_rgb() {
+    static const bool ok = [] {
+        const float a[3] = {1.0f, 2.0f, 4.0f};
+        C c;
+        std::memcpy(static_cast<void*>(&c), a, sizeof(c));
+        const C d = c * 0.5f;
+        float b[3];
+        std::memcpy(b, static_cast<const void*>(&d), sizeof(b));
+        return b[0] == 0.5f && b[1] == 1.0f && b[2] == 2.0f;
+    }();
+    return ok;
+}
+
+/// out (27 floats) = y[k] * colour[band of k][channel] for 3 bands: two 16-lane products of
+/// permuted y and colour vectors, stored as 16 + 8 + 2 + 1 floats (no masked store whose
+/// 64-byte span would block later loads).
+SPHBASIS_FORCEINLINE void fan_out_rgb3(const float* yv, const float* col, float* out) noexcept {
+    const __mmask16 all = 0xFFFF;
+    const __m512 yvec = _mm512_setr_ps(yv[0], yv[1], yv[2], yv[3], yv[4], yv[5], yv[6], yv[7],
+                                       yv[8], 0, 0, 0, 0, 0, 0, 0);
+    const __m512 cvec = _mm512_setr_ps(col[0], col[1], col[2], col[3], col[4], col[5], col[6],
+                                       col[7], col[8], 0, 0, 0, 0, 0, 0, 0);
+    // lane i of the output: y index i / 3, colour index 3 * band(i / 3) + i % 3
+    const __m512i iy0 = _mm512_setr_epi32(0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 5);
+    const __m512i iy1 = _mm512_setr_epi32(5, 5, 6, 6, 6, 7, 7, 7, 8, 8, 8, 0, 0, 0, 0, 0);
+    const __m512i ic0 = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 3, 4, 5, 3, 4, 5, 6, 7, 8, 6);
+    const __m512i ic1 = _mm512_setr_epi32(7, 8, 6, 7, 8, 6, 7, 8, 6, 7, 8, 0, 0, 0, 0, 0);
+    const __m512 o0 = _mm512_mul_ps(_mm512_maskz_permutexvar_ps(all, iy0, yvec),
+                                    _mm512_maskz_permutexvar_ps(all, ic0, cvec));
+    const __m512 o1 = _mm512_mul_ps(_mm512_maskz_permutexvar_ps(all, iy1, yvec),
+                                    _mm512_maskz_permutexvar_ps(all, ic1, cvec));
+    _mm512_storeu_ps(out, o0);
+    const __m256d lo = _mm512_maskz_extractf64x4_pd(__mmask8(0xF), _mm512_castps_pd(o1), 0);
+    _mm256_storeu_ps(out + 16, _mm256_castpd_ps(lo));
+    const __m256d hi = _mm512_maskz_extractf64x4_pd(__mmask8(0xF), _mm512_castps_pd(o1), 1);
+    const __m128 h = _mm256_castps256_ps128(_mm256_castpd_ps(hi));  // lanes 8..11 of o1
+    _mm_storel_pi(reinterpret_cast<__m64*>(out + 24), h);
+    _mm_store_ss(out + 26, _mm_movehl_ps(h, h));
+}
+#endif
+
 template <int N, unsigned ZeroBands = 0, class E, class C, class Band>
 SPHBASIS_FORCEINLINE void zonal_out_fixed(E x, E y, E z, Band&& band, C* out) noexcept {
     static_assert(N >= 1 && N <= 8, "sphbasis::sh lights: N is a band count in 1..8.");
@@ -239,6 +291,19 @@ SPHBASIS_FORCEINLINE void zonal_out_fixed(E x, E y, E z, Band&& band, C* out) no
                   "C * coefficient_scalar_t<C> (specialise sphbasis::coefficient_scalar).");
     using S = coefficient_scalar_t<C>;
     const std::array<C, N> colour = light_band_colours<C>(band, std::make_index_sequence<N>{});
+#if defined(__AVX512F__) && (defined(__GNUC__) || defined(__clang__))
+    if constexpr (N == 3 && ZeroBands == 0 && std::is_same_v<E, float> && maybe_packed_rgb_v<C>) {
+        if (packed_rgb<C>()) {
+            float yv[9];
+            FixedNormalizingKernel<N>{}(x, y, z, [&](int k, E v) { yv[k] = v; });
+            float col[9];
+            std::memcpy(col, static_cast<const void*>(colour.data()), sizeof(col));
+            // the 27 floats of out's representation (the intrinsics' stores may alias C)
+            fan_out_rgb3(yv, col, reinterpret_cast<float*>(static_cast<void*>(out)));
+            return;
+        }
+    }
+#endif
     FixedNormalizingKernel<N>{}(x, y, z, [&](int k, E v) {
         const int l = light_band_of[static_cast<std::size_t>(k)];
         if ((ZeroBands >> l) & 1u)
