@@ -228,10 +228,6 @@ SPHBASIS_FORCEINLINE std::array<C, sizeof...(Ls)> light_band_colours(Band&& band
     return {{band(static_cast<int>(Ls))...}};
 }
 
-/// out_k = band(l) * y_k(d) for the N^2 functions of N bands (l the band of k), y at the
-/// direction (x, y, z) of any length by the unrolled normalising kernel in E (a zero or
-/// non-finite direction: the pole). band(l) is called once per band; bands with bit l of
-/// ZeroBands set are stored as C{} and not evaluated.
 #if defined(__AVX512F__) && (defined(__GNUC__) || defined(__clang__))
 /// C is three packed floats that C * float scales one by one: trivially copyable, 12 bytes,
 /// float scalar, and (checked once per type at run time, on the values 1, 2, 4 times 0.5) its
@@ -283,6 +279,10 @@ SPHBASIS_FORCEINLINE void fan_out_rgb3(const float* yv, const float* col, float*
 }
 #endif
 
+/// out_k = band(l) * y_k(d) for the N^2 functions of N bands (l the band of k), y at the
+/// direction (x, y, z) of any length by the unrolled normalising kernel in E (a zero or
+/// non-finite direction: the pole). band(l) is called once per band; bands with bit l of
+/// ZeroBands set are stored as C{} and not evaluated.
 template <int N, unsigned ZeroBands = 0, class E, class C, class Band>
 SPHBASIS_FORCEINLINE void zonal_out_fixed(E x, E y, E z, Band&& band, C* out) noexcept {
     static_assert(N >= 1 && N <= 8, "sphbasis::sh lights: N is a band count in 1..8.");
