@@ -120,4 +120,25 @@ inline World sphere_on_plane_meshes() {
     return w;
 }
 
+/// The closed-form bake scene: a sphere (radius r = 1, centre height h = 2, stacks x slices
+/// facets) over a 200 x 200 plane. meshes(): a scene of the two, unlit; desc(): under a constant
+/// sky of 1.
+struct SphereOverPlane {
+    double h = 2, r = 1;
+    sphbasis::render::Mesh plane, ball;
+    explicit SphereOverPlane(int stacks = 64, int slices = 128)
+        : plane(quad_grid(-100, 100, -100, 100, 0, 1)),
+          ball(uv_sphere(0, 0, 2, 1, stacks, slices)) {}
+    sphbasis::render::SceneDesc meshes() const {
+        sphbasis::render::SceneDesc d;
+        d.meshes = {plane.view(), ball.view()};
+        return d;
+    }
+    sphbasis::render::SceneDesc desc() const {
+        sphbasis::render::SceneDesc d = meshes();
+        d.environment = constant_environment({1, 1, 1});
+        return d;
+    }
+};
+
 }  // namespace sphbasis_test

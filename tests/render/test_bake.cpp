@@ -66,18 +66,6 @@ void cap_integral(const V& a, double alpha, int nt, int nphi, G&& g) {
     }
 }
 
-struct SphereOverPlane {
-    double h = 2, r = 1;
-    Mesh plane = sphbasis_test::quad_grid(-100, 100, -100, 100, 0, 1);
-    Mesh ball = sphbasis_test::uv_sphere(0, 0, 2, 1, 64, 128);
-    SceneDesc desc() const {
-        SceneDesc d;
-        d.meshes = {plane.view(), ball.view()};
-        d.environment = sphbasis_test::constant_environment({1, 1, 1});
-        return d;
-    }
-};
-
 std::vector<BakePoint> plane_points() {
     std::vector<BakePoint> pts;
     const double rho[] = {0.0, 0.7, 1.6, 3.0};
@@ -95,7 +83,7 @@ std::vector<BakePoint> plane_points() {
 
 TEST_CASE("render::Baker: sphere over a plane, ao, bent normal, SH visibility, transfer",
           "[render]") {
-    SphereOverPlane sc;
+    const sphbasis_test::SphereOverPlane sc;
     BakeSettings s;
     s.quantities = Quantity::ao | Quantity::bent | Quantity::visibility | Quantity::transfer;
     s.bands = 4;
@@ -167,7 +155,7 @@ TEST_CASE("render::Baker: sphere over a plane, ao, bent normal, SH visibility, t
 }
 
 TEST_CASE("render::Baker: max_distance limits ao only", "[render]") {
-    SphereOverPlane sc;
+    const sphbasis_test::SphereOverPlane sc;
     BakeSettings s;
     s.quantities = Quantity::ao | Quantity::transfer;
     s.rays = 256;
@@ -651,7 +639,7 @@ TEST_CASE("bake: a NaN environment texel or a zero-angle cone is refused", "[ren
 
 TEST_CASE("render::Baker: transfer_matrix under a sphere is I minus the cap's product integral",
           "[render][bake]") {
-    SphereOverPlane sc;
+    const sphbasis_test::SphereOverPlane sc;
     BakeSettings s;
     s.quantities = Quantity::transfer_matrix | Quantity::visibility;
     s.bands = 3;

@@ -48,11 +48,9 @@ TEST_CASE("bake stderr: irradiance and radiance at an occluded point under a non
           "[render][bake]") {
     // The sphere (r = 1, centre height 2) over a plane; a point on the plane beside the shadow
     // axis, a sky that varies with direction and channel, a directional light, one bounce.
-    const Mesh plane = sphbasis_test::quad_grid(-100, 100, -100, 100, 0, 1);
-    const Mesh ball = sphbasis_test::uv_sphere(0, 0, 2, 1, 32, 64);
+    const sphbasis_test::SphereOverPlane sp(32, 64);
     const std::vector<float> sky = gradient_sky();
-    SceneDesc d;
-    d.meshes = {plane.view(), ball.view()};
+    SceneDesc d = sp.meshes();
     d.environment = sphbasis_test::latlong_environment(sky, 64, 32);
     d.lights = {sphbasis_test::directional_light({0.6, 0, 0.8}, {1, 0.5, 0.2})};
     BakeSettings s;
@@ -270,10 +268,8 @@ TEST_CASE("bake stderr: bent normal stderr, sphere over a plane at 1024, 4096, 1
     // Points on the plane around the sphere's shadow (r = 1, centre height 2): the bake at N rays
     // and at 16N (another seed) agree within 4 joint standard errors, and the stderr halves
     // with 4x the rays.
-    const Mesh plane = sphbasis_test::quad_grid(-100, 100, -100, 100, 0, 1);
-    const Mesh ball = sphbasis_test::uv_sphere(0, 0, 2, 1, 32, 64);
-    SceneDesc d;
-    d.meshes = {plane.view(), ball.view()};
+    const sphbasis_test::SphereOverPlane sp(32, 64);
+    SceneDesc d = sp.meshes();
     BakeSettings s;
     s.quantities = Quantity::bent;
     std::vector<BakePoint> pts;
@@ -311,10 +307,8 @@ TEST_CASE("bake stderr: bent normal stderr, sphere over a plane at 1024, 4096, 1
 
 TEST_CASE("bake stderr: transfer_matrix stderr, closed form and convergence", "[render][bake]") {
     // Sphere (r = 1, centre height 2) over a plane, a point on the plane.
-    const Mesh plane = sphbasis_test::quad_grid(-100, 100, -100, 100, 0, 1);
-    const Mesh ball = sphbasis_test::uv_sphere(0, 0, 2, 1, 32, 64);
-    SceneDesc d;
-    d.meshes = {plane.view(), ball.view()};
+    const sphbasis_test::SphereOverPlane sp(32, 64);
+    SceneDesc d = sp.meshes();
     BakeSettings s;
     s.quantities = Quantity::transfer_matrix;
     s.bands = 2;

@@ -339,9 +339,9 @@ class Baker {
         // irradiance error: y(local_j), g_j = M y(local_j) (coefficient k's plane of stride
         // rays) and L_in of the lit samples (R, G, B planes of stride rays)
         std::vector<double> irr_y, irr_g, irr_l;
-        // transfer_matrix error: r_j of the occluded samples, their sums of squares, the
-        // occluded samples' slots
-        std::vector<double> mat_r, mat_ss;
+        // transfer_matrix: y3(w_j) and r_j of the occluded samples, the sums of squares of
+        // s_j, the occluded samples' slots
+        std::vector<double> mat_y, mat_r, mat_ss;
         std::vector<std::uint32_t> mat_slot, mat_samples;
     };
     /// Exclusive pass timing: a Timer started inside another pauses the outer one, so nested
@@ -1483,11 +1483,17 @@ class Baker {
             }
         std::vector<double>& R = L.mat_r;
         R.assign(slot_sample.size() * 3 * nl, 0.0);
-        std::vector<double> yi(9), yj(nl);
+        // y3(w_j) once per occluded sample (every escape of its paths and the error use it).
+        std::vector<double>& Y = L.mat_y;
+        Y.resize(slot_sample.size() * 9);
+        for (std::size_t q = 0; q < slot_sample.size(); ++q) {
+            const V3& ws = dirs[slot_sample[q]];
+            sh::eval_unit(3, ws.x, ws.y, ws.z, Y.data() + 9 * q);
+        }
+        std::vector<double> yj(nl);
         const double scale = constants::two_pi / double(N);
         auto add = [&](std::size_t sample, const V3& d, const RGB& w) {
-            const V3& ws = dirs[sample];
-            sh::eval_unit(3, ws.x, ws.y, ws.z, yi.data());
+            const double* yi = Y.data() + std::size_t(slot[sample]) * 9;
             sh::eval_unit(settings_.bands, d.x, d.y, d.z, yj.data());
             double* r = R.data() + std::size_t(slot[sample]) * 3 * nl;
             for (std::size_t c = 0; c < 3; ++c) {
@@ -1513,23 +1519,23 @@ class Baker {
             },
             [](std::uint32_t, const RGB&) {});
         Timer t{L, hemisphere};
-        matrix_error(N, nl, dirs, slot_sample, R, M, L.mat_ss, res.transfer_matrix_stderr);
+        matrix_error(N, nl, slot_sample.size(), Y, R, M, L.mat_ss, res.transfer_matrix_stderr);
         for (auto& m : M)
             for (std::size_t i = 0; i < 9 && i < nl; ++i) m[i * nl + i] += 1;
     }
 
-    /// transfer_matrix_stderr (header comment) from the r_j of the occluded samples (R: 3 nl
-    /// per sample, channel-major) and M - I (the mean of s_j, before the identity is added).
-    static void matrix_error(std::size_t N, std::size_t nl, const std::vector<detail::rt::V3>& dirs,
-                             const std::vector<std::uint32_t>& samples,
-                             const std::vector<double>& R,
+    /// transfer_matrix_stderr (header comment) from the y3(w_j) and r_j of the `occ` occluded
+    /// samples (Y: 9 per sample; R: 3 nl per sample, channel-major) and M - I (the mean of s_j,
+    /// before the identity is added).
+    static void matrix_error(std::size_t N, std::size_t nl, std::size_t occ,
+                             const std::vector<double>& Y, const std::vector<double>& R,
                              const std::array<std::vector<double>, 3>& M, std::vector<double>& ss,
                              std::vector<double>& out) {
         out.assign(9 * nl, 0.0);
-        if (N < 2 || samples.empty()) return;
+        if (N < 2 || occ == 0) return;
         // Equal channels (no bounces, or grey albedos): one channel's sums serve all three.
         bool same = true;
-        for (std::size_t q = 0; q < samples.size() && same; ++q) {
+        for (std::size_t q = 0; q < occ && same; ++q) {
             const double* r = R.data() + q * 3 * nl;
             for (std::size_t k = 0; k < nl && same; ++k)
                 same = r[k] == r[nl + k] && r[k] == r[2 * nl + k];
@@ -1537,10 +1543,8 @@ class Baker {
         const std::size_t nc = same ? 1 : 3;
         const double dn = double(N), a = constants::two_pi;
         ss.assign(27 * nl, 0.0);  // channel c, element (i, k): sum_j s_j,ik^2
-        double yi[9];
-        for (std::size_t q = 0; q < samples.size(); ++q) {
-            const detail::rt::V3& ws = dirs[samples[q]];
-            sh::eval_unit(3, ws.x, ws.y, ws.z, yi);
+        for (std::size_t q = 0; q < occ; ++q) {
+            const double* yi = Y.data() + 9 * q;
             const double* r = R.data() + q * 3 * nl;
             for (std::size_t c = 0; c < nc; ++c)
                 for (std::size_t i = 0; i < 9; ++i) {

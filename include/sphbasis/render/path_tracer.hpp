@@ -66,14 +66,6 @@
 #include <embree3/rtcore.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#if defined(__SSE2__)
-#include <immintrin.h>
-#endif
-#if defined(__GNUC__) || defined(__clang__) || defined(_MSC_VER)
-#define SPHBASIS_PT_RESTRICT __restrict
-#else
-#define SPHBASIS_PT_RESTRICT
-#endif
 
 #include <algorithm>
 #include <array>
@@ -95,6 +87,7 @@
 #include "../core/error.hpp"
 #include "../core/frame.hpp"
 #include "../core/sampling.hpp"
+#include "../core/simd.hpp"
 #include "camera.hpp"
 #include "detail/rt_math.hpp"
 #include "environment_sampler.hpp"
@@ -277,28 +270,24 @@ inline std::uint64_t hash_mixed(std::uint64_t mixed_a, std::uint64_t b) noexcept
     return rt::mix64(mixed_a ^ (b + 0x632be59bd9b4e019ull));
 }
 
-/// out[k] = sqrt(in[k]) for in[k] >= 0, k < n (in place allowed), in SIMD registers where the
-/// compiler targets them (std::sqrt in a loop stays a libm call while math sets errno).
+/// out[k] = sqrt(in[k]) for in[k] >= 0, k < n (in place allowed), by the library's SIMD batch
+/// (core/simd.hpp: std::sqrt in a loop stays a libm call while math sets errno).
 inline void sqrt_array(const double* in, double* out, std::size_t n) noexcept {
+    using B = batch<double>;
     std::size_t k = 0;
-#if defined(__AVX__)
-    for (; k + 4 <= n; k += 4) _mm256_storeu_pd(out + k, _mm256_sqrt_pd(_mm256_loadu_pd(in + k)));
-#endif
-#if defined(__SSE2__)
-    for (; k + 2 <= n; k += 2) _mm_storeu_pd(out + k, _mm_sqrt_pd(_mm_loadu_pd(in + k)));
-#endif
+    for (; k + B::size <= n; k += B::size) vsqrt(B::load(in + k)).store(out + k);
     for (; k < n; ++k) out[k] = std::sqrt(in[k]);
 }
 
 /// w[k] = Frame(n[k]).to_world(l[k]) for unit normals n and local directions
 /// l = (r cs, r sn, z), k < n, the frame by coordinate_system (Duff et al.) written out: GCC
 /// does not vectorise the loop through a Frame object. No array overlaps another.
-inline void lobe_to_world(
-    std::size_t n, const double* SPHBASIS_PT_RESTRICT nx, const double* SPHBASIS_PT_RESTRICT ny,
-    const double* SPHBASIS_PT_RESTRICT nz, const double* SPHBASIS_PT_RESTRICT r,
-    const double* SPHBASIS_PT_RESTRICT cs, const double* SPHBASIS_PT_RESTRICT sn,
-    const double* SPHBASIS_PT_RESTRICT z, double* SPHBASIS_PT_RESTRICT wx,
-    double* SPHBASIS_PT_RESTRICT wy, double* SPHBASIS_PT_RESTRICT wz) noexcept {
+inline void lobe_to_world(std::size_t n, const double* SPHBASIS_RESTRICT nx,
+                          const double* SPHBASIS_RESTRICT ny, const double* SPHBASIS_RESTRICT nz,
+                          const double* SPHBASIS_RESTRICT r, const double* SPHBASIS_RESTRICT cs,
+                          const double* SPHBASIS_RESTRICT sn, const double* SPHBASIS_RESTRICT z,
+                          double* SPHBASIS_RESTRICT wx, double* SPHBASIS_RESTRICT wy,
+                          double* SPHBASIS_RESTRICT wz) noexcept {
     for (std::size_t k = 0; k < n; ++k) {
         const double x = nx[k], y = ny[k], zn = nz[k];
         const double sign = std::copysign(1.0, zn);
