@@ -97,8 +97,12 @@ TEST_CASE("irradiance fit: a constant sky gives pi in every basis", "[render][ir
     const IrradianceFit sh9("sh", 9);
     double r[9], g[9], b[9];
     sh9.fit_function([](double, double, double) { return constants::pi; }, r, g, b);
-    CHECK(r[0] == Approx(constants::pi * std::sqrt(4 * constants::pi)).epsilon(1e-13));
-    for (int k = 1; k < 9; ++k) CHECK(std::abs(r[k]) < 1e-12);
+    // The quadrature sums' order follows the vector width, so the rounding differs by target:
+    // |r_0 - pi sqrt(4 pi)| and max |r_k| measured 2.9e-13 natively on AVX-512, 1.0e-12 at
+    // x86-64-v3 (AVX2) and 6.4e-13 at x86-64 (SSE2), g++ -O3 and clang++ -O0 alike: bounded at
+    // 1e-12 relative to r_0 (1.1e-11) on every target.
+    CHECK(r[0] == Approx(constants::pi * std::sqrt(4 * constants::pi)).epsilon(1e-12));
+    for (int k = 1; k < 9; ++k) CHECK(std::abs(r[k]) < 1e-12 * r[0]);
     // Sample path: a dense sphere quadrature of a constant sky (radiance 1, 2, 3 in R, G, B).
     const Samples s = rule_samples(60, [](double, double, double) {
         return std::array<double, 3>{1, 2, 3};

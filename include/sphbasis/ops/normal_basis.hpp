@@ -183,10 +183,13 @@ inline Eigen::MatrixXd normal_basis_matrix(const NormalBasisSettings& settings,
 /// 100 sum_{i < M} s_i^2 / sum_i s_i^2 (100 at M = bands^2). Cost: clamped, about
 /// 1000 (2 bands + 8)^2 bands^2 multiply-adds at the automatic 24 rings (a few ms for 3 bands).
 /// Throws as normal_basis_matrix().
-inline NormalBasis normal_basis(const NormalBasisSettings& settings) {
+/// (A template only so that JacobiSVD is compiled where normal_basis() is called, not in every
+/// file that includes the umbrella header: it was most of the umbrella's parse time and memory.)
+template <class Matrix = Eigen::MatrixXd>
+NormalBasis normal_basis(const NormalBasisSettings& settings) {
     NormalBasis r;
-    const Eigen::MatrixXd a = normal_basis_matrix(settings, &r.normals);
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    const Matrix a = normal_basis_matrix(settings, &r.normals);
+    Eigen::JacobiSVD<Matrix> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
     r.u = svd.matrixU();
     r.singular_values = svd.singularValues();
     r.v = svd.matrixV();
@@ -205,8 +208,9 @@ inline NormalBasis normal_basis(const NormalBasisSettings& settings) {
 }
 
 /// normal_basis(settings).energy_percent.
-inline std::vector<double> normal_basis_energy(const NormalBasisSettings& settings) {
-    return normal_basis(settings).energy_percent;
+template <class Matrix = Eigen::MatrixXd>
+std::vector<double> normal_basis_energy(const NormalBasisSettings& settings) {
+    return normal_basis<Matrix>(settings).energy_percent;
 }
 
 }  // namespace sphbasis
