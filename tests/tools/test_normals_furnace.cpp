@@ -17,6 +17,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sphbasis/render/path_tracer.hpp>
 #include <sphbasis/render/shapes.hpp>
@@ -170,10 +171,12 @@ render::Camera scene_camera(const cli::SceneFile& s) {
     return c;
 }
 
-/// Writes a one-mesh furnace scene for `model` (an absolute path) next to the test's working
-/// directory and returns its path.
+/// Writes a one-mesh furnace scene for `model` (an absolute path) to the temporary directory
+/// and returns its path.
 std::string furnace_scene(const std::string& name, const std::string& model, double angle) {
-    const std::string path = "normals_furnace_" + name + ".json";
+    const std::string path =
+        (std::filesystem::temp_directory_path() / ("sphbasis_normals_furnace_" + name + ".json"))
+            .string();
     std::ofstream f(path);
     f << "{\"meshes\": [{\"file\": \"" << model << "\", \"albedo\": [1, 1, 1]";
     if (angle >= 0) f << ", \"smoothing_angle_deg\": " << angle;
@@ -287,21 +290,31 @@ TEST_CASE("scene files: normals generated with smoothing_angle_deg, given normal
                                       "180] degrees (0: flat faces), got 181"));
 }
 
-TEST_CASE("white furnace: open boxes from OBJ files, bake (24 bounces) and path tracer",
-          "[tools][furnace]") {
+namespace {
+void check_open_boxes(int rays, int spp) {
     for (const std::string& v : box_variants) {
         INFO("open_box_" << v);
         const cli::SceneFile s = cli::load_scene(furnace_dir + "open_box_" + v + ".json");
-        const Furnace b = bake_furnace(s, 128);
+        const Furnace b = bake_furnace(s, rays);
         CAPTURE(b.mean, b.lowest, b.highest, b.points);
         CHECK(b.worst < 1);
         CHECK(std::fabs(b.mean - 1) < 1e-3);
-        const PtFurnace p = trace_furnace(s, scene_camera(s), 32);
+        const PtFurnace p = trace_furnace(s, scene_camera(s), spp);
         CAPTURE(p.mean, p.se, p.covered);
         CHECK(p.covered > 0.2);
         CHECK(p.worst < 1);
         CHECK(std::fabs(p.mean - 1) <= 4 * p.se + 1e-9);
     }
+}
+}  // namespace
+
+TEST_CASE("white furnace: open boxes from OBJ files, bake (24 bounces) and path tracer",
+          "[tools][furnace]") {
+    check_open_boxes(128, 32);
+}
+
+TEST_CASE("white furnace: open boxes from OBJ files, many samples", "[tools][furnace][slow]") {
+    check_open_boxes(4096, 1024);
 }
 
 TEST_CASE("white furnace: models of assimp-testmodels", "[tools][furnace]") {
