@@ -11,7 +11,7 @@
 // triangle's angle at the corner: Thürmer and Wüthrich, "Computing Vertex Normals from Polygonal
 // Facets", Journal of Graphics Tools 3(1), 1998 (the normal does not depend on how a face is
 // triangulated). Triangles are compared by their winding's normal: neighbours wound the other
-// way (about 180 degrees apart) are not smoothed together.
+// way (about 180 degrees apart) are not smoothed together below 180 degrees.
 //
 // Assimp's own generation (aiProcess_GenSmoothNormals with AI_CONFIG_PP_GSN_MAX_SMOOTHING_ANGLE)
 // is not used: on files whose faces share vertices (PLY, OFF) it stores one face's normal per
