@@ -118,3 +118,13 @@ sphbasis_bake_test(textured_scene "\\{\"p\":\\[1,0,0\\],\"n\":\\[0,0,1\\],\"ao\"
   "printf '1 0 0 0 0 1\\n' | \"${_bake}\" bake ${_scenes}/textured.json --points - --quantities ao,irradiance --basis hbasis --coeffs 6 --rays 128")
 # An output directory that cannot be created fails before any work.
 sphbasis_bake_bad(out_unwritable "cannot create output directory '/dev/null/x'" bake ${_scenes}/lone_sphere.json --out /dev/null/x)
+
+# White furnace on meshes as files deliver them (label "bake"): the open box of
+# data/scenes/furnace (albedo 1, constant unit sky) read from OBJ files with flat normals, without
+# normals (generated with the default crease angle), with normals smoothed across its edges and
+# with mixed winding (with and without normals). The exit radiance is 1 at every vertex
+# (check_furnace_ply.py: within 5 standard errors).
+foreach(_v flat nonormals smooth mixed mixed_nonormals)
+  sphbasis_bake_test(furnace_obj_${_v} "furnace-ok"
+    "rm -rf bake_furnace_${_v} && \"${_bake}\" bake ${_scenes}/furnace/open_box_${_v}.json --quantities transfer --bands 1 --bounces 24 --rays 64 --out bake_furnace_${_v} >/dev/null && python3 ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_furnace_ply.py bake_furnace_${_v}/mesh0.ply")
+endforeach()

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "sphbasis/render/camera.hpp"
@@ -41,6 +42,24 @@ inline Mesh box(double x0, double y0, double z0, double x1, double y1, double z1
         if (open_top && f == 1) continue;
         m.indices.insert(m.indices.end(), {q[f][0], q[f][1], q[f][2], q[f][0], q[f][2], q[f][3]});
     }
+    return m;
+}
+
+/// Meshes as files deliver them (white-furnace tests of two-sided shading): every vertex normal
+/// set to the unit vector from `center` to the vertex (on box(), whose 8 corners are shared by
+/// three faces each: the normals a file smoothed across the 90-degree edges, 55 degrees from
+/// every face), and, with `mixed`, every second triangle wound the other way.
+inline Mesh with_radial_normals(Mesh m, sphbasis::vec3<double> center, bool mixed) {
+    m.normals.clear();
+    for (std::size_t i = 0; i < m.vertex_count(); ++i) {
+        const double x = m.positions[3 * i] - center.x, y = m.positions[3 * i + 1] - center.y,
+                     z = m.positions[3 * i + 2] - center.z;
+        const double l = std::sqrt(x * x + y * y + z * z);
+        m.normals.insert(m.normals.end(), {float(x / l), float(y / l), float(z / l)});
+    }
+    if (mixed)
+        for (std::size_t t = 0; t < m.triangle_count(); t += 2)
+            std::swap(m.indices[3 * t + 1], m.indices[3 * t + 2]);
     return m;
 }
 

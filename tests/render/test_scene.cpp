@@ -100,6 +100,25 @@ TEST_CASE("render::Scene: bad input and degenerate triangles", "[render]") {
     CHECK(Scene({big.view()}).epsilon() > 100 * s.epsilon());
 }
 
+TEST_CASE("render::Scene: normals against the winding still face the ray (two-sided)", "[render]") {
+    // The quad's winding gives +z, its vertex normals say -z (a file with mixed winding): from
+    // either side both normals face the ray, and the bitangent (from the UVs: +y) is kept.
+    Mesh q = shapes::quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1);
+    for (std::size_t i = 0; i < q.vertex_count(); ++i) q.normals[3 * i + 2] = -1;
+    q.tangents.clear();
+    const Scene s({q.view()});
+    for (double side : {1.0, -1.0}) {
+        const Hit h = s.intersect({0.2, 0.3, side}, {0, 0, -side});
+        REQUIRE(h.valid);
+        CHECK(h.back_face == (side < 0));
+        CHECK(h.geometric_normal.z == Approx(side));
+        CHECK(h.shading_normal.z == Approx(side));
+        const vec3<double> n = h.shading_normal, t = h.tangent;
+        const double by = h.bitangent_sign * (n.z * t.x - n.x * t.z);  // (n x t).y
+        CHECK(by == Approx(1));
+    }
+}
+
 TEST_CASE("render::Scene: UVs, tangent frames and normal maps at hits", "[render]") {
     // A quad in the xy plane, u along +x and v along +y: tangent +x, bitangent +y, sign +1.
     Mesh q = shapes::quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1);

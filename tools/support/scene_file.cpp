@@ -22,6 +22,7 @@
 #include <sphbasis/render/shapes.hpp>
 
 #include "exr.hpp"
+#include "mesh_normals.hpp"
 
 namespace sphbasis::cli {
 
@@ -330,21 +331,23 @@ render::Mesh make_shape(const Ctx& c, const json& j, const std::string& where,
 // ---------------------------------------------------------------------------------------------
 // Assimp
 
-render::Mesh load_mesh_file(const Ctx& c, const std::string& where, const std::string& path) {
+render::Mesh load_mesh_file(const Ctx& c, const std::string& where, const std::string& path,
+                            double smoothing_angle_deg) {
     {
         std::ifstream probe(path, std::ios::binary);
         if (!probe) c.fail(where, "cannot open mesh file '" + path + "'");
     }
     Assimp::Importer importer;
-    // Normals only where the file has none (GenSmoothNormals leaves existing ones); tangents
-    // need UVs. PreTransformVertices bakes the file's node hierarchy into world positions.
-    const aiScene* s =
-        importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                    aiProcess_GenSmoothNormals | aiProcess_CalcTangentSpace |
-                                    aiProcess_PreTransformVertices | aiProcess_SortByPType);
+    // Tangents need UVs and the file's normals. PreTransformVertices bakes the file's node
+    // hierarchy into world positions. Normals the file lacks are generated below with a crease
+    // angle (mesh_normals.hpp says why not by Assimp).
+    const aiScene* s = importer.ReadFile(
+        path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_CalcTangentSpace |
+                  aiProcess_PreTransformVertices | aiProcess_SortByPType);
     if (s == nullptr || (s->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0)
         c.fail(where, "cannot load mesh '" + path + "': " + importer.GetErrorString());
     render::Mesh m;
+    std::vector<char> generate;  // per triangle: its part of the file has no normals
     bool all_uvs = true, all_tangents = true;
     for (unsigned k = 0; k < s->mNumMeshes; ++k) {
         const aiMesh* a = s->mMeshes[k];
@@ -378,6 +381,14 @@ render::Mesh load_mesh_file(const Ctx& c, const std::string& where, const std::s
             if (face.mNumIndices != 3) continue;
             m.indices.insert(m.indices.end(), {base + face.mIndices[0], base + face.mIndices[1],
                                                base + face.mIndices[2]});
+            generate.push_back(a->HasNormals() ? 0 : 1);
+        }
+    }
+    if (std::find(generate.begin(), generate.end(), 1) != generate.end()) {
+        try {
+            generate_normals(m, generate, smoothing_angle_deg);
+        } catch (const std::invalid_argument& e) {
+            c.fail(where, e.what());
         }
     }
     return m;
@@ -426,7 +437,7 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
                                      "normal_map", "shininess", "specular"};
     std::string kind;
     if (has_file) {
-        keys.push_back("file");
+        keys.insert(keys.end(), {"file", "smoothing_angle_deg"});
     } else {
         kind = string(c, j["shape"], sub(where, "shape"));
         keys.push_back("shape");
@@ -444,8 +455,16 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
                    "expected letters, digits, '_', '-' or '.' (it names output files), got '" +
                        sm.name + "'");
     if (has_file) {
+        double angle = default_smoothing_angle_deg;
+        if (j.contains("smoothing_angle_deg")) {
+            angle = number(c, j["smoothing_angle_deg"], sub(where, "smoothing_angle_deg"));
+            if (!(angle >= 0 && angle <= 180))
+                c.fail(sub(where, "smoothing_angle_deg"),
+                       "expected an angle in [0, 180] degrees (0: flat faces), got " +
+                           number_text(angle));
+        }
         sm.source = c.resolve(string(c, j["file"], sub(where, "file")));
-        sm.mesh = load_mesh_file(c, sub(where, "file"), sm.source);
+        sm.mesh = load_mesh_file(c, sub(where, "file"), sm.source, angle);
     } else {
         sm.source = "shape:" + kind;
         try {

@@ -39,6 +39,14 @@
 //                channel ("multiply by albedo when gathering"); a path escaping along w after k
 //                hits adds (prod of the k albedos) y_i(w). rho(x) is factored out. Channels
 //                differ only when albedos differ per channel (transfer_rgb).
+//                Two-sided: a hit is shaded from the side the ray arrived on (Scene::hit turns
+//                the geometric and the shading normal to it together), and a direction of the
+//                lobe below the geometric surface (the shading normal differs from it) is
+//                reflected in the geometric tangent plane (detail::rt::fold_above) instead of
+//                ending the path: every vertex passes on exactly its albedo, so a white furnace
+//                (albedo 1, unit sky) gives 1 up to the bounce count. Directional lights at a
+//                path vertex use the same folded cosine. All quantities with bounces continue
+//                paths this way.
 //   irradiance = E(n') = int_{n.w > 0} L_in(w) max(n'.w, 0) dw for normals n' over the tangent
 //                hemisphere (Ishmukhametov), L_in the incoming radiance (environment, lights,
 //                shadows, bounces; V = 0 below x's tangent plane), fitted in `basis` with `coeffs`
@@ -857,13 +865,16 @@ class Baker {
                 for (std::size_t c = 0; c < 3; ++c) ps.throughput[c] *= ps.hit.albedo[c];
                 if (!(std::max({ps.throughput[0], ps.throughput[1], ps.throughput[2]}) > 0))
                     continue;
-                // Direct light at this vertex whatever the continuation does (a continuation
-                // below the geometric normal ends the path, not its vertex's sunlight).
                 if (lit) lit_paths.push_back(ps);
                 const std::uint64_t h = hash(key, ps.sample, std::uint64_t(k));
                 const Frame<double> f(ps.hit.shading_normal);
-                const V3 d =
-                    f.to_world(square_to_cosine_hemisphere(unit(hash(h, 1)), unit(hash(h, 2))));
+                // The cosine lobe about the shading normal, folded above the geometric surface
+                // (fold_above: the weight stays the albedo, nothing is lost where the two
+                // normals differ). Only a direction exactly in the tangent plane (probability
+                // 0) ends the path.
+                const V3 d = fold_above(
+                    ps.hit.geometric_normal,
+                    f.to_world(square_to_cosine_hemisphere(unit(hash(h, 1)), unit(hash(h, 2)))));
                 if (!(dot(d, ps.hit.geometric_normal) > 0)) continue;
                 RTCRayHit r;
                 Scene::set_ray(r, scene_.offset_origin(ps.hit.position, ps.hit.geometric_normal, d),
@@ -892,7 +903,8 @@ class Baker {
     }
 
     /// Next-event estimation of directional lights at path vertices (throughput already
-    /// includes the vertex albedo): T color max(ns.l, 0) / pi when unshadowed.
+    /// includes the vertex albedo): T color c / pi when unshadowed, c the folded cosine of the
+    /// path's continuation (detail::rt::folded_cosine; max(ns.l, 0) where ns = ng).
     template <class Gather>
     void direct_lights_at_vertices(const std::vector<PathState>& live, Local& L,
                                    Gather&& gather) const {
@@ -904,8 +916,9 @@ class Baker {
         for (const PathState& ps : live)
             for (const Light& l : lights_) {
                 if (l.type != Light::Type::directional) continue;
-                const double c = dot(ps.hit.shading_normal, l.direction);
-                if (!(c > 0) || !(dot(ps.hit.geometric_normal, l.direction) > 0)) continue;
+                const double c =
+                    folded_cosine(ps.hit.shading_normal, ps.hit.geometric_normal, l.direction);
+                if (!(c > 0)) continue;
                 RTCRay r;
                 Scene::set_ray(
                     r, scene_.offset_origin(ps.hit.position, ps.hit.geometric_normal, l.direction),

@@ -71,8 +71,10 @@ struct Hit {
     vec3<double> position{0, 0, 0};
     /// Unit geometric normal, flipped to face the ray (dot(geometric_normal, d) <= 0).
     vec3<double> geometric_normal{0, 0, 1};
-    /// Unit interpolated shading normal (geometric without normals), flipped with the geometric
-    /// normal (meshes are two-sided).
+    /// Unit interpolated shading normal (geometric without normals), on the geometric normal's
+    /// side (dot(shading_normal, geometric_normal) >= 0): meshes are two-sided and shaded from
+    /// the side the ray arrives on, whatever the winding of the triangle or the side its vertex
+    /// normals point to.
     vec3<double> shading_normal{0, 0, 1};
     /// Mesh albedo times the albedo map at the interpolated UV (bilinear, wrapping), per channel.
     std::array<double, 3> albedo{0, 0, 0};
@@ -88,7 +90,8 @@ struct Hit {
     /// Unit tangent orthogonal to shading_normal and the bitangent's handedness: bitangent =
     /// bitangent_sign * cross(shading_normal, tangent). From the mesh's tangents (interpolated),
     /// else from the triangle's UV derivative dp/du, else coordinate_system() (core/frame.hpp) of
-    /// the normal. On a back face the normal is flipped and the tangent kept, so the sign flips.
+    /// the normal. Where the normal is flipped to face the ray the tangent is kept, so the sign
+    /// flips.
     vec3<double> tangent{1, 0, 0};
     double bitangent_sign = 1;
 };
@@ -307,9 +310,16 @@ class Scene {
         h.back_face = dot(ng, d) > 0;
         if (h.back_face) ng = -ng;
         h.geometric_normal = ng;
+        // Two-sided: the shading normal goes to the side the ray arrived on with the geometric
+        // one, by its own sign against ng rather than by the winding, so normals that disagree
+        // with their triangle's winding (files with mixed winding) still face the ray.
+        // `flipped`: the shading normal points against the mesh's (or, without normals, the
+        // counter-clockwise) one, which the tangents' handedness refers to.
+        bool flipped = h.back_face;
         if (!m.normals.empty()) {
             const V3 ns = m.nrm(tri[0]) * w0 + m.nrm(tri[1]) * w1 + m.nrm(tri[2]) * w2;
-            h.shading_normal = normalized(h.back_face ? -ns : ns, ng);
+            flipped = dot(ns, ng) < 0;
+            h.shading_normal = normalized(flipped ? -ns : ns, ng);
         } else {
             h.shading_normal = ng;
         }
@@ -341,6 +351,7 @@ class Scene {
                     const V3 dpdv = ((p2 - p0) * du1 - (p1 - p0) * du2) * (1 / det);
                     const V3 nc{fn[0], fn[1], fn[2]};
                     h.bitangent_sign = dot(cross(nc, dpdu), dpdv) < 0 ? -1 : 1;
+                    flipped = dot(h.shading_normal, nc) < 0;  // the sign refers to nc
                 }
             }
         }
@@ -359,7 +370,7 @@ class Scene {
             h.tangent = f.s;
             h.bitangent_sign = 1;
         }
-        if (h.back_face) h.bitangent_sign = -h.bitangent_sign;
+        if (flipped) h.bitangent_sign = -h.bitangent_sign;
     }
 
   public:

@@ -26,6 +26,29 @@ inline bool finite(const V3& a) noexcept {
     return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
 }
 
+/// Two-sided diffuse reflection with a shading normal ns that differs from the geometric
+/// normal ng (interpolated or normal-mapped normals; both unit and facing the side the ray
+/// arrived on, Scene::hit). A cosine-lobe direction about ns may lie below the geometric
+/// surface; ending the path there loses energy (a white furnace reads less than 1). Instead the
+/// direction is folded: reflected in the geometric tangent plane, w' = w - 2 (ng.w) ng. The
+/// folded lobe's density at a direction w above the surface is folded_cosine(ns, ng, w) / pi,
+/// folded_cosine = max(ns.w, 0) + max(ns.w', 0), whose integral over the upper hemisphere is
+/// pi (the reflection maps the lower hemisphere onto the upper one and preserves solid angle),
+/// so the diffuse kernel albedo / pi * folded_cosine reflects exactly the albedo, its sampled
+/// weight is the albedo, and it equals the Lambertian albedo / pi * max(n.w, 0) where ns = ng.
+inline V3 fold_above(const V3& ng, const V3& w) noexcept {
+    const double a = dot(ng, w);
+    return a < 0 ? w - ng * (2 * a) : w;
+}
+/// The folded cosine of fold_above(): 0 for w on or below the geometric surface (ng.w <= 0).
+inline double folded_cosine(const V3& ns, const V3& ng, const V3& w) noexcept {
+    const double a = dot(ng, w);
+    if (!(a > 0)) return 0;
+    const double c = dot(ns, w);
+    const double r = c - 2 * a * dot(ns, ng);  // ns . (w - 2 (ng.w) ng)
+    return (c > 0 ? c : 0) + (r > 0 ? r : 0);
+}
+
 /// SplitMix64 finaliser (Steele, Lea and Flood, "Fast Splittable Pseudorandom Number
 /// Generators", OOPSLA 2014): a bijective 64-bit mixer.
 inline std::uint64_t mix64(std::uint64_t z) noexcept {
