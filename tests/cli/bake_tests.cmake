@@ -50,7 +50,7 @@ sphbasis_bake_bad(empty_mesh "[^ ]*empty_mesh.json: meshes\\[0\\]: empty mesh"
 sphbasis_bake_bad(texels_without_uvs "[^ ]*no_uvs.json: meshes\\[0\\] \\('mesh0'\\): a texel bake needs a UV set"
                   bake ${_scenes}/no_uvs.json --target texels:16)
 sphbasis_bake_bad(probes_without_grid "[^ ]*sphere_over_quad.json: --target probes needs a \"probes\" grid"
-                  bake ${_scenes}/sphere_over_quad.json --target probes)
+                  bake ${_scenes}/sphere_over_quad.json --target probes --quantities radiance)
 # Bad options.
 sphbasis_bake_bad(shard_out_of_range "--shard: expected I/N with 0 <= I < N" bake ${_scenes}/lone_sphere.json --shard 2/2)
 sphbasis_bake_bad(shard_malformed "--shard: expected I/N" bake ${_scenes}/lone_sphere.json --shard a/b)
