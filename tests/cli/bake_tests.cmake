@@ -33,7 +33,7 @@ sphbasis_bake_bad(nan_transform "[^ ]*nan_transform.json: malformed JSON: .*NaN 
                   bake ${_scenes}/bad/nan_transform.json)
 sphbasis_bake_bad(inf_transform "[^ ]*inf_transform.json: expected finite numbers"
                   bake ${_scenes}/bad/inf_transform.json)
-sphbasis_bake_bad(overflow_transform "[^ ]*overflow_transform.json: meshes\\[0\\].transform: singular or non-finite transform"
+sphbasis_bake_bad(overflow_transform "[^ ]*overflow_transform.json: meshes\\[0\\].transform: expected a transform with entries in \\[-1e15, 1e15\\]"
                   bake ${_scenes}/bad/overflow_transform.json)
 sphbasis_bake_bad(singular_transform "[^ ]*singular_transform.json: meshes\\[0\\].transform: singular or non-finite transform"
                   bake ${_scenes}/bad/singular_transform.json)

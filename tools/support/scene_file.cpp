@@ -331,6 +331,15 @@ void apply(const Ctx& c, const std::string& where, const Affine& m, render::Mesh
     const double scale = std::max({std::fabs(a[0]) + std::fabs(a[1]) + std::fabs(a[2]),
                                    std::fabs(a[3]) + std::fabs(a[4]) + std::fabs(a[5]),
                                    std::fabs(a[6]) + std::fabs(a[7]) + std::fabs(a[8])});
+    // Entries beyond the coordinate bound would move any vertex beyond it (and overflow the
+    // determinant's test below).
+    if (!(scale <= max_coordinate) || !(std::fabs(m.t.x) <= max_coordinate) ||
+        !(std::fabs(m.t.y) <= max_coordinate) || !(std::fabs(m.t.z) <= max_coordinate))
+        c.fail(where,
+               "expected a transform with entries in [-1e15, 1e15] (a row of the matrix "
+               "sums to " +
+                   number_text(scale) + ", the translation is [" + number_text(m.t.x) + ", " +
+                   number_text(m.t.y) + ", " + number_text(m.t.z) + "])");
     if (!std::isfinite(d) || std::fabs(d) <= 1e-12 * scale * scale * scale)
         c.fail(where, "singular or non-finite transform (determinant " + number_text(d) + ")");
     // Inverse transpose = cofactor matrix / det.
@@ -607,6 +616,12 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
     SceneMesh sm;
     sm.name = j.contains("name") ? string(c, j["name"], sub(where, "name"))
                                  : "mesh" + std::to_string(index);
+    // Output files are <name>.ply or <name>.exr, staged under a longer temporary name: well
+    // below the 255 bytes of a file name.
+    if (sm.name.size() > 200)
+        c.fail(sub(where, "name"),
+               "expected at most 200 characters (it names output files), got '" + shown(sm.name) +
+                   "'");
     for (char ch : sm.name)
         if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.'))
             c.fail(sub(where, "name"),
