@@ -847,13 +847,16 @@ int run_bake(const BakeOptions& o) {
     const double t_load = seconds_since(t_start);
 
     // The points' memory, estimated before the layout allocates it.
-    double points = 0;
-    for (const SceneMesh& m : scene.meshes)
+    double points = 0, geometry = 0;
+    for (const SceneMesh& m : scene.meshes) {
         points += target.kind == TargetKind::texels ? double(target.res) * double(target.res)
                                                     : double(m.mesh.vertex_count());
+        geometry += double(m.mesh.vertex_count()) * mesh_bytes_per_vertex +
+                    double(m.mesh.triangle_count()) * mesh_bytes_per_triangle;
+    }
     if (target.kind == TargetKind::probes) points = double(scene.probes.size());
     if (target.kind != TargetKind::points)
-        check_memory(o.scene + ": ", points * bytes_per_point(s),
+        check_memory(o.scene + ": ", geometry + points * bytes_per_point(s),
                      "baking " + std::to_string(static_cast<long long>(points)) + " " +
                          (target.kind == TargetKind::texels   ? "texels"
                           : target.kind == TargetKind::probes ? "probes"
@@ -888,6 +891,14 @@ int run_bake(const BakeOptions& o) {
                                  " results for " + std::to_string(mine.size()) + " points");
     const Layout L(s);
     const std::vector<double> rec = pack(L, results);
+    // The scene's limits (docs/scene-format.md) keep every result finite; should one not be,
+    // no file is written with it (a PLY or EXR of inf or NaN at exit 0 would pass for a bake).
+    for (std::size_t i = 0; i < rec.size(); ++i)
+        if (!std::isfinite(rec[i]))
+            throw std::runtime_error(o.scene + ": the bake gave a non-finite value at point " +
+                                     std::to_string(begin + i / L.stride) + " (value " +
+                                     std::to_string(i % L.stride) +
+                                     " of its record); nothing was written");
     const std::uint64_t rays = baker.rays_traced();
 
     Json summary = {{"tool", "sphbasis bake"},

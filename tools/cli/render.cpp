@@ -306,17 +306,20 @@ int run_render(const RenderOptions& o) {
     }
     {
         // The run's big arrays, estimated before any is allocated (support/memory.hpp): the
-        // images (the reference's sums and squares, its stderr, each representation's image,
-        // error image and PNGs), the lightmaps (a bake point, its result and the stored
-        // coefficients per texel, growing with the PRT bands) and the probes.
+        // geometry, the images (the reference's sums and squares, its stderr, each
+        // representation's image, error image and PNGs), the lightmaps (a bake point, its result
+        // and the stored coefficients per texel, growing with the PRT bands) and the probes.
         const double pixels = double(camera.width) * double(camera.height);
-        double texels = 0;
-        for (const SceneMesh& m : scene.meshes)
+        double texels = 0, geometry = 0;
+        for (const SceneMesh& m : scene.meshes) {
             if (!m.mesh.uvs.empty()) texels += double(o.lightmap_size) * double(o.lightmap_size);
+            geometry += double(m.mesh.vertex_count()) * mesh_bytes_per_vertex +
+                        double(m.mesh.triangle_count()) * mesh_bytes_per_triangle;
+        }
         const double nb2 = double(o.prt_bands) * double(o.prt_bands);
         const double probes = scene.has_probes ? double(scene.probes.size()) : 0;
-        const double bytes =
-            pixels * (128 + 32 * double(names.size())) + texels * (256 + 160 * nb2) + probes * 512;
+        const double bytes = geometry + pixels * (128 + 16 * double(names.size())) +
+                             texels * (256 + 64 * nb2) + probes * 512;
         check_memory(o.scene + ": ", bytes,
                      std::to_string(camera.width) + " x " + std::to_string(camera.height) +
                          " pixels, " + std::to_string(static_cast<long long>(texels)) +

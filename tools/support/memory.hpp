@@ -17,6 +17,10 @@
 
 namespace sphbasis::cli {
 
+/// Estimated bytes per mesh vertex (render::Mesh's positions, normals, UVs, tangents) and per
+/// triangle (indices, the ray-tracing scene's copy and its BVH).
+inline constexpr double mesh_bytes_per_vertex = 48, mesh_bytes_per_triangle = 12 + 64;
+
 /// The bytes a run may plan to use (see the file comment). Throws std::runtime_error when
 /// SPHBASIS_MAX_MEMORY is set but malformed.
 std::uint64_t memory_limit();

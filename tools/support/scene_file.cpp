@@ -43,9 +43,8 @@ using V3 = vec3<double>;
 // 4 pi and by SH normalisations in float outputs (at most 3.4e38).
 constexpr double max_coordinate = 1e15;  // |x| of positions, extents, radii, axes
 constexpr double max_radiance = 1e15;    // colours, and environment scale x its largest value
-// Memory estimates per element of a mesh (render::Mesh arrays: positions, normals, UVs,
-// tangents; indices) plus the ray-tracing scene's BVH and its copy of the triangles.
-constexpr double bytes_per_vertex = 48, bytes_per_triangle = 12 + 64;
+constexpr double bytes_per_vertex = mesh_bytes_per_vertex;  // memory.hpp
+constexpr double bytes_per_triangle = mesh_bytes_per_triangle;
 
 /// A key or value of the file in a message: at most 40 characters, non-printable bytes escaped.
 std::string shown(const std::string& s) { return quote_input(s); }
