@@ -140,3 +140,15 @@ sphbasis_cli_bad_env(bad_long_mesh_name "bake: [^ ]*bi_name.json: meshes\\[0\\].
                      "" bake bi_name.json)
 sphbasis_cli_bad(bad_huge_matrix "bake: [^ ]*huge_matrix.json: meshes\\[0\\].transform: expected a transform with entries in \\[-1e15, 1e15\\]"
                  bake ${_bi_bad}/huge_matrix.json)
+
+# --- Bake points from standard input: a coordinate beyond 1e15 (before: SIGABRT in Embree), a
+# free point with a surface quantity (before: render::Baker::bake()'s message), and a tiny or
+# huge normal, which is a direction like any other (before: "expected a non-zero finite normal").
+sphbasis_cli_script(bad_point_far "bad-input-ok: sphbasis bake: standard input line 2: expected coordinates in \\[-1e15, 1e15\\], got '2e18'\n"
+  "err=$(printf '0 0 0 0 0 1\\n2e18 0 0 0 0 1\\n' | \"${_bi_cli}\" bake ${_bi_scenes}/lone_sphere.json --points - 2>&1 >/dev/null); rc=$?; n=$(printf '%s\\n' \"$err\" | wc -l); if [ $rc -eq 2 ] && [ $n -eq 1 ]; then echo \"bad-input-ok: $err\"; else echo \"rc=$rc lines=$n: $err\"; fi")
+sphbasis_cli_script(bad_point_free "bad-input-ok: sphbasis bake: standard input: point 1 is 'x y z' \\(no normal\\): ao, bent, visibility, transfer and irradiance need 'x y z nx ny nz'; free points bake radiance\n"
+  "err=$(printf '0 0 5\\n' | \"${_bi_cli}\" bake ${_bi_scenes}/lone_sphere.json --points - 2>&1 >/dev/null); rc=$?; n=$(printf '%s\\n' \"$err\" | wc -l); if [ $rc -eq 2 ] && [ $n -eq 1 ]; then echo \"bad-input-ok: $err\"; else echo \"rc=$rc lines=$n: $err\"; fi")
+# Points whose hemisphere misses the unit sphere (at (5, 0, 0) facing away from it, at (0, 0, 5)
+# facing up): ao = 1 exactly.
+sphbasis_cli_script(point_tiny_normal "\"n\":\\[[0-9.]+e-32[01],0,[0-9.]+e-32[01]\\],\"ao\":1,.*\n.*\"n\":\\[0,0,1[.0-9]*e\\+300\\],\"ao\":1,"
+  "printf '5 0 0 1e-320 0 1e-320\\n0 0 5 0 0 1e300\\n' | \"${_bi_cli}\" bake ${_bi_scenes}/lone_sphere.json --points - --rays 16")

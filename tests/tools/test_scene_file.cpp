@@ -1,7 +1,10 @@
 // Bad input to the tool's support code: the memory limit (tools/support/memory.hpp), the
 // number grammar's range messages (args.hpp), and the scene loader (scene_file.hpp) as a
 // property on random mutations of the committed scenes: it returns a scene or throws a
-// std::exception with a one-line message naming the file, and never crashes or hangs.
+// std::exception with a one-line message naming the file, and never crashes or hangs. Also the
+// library's coordinate bound behind the loader (render::coordinate_limit: render::Scene and
+// render::Baker::bake refuse what Embree would abort on), here because this binary is the one
+// that builds with the tool.
 #include <unistd.h>
 
 #include <algorithm>
@@ -19,6 +22,8 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <sphbasis/render/bake.hpp>
+#include <sphbasis/render/shapes.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -275,4 +280,36 @@ TEST_CASE("scene_file: random mutations of the committed scenes load or fail in 
     fs::remove_all(tmp);
     CHECK(loaded > 150);
     CHECK(refused > 500);
+}
+
+TEST_CASE("render: coordinates beyond coordinate_limit are refused, not passed to Embree",
+          "[tool]") {
+    using namespace sphbasis;
+    render::Mesh m = render::shapes::quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1);
+    {
+        render::Mesh far = m;
+        far.positions[0] = 2e18f;  // Embree aborted on an assertion here
+        REQUIRE_THROWS_WITH(render::Scene({far.view()}),
+                            Catch::Contains("render::Scene(): expected vertex coordinates within "
+                                            "[-1e15, 1e15] (render::coordinate_limit), got "
+                                            "1999999980156829696") &&
+                                Catch::Contains("(mesh 0)"));
+        far.positions[0] = -1e15f;  // the bound itself (as float: 999999986991104) is accepted
+        CHECK_NOTHROW(render::Scene({far.view()}));
+    }
+    render::SceneDesc desc;
+    desc.meshes.push_back(m.view());
+    render::BakeSettings s;
+    s.quantities = render::Quantity::ao;
+    s.rays = 4;
+    render::Baker baker(desc, s);
+    render::BakePoint p;
+    p.n = {0, 0, 1};
+    p.p = {0, 0, 1e15};
+    CHECK(baker.bake({p}).size() == 1);
+    p.p = {0, -2e18, 0};
+    REQUIRE_THROWS_WITH(
+        baker.bake({p}),
+        Catch::Contains("positions within [-1e15, 1e15] (render::coordinate_limit), "
+                        "got -2000000000000000000.000000 at point 0"));
 }

@@ -292,14 +292,18 @@ Work point_work(std::istream& in, const std::string& source) {
         std::vector<double> v;
         for (const auto& s : tok) v.push_back(to_real(s, where));
         render::BakePoint p;
+        for (std::size_t k = 0; k < 3; ++k)
+            if (!(std::fabs(v[k]) <= render::coordinate_limit))
+                throw UsageError(where + ": expected coordinates in [-1e15, 1e15], got '" +
+                                 quote_input(tok[k]) + "'");
         p.p = {v[0], v[1], v[2]};
         std::array<double, 3> n{0, 0, 0};
         if (tok.size() == 6) {
             n = {v[3], v[4], v[5]};
-            const double r2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-            if (!(r2 > 0) || !std::isfinite(r2))
-                throw UsageError(where + ": expected a non-zero finite normal");
-            p.n = {n[0], n[1], n[2]};
+            // Scaled by its largest component: 1e-320 and 1e300 normals normalise as well.
+            const double big = std::max({std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])});
+            if (!(big > 0)) throw UsageError(where + ": expected a non-zero normal");
+            p.n = {n[0] / big, n[1] / big, n[2] / big};
         }
         p.id = w.points.size();
         w.points.push_back(p);
@@ -866,6 +870,13 @@ int run_bake(const BakeOptions& o) {
     const auto t_layout0 = Clock::now();
     const Work w = make_work(scene, target, o.points);
     const double t_layout = seconds_since(t_layout0);
+    if (points_mode && (s.quantities & ~unsigned(render::Quantity::radiance)))
+        for (std::size_t i = 0; i < w.points.size(); ++i)
+            if (!w.surface[i])
+                throw UsageError((o.points == "-" ? std::string("standard input") : o.points) +
+                                 ": point " + std::to_string(i + 1) +
+                                 " is 'x y z' (no normal): ao, bent, visibility, transfer and "
+                                 "irradiance need 'x y z nx ny nz'; free points bake radiance");
     const std::size_t total = w.points.size();
     // total < 2^43 points and count <= 10^6 keep the products below 2^63.
     const std::size_t begin = static_cast<std::size_t>(

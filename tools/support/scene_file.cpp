@@ -41,8 +41,9 @@ using V3 = vec3<double>;
 // builds its bounding boxes in float and squares extents, which overflows near 1.8e19 and
 // aborts on an assertion from about 1.8e18; light values are summed and multiplied by
 // 4 pi and by SH normalisations in float outputs (at most 3.4e38).
-constexpr double max_coordinate = 1e15;  // |x| of positions, extents, radii, axes
-constexpr double max_radiance = 1e15;    // colours, and environment scale x its largest value
+constexpr double max_coordinate = render::coordinate_limit;  // |x| of positions, extents, radii
+static_assert(max_coordinate == 1e15, "the messages and docs/scene-format.md say 1e15");
+constexpr double max_radiance = 1e15;  // colours, and environment scale x its largest value
 constexpr double bytes_per_vertex = mesh_bytes_per_vertex;  // memory.hpp
 constexpr double bytes_per_triangle = mesh_bytes_per_triangle;
 
