@@ -33,7 +33,7 @@ sphbasis_bake_bad(nan_transform "[^ ]*nan_transform.json: malformed JSON: .*NaN 
                   bake ${_scenes}/bad/nan_transform.json)
 sphbasis_bake_bad(inf_transform "[^ ]*inf_transform.json: expected finite numbers"
                   bake ${_scenes}/bad/inf_transform.json)
-sphbasis_bake_bad(overflow_transform "[^ ]*overflow_transform.json: meshes\\[0\\].transform: singular or non-finite transform"
+sphbasis_bake_bad(overflow_transform "[^ ]*overflow_transform.json: meshes\\[0\\].transform: expected a transform with entries in \\[-1e15, 1e15\\]"
                   bake ${_scenes}/bad/overflow_transform.json)
 sphbasis_bake_bad(singular_transform "[^ ]*singular_transform.json: meshes\\[0\\].transform: singular or non-finite transform"
                   bake ${_scenes}/bad/singular_transform.json)
@@ -50,7 +50,7 @@ sphbasis_bake_bad(empty_mesh "[^ ]*empty_mesh.json: meshes\\[0\\]: empty mesh"
 sphbasis_bake_bad(texels_without_uvs "[^ ]*no_uvs.json: meshes\\[0\\] \\('mesh0'\\): a texel bake needs a UV set"
                   bake ${_scenes}/no_uvs.json --target texels:16)
 sphbasis_bake_bad(probes_without_grid "[^ ]*sphere_over_quad.json: --target probes needs a \"probes\" grid"
-                  bake ${_scenes}/sphere_over_quad.json --target probes)
+                  bake ${_scenes}/sphere_over_quad.json --target probes --quantities radiance)
 # Bad options.
 sphbasis_bake_bad(shard_out_of_range "--shard: expected I/N with 0 <= I < N" bake ${_scenes}/lone_sphere.json --shard 2/2)
 sphbasis_bake_bad(shard_malformed "--shard: expected I/N" bake ${_scenes}/lone_sphere.json --shard a/b)

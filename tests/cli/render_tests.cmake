@@ -22,7 +22,7 @@ sphbasis_cli_test(render_help "Usage: sphbasis render.*SCENE.json.*--representat
 sphbasis_cli_test(help_lists_render "Subcommands:.*render" --help)
 
 # Bad options: one line, exit 2, before the scene is read.
-sphbasis_render_bad(unknown_representation "--representations: unknown representation 'sh9'; expected 'all' or a list of: irradiance-sh9 irradiance-sh9-windowed ao bent prt-vertex prt-texel lightmap-sh4 .* volume specular-toksvig specular-aliased$"
+sphbasis_render_bad(unknown_representation "--representations: unknown representation 'sh9'; expected 'all' or a list of: irradiance-sh9 irradiance-sh9-windowed ao bent prt-vertex prt-texel lightmap-sh4 .* volume specular-toksvig specular-aliased .*prt-cpca-16-4 \\(and lxh-pcaM, M <= 36; prt-cpca-C-M, C <= 4096, M <= 64\\)\n"
                     ${_rscenes}/tiny_sun.json --representations ao,sh9)
 sphbasis_render_bad(representation_typo "--representations: unknown representation 'prt-vertx' \\(did you mean 'prt-vertex'\\?\\)"
                     ${_rscenes}/tiny_sun.json --representations prt-vertx)
@@ -31,7 +31,7 @@ sphbasis_render_bad(representation_empty "--representations: expected 'all' or a
 sphbasis_render_bad(spp_and_noise "give either --spp or --noise, not both" ${_rscenes}/tiny_sun.json --spp 4 --noise 0.1)
 sphbasis_render_bad(noise_range "--noise: expected a relative noise in \\(0, 1\\), got 1.5" ${_rscenes}/tiny_sun.json --noise 1.5)
 sphbasis_render_bad(noise_malformed "--noise: expected a finite number, got 'abc'" ${_rscenes}/tiny_sun.json --noise abc)
-sphbasis_render_bad(spp_zero "--spp: expected 1 <= N <= 1048576, got 0" ${_rscenes}/tiny_sun.json --spp 0)
+sphbasis_render_bad(spp_zero "--spp: expected 2 <= N <= 1048576, got 0" ${_rscenes}/tiny_sun.json --spp 0)
 sphbasis_render_bad(exposure "--exposure: expected a positive number or auto" ${_rscenes}/tiny_sun.json --exposure -1)
 sphbasis_render_bad(tonemap "--tonemap: unknown operator 'filmic' \\(expected clamp, reinhard or aces\\)" ${_rscenes}/tiny_sun.json --tonemap filmic)
 sphbasis_render_bad(rotate_count "--rotate-lighting-deg: expected x,y,z" ${_rscenes}/tiny_sun.json --rotate-lighting-deg 0,90)

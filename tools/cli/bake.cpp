@@ -39,6 +39,8 @@
 // so the merged data files are bit-identical to an unsharded bake's; bake.json differs only in
 // its timings and its "shards" entry. With --points, a shard prints its own lines (merging is
 // concatenation in shard order).
+#include <sys/stat.h>
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -61,6 +63,7 @@
 
 #include "../support/exr.hpp"
 #include "../support/json.hpp"
+#include "../support/memory.hpp"
 #include "../support/output_file.hpp"
 #include "../support/ply.hpp"
 #include "../support/progress.hpp"
@@ -100,8 +103,8 @@ unsigned parse_quantities(const std::string& s) {
         for (const auto& [n, b] : quantity_names())
             if (n == item) bit = b;
         if (bit == 0) {
-            const std::string near = closest_key(item, names);
-            throw UsageError("--quantities: unknown quantity '" + item + "'" +
+            const std::string near = item.size() <= 64 ? closest_key(item, names) : "";
+            throw UsageError("--quantities: unknown quantity '" + quote_input(item) + "'" +
                              (near.empty() ? std::string(" (expected ao, bent, visibility, "
                                                          "transfer, irradiance or radiance)")
                                            : " (did you mean '" + near + "'?)"));
@@ -145,13 +148,14 @@ Target parse_target(const std::string& s) {
     if (s.rfind("texels:", 0) == 0) {
         long long r = 0;
         if (!parse_integer(s.substr(7), r) || r < 1 || r > 16384)
-            throw UsageError("--target: expected texels:RES with 1 <= RES <= 16384, got '" + s +
-                             "'");
+            throw UsageError("--target: expected texels:RES with 1 <= RES <= 16384, got '" +
+                             quote_input(s) + "'");
         t.kind = TargetKind::texels;
         t.res = static_cast<int>(r);
         return t;
     }
-    throw UsageError("--target: expected vertices, texels:RES or probes, got '" + s + "'");
+    throw UsageError("--target: expected vertices, texels:RES or probes, got '" + quote_input(s) +
+                     "'");
 }
 
 struct Shard {
@@ -288,14 +292,18 @@ Work point_work(std::istream& in, const std::string& source) {
         std::vector<double> v;
         for (const auto& s : tok) v.push_back(to_real(s, where));
         render::BakePoint p;
+        for (std::size_t k = 0; k < 3; ++k)
+            if (!(std::fabs(v[k]) <= render::coordinate_limit))
+                throw UsageError(where + ": expected coordinates in [-1e15, 1e15], got '" +
+                                 quote_input(tok[k]) + "'");
         p.p = {v[0], v[1], v[2]};
         std::array<double, 3> n{0, 0, 0};
         if (tok.size() == 6) {
             n = {v[3], v[4], v[5]};
-            const double r2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-            if (!(r2 > 0) || !std::isfinite(r2))
-                throw UsageError(where + ": expected a non-zero finite normal");
-            p.n = {n[0], n[1], n[2]};
+            // Scaled by its largest component: 1e-320 and 1e300 normals normalise as well.
+            const double big = std::max({std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])});
+            if (!(big > 0)) throw UsageError(where + ": expected a non-zero normal");
+            p.n = {n[0] / big, n[1] / big, n[2] / big};
         }
         p.id = w.points.size();
         w.points.push_back(p);
@@ -689,7 +697,45 @@ struct ShardData {
     std::uint64_t stride = 0;  // doubles per record
 };
 
+/// Reads every field of a shard header that bake-merge uses, with its type, so that a header
+/// edited or cut short is one message naming the file (not nlohmann's exception text later).
+void check_shard_header(const Json& h, const std::string& file) {
+    try {
+        const Json& sh = h.at("shard");
+        (void)sh.at("count").get<long long>();
+        (void)sh.at("index").get<std::size_t>();
+        (void)sh.at("begin").get<std::size_t>();
+        (void)sh.at("end").get<std::size_t>();
+        if (sh.at("end").get<std::size_t>() < sh.at("begin").get<std::size_t>())
+            throw std::runtime_error(file + ": corrupt shard header (end before begin)");
+        (void)h.at("scene").get<std::string>();
+        (void)h.at("scene_file").get<std::string>();
+        (void)h.at("scene_fnv1a").get<std::uint64_t>();
+        (void)h.at("target").get<std::string>();
+        (void)h.at("points");
+        (void)h.at("rays").get<std::uint64_t>();
+        (void)h.at("seconds").at("bake").get<double>();
+        (void)plan_of(h.at("plan"));
+        const Json& js = h.at("settings");
+        for (const Json& q : js.at("quantities")) (void)q.get<std::string>();
+        for (const char* k : {"bands", "coeffs", "rays", "bounces"}) (void)js.at(k).get<int>();
+        (void)js.at("basis").get<std::string>();
+        (void)js.at("seed").get<std::uint64_t>();
+        if (!js.at("max_distance").is_null()) (void)js.at("max_distance").get<double>();
+        (void)js.at("target_error").get<double>();
+    } catch (const nlohmann::json::exception& e) {
+        std::string why = e.what();  // "[json.exception.type_error.302] type must be ..."
+        const std::size_t p = why.find("] ");
+        if (p != std::string::npos) why = why.substr(p + 2);
+        if (why.size() > 100) why = why.substr(0, 100) + "...";
+        throw std::runtime_error(file + ": corrupt shard header (" + why + ")");
+    }
+}
+
 ShardData read_shard(const std::string& file) {
+    struct stat st {};
+    if (::stat(file.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+        throw std::runtime_error(file + ": not a regular file; expected a shard file");
     std::ifstream f(file, std::ios::binary);
     if (!f) throw std::runtime_error("cannot open shard file '" + file + "'");
     std::stringstream buf;
@@ -706,6 +752,7 @@ ShardData read_shard(const std::string& file) {
     } catch (const std::exception&) {
         throw std::runtime_error(file + ": corrupt shard header");
     }
+    if (!d.header.is_object()) throw std::runtime_error(file + ": corrupt shard header");
     const int format = d.header.is_object() && d.header.contains("record_format") &&
                                d.header["record_format"].is_number_integer()
                            ? d.header["record_format"].get<int>()
@@ -714,6 +761,7 @@ ShardData read_shard(const std::string& file) {
         throw std::runtime_error(file + ": a shard of record format " + std::to_string(format) +
                                  ", this sphbasis reads format " + std::to_string(kRecordFormat) +
                                  ": bake the shards again with this version");
+    check_shard_header(d.header, file);
     pos += hl;
     const std::uint64_t n = get_u64(in, pos, file), stride = get_u64(in, pos, file);
     if (stride == 0 || n > (in.size() - pos) / 8 / stride || pos + n * stride * 8 != in.size())
@@ -736,6 +784,13 @@ struct BakeOptions {
     CLI::Option *target_opt = nullptr, *points_opt = nullptr, *out_opt = nullptr,
                 *maxd_opt = nullptr;
 };
+
+/// Estimated bytes per baked point: its layout (BakePoint), its result (Baker::result_bytes),
+/// the packed record (doubles) and the output's copy of it (floats in PLY/EXR, text in JSON).
+double bytes_per_point(const render::BakeSettings& s) {
+    const double result = double(render::Baker::result_bytes(s));
+    return double(sizeof(render::BakePoint)) + 2 * result + 64;
+}
 
 render::BakeSettings settings_of(const BakeOptions& o) {
     render::BakeSettings s;
@@ -776,6 +831,12 @@ int run_bake(const BakeOptions& o) {
     if (points_mode && o.target_opt->count() > 0)
         throw UsageError("give either --target or --points, not both");
     if (points_mode) target.kind = TargetKind::points;
+    // Probes are free points (no surface, no normal): only radiance is defined there.
+    if (target.kind == TargetKind::probes && (s.quantities & ~unsigned(render::Quantity::radiance)))
+        throw UsageError(
+            "--target probes: probes bake only radiance (they have no surface "
+            "normal for ao, bent, visibility, transfer or irradiance); give "
+            "--quantities radiance");
     const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
     const bool write_files = !points_mode || o.out_opt->count() > 0;
     if (write_files) ensure_dir(o.out);
@@ -789,9 +850,33 @@ int run_bake(const BakeOptions& o) {
                 scene.meshes[k].dropped_triangles);
     const double t_load = seconds_since(t_start);
 
+    // The points' memory, estimated before the layout allocates it.
+    double points = 0, geometry = 0;
+    for (const SceneMesh& m : scene.meshes) {
+        points += target.kind == TargetKind::texels ? double(target.res) * double(target.res)
+                                                    : double(m.mesh.vertex_count());
+        geometry += double(m.mesh.vertex_count()) * mesh_bytes_per_vertex +
+                    double(m.mesh.triangle_count()) * mesh_bytes_per_triangle;
+    }
+    if (target.kind == TargetKind::probes) points = double(scene.probes.size());
+    if (target.kind != TargetKind::points)
+        check_memory(o.scene + ": ", geometry + points * bytes_per_point(s),
+                     "baking " + std::to_string(static_cast<long long>(points)) + " " +
+                         (target.kind == TargetKind::texels   ? "texels"
+                          : target.kind == TargetKind::probes ? "probes"
+                                                              : "vertices") +
+                         " at " + format_bytes(bytes_per_point(s)) + " each");
+
     const auto t_layout0 = Clock::now();
     const Work w = make_work(scene, target, o.points);
     const double t_layout = seconds_since(t_layout0);
+    if (points_mode && (s.quantities & ~unsigned(render::Quantity::radiance)))
+        for (std::size_t i = 0; i < w.points.size(); ++i)
+            if (!w.surface[i])
+                throw UsageError((o.points == "-" ? std::string("standard input") : o.points) +
+                                 ": point " + std::to_string(i + 1) +
+                                 " is 'x y z' (no normal): ao, bent, visibility, transfer and "
+                                 "irradiance need 'x y z nx ny nz'; free points bake radiance");
     const std::size_t total = w.points.size();
     // total < 2^43 points and count <= 10^6 keep the products below 2^63.
     const std::size_t begin = static_cast<std::size_t>(
@@ -817,6 +902,14 @@ int run_bake(const BakeOptions& o) {
                                  " results for " + std::to_string(mine.size()) + " points");
     const Layout L(s);
     const std::vector<double> rec = pack(L, results);
+    // The scene's limits (docs/scene-format.md) keep every result finite; should one not be,
+    // no file is written with it (a PLY or EXR of inf or NaN at exit 0 would pass for a bake).
+    for (std::size_t i = 0; i < rec.size(); ++i)
+        if (!std::isfinite(rec[i]))
+            throw std::runtime_error(o.scene + ": the bake gave a non-finite value at point " +
+                                     std::to_string(begin + i / L.stride) + " (value " +
+                                     std::to_string(i % L.stride) +
+                                     " of its record); nothing was written");
     const std::uint64_t rays = baker.rays_traced();
 
     Json summary = {{"tool", "sphbasis bake"},
@@ -983,7 +1076,8 @@ Run setup_bake(CLI::App& app) {
                    "comma-separated: ao, bent, visibility, transfer, irradiance, radiance")
         ->type_name("LIST")
         ->capture_default_str();
-    add_integer(app, "--bands", o->bands, 1, 32, "SH bands of visibility, transfer and radiance");
+    // render::Baker's range (BakeSettings::bands).
+    add_integer(app, "--bands", o->bands, 1, 16, "SH bands of visibility, transfer and radiance");
     app.add_option("--basis", o->basis,
                    "basis of irradiance: sh, hbasis, hbasis-mod, hl2, hsh, makhotkin, zernike")
         ->type_name("NAME")

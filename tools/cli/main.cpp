@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,25 @@ const Command commands[] = {
      sphbasis::cli::setup_render},
 };
 
+/// A message as one line: control characters (a newline in a library's text, a file name's
+/// bytes) escaped as \xNN, and at most 1000 characters (the start and the end kept): a guard
+/// behind the messages, which abbreviate what they quote from the input themselves.
+std::string one_line(const std::string& msg) {
+    std::string out;
+    for (const char ch : msg) {
+        const unsigned char c = static_cast<unsigned char>(ch);
+        if (c < 0x20 || c == 0x7f) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\x%02X", c);
+            out += buf;
+        } else {
+            out += ch;
+        }
+    }
+    if (out.size() > 1000) out = out.substr(0, 800) + " ... " + out.substr(out.size() - 195);
+    return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -62,7 +82,8 @@ int main(int argc, char** argv) {
             known = true;
         }
     if (!known) {
-        std::fprintf(stderr, "sphbasis: unknown command '%s' (try sphbasis --help)\n", argv[1]);
+        std::fprintf(stderr, "sphbasis: unknown command '%s' (try sphbasis --help)\n",
+                     one_line(argv[1]).c_str());
         return 2;
     }
 
@@ -90,10 +111,10 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForAllHelp& e) {
         return finish(app.exit(e));
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "%s: %s\n", prefix.c_str(), e.what());
+        std::fprintf(stderr, "%s: %s\n", prefix.c_str(), one_line(e.what()).c_str());
         return 2;
     } catch (const sphbasis::cli::UsageError& e) {
-        std::fprintf(stderr, "%s: %s\n", prefix.c_str(), e.what());
+        std::fprintf(stderr, "%s: %s\n", prefix.c_str(), one_line(e.what()).c_str());
         return 2;
     }
     for (auto& [sub, run] : subs) {
@@ -101,10 +122,18 @@ int main(int argc, char** argv) {
         try {
             return finish(run());
         } catch (const sphbasis::cli::UsageError& e) {
-            std::fprintf(stderr, "%s: %s\n", prefix.c_str(), e.what());
+            std::fprintf(stderr, "%s: %s\n", prefix.c_str(), one_line(e.what()).c_str());
             return 2;
+        } catch (const std::bad_alloc&) {
+            // The estimates of support/memory.hpp refuse what cannot fit before it starts;
+            // this is what they missed.
+            std::fprintf(stderr,
+                         "%s: out of memory (std::bad_alloc): the run needs more memory than "
+                         "this machine gave it; reduce its sizes\n",
+                         prefix.c_str());
+            return 1;
         } catch (const std::exception& e) {
-            std::fprintf(stderr, "%s: %s\n", prefix.c_str(), e.what());
+            std::fprintf(stderr, "%s: %s\n", prefix.c_str(), one_line(e.what()).c_str());
             return 1;
         }
     }

@@ -46,6 +46,7 @@
 #include "../support/bake_cache.hpp"
 #include "../support/exr.hpp"
 #include "../support/json.hpp"
+#include "../support/memory.hpp"
 #include "../support/output_file.hpp"
 #include "../support/png.hpp"
 #include "../support/progress.hpp"
@@ -85,16 +86,18 @@ std::vector<std::string> parse_representations(const std::string& s) {
     std::stringstream in(s);
     std::string item;
     while (std::getline(in, item, ',')) {
-        if (std::find(valid.begin(), valid.end(), item) == valid.end()) {
-            std::string msg = "--representations: unknown representation '" + item + "'";
-            const std::string near = closest_key(item, valid);
+        if (!render::Representations::known_name(item)) {
+            std::string msg =
+                "--representations: unknown representation '" + quote_input(item) + "'";
+            const std::string near = item.size() <= 64 ? closest_key(item, valid) : "";
             if (!near.empty()) msg += " (did you mean '" + near + "'?)";
             msg += "; expected 'all' or a list of:";
             for (const std::string& v : valid) msg += " " + v;
+            msg += " (and lxh-pcaM, M <= 36; prt-cpca-C-M, C <= 4096, M <= 64)";
             throw UsageError(msg);
         }
         if (std::find(out.begin(), out.end(), item) != out.end())
-            throw UsageError("--representations: '" + item + "' given twice");
+            throw UsageError("--representations: '" + quote_input(item) + "' given twice");
         out.push_back(item);
     }
     if (out.empty() || s.back() == ',')
@@ -253,7 +256,8 @@ int run_render(const RenderOptions& o) {
     if (o.noise_opt->count() > 0) {
         noise = to_real(o.noise, "--noise");
         if (!(noise > 0 && noise < 1))
-            throw UsageError("--noise: expected a relative noise in (0, 1), got " + o.noise);
+            throw UsageError("--noise: expected a relative noise in (0, 1), got " +
+                             quote_input(o.noise));
     }
     bool have_exposure = false, auto_exp = true;
     double exposure = 1;
@@ -267,14 +271,14 @@ int run_render(const RenderOptions& o) {
     }
     const std::vector<std::string> ops = render::tone_map_names();
     if (o.tonemap_opt->count() > 0 && std::find(ops.begin(), ops.end(), o.tonemap) == ops.end())
-        throw UsageError("--tonemap: unknown operator '" + o.tonemap + "' (expected " +
+        throw UsageError("--tonemap: unknown operator '" + quote_input(o.tonemap) + "' (expected " +
                          render::tone_map_list() + ")");
     double noise_limit = 0.05;
     if (!o.noise_limit_text.empty()) {
         noise_limit = to_real(o.noise_limit_text, "--noise-limit");
         if (!(noise_limit > 0))
             throw UsageError("--noise-limit: expected a positive fraction, got " +
-                             o.noise_limit_text);
+                             quote_input(o.noise_limit_text));
     }
     std::vector<double> rot_deg;
     if (o.rotate_opt->count() > 0) {
@@ -299,6 +303,28 @@ int run_render(const RenderOptions& o) {
         render::validate(camera);
     } catch (const std::invalid_argument& e) {
         throw std::runtime_error(o.scene + ": camera: " + e.what());
+    }
+    {
+        // The run's big arrays, estimated before any is allocated (support/memory.hpp): the
+        // geometry, the images (the reference's sums and squares, its stderr, each
+        // representation's image, error image and PNGs), the lightmaps (a bake point, its result
+        // and the stored coefficients per texel, growing with the PRT bands) and the probes.
+        const double pixels = double(camera.width) * double(camera.height);
+        double texels = 0, geometry = 0;
+        for (const SceneMesh& m : scene.meshes) {
+            if (!m.mesh.uvs.empty()) texels += double(o.lightmap_size) * double(o.lightmap_size);
+            geometry += double(m.mesh.vertex_count()) * mesh_bytes_per_vertex +
+                        double(m.mesh.triangle_count()) * mesh_bytes_per_triangle;
+        }
+        const double nb2 = double(o.prt_bands) * double(o.prt_bands);
+        const double probes = scene.has_probes ? double(scene.probes.size()) : 0;
+        const double bytes = geometry + pixels * (128 + 16 * double(names.size())) +
+                             texels * (256 + 64 * nb2) + probes * 512;
+        check_memory(o.scene + ": ", bytes,
+                     std::to_string(camera.width) + " x " + std::to_string(camera.height) +
+                         " pixels, " + std::to_string(static_cast<long long>(texels)) +
+                         " lightmap texels, " + std::to_string(static_cast<long long>(probes)) +
+                         " probes");
     }
     for (std::size_t k = 0; k < scene.meshes.size(); ++k)
         if (scene.meshes[k].dropped_triangles > 0)
@@ -614,13 +640,14 @@ Run setup_render(CLI::App& app) {
         ->type_name("LIST|all")
         ->capture_default_str();
     o->spp_opt =
-        add_integer(app, "--spp", o->spp, 1, 1 << 20,
+        add_integer(app, "--spp", o->spp, 2, 1 << 20,
                     "reference samples per pixel (fixed; default: the scene's, or --noise)");
     o->noise_opt =
         app.add_option("--noise", o->noise,
                        "reference: sample until this relative standard error (default 0.02)")
             ->type_name("X");
-    add_integer(app, "--max-spp", o->max_spp, 1, 1 << 20,
+    // At least 2 samples: the reference's standard error needs two.
+    add_integer(app, "--max-spp", o->max_spp, 2, 1 << 20,
                 "with --noise: at most N samples per pixel");
     o->width_opt =
         add_integer(app, "--width", o->width, 1, 16384, "image width (default: the scene's)", "W");
@@ -637,7 +664,8 @@ Run setup_render(CLI::App& app) {
                          ->type_name("NAME");
     add_integer(app, "--rays", o->rays, 1, 1 << 24, "bake rays per point and pass");
     add_integer(app, "--lightmap-size", o->lightmap_size, 1, 8192, "lightmap texels per side");
-    add_integer(app, "--prt-bands", o->prt_bands, 1, 16, "PRT transfer bands", "B");
+    // The library's ranges (render::Representations' settings check).
+    add_integer(app, "--prt-bands", o->prt_bands, 1, 8, "PRT transfer bands", "B");
     add_integer(app, "--lxh-lighting-bands", o->lxh_lighting_bands, 0, 16,
                 "lxh-*: SH bands of the lighting in the L x H tables (0: the visibility's)", "B");
     add_integer(app, "--lxh-table-size", o->lxh_table_size, 1, 1024,

@@ -34,7 +34,14 @@ bool parse_integer(const std::string& s, long long& out) {
     return true;
 }
 
-bool parse_real(const std::string& s, double& out) {
+namespace {
+
+enum class Real { ok, malformed, overflow, underflow };
+
+/// The grammar's verdict on s: ok (and the value), malformed, or a number whose magnitude is
+/// beyond double (overflow) or so small that it rounds to zero (underflow). Subnormal results
+/// are numbers like any other (strtod's ERANGE on them is a libc choice, not an error).
+Real classify_real(const std::string& s, double& out) {
     std::size_t i = (!s.empty() && (s[0] == '-' || s[0] == '+')) ? 1 : 0;
     const std::size_t whole = digits(s, i);
     i += whole;
@@ -43,22 +50,36 @@ bool parse_real(const std::string& s, double& out) {
         frac = digits(s, i + 1);
         i += 1 + frac;
     }
-    if (whole + frac == 0) return false;
+    if (whole + frac == 0) return Real::malformed;
+    const std::size_t mantissa_end = i;
     if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
         ++i;
         if (i < s.size() && (s[i] == '-' || s[i] == '+')) ++i;
         const std::size_t exp = digits(s, i);
-        if (exp == 0) return false;
+        if (exp == 0) return Real::malformed;
         i += exp;
     }
-    if (i != s.size()) return false;
+    if (i != s.size()) return Real::malformed;
     errno = 0;
     char* end = nullptr;
     const double v = std::strtod(s.c_str(), &end);
-    if (errno == ERANGE || !std::isfinite(v)) return false;
+    if (!std::isfinite(v)) return Real::overflow;
+    if (errno == ERANGE && v == 0 &&
+        s.find_first_of("123456789") < mantissa_end)  // a non-zero mantissa rounded to 0
+        return Real::underflow;
     out = v;
-    return true;
+    return Real::ok;
 }
+
+/// s has the integer grammar's form (whether or not it fits in long long).
+bool is_integer_text(const std::string& s) {
+    const std::size_t i = (!s.empty() && (s[0] == '-' || s[0] == '+')) ? 1 : 0;
+    return digits(s, i) > 0 && i + digits(s, i) == s.size();
+}
+
+}  // namespace
+
+bool parse_real(const std::string& s, double& out) { return classify_real(s, out) == Real::ok; }
 
 std::string quote_input(const std::string& s) {
     const std::size_t shown = 40;
@@ -110,16 +131,34 @@ bool read_line(std::FILE* in, std::string& line, long& lineno, std::size_t max_b
 
 long long to_integer(const std::string& s, const std::string& what) {
     long long v = 0;
-    if (!parse_integer(s, v))
-        throw UsageError(what + ": expected an integer, got '" + quote_input(s) + "'");
-    return v;
+    if (parse_integer(s, v)) return v;
+    if (is_integer_text(s))
+        throw UsageError(what + ": expected an integer in [" +
+                         std::to_string(std::numeric_limits<long long>::min()) + ", " +
+                         std::to_string(std::numeric_limits<long long>::max()) + "], got '" +
+                         quote_input(s) + "'");
+    throw UsageError(what + ": expected an integer, got '" + quote_input(s) + "'");
 }
 
 double to_real(const std::string& s, const std::string& what) {
     double v = 0;
-    if (!parse_real(s, v))
-        throw UsageError(what + ": expected a finite number, got '" + quote_input(s) + "'");
-    return v;
+    switch (classify_real(s, v)) {
+        case Real::ok:
+            return v;
+        case Real::overflow:
+            throw UsageError(
+                what +
+                ": expected a finite number (magnitude at most 1.7976931348623157e308), got '" +
+                quote_input(s) + "'");
+        case Real::underflow:
+            throw UsageError(what +
+                             ": expected a number that does not round to zero (magnitude at least "
+                             "4.9406564584124654e-324, or 0), got '" +
+                             quote_input(s) + "'");
+        case Real::malformed:
+            break;
+    }
+    throw UsageError(what + ": expected a finite number, got '" + quote_input(s) + "'");
 }
 
 std::vector<double> to_reals(const std::string& s, const std::string& what) {
@@ -139,12 +178,21 @@ CLI::Option* add_integer(CLI::App& app, const std::string& name, long long& out,
                          const std::string& why) {
     auto check = [lo, hi, var, why](const std::string& s) -> std::string {
         long long v = 0;
-        if (!parse_integer(s, v)) return "expected an integer, got '" + quote_input(s) + "'";
+        if (!parse_integer(s, v)) {
+            if (!is_integer_text(s)) return "expected an integer, got '" + quote_input(s) + "'";
+            // Digits beyond long long: outside every option's range.
+            const std::string shown = quote_input(s);
+            if (lo == 0 && hi == std::numeric_limits<long long>::max())
+                return "expected a non-negative integer at most " + std::to_string(hi) + ", got " +
+                       shown;
+            return "expected " + std::to_string(lo) + " <= " + var + " <= " + std::to_string(hi) +
+                   (why.empty() ? "" : " (" + why + ")") + ", got " + shown;
+        }
         if (v >= lo && v <= hi) return {};
         if (lo == 0 && hi == std::numeric_limits<long long>::max())
-            return "expected a non-negative integer, got " + s;
+            return "expected a non-negative integer, got " + quote_input(s);
         return "expected " + std::to_string(lo) + " <= " + var + " <= " + std::to_string(hi) +
-               (why.empty() ? "" : " (" + why + ")") + ", got " + s;
+               (why.empty() ? "" : " (" + why + ")") + ", got " + quote_input(s);
     };
     CLI::Option* o = app.add_option(
         name,

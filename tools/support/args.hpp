@@ -7,8 +7,10 @@
 //            spaces, no fraction, no exponent. Each option then checks its own range.
 //   real     an optional sign, decimal digits with an optional '.' and fraction (at least one
 //            digit before or after the point), an optional exponent 'e' or 'E' with an optional
-//            sign and digits: 1, -0.6, .5, 2., 1e-3. The value must be finite and not underflow
-//            (strtod's ERANGE). No spaces, hex floats, "inf" or "nan".
+//            sign and digits: 1, -0.6, .5, 2., 1e-3. The value must be finite (at most
+//            1.7976931348623157e308 in magnitude); subnormal values (1e-320) are numbers like any
+//            other, but a non-zero number that rounds to zero (1e-400) is refused. No spaces, hex
+//            floats, "inf" or "nan".
 //   list     reals separated by ',' and no spaces: -0.6,0,0.8.
 // CLI11 splits the command line into options and values (a value may start with '-' when it is
 // a number: `--dir -0.6,0,0.8`); these functions turn the values into numbers.
@@ -46,7 +48,8 @@ bool parse_real(const std::string& s, double& out);
 std::string quote_input(const std::string& s);
 
 /// The grammar as converters: UsageError "<what>: expected an integer, got 's'" (or "a finite
-/// number") on malformed input (s shown by quote_input).
+/// number") on malformed input (s shown by quote_input); digits beyond long long, an overflowing
+/// or a zero-rounding real name the range instead.
 long long to_integer(const std::string& s, const std::string& what);
 double to_real(const std::string& s, const std::string& what);
 std::vector<double> to_reals(const std::string& s, const std::string& what);

@@ -3,16 +3,21 @@
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_set>
 
 #define STB_IMAGE_IMPLEMENTATION
 #define STBI_FAILURE_USERMSG
@@ -21,7 +26,9 @@
 #include <sphbasis/render/image.hpp>
 #include <sphbasis/render/shapes.hpp>
 
+#include "args.hpp"
 #include "exr.hpp"
+#include "memory.hpp"
 #include "mesh_normals.hpp"
 
 namespace sphbasis::cli {
@@ -30,6 +37,35 @@ namespace {
 
 using nlohmann::json;
 using V3 = vec3<double>;
+
+// Bounds that keep every later computation finite (docs/scene-format.md, "Limits"): Embree
+// builds its bounding boxes in float and squares extents, which overflows near 1.8e19 and
+// aborts on an assertion from about 1.8e18; light values are summed and multiplied by
+// 4 pi and by SH normalisations in float outputs (at most 3.4e38).
+constexpr double max_coordinate = render::coordinate_limit;  // |x| of positions, extents, radii
+static_assert(max_coordinate == 1e15, "the messages and docs/scene-format.md say 1e15");
+constexpr double max_radiance = 1e15;  // colours, and environment scale x its largest value
+constexpr double bytes_per_vertex = mesh_bytes_per_vertex;  // memory.hpp
+constexpr double bytes_per_triangle = mesh_bytes_per_triangle;
+
+/// A key or value of the file in a message: at most 40 characters, non-printable bytes escaped.
+std::string shown(const std::string& s) { return quote_input(s); }
+/// A path or a library's message in a message: as quote_input, at most `n` characters.
+std::string shown_path(const std::string& s, std::size_t n = 120) {
+    std::string out;
+    for (std::size_t i = 0; i < s.size() && i < n; ++i) {
+        const unsigned char ch = static_cast<unsigned char>(s[i]);
+        if (ch >= 0x20 && ch < 0x7f) {
+            out += static_cast<char>(ch);
+        } else {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\x%02X", ch);
+            out += buf;
+        }
+    }
+    if (s.size() > n) out += "... (" + std::to_string(s.size()) + " bytes)";
+    return out;
+}
 
 // ---------------------------------------------------------------------------------------------
 // Errors with the file and the JSON path
@@ -68,8 +104,10 @@ void check_keys(const Ctx& c, const json& j, const std::string& where,
     if (!j.is_object()) c.fail(where, "expected an object, got " + type_name(j));
     for (auto it = j.begin(); it != j.end(); ++it) {
         if (std::find(allowed.begin(), allowed.end(), it.key()) != allowed.end()) continue;
-        const std::string near = closest_key(it.key(), allowed);
-        std::string msg = "unknown key '" + it.key() + "'";
+        // Keys longer than any allowed one by far have no near match (and the edit distance
+        // would cost their length times the candidates').
+        const std::string near = it.key().size() <= 64 ? closest_key(it.key(), allowed) : "";
+        std::string msg = "unknown key '" + shown(it.key()) + "'";
         if (!near.empty()) {
             msg += " (did you mean '" + near + "'?)";
         } else {
@@ -123,10 +161,32 @@ V3 vec(const Ctx& c, const json& j, const std::string& where) {
     return {v[0], v[1], v[2]};
 }
 
+/// A position or extent: every component within [-max_coordinate, max_coordinate].
+V3 point(const Ctx& c, const json& j, const std::string& where) {
+    const V3 v = vec(c, j, where);
+    const double x[3] = {v.x, v.y, v.z};
+    for (std::size_t i = 0; i < 3; ++i)
+        if (std::fabs(x[i]) > max_coordinate)
+            c.fail(at(where, i),
+                   "expected a coordinate in [-1e15, 1e15], got " + number_text(x[i]));
+    return v;
+}
+
+/// A length in (0, max_coordinate].
+double length(const Ctx& c, const json& j, const std::string& where) {
+    const double v = number(c, j, where);
+    if (!(v > 0) || v > max_coordinate)
+        c.fail(where, "expected a length in (0, 1e15], got " + number_text(v));
+    return v;
+}
+
 V3 direction(const Ctx& c, const json& j, const std::string& where) {
-    const V3 d = vec(c, j, where);
+    V3 d = vec(c, j, where);
+    // Scaled by the largest component first, so that 1e-300 and 1e300 normalise too.
+    const double big = std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)});
+    if (!(big > 0)) c.fail(where, "expected a non-zero direction");
+    d = {d.x / big, d.y / big, d.z / big};
     const double r = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-    if (!(r > 0) || !std::isfinite(r)) c.fail(where, "expected a non-zero direction");
     return {d.x / r, d.y / r, d.z / r};
 }
 
@@ -143,6 +203,23 @@ std::string string(const Ctx& c, const json& j, const std::string& where) {
     if (!j.is_string() || j.get<std::string>().empty())
         c.fail(where, "expected a non-empty string, got " + type_name(j));
     return j.get<std::string>();
+}
+
+/// The resolved path of a file named by the scene, checked to be a regular file (a FIFO or a
+/// device would block or never end; a directory is no image or mesh) before anything opens it.
+std::string file_path(const Ctx& c, const json& j, const std::string& where, const char* what) {
+    const std::string name = string(c, j, where);
+    if (name.find('\0') != std::string::npos)
+        c.fail(where, "expected a file name without NUL bytes, got '" + shown_path(name) + "'");
+    const std::string p = c.resolve(name);
+    struct stat st {};
+    if (::stat(p.c_str(), &st) != 0)
+        c.fail(where, std::string("cannot open ") + what + " '" + shown_path(p) +
+                          "': " + std::strerror(errno));
+    if (S_ISDIR(st.st_mode)) c.fail(where, "'" + shown_path(p) + "' is a directory, not a file");
+    if (!S_ISREG(st.st_mode))
+        c.fail(where, "'" + shown_path(p) + "' is not a regular file (a FIFO, socket or device)");
+    return p;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -255,6 +332,15 @@ void apply(const Ctx& c, const std::string& where, const Affine& m, render::Mesh
     const double scale = std::max({std::fabs(a[0]) + std::fabs(a[1]) + std::fabs(a[2]),
                                    std::fabs(a[3]) + std::fabs(a[4]) + std::fabs(a[5]),
                                    std::fabs(a[6]) + std::fabs(a[7]) + std::fabs(a[8])});
+    // Entries beyond the coordinate bound would move any vertex beyond it (and overflow the
+    // determinant's test below).
+    if (!(scale <= max_coordinate) || !(std::fabs(m.t.x) <= max_coordinate) ||
+        !(std::fabs(m.t.y) <= max_coordinate) || !(std::fabs(m.t.z) <= max_coordinate))
+        c.fail(where,
+               "expected a transform with entries in [-1e15, 1e15] (a row of the matrix "
+               "sums to " +
+                   number_text(scale) + ", the translation is [" + number_text(m.t.x) + ", " +
+                   number_text(m.t.y) + ", " + number_text(m.t.z) + "])");
     if (!std::isfinite(d) || std::fabs(d) <= 1e-12 * scale * scale * scale)
         c.fail(where, "singular or non-finite transform (determinant " + number_text(d) + ")");
     // Inverse transpose = cofactor matrix / det.
@@ -293,39 +379,50 @@ void apply(const Ctx& c, const std::string& where, const Affine& m, render::Mesh
 render::Mesh make_shape(const Ctx& c, const json& j, const std::string& where,
                         const std::string& kind) {
     if (kind == "sphere") {
-        const V3 center = j.contains("center") ? vec(c, j["center"], sub(where, "center")) : V3{};
+        const V3 center = j.contains("center") ? point(c, j["center"], sub(where, "center")) : V3{};
         const double radius =
-            j.contains("radius") ? positive(c, j["radius"], sub(where, "radius")) : 1.0;
+            j.contains("radius") ? length(c, j["radius"], sub(where, "radius")) : 1.0;
         const int rings =
             j.contains("rings") ? integer(c, j["rings"], sub(where, "rings"), 2, 4096) : 32;
         const int segments = j.contains("segments")
                                  ? integer(c, j["segments"], sub(where, "segments"), 3, 8192)
                                  : 64;
+        const double v = double(rings + 1) * double(segments + 1), t = 2.0 * rings * segments;
+        check_memory(c.file + ": " + where + ": ", v * bytes_per_vertex + t * bytes_per_triangle,
+                     "a sphere of " + std::to_string(rings) + " rings x " +
+                         std::to_string(segments) + " segments");
         return render::shapes::sphere(center, radius, rings, segments);
     }
     if (kind == "box") {
-        const V3 center = j.contains("center") ? vec(c, j["center"], sub(where, "center")) : V3{};
+        const V3 center = j.contains("center") ? point(c, j["center"], sub(where, "center")) : V3{};
         V3 half{0.5, 0.5, 0.5};
         if (j.contains("half_extents")) {
-            half = vec(c, j["half_extents"], sub(where, "half_extents"));
+            half = point(c, j["half_extents"], sub(where, "half_extents"));
             if (!(half.x > 0 && half.y > 0 && half.z > 0))
                 c.fail(sub(where, "half_extents"), "expected three positive numbers");
         }
         return render::shapes::box(center, half);
     }
     if (kind == "quad") {
-        const V3 center = j.contains("center") ? vec(c, j["center"], sub(where, "center")) : V3{};
-        const V3 u = j.contains("u_axis") ? vec(c, j["u_axis"], sub(where, "u_axis")) : V3{1, 0, 0};
-        const V3 v = j.contains("v_axis") ? vec(c, j["v_axis"], sub(where, "v_axis")) : V3{0, 1, 0};
+        const V3 center = j.contains("center") ? point(c, j["center"], sub(where, "center")) : V3{};
+        const V3 u =
+            j.contains("u_axis") ? point(c, j["u_axis"], sub(where, "u_axis")) : V3{1, 0, 0};
+        const V3 v =
+            j.contains("v_axis") ? point(c, j["v_axis"], sub(where, "v_axis")) : V3{0, 1, 0};
         const V3 n{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
         if (!(n.x * n.x + n.y * n.y + n.z * n.z > 0))
             c.fail(where, "u_axis and v_axis must be non-zero and not parallel");
         const int s = j.contains("subdivisions")
                           ? integer(c, j["subdivisions"], sub(where, "subdivisions"), 1, 8192)
                           : 1;
+        const double nv = double(s + 1) * double(s + 1), nt = 2.0 * s * s;
+        check_memory(
+            c.file + ": " + where + ": ", nv * bytes_per_vertex + nt * bytes_per_triangle,
+            "a quad of " + std::to_string(s) + " x " + std::to_string(s) + " subdivisions");
         return render::shapes::quad(center, u, v, s);
     }
-    c.fail(sub(where, "shape"), "unknown shape '" + kind + "' (expected sphere, box or quad)");
+    c.fail(sub(where, "shape"),
+           "unknown shape '" + shown(kind) + "' (expected sphere, box or quad)");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -429,6 +526,83 @@ std::size_t drop_degenerate(render::Mesh& m) {
     return dropped;
 }
 
+/// Every vertex attribute finite, positions within max_coordinate (after the transform), and
+/// the memory of the mesh within the limit.
+void check_attributes(const Ctx& c, const std::string& where, const SceneMesh& sm) {
+    const render::Mesh& m = sm.mesh;
+    const std::string in =
+        sm.source.rfind("shape:", 0) == 0 ? "" : " of '" + shown_path(sm.source) + "'";
+    for (std::size_t i = 0; i < m.positions.size(); ++i) {
+        const float v = m.positions[i];
+        if (!std::isfinite(v))
+            c.fail(where, "non-finite position at vertex " + std::to_string(i / 3) + in +
+                              " (after the transform)");
+        if (std::fabs(v) > max_coordinate)
+            c.fail(where, "position " + number_text(v) + " at vertex " + std::to_string(i / 3) +
+                              in + " outside [-1e15, 1e15] (after the transform)");
+    }
+    const std::pair<const std::vector<float>*, std::pair<const char*, std::size_t>> arrays[] = {
+        {&m.normals, {"normal", 3}}, {&m.uvs, {"UV", 2}}, {&m.tangents, {"tangent", 4}}};
+    for (const auto& [a, info] : arrays)
+        for (std::size_t i = 0; i < a->size(); ++i)
+            if (!std::isfinite((*a)[i]))
+                c.fail(where, std::string("non-finite ") + info.first + " at vertex " +
+                                  std::to_string(i / info.second) + in);
+}
+
+/// PLY headers declare their element counts, which the importer allocates before reading the
+/// data: a count that the file cannot hold (at least one byte per property and element) is
+/// refused here, before a 2^31-vertex header can allocate gigabytes.
+void check_mesh_header(const Ctx& c, const std::string& where, const std::string& path) {
+    std::string ext;
+    const std::size_t dot = path.find_last_of('.');
+    if (dot != std::string::npos)
+        for (char ch : path.substr(dot + 1))
+            ext += char(std::tolower(static_cast<unsigned char>(ch)));
+    if (ext != "ply") return;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) c.fail(where, "cannot open mesh file '" + shown_path(path) + "'");
+    in.seekg(0, std::ios::end);
+    const double size = double(in.tellg());
+    in.seekg(0);
+    std::string line;
+    double need = 0, elements = 0, props = 0, vertices = 0, faces = 0;
+    std::size_t header = 0;
+    bool ended = false;
+    auto flush = [&] { need += elements * std::max(props, 1.0); };
+    while (header < 65536 && std::getline(in, line)) {
+        header += line.size() + 1;
+        std::istringstream words(line);
+        std::string w, name;
+        words >> w;
+        if (w == "element") {
+            flush();
+            double n = -1;
+            words >> name >> n;
+            if (!(n >= 0)) return;  // malformed: the importer says so
+            elements = n;
+            props = 0;
+            if (name == "vertex") vertices = n;
+            if (name == "face") faces = n;
+        } else if (w == "property") {
+            props += 1;
+        } else if (w == "end_header") {
+            flush();
+            ended = true;
+            break;
+        }
+    }
+    if (!ended) return;
+    if (need > size - double(header))
+        c.fail(where, "'" + shown_path(path) + "': the PLY header declares " +
+                          number_text(vertices) + " vertices and " + number_text(faces) +
+                          " faces, more than the file's " + number_text(size) + " bytes can hold");
+    check_memory(c.file + ": " + where + ": ",
+                 vertices * bytes_per_vertex * 2 + faces * bytes_per_triangle * 2,
+                 "'" + shown_path(path) + "': " + number_text(vertices) + " vertices, " +
+                     number_text(faces) + " faces");
+}
+
 SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::size_t index) {
     if (!j.is_object()) c.fail(where, "expected an object, got " + type_name(j));
     const bool has_file = j.contains("file"), has_shape = j.contains("shape");
@@ -440,6 +614,10 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
         keys.insert(keys.end(), {"file", "smoothing_angle_deg"});
     } else {
         kind = string(c, j["shape"], sub(where, "shape"));
+        // The shape first: its keys are only known for a known shape.
+        if (kind != "sphere" && kind != "box" && kind != "quad")
+            c.fail(sub(where, "shape"),
+                   "unknown shape '" + shown(kind) + "' (expected sphere, box or quad)");
         keys.push_back("shape");
         if (kind == "sphere") keys.insert(keys.end(), {"center", "radius", "rings", "segments"});
         if (kind == "box") keys.insert(keys.end(), {"center", "half_extents"});
@@ -449,11 +627,17 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
     SceneMesh sm;
     sm.name = j.contains("name") ? string(c, j["name"], sub(where, "name"))
                                  : "mesh" + std::to_string(index);
+    // Output files are <name>.ply or <name>.exr, staged under a longer temporary name: well
+    // below the 255 bytes of a file name.
+    if (sm.name.size() > 200)
+        c.fail(sub(where, "name"),
+               "expected at most 200 characters (it names output files), got '" + shown(sm.name) +
+                   "'");
     for (char ch : sm.name)
         if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.'))
             c.fail(sub(where, "name"),
                    "expected letters, digits, '_', '-' or '.' (it names output files), got '" +
-                       sm.name + "'");
+                       shown(sm.name) + "'");
     if (has_file) {
         double angle = default_smoothing_angle_deg;
         if (j.contains("smoothing_angle_deg")) {
@@ -463,7 +647,8 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
                        "expected an angle in [0, 180] degrees (0: flat faces), got " +
                            number_text(angle));
         }
-        sm.source = c.resolve(string(c, j["file"], sub(where, "file")));
+        sm.source = file_path(c, j["file"], sub(where, "file"), "mesh file");
+        check_mesh_header(c, sub(where, "file"), sm.source);
         sm.mesh = load_mesh_file(c, sub(where, "file"), sm.source, angle);
     } else {
         sm.source = "shape:" + kind;
@@ -476,8 +661,7 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
     if (j.contains("transform"))
         apply(c, sub(where, "transform"), transform(c, j["transform"], sub(where, "transform")),
               sm.mesh);
-    for (float v : sm.mesh.positions)
-        if (!std::isfinite(v)) c.fail(where, "non-finite vertex position after the transform");
+    check_attributes(c, where, sm);
     sm.dropped_triangles = drop_degenerate(sm.mesh);
     if (sm.mesh.triangle_count() == 0)
         c.fail(where, "empty mesh (no triangles with non-zero area)");
@@ -486,7 +670,7 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
         sm.mesh.albedo = {float(a[0]), float(a[1]), float(a[2])};
     }
     if (j.contains("albedo_map")) {
-        const std::string p = c.resolve(string(c, j["albedo_map"], sub(where, "albedo_map")));
+        const std::string p = file_path(c, j["albedo_map"], sub(where, "albedo_map"), "image");
         if (sm.mesh.uvs.empty()) c.fail(sub(where, "albedo_map"), "the mesh has no UVs");
         SceneTexture t;
         try {
@@ -499,7 +683,7 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
         if (!j.contains("albedo")) sm.mesh.albedo = {1.0f, 1.0f, 1.0f};
     }
     if (j.contains("normal_map")) {
-        const std::string p = c.resolve(string(c, j["normal_map"], sub(where, "normal_map")));
+        const std::string p = file_path(c, j["normal_map"], sub(where, "normal_map"), "image");
         if (sm.mesh.uvs.empty()) c.fail(sub(where, "normal_map"), "the mesh has no UVs");
         try {
             sm.normal_map = load_texture(p, false);
@@ -531,10 +715,10 @@ void load_environment(const Ctx& c, const json& j, SceneFile& s) {
     if (j.contains("constant")) {
         check_keys(c, j, where, {"constant", "scale"});
         s.environment.kind = render::Environment::Kind::constant;
-        s.environment.constant = color(c, j["constant"], sub(where, "constant"), 1e30);
+        s.environment.constant = color(c, j["constant"], sub(where, "constant"), max_radiance);
     } else if (j.contains("file")) {
         check_keys(c, j, where, {"file", "rotate_deg", "scale"});
-        const std::string p = c.resolve(string(c, j["file"], sub(where, "file")));
+        const std::string p = file_path(c, j["file"], sub(where, "file"), "environment map");
         RgbImage img;
         try {
             img = load_exr_rgb(p);
@@ -556,8 +740,22 @@ void load_environment(const Ctx& c, const json& j, SceneFile& s) {
     }
     if (j.contains("scale")) {
         s.environment.scale = number(c, j["scale"], sub(where, "scale"));
-        if (s.environment.scale < 0) c.fail(sub(where, "scale"), "expected a non-negative number");
+        if (s.environment.scale < 0 || s.environment.scale > max_radiance)
+            c.fail(sub(where, "scale"),
+                   "expected a number in [0, 1e15], got " + number_text(s.environment.scale));
     }
+    // The radiance itself, scale x the largest value, must stay within the bound too.
+    double top = 0;
+    if (s.environment.kind == render::Environment::Kind::constant) {
+        for (std::size_t i = 0; i < 3; ++i) top = std::max(top, double(s.environment.constant[i]));
+    } else if (s.environment_texels) {
+        for (float v : *s.environment_texels)
+            if (std::isfinite(v)) top = std::max(top, double(v));
+    }
+    if (top * s.environment.scale > max_radiance)
+        c.fail(sub(where, "scale"), "expected scale x the largest radiance at most 1e15, got " +
+                                        number_text(s.environment.scale) + " x " +
+                                        number_text(top));
 }
 
 render::Light load_light(const Ctx& c, const json& j, const std::string& where) {
@@ -579,18 +777,18 @@ render::Light load_light(const Ctx& c, const json& j, const std::string& where) 
         check_keys(c, j, where, {"type", "direction", "color", "ground"});
         l.type = render::Light::Type::hemisphere;
     } else {
-        c.fail(sub(where, "type"), "unknown light type '" + type +
+        c.fail(sub(where, "type"), "unknown light type '" + shown(type) +
                                        "' (expected directional, sphere, cone or hemisphere)");
     }
     if (j.contains("direction"))
         l.direction = direction(c, j["direction"], sub(where, "direction"));
-    if (j.contains("color")) l.color = color(c, j["color"], sub(where, "color"), 1e30);
-    if (j.contains("ground")) l.ground = color(c, j["ground"], sub(where, "ground"), 1e30);
+    if (j.contains("color")) l.color = color(c, j["color"], sub(where, "color"), max_radiance);
+    if (j.contains("ground")) l.ground = color(c, j["ground"], sub(where, "ground"), max_radiance);
     if (l.type == render::Light::Type::sphere) {
         if (!j.contains("position") || !j.contains("radius"))
             c.fail(where, "a sphere light needs \"position\" and \"radius\"");
-        l.position = vec(c, j["position"], sub(where, "position"));
-        l.radius = positive(c, j["radius"], sub(where, "radius"));
+        l.position = point(c, j["position"], sub(where, "position"));
+        l.radius = length(c, j["radius"], sub(where, "radius"));
     }
     if (l.type == render::Light::Type::cone) {
         if (!j.contains("angle_deg")) c.fail(where, "a cone light needs \"angle_deg\"");
@@ -610,7 +808,7 @@ void load_render(const Ctx& c, const json& j, SceneRender& r) {
         if (e.is_string()) {
             if (e.get<std::string>() != "auto")
                 c.fail("render.exposure", "expected a positive number or \"auto\", got '" +
-                                              e.get<std::string>() + "'");
+                                              shown(e.get<std::string>()) + "'");
         } else {
             r.exposure = positive(c, e, "render.exposure");
             r.auto_exposure = false;
@@ -620,10 +818,11 @@ void load_render(const Ctx& c, const json& j, SceneRender& r) {
         r.tonemap = string(c, j["tonemap"], "render.tonemap");
         const std::vector<std::string> ops = render::tone_map_names();
         if (std::find(ops.begin(), ops.end(), r.tonemap) == ops.end())
-            c.fail("render.tonemap", "unknown tone-mapping operator '" + r.tonemap +
+            c.fail("render.tonemap", "unknown tone-mapping operator '" + shown(r.tonemap) +
                                          "' (expected " + render::tone_map_list() + ")");
     }
-    if (j.contains("spp")) r.spp = integer(c, j["spp"], "render.spp", 1, 1 << 20);
+    // At least 2: the reference's standard error needs two samples per pixel.
+    if (j.contains("spp")) r.spp = integer(c, j["spp"], "render.spp", 2, 1 << 20);
     if (j.contains("noise")) {
         r.noise = positive(c, j["noise"], "render.noise");
         if (r.noise >= 1)
@@ -727,6 +926,15 @@ SceneFile load_scene(const std::string& path) {
     c.file = path;
     const std::size_t slash = path.find_last_of('/');
     c.dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0)
+        c.fail("", std::string("cannot open the scene file: ") + std::strerror(errno));
+    if (S_ISDIR(st.st_mode)) c.fail("", "a directory, not a scene file");
+    if (!S_ISREG(st.st_mode))
+        c.fail("", "not a regular file (a FIFO, socket or device); expected a scene file");
+    // nlohmann's document takes up to about 16 bytes per byte of JSON (a number per 2 bytes).
+    check_memory(path + ": ", 16.0 * double(st.st_size),
+                 "parsing " + format_bytes(double(st.st_size)) + " of JSON");
     std::ifstream in(path, std::ios::binary);
     if (!in) c.fail("", "cannot open the scene file");
     std::stringstream buf;
@@ -739,6 +947,7 @@ SceneFile load_scene(const std::string& path) {
         std::string msg = e.what();
         const std::size_t p = msg.find("] ");
         if (p != std::string::npos) msg = msg.substr(p + 2);
+        msg = shown_path(msg, 160);  // nlohmann quotes the last token, maybe megabytes of it
         if (msg.find("invalid literal") != std::string::npos)
             msg += " (NaN and Infinity are not JSON numbers)";
         c.fail("",
@@ -751,11 +960,17 @@ SceneFile load_scene(const std::string& path) {
     const json& meshes = j["meshes"];
     if (!meshes.is_array() || meshes.empty())
         c.fail("meshes", "expected a non-empty array, got " + type_name(meshes));
+    std::unordered_set<std::string> names;  // linear in the number of meshes
+    double vertices = 0, triangles = 0;
     for (std::size_t i = 0; i < meshes.size(); ++i) {
         s.meshes.push_back(load_mesh(c, meshes[i], at("meshes", i), i));
-        for (std::size_t k = 0; k + 1 < s.meshes.size(); ++k)
-            if (s.meshes[k].name == s.meshes.back().name)
-                c.fail(at("meshes", i), "duplicate mesh name '" + s.meshes.back().name + "'");
+        if (!names.insert(s.meshes.back().name).second)
+            c.fail(at("meshes", i), "duplicate mesh name '" + shown(s.meshes.back().name) + "'");
+        vertices += double(s.meshes.back().mesh.vertex_count());
+        triangles += double(s.meshes.back().mesh.triangle_count());
+        check_memory(
+            path + ": meshes: ", vertices * bytes_per_vertex + triangles * bytes_per_triangle,
+            "the meshes up to meshes[" + std::to_string(i) + "]");
     }
     if (j.contains("environment")) load_environment(c, j["environment"], s);
     if (j.contains("lights")) {
@@ -769,8 +984,8 @@ SceneFile load_scene(const std::string& path) {
         check_keys(c, cam, "camera", {"position", "look_at", "up", "fov_deg", "width", "height"});
         s.camera.present = true;
         if (cam.contains("position"))
-            s.camera.position = vec(c, cam["position"], "camera.position");
-        if (cam.contains("look_at")) s.camera.look_at = vec(c, cam["look_at"], "camera.look_at");
+            s.camera.position = point(c, cam["position"], "camera.position");
+        if (cam.contains("look_at")) s.camera.look_at = point(c, cam["look_at"], "camera.look_at");
         if (cam.contains("up")) s.camera.up = direction(c, cam["up"], "camera.up");
         if (cam.contains("fov_deg")) {
             s.camera.fov_deg = number(c, cam["fov_deg"], "camera.fov_deg");
@@ -798,8 +1013,8 @@ SceneFile load_scene(const std::string& path) {
         if (!p.contains("min") || !p.contains("max") || !p.contains("counts"))
             c.fail("probes", "expected \"min\", \"max\" and \"counts\"");
         s.has_probes = true;
-        s.probes.lo = vec(c, p["min"], "probes.min");
-        s.probes.hi = vec(c, p["max"], "probes.max");
+        s.probes.lo = point(c, p["min"], "probes.min");
+        s.probes.hi = point(c, p["max"], "probes.max");
         if (!(s.probes.lo.x <= s.probes.hi.x && s.probes.lo.y <= s.probes.hi.y &&
               s.probes.lo.z <= s.probes.hi.z))
             c.fail("probes", "expected min <= max in every axis");

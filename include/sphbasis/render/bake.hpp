@@ -572,6 +572,11 @@ class Baker {
                                                 "finite positions, normals and tangents, got "
                                                 "a NaN or an infinity at point " +
                                                     std::to_string(i));
+            for (const double x : {p.p.x, p.p.y, p.p.z})
+                if (!(std::fabs(x) <= coordinate_limit))
+                    sphbasis::detail::throw_invalid(
+                        fn, "positions within [-1e15, 1e15] (render::coordinate_limit), got " +
+                                std::to_string(x) + " at point " + std::to_string(i));
             if (surface_q && !(length(p.n) > 0))
                 sphbasis::detail::throw_invalid(
                     fn,

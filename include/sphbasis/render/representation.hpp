@@ -997,6 +997,14 @@ class Representations {
         return reads_of(rep(index, "render::Representations::reads", false));
     }
 
+    /// Whether `name` is a representation this class builds: one of representation_names(), or
+    /// a member of a family beyond the listed ones (lxh-pcaM, 1 <= M <= 36; prt-cpca-C-M,
+    /// 1 <= C <= 4096, 1 <= M <= 64). For checking names before any scene is loaded.
+    static bool known_name(const std::string& name) {
+        const auto& all = representation_names();
+        return std::find(all.begin(), all.end(), name) != all.end() || family_member(name);
+    }
+
   private:
     enum class Kind {
         irradiance,

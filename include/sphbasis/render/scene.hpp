@@ -57,6 +57,11 @@
 
 namespace sphbasis::render {
 
+/// The largest magnitude of a vertex coordinate (Scene) or a bake point's coordinate
+/// (Baker::bake): Embree builds its bounds in float and squares extents, and aborts on an
+/// assertion from about 1.8e18; 1e15 keeps every such product far from overflow.
+inline constexpr double coordinate_limit = 1e15;
+
 /// What a ray hit. Barycentrics: position = (1 - u - v) p0 + u p1 + v p2 of the mesh's
 /// triangle `primitive` (index into the mesh's own triangle list, degenerate ones included).
 /// The fields a renderer reads at every path vertex come first (two cache lines).
@@ -483,6 +488,10 @@ class Scene {
                 bad(m, std::string("finite ") + what + ", got a NaN or an infinity");
         };
         copy(v.positions, 3, d.positions, "vertex positions");
+        for (const float x : d.positions)
+            if (!(std::fabs(x) <= coordinate_limit))
+                bad(m, "vertex coordinates within [-1e15, 1e15] (render::coordinate_limit), got " +
+                           std::to_string(x));
         copy(v.normals, 3, d.normals, "normals");
         copy(v.uvs, 2, d.uvs, "UVs");
         copy(v.tangents, 4, d.tangents, "tangents");
