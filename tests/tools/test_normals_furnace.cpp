@@ -14,6 +14,7 @@
 // roulette: weights 1/q) have a nonzero variance: each pixel within 5 of its own standard errors
 // (+1e-6), and the mean over pixels within 4 standard errors of the mean
 // (sqrt(sum se^2) / pixels) of 1.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -370,5 +371,37 @@ TEST_CASE("white furnace: models of assimp-testmodels", "[tools][furnace]") {
         CHECK(p.covered > 0.2);
         CHECK(p.worst < 1);
         CHECK(std::fabs(p.mean - 1) <= 4 * p.se + 1e-9);
+    }
+}
+
+TEST_CASE("mesh files: zero normals and the vertices of degenerate triangles", "[tools][normals]") {
+    // assimp-testmodels' spider (OBJ and binary STL) gives 0 0 0 as the normal of the vertices of
+    // its degenerate triangles: those triangles are dropped, the vertices only they used go with
+    // them, and a zero normal at a used vertex is generated like a missing one. Every vertex is
+    // then used and has a unit normal, and a vertex bake runs.
+    const std::string dir = "/usr/share/assimp/models/";
+    for (const char* file : {"OBJ/spider.obj", "STL/Spider_binary.stl"}) {
+        INFO(file);
+        if (!exists(dir + file)) {
+            WARN("skipped: " << dir << file << " is not installed (assimp-testmodels)");
+            continue;
+        }
+        const cli::SceneFile s = cli::load_scene(furnace_scene("spider", dir + file, -1));
+        for (const cli::SceneMesh& sm : s.meshes) {
+            const Mesh& m = sm.mesh;
+            std::vector<char> used(m.vertex_count(), 0);
+            for (std::uint32_t i : m.indices) used[i] = 1;
+            CHECK(std::count(used.begin(), used.end(), 0) == 0);
+            double worst = 0;
+            for (std::size_t v = 0; v < m.vertex_count(); ++v) {
+                const float* n = &m.normals[3 * v];
+                worst =
+                    std::max(worst, std::fabs(std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] +
+                                                        double(n[2]) * n[2]) -
+                                              1));
+            }
+            CHECK(worst < 1e-5);
+        }
+        CHECK(bake_furnace(s, 4).points > 0);
     }
 }

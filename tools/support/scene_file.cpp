@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
@@ -478,7 +479,12 @@ render::Mesh load_mesh_file(const Ctx& c, const std::string& where, const std::s
             if (face.mNumIndices != 3) continue;
             m.indices.insert(m.indices.end(), {base + face.mIndices[0], base + face.mIndices[1],
                                                base + face.mIndices[2]});
-            generate.push_back(a->HasNormals() ? 0 : 1);
+            // Normals generated where the file has none, or gives a zero normal at a corner
+            // (some files write 0 0 0 where their exporter found no normal).
+            bool given = a->HasNormals();
+            for (int k = 0; k < 3 && given; ++k)
+                given = a->mNormals[face.mIndices[k]].SquareLength() > 0;
+            generate.push_back(given ? 0 : 1);
         }
     }
     if (std::find(generate.begin(), generate.end(), 1) != generate.end()) {
@@ -493,7 +499,33 @@ render::Mesh load_mesh_file(const Ctx& c, const std::string& where, const std::s
 
 // ---------------------------------------------------------------------------------------------
 
-/// Removes triangles with a zero-area or non-finite position; returns how many.
+/// Removes the vertices no triangle uses (those of dropped triangles: a vertex bake would bake
+/// them, and files give them no usable normal), renumbering the indices.
+void drop_unreferenced(render::Mesh& m) {
+    const std::size_t n = m.vertex_count();
+    std::vector<std::uint32_t> remap(n, std::numeric_limits<std::uint32_t>::max());
+    for (std::uint32_t i : m.indices) remap[i] = 0;
+    std::uint32_t next = 0;
+    for (std::size_t v = 0; v < n; ++v)
+        if (remap[v] == 0) remap[v] = next++;
+    if (next == n) return;
+    const auto compact = [&](std::vector<float>& a, std::size_t w) {
+        if (a.size() != w * n) return;
+        for (std::size_t v = 0; v < n; ++v)
+            if (remap[v] != std::numeric_limits<std::uint32_t>::max())
+                std::copy_n(a.begin() + std::ptrdiff_t(w * v), w,
+                            a.begin() + std::ptrdiff_t(w * remap[v]));
+        a.resize(w * next);
+    };
+    compact(m.positions, 3);
+    compact(m.normals, 3);
+    compact(m.uvs, 2);
+    compact(m.tangents, 4);
+    for (std::uint32_t& i : m.indices) i = remap[i];
+}
+
+/// Removes triangles with a zero-area or non-finite position (and then the vertices only they
+/// used); returns how many triangles.
 std::size_t drop_degenerate(render::Mesh& m) {
     std::vector<std::uint32_t> kept;
     kept.reserve(m.indices.size());
@@ -523,6 +555,7 @@ std::size_t drop_degenerate(render::Mesh& m) {
             ++dropped;
     }
     m.indices = std::move(kept);
+    if (dropped > 0) drop_unreferenced(m);
     return dropped;
 }
 
