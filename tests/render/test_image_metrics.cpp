@@ -243,3 +243,16 @@ TEST_CASE("image metrics: bad input throws", "[render][metrics]") {
     CHECK_THROWS_AS(render::flip_mean(a, a, render::flip_default_ppd, &mask),
                     std::invalid_argument);
 }
+
+TEST_CASE("image metrics: flip_colour and flip_mean_of", "[render][metrics]") {
+    Image m(3, 1, 1);
+    m.data = {0.0f, 1.0f, std::nanf("")};
+    const auto c = render::flip_colour(m);
+    CHECK(std::vector<int>(c.begin(), c.end()) ==
+          std::vector<int>{68, 1, 84, 253, 231, 37, 128, 128, 128});
+    m.data = {0.25f, 0.75f, 0.5f};
+    Image mask(3, 1, 1);
+    mask.data = {1, 0, 1};
+    CHECK(render::flip_mean_of(m, &mask) == Approx(0.375));
+    CHECK(render::flip_mean_of(m) == Approx(0.5));
+}

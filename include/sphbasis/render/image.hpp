@@ -208,27 +208,32 @@ inline std::vector<std::uint8_t> to_srgb8(const Image& image, double exposure,
     return out;
 }
 
+namespace detail {
+/// The viridis ramp at s in [0, 1], 8-bit RGB into out[0..2].
+inline void viridis(double s, std::uint8_t* out) noexcept {
+    // Viridis at 0, 1/4, 1/2, 3/4, 1 (van der Walt and Smith, matplotlib, 2015).
+    static const double ramp[5][3] = {
+        {68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}};
+    const double x = std::clamp(s, 0.0, 1.0) * 4;
+    const int k = std::min(3, static_cast<int>(x));
+    const double f = x - k;
+    for (int c = 0; c < 3; ++c)
+        out[c] = static_cast<std::uint8_t>(std::lround((1 - f) * ramp[k][c] + f * ramp[k + 1][c]));
+}
+}  // namespace detail
+
 /// 8-bit RGB false colour of an error_image(): log10 of the error mapped from [-3, 0] onto the
 /// viridis ramp (blue -> green -> yellow; errors below 1e-3 at the blue end, above 1 at the
 /// yellow end), negative (unjudged) or NaN pixels mid grey (128, 128, 128). Only channel 0 is
 /// read.
 inline std::vector<std::uint8_t> false_colour(const Image& error) {
     detail::check_image("render::false_colour", "", error);
-    // Viridis at 0, 1/4, 1/2, 3/4, 1 (van der Walt and Smith, matplotlib, 2015).
-    static const double ramp[5][3] = {
-        {68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}};
     const std::size_t n = std::size_t(error.width) * std::size_t(error.height);
     std::vector<std::uint8_t> out(3 * n, 128);
     for (std::size_t i = 0; i < n; ++i) {
         const double e = error.data[i * std::size_t(error.channels)];
         if (!(e >= 0)) continue;
-        const double s = e > 0 ? std::clamp((std::log10(e) + 3) / 3, 0.0, 1.0) : 0.0;
-        const double x = s * 4;
-        const int k = std::min(3, static_cast<int>(x));
-        const double f = x - k;
-        for (int c = 0; c < 3; ++c)
-            out[3 * i + std::size_t(c)] =
-                static_cast<std::uint8_t>(std::lround((1 - f) * ramp[k][c] + f * ramp[k + 1][c]));
+        detail::viridis(e > 0 ? (std::log10(e) + 3) / 3 : 0.0, &out[3 * i]);
     }
     return out;
 }

@@ -76,6 +76,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -550,23 +551,47 @@ inline Image flip_error_map(const Image& test, const Image& reference,
     return out;
 }
 
-/// The mean of flip_error_map() over the pixels `mask` selects (0 with none), in [0, 1].
+/// The mean of a flip_error_map() (channel 0) over the pixels `mask` selects (0 with none).
+/// Throws std::invalid_argument for a mask of another size.
+inline double flip_mean_of(const Image& flip_map, const Image* mask = nullptr) {
+    detail::check_image("render::flip_mean_of", "as the FLIP map", flip_map);
+    if (mask) {
+        detail::check_image("render::flip_mean_of", "as the mask", *mask);
+        detail::check_same_size("render::flip_mean_of", "a mask", *mask, flip_map);
+    }
+    const std::vector<char> sel =
+        detail::selection(mask, std::size_t(flip_map.width) * std::size_t(flip_map.height));
+    double sum = 0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < sel.size(); ++i)
+        if (sel[i]) {
+            sum += flip_map.data[i * std::size_t(flip_map.channels)];
+            ++count;
+        }
+    return count ? sum / double(count) : 0;
+}
+
+/// The mean FLIP error, in [0, 1]: flip_mean_of(flip_error_map(test, reference, ppd), mask).
 inline double flip_mean(const Image& test, const Image& reference, double ppd = flip_default_ppd,
                         const Image* mask = nullptr) {
     if (mask) {
         detail::check_image("render::flip_mean", "as the mask", *mask);
         detail::check_same_size("render::flip_mean", "a mask", *mask, reference);
     }
-    const Image map = flip_error_map(test, reference, ppd);
-    const std::vector<char> sel = detail::selection(mask, map.data.size());
-    double sum = 0;
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < sel.size(); ++i)
-        if (sel[i]) {
-            sum += map.data[i];
-            ++count;
-        }
-    return count ? sum / double(count) : 0;
+    return flip_mean_of(flip_error_map(test, reference, ppd), mask);
+}
+
+/// 8-bit RGB of a FLIP map: its value in [0, 1] linearly on the viridis ramp (image.hpp's
+/// false_colour() ramp; 0 blue, 1 yellow), NaN mid grey. Only channel 0 is read.
+inline std::vector<std::uint8_t> flip_colour(const Image& flip_map) {
+    detail::check_image("render::flip_colour", "", flip_map);
+    const std::size_t n = std::size_t(flip_map.width) * std::size_t(flip_map.height);
+    std::vector<std::uint8_t> out(3 * n, 128);
+    for (std::size_t i = 0; i < n; ++i) {
+        const double e = flip_map.data[i * std::size_t(flip_map.channels)];
+        if (e == e) detail::viridis(e, &out[3 * i]);
+    }
+    return out;
 }
 
 struct ImageError {
