@@ -254,5 +254,11 @@ TEST_CASE("image metrics: flip_colour and flip_mean_of", "[render][metrics]") {
     Image mask(3, 1, 1);
     mask.data = {1, 0, 1};
     CHECK(render::flip_mean_of(m, &mask) == Approx(0.375));
+    const auto cm = render::flip_colour(m, &mask);
+    CHECK(int(cm[3]) == 128);
+    CHECK(int(cm[4]) == 128);
+    CHECK(int(cm[0]) != 128);
+    const Image wrong(2, 1, 1);
+    CHECK_THROWS_AS(render::flip_colour(m, &wrong), std::invalid_argument);
     CHECK(render::flip_mean_of(m) == Approx(0.5));
 }

@@ -580,7 +580,7 @@ int run_render(const RenderOptions& o) {
         row.image = n + ".png";
         row.error_image = n + "_error.png";
         files.add(join_path(o.out, n + "_flip.png"),
-                  png_bytes(render::flip_colour(flip_map), flip_map.width, flip_map.height));
+                  png_bytes(render::flip_colour(flip_map, mask), flip_map.width, flip_map.height));
         row.flip_image = n + "_flip.png";
         row.exr = n + ".exr";
         rep.rows.push_back(row);

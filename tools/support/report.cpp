@@ -2,6 +2,7 @@
 #include "report.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numeric>
@@ -352,29 +353,50 @@ std::string cost_plot_svg(const Report& r) {
       << "\" font-size=\"11\" role=\"img\" aria-label=\"FLIP against render time\">\n";
     o << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << W - left - right
       << "\" height=\"" << H - top - bottom << "\" fill=\"none\" stroke=\"#888\"/>\n";
-    for (double l = lx0; l <= lx1; ++l) {
-        const double x = left + (l - lx0) / (lx1 - lx0) * (W - left - right);
-        o << "<line x1=\"" << x << "\" x2=\"" << x << "\" y1=\"" << top << "\" y2=\"" << H - bottom
-          << "\" stroke=\"#ddd\"/><text x=\"" << x << "\" y=\"" << H - bottom + 14
-          << "\" text-anchor=\"middle\">" << g3(std::pow(10.0, l)) << "</text>\n";
-    }
-    for (double l = ly0; l <= ly1; ++l) {
-        const double y = H - bottom - (l - ly0) / (ly1 - ly0) * (H - top - bottom);
-        o << "<line x1=\"" << left << "\" x2=\"" << W - right << "\" y1=\"" << y << "\" y2=\"" << y
-          << "\" stroke=\"#ddd\"/><text x=\"" << left - 4 << "\" y=\"" << y + 4
-          << "\" text-anchor=\"end\">" << g3(std::pow(10.0, l)) << "</text>\n";
-    }
+    // Grid lines at 1, 2 and 5 times each decade (labelled; 1 only over more than 2 decades).
+    for (double l = lx0; l <= lx1; ++l)
+        for (double m : {1.0, 2.0, 5.0}) {
+            const double v = m * std::pow(10.0, l);
+            if (std::log10(v) > lx1 + 1e-9 || (m != 1 && lx1 - lx0 > 2)) continue;
+            const double x = px(v);
+            o << "<line x1=\"" << x << "\" x2=\"" << x << "\" y1=\"" << top << "\" y2=\""
+              << H - bottom << "\" stroke=\"#ddd\"/><text x=\"" << x << "\" y=\"" << H - bottom + 14
+              << "\" text-anchor=\"middle\">" << g3(v) << "</text>\n";
+        }
+    for (double l = ly0; l <= ly1; ++l)
+        for (double m : {1.0, 2.0, 5.0}) {
+            const double v = m * std::pow(10.0, l);
+            if (std::log10(v) > ly1 + 1e-9 || (m != 1 && ly1 - ly0 > 2)) continue;
+            const double y = py(v);
+            o << "<line x1=\"" << left << "\" x2=\"" << W - right << "\" y1=\"" << y << "\" y2=\""
+              << y << "\" stroke=\"#ddd\"/><text x=\"" << left - 4 << "\" y=\"" << y + 4
+              << "\" text-anchor=\"end\">" << g3(v) << "</text>\n";
+        }
     o << "<text x=\"" << (left + W - right) / 2 << "\" y=\"" << H - 12
       << "\" text-anchor=\"middle\">render ms per frame (" << r.threads
       << " threads, log)</text>\n";
     o << "<text transform=\"translate(16," << (top + H - bottom) / 2
       << ") rotate(-90)\" text-anchor=\"middle\">FLIP (log; lower is better)</text>\n";
-    for (const ReportRow& x : r.rows) {
+    // Points in rank order; a name is written where it overlaps no name already written (the
+    // others show on hover: <title>).
+    std::vector<std::array<double, 4>> placed;  // x0, y0, x1, y1 of the names written
+    for (std::size_t k : by_rank(r)) {
+        const ReportRow& x = r.rows[k];
         const double cx = px(x.render_ms_all), cy = py(x.flip);
         o << "<g><title>" << html_escape(x.name) << ": FLIP " << g3(x.flip) << ", "
           << g3(x.render_ms_all) << " ms</title><circle cx=\"" << cx << "\" cy=\"" << cy
-          << "\" r=\"4\" fill=\"#3b528b\"/><text x=\"" << cx + 6 << "\" y=\"" << cy + 4 << "\">"
-          << html_escape(x.name) << "</text></g>\n";
+          << "\" r=\"4\" fill=\"#3b528b\"/>";
+        const std::array<double, 4> box = {cx + 6, cy - 7, cx + 6 + 6.2 * double(x.name.size()),
+                                           cy + 5};
+        const bool free = std::none_of(placed.begin(), placed.end(), [&box](const auto& b) {
+            return box[0] < b[2] && b[0] < box[2] && box[1] < b[3] && b[1] < box[3];
+        });
+        if (free) {
+            placed.push_back(box);
+            o << "<text x=\"" << cx + 6 << "\" y=\"" << cy + 4 << "\">" << html_escape(x.name)
+              << "</text>";
+        }
+        o << "</g>\n";
     }
     o << "</svg>\n";
     return o.str();
@@ -426,7 +448,7 @@ std::string report_html(const Report& r) {
          "th{cursor:pointer;background:#f4f4f4}\n"
          "th[aria-sort=ascending]::after{content:' \\25B2'}\n"
          "th[aria-sort=descending]::after{content:' \\25BC'}\n"
-         "img.thumb{max-width:160px;height:auto}\n"
+         "img.thumb{max-width:120px;height:auto}\n"
          "</style>\n</head>\n<body>\n";
     o << "<h1>sphbasis render: " << html_escape(r.scene) << "</h1>\n";
     o << "<p>" << r.width << "&times;" << r.height << " pixels; reference: path tracer, " << r.spp

@@ -582,14 +582,21 @@ inline double flip_mean(const Image& test, const Image& reference, double ppd = 
 }
 
 /// 8-bit RGB of a FLIP map: its value in [0, 1] linearly on the viridis ramp (image.hpp's
-/// false_colour() ramp; 0 blue, 1 yellow), NaN mid grey. Only channel 0 is read.
-inline std::vector<std::uint8_t> flip_colour(const Image& flip_map) {
+/// false_colour() ramp; 0 blue, 1 yellow); NaN and the pixels `mask` leaves out (the metric's
+/// mean skips them) mid grey (128, 128, 128). Only channel 0 is read. Throws
+/// std::invalid_argument for a mask of another size.
+inline std::vector<std::uint8_t> flip_colour(const Image& flip_map, const Image* mask = nullptr) {
     detail::check_image("render::flip_colour", "", flip_map);
+    if (mask) {
+        detail::check_image("render::flip_colour", "as the mask", *mask);
+        detail::check_same_size("render::flip_colour", "a mask", *mask, flip_map);
+    }
     const std::size_t n = std::size_t(flip_map.width) * std::size_t(flip_map.height);
+    const std::vector<char> sel = detail::selection(mask, n);
     std::vector<std::uint8_t> out(3 * n, 128);
     for (std::size_t i = 0; i < n; ++i) {
         const double e = flip_map.data[i * std::size_t(flip_map.channels)];
-        if (e == e) detail::viridis(e, &out[3 * i]);
+        if (sel[i] && e == e) detail::viridis(e, &out[3 * i]);
     }
     return out;
 }
