@@ -448,7 +448,8 @@ std::string report_html(const Report& r) {
          "th{cursor:pointer;background:#f4f4f4}\n"
          "th[aria-sort=ascending]::after{content:' \\25B2'}\n"
          "th[aria-sort=descending]::after{content:' \\25BC'}\n"
-         "img.thumb{max-width:120px;height:auto}\n"
+         "img.thumb{max-width:120px;height:auto;display:inline-block;vertical-align:middle}\n"
+         "#results td:last-child{min-width:22em;font-size:0.9em}\n"
          "</style>\n</head>\n<body>\n";
     o << "<h1>sphbasis render: " << html_escape(r.scene) << "</h1>\n";
     o << "<p>" << r.width << "&times;" << r.height << " pixels; reference: path tracer, " << r.spp
