@@ -4,19 +4,30 @@
 Usage: check_render_report.py DIR [CHECK ...]; prints "render-report-ok" when every check holds,
 else one line saying what failed (exit 1). Always checked: report.json parses and has the
 documented keys; every file it names exists beside it, with the PNG and OpenEXR signatures;
-report.md and report.html exist and link every image; no temporary file is left in DIR.
+report.md and report.html exist and link every image; no temporary file is left in DIR; every
+metric of every row is a finite number in its range (flip in [0, 1], smape_floored in [0, 2],
+outside_3_stderr in [0, 1], the rest >= 0); the ranks are 1..N in the order of flip; report.json
+names the ranking metric and defines every metric; report.html has the sortable table (id
+"results", one row per representation, a data-v sort key in every numeric cell), the inline sort
+script, an inline SVG plot with a point per representation, each representation's image in its
+row, and no external resource (no http(s): URL in a src or href).
 CHECKs:
   rows=N              N representations in the table
   bakes_run=N         prepare() ran N bakes (bakes_loaded=N likewise)
   max_rel_mse=NAME:X  NAME's relative MSE is at most X
   less=A:B            A's relative MSE is below B's
+  less_flip=A:B       A's FLIP is below B's
+  max_flip=NAME:X     NAME's FLIP is at most X
+  max_metric=KEY:X    every row's metric KEY is at most X (e.g. rel_mse_floored:10)
   judged_min=X        every row judged at least a fraction X of its pixels
   counter=NAME:N      the reference's counter NAME equals N (e.g. bounce_rays:0)
   effect~TEXT         some effect of the plan contains TEXT; effect!~TEXT: none does
   plan~TEXT           some plan step (what: reason) contains TEXT
 """
 import json
+import math
 import os
+import re
 import sys
 
 PNG = b"\x89PNG\r\n\x1a\n"
@@ -26,6 +37,36 @@ EXR = b"\x76\x2f\x31\x01"
 def fail(msg):
     print("render-report-FAILED: " + msg)
     sys.exit(1)
+
+
+# Every metric of a row and its upper bound.
+METRICS = {"rmse": math.inf, "rel_mse": math.inf, "smape": 1.0, "rel_mse_floored": math.inf,
+           "smape_floored": 2.0, "outside_3_stderr": 1.0, "flip": 1.0}
+
+
+def check_html(html, r):
+    m = re.search(r'<table id="results">(.*?)</table>', html, re.S)
+    if not m:
+        fail("report.html: no table with id 'results'")
+    body = re.search(r"<tbody>(.*?)</tbody>", m.group(1), re.S)
+    rows = re.findall(r"<tr>(.*?)</tr>", body.group(1) if body else "", re.S)
+    if len(rows) != len(r["representations"]):
+        fail("report.html: %d table rows, expected %d" % (len(rows), len(r["representations"])))
+    for row in r["representations"]:
+        mine = [t for t in rows if ">%s<" % row["name"] in t or ">%s (" % row["name"] in t]
+        if not mine or 'src="%s"' % row["image"] not in mine[0]:
+            fail("report.html: the row of %s does not show its image" % row["name"])
+    for t in rows:
+        for v in re.findall(r'data-v="([^"]*)"', t):
+            if not math.isfinite(float(v)):
+                fail("report.html: a sort key %r is not a finite number" % v)
+    if "<script>" not in html or "aria-sort" not in html or "addEventListener('click'" not in html:
+        fail("report.html: no inline sort script")
+    svg = re.search(r'<svg id="cost-plot".*?</svg>', html, re.S)
+    if not svg or svg.group(0).count("<circle") != len(r["representations"]):
+        fail("report.html: no inline SVG plot with a point per representation")
+    if re.search(r'(src|href)="(https?:)?//', html) or "<script src" in html:
+        fail("report.html: an external resource")
 
 
 def main():
@@ -43,10 +84,26 @@ def main():
     for row in r["representations"]:
         for k in ("name", "rmse", "rel_mse", "smape", "judged_fraction", "bake_seconds",
                   "render_ms_1_thread", "render_ms_all_threads", "bytes_per_element",
-                  "cannot_show", "image", "error_image", "exr"):
+                  "cannot_show", "image", "error_image", "exr", "rel_mse_floored",
+                  "smape_floored", "outside_3_stderr", "flip", "rank", "flip_image"):
             if k not in row:
                 fail("representation %s: no key %r" % (row.get("name"), k))
-        files += [row["image"], row["error_image"], row["exr"]]
+        for k, hi in METRICS.items():
+            v = row[k]
+            if not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0 or v > hi:
+                fail("representation %s: %s = %r, expected a finite number in [0, %s]"
+                     % (row["name"], k, v, hi))
+        files += [row["image"], row["error_image"], row["flip_image"], row["exr"]]
+    if r.get("ranked_by") != "flip" or not r.get("ranking_reason"):
+        fail("report.json: ranked_by %r, expected 'flip' with a ranking_reason" % r.get("ranked_by"))
+    for k in METRICS:
+        if k not in r.get("metrics", {}):
+            fail("report.json: metrics has no definition of %r" % k)
+    ranked = sorted(r["representations"], key=lambda x: x["rank"])
+    if [x["rank"] for x in ranked] != list(range(1, len(ranked) + 1)):
+        fail("ranks %s, expected 1..%d" % ([x["rank"] for x in ranked], len(ranked)))
+    if any(a["flip"] > b["flip"] for a, b in zip(ranked, ranked[1:])):
+        fail("ranks not in the order of flip")
     md = open(os.path.join(d, "report.md")).read()
     html = open(os.path.join(d, "report.html")).read()
     for name in files:
@@ -60,6 +117,7 @@ def main():
             fail(name + ": not an OpenEXR file")
         if name.endswith(".png") and (name not in md or 'src="%s"' % name not in html):
             fail(name + ": not linked from report.md and report.html")
+    check_html(html, r)
     for f in os.listdir(d):
         if ".tmp-" in f:
             fail("temporary file left: " + f)
@@ -80,6 +138,19 @@ def main():
             a, b = c[5:].split(":")
             if a not in rows or b not in rows or not rows[a]["rel_mse"] < rows[b]["rel_mse"]:
                 fail("%s: rel_mse not below %s's" % (a, b))
+        elif c.startswith("less_flip="):
+            a, b = c[10:].split(":")
+            if a not in rows or b not in rows or not rows[a]["flip"] < rows[b]["flip"]:
+                fail("%s: flip not below %s's" % (a, b))
+        elif c.startswith("max_flip="):
+            name, x = c[9:].split(":")
+            if name not in rows or not rows[name]["flip"] <= float(x):
+                fail("%s: flip %s > %s" % (name, rows.get(name, {}).get("flip"), x))
+        elif c.startswith("max_metric="):
+            k, x = c[11:].split(":")
+            for row in rows.values():
+                if not row[k] <= float(x):
+                    fail("%s: %s = %s > %s" % (row["name"], k, row[k], x))
         elif c.startswith("judged_min="):
             for row in rows.values():
                 if row["judged_fraction"] < float(c[11:]):

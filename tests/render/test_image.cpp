@@ -7,7 +7,7 @@
 #include <limits>
 #include <vector>
 
-#include "sphbasis/render/image.hpp"
+#include "sphbasis/render/image_metrics.hpp"
 
 namespace render = sphbasis::render;
 using render::Image;

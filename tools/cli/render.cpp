@@ -7,7 +7,8 @@
 //   reference.exr (linear RGB), reference.png (tone-mapped), reference_stderr.exr (the per-pixel
 //   standard error of the reference, RGB); for each representation NAME.exr, NAME.png and
 //   NAME_error.png (its relative error against the reference in false colour: render::
-//   error_image and false_colour); specular_reference.{exr,png} when a specular representation
+//   error_image and false_colour) and NAME_flip.png (its FLIP map: render::flip_error_map of the
+//   tone-mapped images, flip_colour); specular_reference.{exr,png} when a specular representation
 //   runs (the specular ones are compared with render::render_specular_reference, not with the
 //   path tracer); with --aovs the reference's first-hit aov_{normal,albedo,position}.exr;
 //   report.json, report.md and report.html (support/report.hpp). All of them are
@@ -36,6 +37,7 @@
 #include <set>
 #include <sphbasis/render/camera.hpp>
 #include <sphbasis/render/image.hpp>
+#include <sphbasis/render/image_metrics.hpp>
 #include <sphbasis/render/path_tracer.hpp>
 #include <sphbasis/render/representation.hpp>
 #include <sphbasis/render/specular.hpp>
@@ -546,6 +548,11 @@ int run_render(const RenderOptions& o) {
     }
 
     // --- Each representation: the image with all threads, its time with one thread.
+    // FLIP compares what the PNGs show: both images tone-mapped as they are.
+    rep.flip_ppd = render::flip_default_ppd;
+    const render::Image ref_shown = render::tone_mapped(ref.color, exposure, rep.tonemap);
+    const render::Image spec_ref_shown =
+        want_specular ? render::tone_mapped(spec_ref, exposure, rep.tonemap) : render::Image();
     tbb::task_arena one_thread(1);
     for (std::size_t i = 0; i < names.size(); ++i) {
         const std::string& n = names[i];
@@ -573,6 +580,13 @@ int run_render(const RenderOptions& o) {
         row.smape = e.smape;
         row.judged = e.judged;
         row.total = e.total;
+        row.rel_mse_floored = e.rel_mse_floored;
+        row.smape_floored = e.smape_floored;
+        row.outside_3_stderr = render::outside_stderr_fraction(img, against, se, 3, mask);
+        const render::Image flip_map =
+            render::flip_error_map(render::tone_mapped(img, exposure, rep.tonemap),
+                                   spec ? spec_ref_shown : ref_shown, rep.flip_ppd);
+        row.flip = render::flip_mean_of(flip_map, mask);
         const render::RepresentationStats st = reps.stats(i);
         // Bake + compress: the bakes read and what is built from them after (L x H tables, PCA).
         row.bake_seconds = st.bake_seconds + st.build_seconds;
@@ -591,6 +605,9 @@ int run_render(const RenderOptions& o) {
                   png_bytes(render::false_colour(err), err.width, err.height));
         row.image = n + ".png";
         row.error_image = n + "_error.png";
+        files.add(join_path(o.out, n + "_flip.png"),
+                  png_bytes(render::flip_colour(flip_map, mask), flip_map.width, flip_map.height));
+        row.flip_image = n + "_flip.png";
         row.exr = n + ".exr";
         rep.rows.push_back(row);
     }
@@ -609,6 +626,7 @@ int run_render(const RenderOptions& o) {
                 << rot_deg[2];
         rep.command = cmd.str();
     }
+    rank_rows(rep);
     rep.total_seconds = seconds_since(t_start);
     files.add(
         join_path(o.out, "report.json"),
@@ -631,8 +649,9 @@ Run setup_render(CLI::App& app) {
     app.footer(
         "Render a scene (docs/scene-format.md; it needs a \"camera\") with the ground-truth path\n"
         "tracer and with each baked representation, and write into DIR: reference.{exr,png},\n"
-        "reference_stderr.exr, NAME.{exr,png} and NAME_error.png per representation, and\n"
-        "report.{json,md,html} (error, bake time, render time, memory, what it cannot show).\n"
+        "reference_stderr.exr, NAME.{exr,png}, NAME_error.png and NAME_flip.png per\n"
+        "representation, and report.{json,md,html} (FLIP and other errors, ranked by FLIP; bake\n"
+        "time, render time, memory, what it cannot show).\n"
         "Bakes are cached in DIR/cache. The plan is printed on stderr before any work.");
     add_scene(app, o->scene);
     app.add_option("--representations", o->representations,

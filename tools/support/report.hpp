@@ -3,10 +3,20 @@
 //
 // The data are filled by tools/cli/render.cpp and written by three pure functions (strings,
 // so that the caller writes them with the images all or none). report.html is self-contained:
-// inline CSS, no script, the images linked by relative file names (the PNGs beside it), so the
-// directory can be copied and viewed offline. Error columns are over the pixels where the
-// reference's own noise allows a verdict (render::compare(): "judged"); the fraction judged is
-// a column of its own.
+// inline CSS, a small inline script that sorts the table by the column clicked, an inline SVG
+// plot of the error against the render time (log axes), the images linked by relative file names
+// (the PNGs beside it), so the directory can be copied and viewed offline; it reads nothing from
+// the network.
+//
+// Metrics (render/image_metrics.hpp has the definitions): flip (mean LDR-FLIP of the tone-mapped
+// images over the covered pixels), rel_mse_floored and smape_floored (over the pixels where the
+// reference's own noise allows a verdict, render::compare(): "judged"), outside_3_stderr (over
+// the covered pixels), and the earlier rmse, rel_mse and smape (judged pixels; rel_mse's floor is
+// so small that the darkest pixels dominate it). The rows are ranked by flip (ranked_by): it
+// measures the difference a viewer sees in the picture the report shows, is bounded in [0, 1],
+// is dominated neither by dark pixels nor by a few outliers, and sees edges and aliasing (the
+// specular comparison) that per-pixel ratios miss; rel_mse_floored is the check in linear
+// radiance beside it.
 #pragma once
 
 #include <cstddef>
@@ -40,6 +50,8 @@ struct ReportRow {
     std::string name;
     std::string against;  // "path tracer" or "specular reference"
     double rmse = 0, rel_mse = 0, smape = 0;
+    double rel_mse_floored = 0, smape_floored = 0, outside_3_stderr = 0, flip = 0;
+    int rank = 0;                       // 1 = the lowest flip (rank_rows())
     std::size_t judged = 0, total = 0;  // pixels
     double bake_seconds = 0;
     std::uint64_t bake_rays = 0;
@@ -48,7 +60,7 @@ struct ReportRow {
     std::string element;                        // "texel", "vertex", "probe", "none"
     std::size_t bytes_per_element = 0, elements = 0;
     std::string cannot_show;
-    std::string image, error_image, exr;  // file names relative to the report
+    std::string image, error_image, flip_image, exr;  // file names relative to the report
 };
 
 struct Report {
@@ -58,6 +70,7 @@ struct Report {
     double exposure = 1;
     bool auto_exposure = false;
     double noise_limit = 0.05;
+    double flip_ppd = 0;                        // FLIP's pixels per degree
     std::vector<double> lighting_rotation_deg;  // x, y, z (empty: none)
     // The reference.
     int bounces = 1;
@@ -80,6 +93,9 @@ struct Report {
     // Files (relative names).
     std::string reference_image, reference_exr, reference_stderr_exr, specular_reference_image;
 };
+
+/// Sets each row's rank: 1 for the lowest flip, ties in the order of the rows.
+void rank_rows(Report& r);
 
 /// The plan as printed on stderr (one step per line, indented), before any work.
 std::string plan_text(const Report& r);

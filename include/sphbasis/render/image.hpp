@@ -1,4 +1,4 @@
-// sphbasis render tier: linear HDR images, tiles, tone mapping and image comparison.
+// sphbasis render tier: linear HDR images, tiles, tone mapping and false colour.
 //
 // Image: width x height pixels of `channels` floats, row-major from the top row (camera.hpp's
 // image coordinates), linear radiance. for_each_tile() runs a function over square tiles in
@@ -17,16 +17,8 @@
 // luminance, Reinhard et al. eq. 1, over finite pixels with luminance > 0; Rec. 709 weights);
 // 1 for an image with no such pixel.
 //
-// Comparison against a noisy reference (compare()): a pixel is "judged" when the reference's
-// standard error there (the per-pixel stderr image of the path tracer, luminance) is at most
-// `noise_limit` times max(reference luminance, floor), floor = 1e-3 times the mean reference
-// luminance (so black pixels are judged by an absolute noise). Over judged pixels:
-//   rmse    = sqrt(mean over pixels and the 3 channels of (t - r)^2),
-//   rel_mse = mean over pixels of sum_c (t_c - r_c)^2 / (sum_c r_c^2 + eps), eps = (floor)^2,
-//   smape   = mean over pixels of sum_c |t_c - r_c| / sum_c (|t_c| + |r_c| + eps')
-//            (Probulator's sMAPE), eps' = floor.
-// error_image() gives the per-pixel relative error |t - r|_2 / (|r|_2 + floor) (NaN-free; an
-// unjudged pixel gets -1), false_colour() maps it to 8-bit RGB on a fixed logarithmic scale
+// Image comparison (compare(), error_image() and the metrics) lives in image_metrics.hpp;
+// false_colour() here maps an error image to 8-bit RGB on a fixed logarithmic scale
 // (1e-3 .. 1, a perceptual blue -> yellow ramp: viridis), unjudged pixels in mid grey.
 #pragma once
 
@@ -146,58 +138,6 @@ inline double tone_map(int op, double x) noexcept {
     }
 }
 
-/// The comparison's per-pixel state: judged flags and the floor (header comment).
-struct Judgement {
-    std::vector<char> judged;
-    std::size_t total = 0;
-    double floor = 0;
-};
-inline Judgement judge(const char* fn, const Image& test, const Image& reference,
-                       const Image* reference_stderr, double noise_limit, const Image* mask) {
-    check_image(fn, "as the test image", test);
-    check_image(fn, "as the reference image", reference);
-    check_same_size(fn, "a test image", test, reference);
-    if (reference_stderr) {
-        check_image(fn, "as the reference stderr image", *reference_stderr);
-        check_same_size(fn, "a reference stderr image", *reference_stderr, reference);
-    }
-    if (mask) {
-        check_image(fn, "as the mask", *mask);
-        check_same_size(fn, "a mask", *mask, reference);
-    }
-    if (!(noise_limit > 0) || !std::isfinite(noise_limit))
-        sphbasis::detail::throw_invalid(
-            fn, "a finite noise_limit > 0, got " + std::to_string(noise_limit));
-    const std::size_t n = std::size_t(reference.width) * std::size_t(reference.height);
-    Judgement j;
-    j.judged.assign(n, 0);
-    double sum = 0;
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        if (mask && !(mask->data[i * std::size_t(mask->channels)] != 0)) continue;
-        const double l = pixel_luminance(reference, i);
-        if (std::isfinite(l)) {
-            sum += l;
-            ++count;
-        }
-    }
-    const double mean = count ? sum / double(count) : 0;
-    // A black reference has no relative scale: an absolute floor of 1e-6 keeps the ratios finite.
-    j.floor = mean > 0 ? 1e-3 * mean : 1e-6;
-    for (std::size_t i = 0; i < n; ++i) {
-        if (mask && !(mask->data[i * std::size_t(mask->channels)] != 0)) continue;
-        ++j.total;
-        if (!reference_stderr) {
-            j.judged[i] = 1;
-            continue;
-        }
-        const double s = pixel_luminance(*reference_stderr, i);
-        const double l = pixel_luminance(reference, i);
-        j.judged[i] = s <= noise_limit * std::max(l, j.floor) ? 1 : 0;
-    }
-    return j;
-}
-
 }  // namespace detail
 
 /// Tone-mapping operators by name: "clamp", "reinhard", "aces" (header comment).
@@ -268,96 +208,32 @@ inline std::vector<std::uint8_t> to_srgb8(const Image& image, double exposure,
     return out;
 }
 
-struct ImageError {
-    double rmse = 0, rel_mse = 0, smape = 0;
-    std::size_t judged = 0, total = 0;  // pixels
-};
-/// Compares `test` with `reference` (header comment). reference_stderr may be null (every
-/// pixel judged). Throws std::invalid_argument for mismatched sizes or noise_limit <= 0.
-/// `mask` (optional, 1 channel): pixels where it is 0 are left out (not judged, not counted
-/// in total), e.g. the background where every method shows the same environment.
-/// Images have 1 (grey), 3 or 4 channels; a black reference uses the floor 1e-6. With no judged
-/// pixel the three errors are 0 (judged = 0 says so).
-inline ImageError compare(const Image& test, const Image& reference, const Image* reference_stderr,
-                          double noise_limit = 0.05, const Image* mask = nullptr) {
-    const detail::Judgement j =
-        detail::judge("render::compare", test, reference, reference_stderr, noise_limit, mask);
-    ImageError e;
-    e.total = j.total;
-    const double eps = j.floor * j.floor, eps1 = j.floor;
-    double se = 0, rel = 0, sm = 0;
-    for (std::size_t i = 0; i < j.judged.size(); ++i) {
-        if (!j.judged[i]) continue;
-        ++e.judged;
-        double t[3], r[3];
-        detail::pixel_rgb(test, i, t);
-        detail::pixel_rgb(reference, i, r);
-        double d2 = 0, r2 = 0, ad = 0, as = 0;
-        for (int c = 0; c < 3; ++c) {
-            const double d = t[c] - r[c];
-            d2 += d * d;
-            r2 += r[c] * r[c];
-            ad += std::fabs(d);
-            as += std::fabs(t[c]) + std::fabs(r[c]);
-        }
-        se += d2;
-        rel += d2 / (r2 + eps);
-        sm += ad / (as + eps1);
-    }
-    if (e.judged) {
-        const double m = double(e.judged);
-        e.rmse = std::sqrt(se / (3 * m));
-        e.rel_mse = rel / m;
-        e.smape = sm / m;
-    }
-    return e;
+namespace detail {
+/// The viridis ramp at s in [0, 1], 8-bit RGB into out[0..2].
+inline void viridis(double s, std::uint8_t* out) noexcept {
+    // Viridis at 0, 1/4, 1/2, 3/4, 1 (van der Walt and Smith, matplotlib, 2015).
+    static const double ramp[5][3] = {
+        {68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}};
+    const double x = std::clamp(s, 0.0, 1.0) * 4;
+    const int k = std::min(3, static_cast<int>(x));
+    const double f = x - k;
+    for (int c = 0; c < 3; ++c)
+        out[c] = static_cast<std::uint8_t>(std::lround((1 - f) * ramp[k][c] + f * ramp[k + 1][c]));
 }
-/// Per-pixel relative error |t - r|_2 / (|r|_2 + floor) (1 channel; -1 where not judged or
-/// masked out). Throws as compare().
-inline Image error_image(const Image& test, const Image& reference, const Image* reference_stderr,
-                         double noise_limit = 0.05, const Image* mask = nullptr) {
-    const detail::Judgement j =
-        detail::judge("render::error_image", test, reference, reference_stderr, noise_limit, mask);
-    Image out(reference.width, reference.height, 1);
-    for (std::size_t i = 0; i < j.judged.size(); ++i) {
-        if (!j.judged[i]) {
-            out.data[i] = -1;
-            continue;
-        }
-        double t[3], r[3];
-        detail::pixel_rgb(test, i, t);
-        detail::pixel_rgb(reference, i, r);
-        double d2 = 0, r2 = 0;
-        for (int c = 0; c < 3; ++c) {
-            d2 += (t[c] - r[c]) * (t[c] - r[c]);
-            r2 += r[c] * r[c];
-        }
-        const double e = std::sqrt(d2) / (std::sqrt(r2) + j.floor);
-        out.data[i] = std::isfinite(e) ? static_cast<float>(e) : std::numeric_limits<float>::max();
-    }
-    return out;
-}
+}  // namespace detail
+
 /// 8-bit RGB false colour of an error_image(): log10 of the error mapped from [-3, 0] onto the
 /// viridis ramp (blue -> green -> yellow; errors below 1e-3 at the blue end, above 1 at the
 /// yellow end), negative (unjudged) or NaN pixels mid grey (128, 128, 128). Only channel 0 is
 /// read.
 inline std::vector<std::uint8_t> false_colour(const Image& error) {
     detail::check_image("render::false_colour", "", error);
-    // Viridis at 0, 1/4, 1/2, 3/4, 1 (van der Walt and Smith, matplotlib, 2015).
-    static const double ramp[5][3] = {
-        {68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}};
     const std::size_t n = std::size_t(error.width) * std::size_t(error.height);
     std::vector<std::uint8_t> out(3 * n, 128);
     for (std::size_t i = 0; i < n; ++i) {
         const double e = error.data[i * std::size_t(error.channels)];
         if (!(e >= 0)) continue;
-        const double s = e > 0 ? std::clamp((std::log10(e) + 3) / 3, 0.0, 1.0) : 0.0;
-        const double x = s * 4;
-        const int k = std::min(3, static_cast<int>(x));
-        const double f = x - k;
-        for (int c = 0; c < 3; ++c)
-            out[3 * i + std::size_t(c)] =
-                static_cast<std::uint8_t>(std::lround((1 - f) * ramp[k][c] + f * ramp[k + 1][c]));
+        detail::viridis(e > 0 ? (std::log10(e) + 3) / 3 : 0.0, &out[3 * i]);
     }
     return out;
 }
