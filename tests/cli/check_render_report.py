@@ -4,7 +4,8 @@
 Usage: check_render_report.py DIR [CHECK ...]; prints "render-report-ok" when every check holds,
 else one line saying what failed (exit 1). Always checked: report.json parses and has the
 documented keys; every file it names exists beside it, with the PNG and OpenEXR signatures;
-report.md and report.html exist and link every image; no temporary file is left in DIR.
+report.md and report.html exist and link every image; no temporary file or staging directory
+is left in DIR.
 CHECKs:
   rows=N              N representations in the table
   bakes_run=N         prepare() ran N bakes (bakes_loaded=N likewise)
@@ -61,7 +62,7 @@ def main():
         if name.endswith(".png") and (name not in md or 'src="%s"' % name not in html):
             fail(name + ": not linked from report.md and report.html")
     for f in os.listdir(d):
-        if ".tmp-" in f:
+        if ".tmp-" in f or f.startswith(".sphbasis-staging-"):
             fail("temporary file left: " + f)
     rows = {row["name"]: row for row in r["representations"]}
     for c in sys.argv[2:]:

@@ -408,11 +408,13 @@ void OutputFiles::declare(const std::string& path) {
             throw std::runtime_error("cannot create output directory '" + dir_ +
                                      "': " + std::strerror(err));
     }
-    for (const auto& o : outputs_)
-        if (o->path == path) throw write_error(path, "given as two outputs");
     auto out = std::make_unique<Output>();
     out->path = path;
     classify(*out);
+    // A file replaced twice is a mistake; a device or stream written twice is not (/dev/null).
+    if (out->kind == OutputKind::replace)
+        for (const auto& o : outputs_)
+            if (o->path == path) throw write_error(path, "given as two outputs");
     outputs_.push_back(std::move(out));
     if (prepared_) prepare_one(*outputs_.back());
 }
@@ -506,8 +508,15 @@ void OutputFiles::prepare_one(Output& out) {
 }
 
 OutputFiles::Output& OutputFiles::find(const std::string& path) {
+    // A path declared twice (a stream: --json /dev/stdout --csv /dev/stdout) takes the
+    // contents in the order of the declarations.
+    Output* last = nullptr;
     for (auto& o : outputs_)
-        if (o->path == path) return *o;
+        if (o->path == path) {
+            if (!o->added) return *o;
+            last = o.get();
+        }
+    if (last != nullptr) return *last;
     declare(path);
     if (!prepared_) prepare();
     return *outputs_.back();
