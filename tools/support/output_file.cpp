@@ -4,6 +4,8 @@
 
 #include <dirent.h>
 #include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #if defined(__linux__)
@@ -269,7 +271,7 @@ bool process_alive(long pid) {
 }
 
 /// Removes the staging directories in `dir` of processes that are gone (a run killed by
-/// SIGKILL or a power cut). Best effort: errors are ignored.
+/// SIGKILL or a power cut), if they belong to this user. Best effort: errors are ignored.
 void remove_stale_stagings(const std::string& dir) {
     DIR* d = ::opendir(dir.c_str());
     if (d == nullptr) return;
@@ -288,9 +290,12 @@ void remove_stale_stagings(const std::string& dir) {
     }
     ::closedir(d);
     for (const std::string& s : stale) {
+        // Only a real directory of this user (in /tmp another user's is none of our business).
+        struct stat st;
+        if (::lstat(s.c_str(), &st) != 0 || !S_ISDIR(st.st_mode) || st.st_uid != ::geteuid())
+            continue;
         std::error_code ec;
-        if (std::filesystem::symlink_status(s, ec).type() == std::filesystem::file_type::directory)
-            std::filesystem::remove_all(s, ec);
+        std::filesystem::remove_all(s, ec);
     }
 }
 
