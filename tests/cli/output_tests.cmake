@@ -51,10 +51,10 @@ sphbasis_script_test(render output_sigint "status 130 seconds 0\\.[0-9]+ staging
   "d=out_sigint; rm -rf $d; mkdir $d && echo old > $d/report.json && python3 ${_out_interrupt} INT $d \"${_out_b}\" render ${_out_scenes}/render/tiny_sun.json --representations ao --rays 1048576 --out $d && test \"$(cat $d/report.json)\" = old && test -z \"$(ls -A $d | grep -v -e '^report.json$' -e '^cache$')\" && echo sigint-ok")
 # A new output directory is removed again when the run is interrupted.
 sphbasis_script_test(bake output_sigterm_new_dir "status 143 seconds 0\\.[0-9]+ staging-left 0\nnew-dir-removed-ok"
-  "d=out_sigterm_new; rm -rf $d && python3 ${_out_interrupt} TERM $d \"${_out_b}\" bake ${_out_scenes}/lone_sphere.json --rays 16777216 --out $d && ! test -e $d && echo new-dir-removed-ok")
+  "d=out_sigterm_new; rm -rf $d && python3 ${_out_interrupt} TERM $d \"${_out_b}\" bake ${_out_scenes}/sphere_over_quad.json --rays 16777216 --out $d && ! test -e $d && echo new-dir-removed-ok")
 # SIGKILL leaves only the staging directory; the next run into the same directory removes it.
 sphbasis_script_test(bake output_sigkill_stale "status 137 seconds 0\\.[0-9]+ staging-left 1\nstale-removed-ok"
-  "d=out_sigkill; rm -rf $d; mkdir $d && python3 ${_out_interrupt} KILL $d \"${_out_b}\" bake ${_out_scenes}/lone_sphere.json --rays 16777216 --out $d && test $(ls -A $d | wc -l) -eq 1 && \"${_out_b}\" bake ${_out_scenes}/lone_sphere.json --rays 16 --out $d 2>/dev/null && test -z \"$(ls -A $d | grep staging)\" && test -s $d/mesh0.ply && test -s $d/bake.json && echo stale-removed-ok")
+  "d=out_sigkill; rm -rf $d; mkdir $d && python3 ${_out_interrupt} KILL $d \"${_out_b}\" bake ${_out_scenes}/sphere_over_quad.json --rays 16777216 --out $d && test $(ls -A $d | wc -l) -eq 1 && \"${_out_b}\" bake ${_out_scenes}/lone_sphere.json --rays 16 --out $d 2>/dev/null && test -z \"$(ls -A $d | grep staging)\" && test -s $d/mesh0.ply && test -s $d/bake.json && echo stale-removed-ok")
 foreach(_t bake_output_sigterm render_output_sigint bake_output_sigterm_new_dir bake_output_sigkill_stale)
   set_tests_properties(${_t} PROPERTIES TIMEOUT 120)
 endforeach()

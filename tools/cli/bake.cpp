@@ -516,12 +516,11 @@ std::vector<std::string> data_files(const SceneFile& scene, const Target& target
 }
 
 /// Declares the data files of a complete bake in `out` (before the work: a name too long for
-/// the file system or a directory in the way fails here) and creates the staging.
+/// the file system or a directory in the way fails here).
 void declare_outputs(OutputFiles& out, const std::string& out_dir, const SceneFile& scene,
                      const Target& target, const std::string& summary) {
     for (const std::string& f : data_files(scene, target)) out.declare_in(out_dir, f);
     out.declare_in(out_dir, summary);
-    out.prepare();
 }
 
 /// Writes the data files of a complete bake (all points) into `out` (committed by the
@@ -815,15 +814,14 @@ int run_bake(const BakeOptions& o) {
     const auto t_layout0 = Clock::now();
     const Work w = make_work(scene, target, o.points);
     const double t_layout = seconds_since(t_layout0);
-    // The outputs, checked and staged before the bake; OUT is created only now that the scene
-    // and the options are valid.
+    // The outputs, checked before the bake; OUT and the staging are created once the baker
+    // accepted the settings (out.prepare() below).
     OutputFiles out(write_files ? o.out : std::string());
     const std::string shard_file =
         "bake.shard-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".bin";
     if (write_files) {
         if (shard.count > 1 && !points_mode) {
             out.declare_in(o.out, shard_file);
-            out.prepare();
         } else {
             declare_outputs(out, o.out, scene, w.target,
                             points_mode ? "bake-points.json" : "bake.json");
@@ -841,6 +839,7 @@ int run_bake(const BakeOptions& o) {
     const render::SceneDesc desc = scene.scene_desc();
     const auto t_bake0 = Clock::now();
     render::Baker baker(desc, s);
+    if (write_files) out.prepare();
     std::vector<render::PointResult> results;
     {
         Progress bar("bake", static_cast<long long>(mine.size()));
@@ -986,6 +985,7 @@ int run_merge(const MergeOptions& o) {
                                  " points, the scene has " + std::to_string(w.points.size()));
     OutputFiles out(o.out);
     declare_outputs(out, o.out, scene, w.target, "bake.json");
+    out.prepare();
     Json summary = {
         {"tool", "sphbasis bake"},
         {"scene", h0.at("scene")},

@@ -338,8 +338,9 @@ int run_render(const RenderOptions& o) {
     if (names.empty()) throw UsageError("--representations: nothing to render");
 
     // --- The outputs, checked before any work: every name, a directory in the way. The
-    // output directory is created (now that the scene and options are valid) with a staging
-    // directory in it, where the files wait until all of them are written (all or none).
+    // output directory is created only once the scene and the settings are valid (files.prepare()
+    // below, before the bakes), with a staging directory in it, where the files wait until all
+    // of them are written (all or none).
     OutputFiles files(o.out);
     {
         std::vector<std::string> outs = {"reference.exr", "reference.png", "reference_stderr.exr"};
@@ -353,7 +354,6 @@ int run_render(const RenderOptions& o) {
             for (const char* a : {".exr", ".png", "_error.png"}) outs.push_back(n + a);
         for (const char* a : {"report.json", "report.md", "report.html"}) outs.push_back(a);
         for (const std::string& f : outs) files.declare_in(o.out, f);
-        files.prepare();
     }
 
     // --- Settings.
@@ -448,6 +448,7 @@ int run_render(const RenderOptions& o) {
     std::fputs(plan_text(rep).c_str(), stderr);
 
     // --- Bakes.
+    files.prepare();
     std::unique_ptr<DiskBakeCache> cache;
     if (!o.no_cache) cache = std::make_unique<DiskBakeCache>(join_path(o.out, "cache"));
     std::vector<bool> cached_before(keys.size(), false);
