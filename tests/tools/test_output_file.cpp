@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -306,4 +307,45 @@ TEST_CASE("output: SIGTERM removes the staging and the created directory, and ki
     CHECK(!fs::exists(dir));
     CHECK(read_all(d / "old.json") == "old");
     CHECK(entries_in(d.path) == 1);
+}
+
+TEST_CASE("output: a signal at any moment of a commit leaves all files old or all new",
+          "[tools][output]") {
+    // The signal lands before the renames (the staging is removed, every file stays old) or
+    // during them (it waits until all are done): never some old and some new.
+    constexpr int n = 60, trials = 12;
+    int all_old = 0, all_new = 0;
+    for (int trial = 0; trial < trials; ++trial) {
+        TempDir d;
+        for (int i = 0; i < n; ++i) write_plain(d / std::to_string(i), "old");
+        const pid_t child = ::fork();
+        REQUIRE(child >= 0);
+        if (child == 0) {
+            install_signal_cleanup("test");
+            ::close(2);
+            OutputFiles out(d.path);
+            for (int i = 0; i < n; ++i) out.declare_in(d.path, std::to_string(i));
+            out.prepare();
+            // Delays that span the writing of the staging and the commit.
+            std::thread killer([trial] {
+                std::this_thread::sleep_for(std::chrono::microseconds(3000 * trial));
+                ::kill(::getpid(), SIGTERM);
+            });
+            for (int i = 0; i < n; ++i) out.add(d / std::to_string(i), std::string("new"));
+            out.commit();
+            killer.join();  // the signal ends the process here at the latest
+            ::_exit(3);
+        }
+        int status = 0;
+        REQUIRE(::waitpid(child, &status, 0) == child);
+        CHECK(WIFSIGNALED(status));
+        int fresh = 0;
+        for (int i = 0; i < n; ++i) fresh += read_all(d / std::to_string(i)) == "new" ? 1 : 0;
+        CHECK((fresh == 0 || fresh == n));
+        CHECK(stagings_in(d.path) == 0);
+        all_old += fresh == 0 ? 1 : 0;
+        all_new += fresh == n ? 1 : 0;
+    }
+    INFO("all old " << all_old << ", all new " << all_new);
+    CHECK(all_old + all_new == trials);
 }
