@@ -19,8 +19,9 @@
 //                    the command. A FIFO's open waits for a reader.
 //   directory        an error before any work: "cannot write 'PATH': Is a directory".
 // Names derived from input (a mesh's name) are checked too: not empty, no '/' or NUL, at most
-// NAME_MAX bytes, the whole path (and its staging name) under PATH_MAX. Two outputs that are
-// the same file are an error.
+// NAME_MAX bytes, the whole path (and its staging name) under PATH_MAX. Two outputs that
+// replace the same file are an error; a device or stream given twice (--json /dev/stdout
+// --csv /dev/stdout) is written twice, in the order of the declarations.
 //
 // All or none: OutputFiles stages every replaced file of a command in a directory
 // ".sphbasis-staging-<pid>-<n>" inside the destination's directory (the --out directory, or
