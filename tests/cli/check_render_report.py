@@ -4,7 +4,8 @@
 Usage: check_render_report.py DIR [CHECK ...]; prints "render-report-ok" when every check holds,
 else one line saying what failed (exit 1). Always checked: report.json parses and has the
 documented keys; every file it names exists beside it, with the PNG and OpenEXR signatures;
-report.md and report.html exist and link every image; no temporary file is left in DIR; every
+report.md and report.html exist and link every image; no temporary file or staging directory
+is left in DIR; every
 metric of every row is a finite number in its range (flip in [0, 1], smape_floored in [0, 2],
 outside_3_stderr in [0, 1], the rest >= 0); the ranks are 1..N in the order of flip; report.json
 names the ranking metric and defines every metric; report.html has the sortable table (id
@@ -119,7 +120,7 @@ def main():
             fail(name + ": not linked from report.md and report.html")
     check_html(html, r)
     for f in os.listdir(d):
-        if ".tmp-" in f:
+        if ".tmp-" in f or f.startswith(".sphbasis-staging-"):
             fail("temporary file left: " + f)
     rows = {row["name"]: row for row in r["representations"]}
     for c in sys.argv[2:]:

@@ -30,7 +30,10 @@
 //                "inside" comes with "radiance". Numbers with 17 significant digits.
 // Every file bake also writes OUT/bake.json: scene, target, settings, seed, the pass plan (each
 // pass's name, reason, rays and seconds), timings and the output files with their channels.
-// Files are written to a temporary name and renamed (support/output_file.hpp).
+// The files of a run are written all or none (support/output_file.hpp): every name is checked
+// (and OUT created) after the scene and options are valid and before the bake; the files are
+// staged in OUT and moved into place together at the end, so a failure or a signal leaves OUT
+// as it was.
 //
 // Sharding: --shard I/N bakes the points with index in [floor(P I / N), floor(P (I + 1) / N))
 // of the P points in id order and writes OUT/bake.shard-I-of-N.bin (the raw results and a JSON
@@ -508,9 +511,30 @@ Json column_names(const std::vector<Column>& cols) {
     return a;
 }
 
-/// Writes the data files of a complete bake (all points); returns the "outputs" entry.
+/// The data files a complete bake writes for `target` (before bake.json): one per mesh, or
+/// probes.json.
+std::vector<std::string> data_files(const SceneFile& scene, const Target& target) {
+    std::vector<std::string> files;
+    if (target.kind == TargetKind::vertices || target.kind == TargetKind::texels)
+        for (const SceneMesh& m : scene.meshes)
+            files.push_back(m.name + (target.kind == TargetKind::vertices ? ".ply" : ".exr"));
+    else if (target.kind == TargetKind::probes)
+        files.push_back("probes.json");
+    return files;
+}
+
+/// Declares the data files of a complete bake in `out` (before the work: a name too long for
+/// the file system or a directory in the way fails here).
+void declare_outputs(OutputFiles& out, const std::string& out_dir, const SceneFile& scene,
+                     const Target& target, const std::string& summary) {
+    for (const std::string& f : data_files(scene, target)) out.declare_in(out_dir, f);
+    out.declare_in(out_dir, summary);
+}
+
+/// Writes the data files of a complete bake (all points) into `out` (committed by the
+/// caller); returns the "outputs" entry.
 Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSettings& s,
-                   const std::vector<double>& rec, const std::string& out_dir) {
+                   const std::vector<double>& rec, const std::string& out_dir, OutputFiles& out) {
     const Layout L(s);
     const std::vector<Column> cols = columns(s, L, any_rgb_transfer(L, rec));
     Json outputs = Json::array();
@@ -532,9 +556,9 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
                 for (const Column& c : cols) vals.push_back(static_cast<float>(r[c.offset]));
             }
             const std::string file = scene.meshes[k].name + ".ply";
-            write_file_atomic(join_path(out_dir, file),
-                              ply_binary(names, vals, m.vertex_count(), m.indices,
-                                         {"sphbasis bake: " + scene.meshes[k].name}));
+            out.add(join_path(out_dir, file),
+                    ply_binary(names, vals, m.vertex_count(), m.indices,
+                               {"sphbasis bake: " + scene.meshes[k].name}));
             outputs.push_back({{"file", file},
                                {"mesh", scene.meshes[k].name},
                                {"kind", "ply"},
@@ -562,7 +586,7 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
             for (const Column& c : cols) names.push_back(c.name);
             names.push_back("coverage");
             const std::string file = scene.meshes[k].name + ".exr";
-            write_exr_channels(join_path(out_dir, file), lay.width, lay.height, names, img);
+            out.add(join_path(out_dir, file), encode_exr(lay.width, lay.height, names, img));
             Json cn = column_names(cols);
             cn.push_back("coverage");
             outputs.push_back({{"file", file},
@@ -602,8 +626,7 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
                     {"channels", names},
                     {"inside", inside},
                     {"probes", probes}};
-        write_file_atomic(join_path(out_dir, "probes.json"),
-                          dump_json(doc, {{"probes", 0}}) + "\n");
+        out.add(join_path(out_dir, "probes.json"), dump_json(doc, {{"probes", 0}}) + "\n");
         outputs.push_back({{"file", "probes.json"},
                            {"kind", "json"},
                            {"probes", w.points.size()},
@@ -839,7 +862,6 @@ int run_bake(const BakeOptions& o) {
             "--quantities radiance");
     const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
     const bool write_files = !points_mode || o.out_opt->count() > 0;
-    if (write_files) ensure_dir(o.out);
 
     const SceneFile scene = load_scene(o.scene);
     for (std::size_t k = 0; k < scene.meshes.size(); ++k)
@@ -877,6 +899,19 @@ int run_bake(const BakeOptions& o) {
                                  ": point " + std::to_string(i + 1) +
                                  " is 'x y z' (no normal): ao, bent, visibility, transfer and "
                                  "irradiance need 'x y z nx ny nz'; free points bake radiance");
+    // The outputs, checked before the bake; OUT and the staging are created once the baker
+    // accepted the settings (out.prepare() below).
+    OutputFiles out(write_files ? o.out : std::string());
+    const std::string shard_file =
+        "bake.shard-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".bin";
+    if (write_files) {
+        if (shard.count > 1 && !points_mode) {
+            out.declare_in(o.out, shard_file);
+        } else {
+            declare_outputs(out, o.out, scene, w.target,
+                            points_mode ? "bake-points.json" : "bake.json");
+        }
+    }
     const std::size_t total = w.points.size();
     // total < 2^43 points and count <= 10^6 keep the products below 2^63.
     const std::size_t begin = static_cast<std::size_t>(
@@ -889,6 +924,7 @@ int run_bake(const BakeOptions& o) {
     const render::SceneDesc desc = scene.scene_desc();
     const auto t_bake0 = Clock::now();
     render::Baker baker(desc, s);
+    if (write_files) out.prepare();
     std::vector<render::PointResult> results;
     {
         Progress bar("bake", static_cast<long long>(mine.size()));
@@ -935,19 +971,18 @@ int run_bake(const BakeOptions& o) {
             header["scene_fnv1a"] = fnv1a_of_file(scene.path);
             header["record_format"] = kRecordFormat;
             header["seconds"] = {{"load", t_load}, {"layout", t_layout}, {"bake", t_bake}};
-            const std::string name = "bake.shard-" + std::to_string(shard.index) + "-of-" +
-                                     std::to_string(shard.count) + ".bin";
-            write_file_atomic(join_path(o.out, name), shard_bytes(header, rec, L.stride));
+            out.add(join_path(o.out, shard_file), shard_bytes(header, rec, L.stride));
         } else {
-            if (!points_mode) summary["outputs"] = write_outputs(scene, w, s, rec, o.out);
+            if (!points_mode) summary["outputs"] = write_outputs(scene, w, s, rec, o.out, out);
             summary["seconds"] = {{"load", t_load},
                                   {"layout", t_layout},
                                   {"bake", t_bake},
                                   {"write", seconds_since(t_write0)},
                                   {"total", seconds_since(t_start)}};
-            write_file_atomic(join_path(o.out, points_mode ? "bake-points.json" : "bake.json"),
-                              dump_json(summary, {{"plan", 2}, {"outputs", 2}}) + "\n");
+            out.add(join_path(o.out, points_mode ? "bake-points.json" : "bake.json"),
+                    dump_json(summary, {{"plan", 2}, {"outputs", 2}}) + "\n");
         }
+        out.commit();
     }
     report_rate(mine.size(), rays, t_bake);
     return 0;
@@ -1041,7 +1076,9 @@ int run_merge(const MergeOptions& o) {
     if (rec.size() != w.points.size() * L.stride)
         throw std::runtime_error("the shards hold " + std::to_string(rec.size() / L.stride) +
                                  " points, the scene has " + std::to_string(w.points.size()));
-    ensure_dir(o.out);
+    OutputFiles out(o.out);
+    declare_outputs(out, o.out, scene, w.target, "bake.json");
+    out.prepare();
     Json summary = {
         {"tool", "sphbasis bake"},
         {"scene", h0.at("scene")},
@@ -1053,10 +1090,11 @@ int run_merge(const MergeOptions& o) {
         {"rays", rays},
         {"rays_per_second", bake_seconds > 0 ? static_cast<double>(rays) / bake_seconds : 0.0},
         {"shards", count}};
-    summary["outputs"] = write_outputs(scene, w, s, rec, o.out);
+    summary["outputs"] = write_outputs(scene, w, s, rec, o.out, out);
     summary["seconds"] = {{"bake_sum_over_shards", bake_seconds}, {"merge", seconds_since(t0)}};
-    write_file_atomic(join_path(o.out, "bake.json"),
-                      dump_json(summary, {{"plan", 2}, {"outputs", 2}}) + "\n");
+    out.add(join_path(o.out, "bake.json"),
+            dump_json(summary, {{"plan", 2}, {"outputs", 2}}) + "\n");
+    out.commit();
     std::fprintf(stderr, "sphbasis bake-merge: %lld shards, %zu points\n", count, w.points.size());
     return 0;
 }

@@ -654,10 +654,12 @@ int run_imse(const ImseOptions& o) {
                          " (the hdri protocol keeps 644 bytes per signal, 0.64 GB at the "
                          "limit), got " +
                          std::to_string(signals));
-    // Fail before the long run, not after it, creating and truncating nothing; the outputs are
-    // written together at the end (all or none, through temporaries and renames).
+    // Fail before the long run, not after it, changing nothing; the outputs are staged and
+    // written together at the end, all or none (support/output_file.hpp).
+    OutputFiles outputs;
     for (const std::string* f : {&o.json_path, &o.csv_path, &o.md_path})
-        if (!f->empty()) check_writable(*f);
+        if (!f->empty()) outputs.declare(*f);
+    outputs.prepare();
 
     const auto t0 = Clock::now();
     const std::vector<Row> rows = benchmark_rows();
@@ -676,7 +678,6 @@ int run_imse(const ImseOptions& o) {
     }
     std::cout << "total " << fmt("%.1f", seconds_since(t0)) << " s\n";
 
-    OutputFiles outputs;
     if (!o.json_path.empty()) {
         const JsonLayout layout = {{"rows", 2}, {"protocols", 0}};
         Json j;

@@ -4,7 +4,9 @@
 // malformed or out-of-range value), with one line "sphbasis[ <command>]: <message>" on stderr;
 // 1 when the work itself fails (a file that cannot be read or written, standard output closed,
 // full or otherwise failing: support/stdout_check.hpp; no command reports success when its
-// output was lost).
+// output was lost); killed by SIGINT, SIGTERM, SIGHUP or SIGPIPE (status 130, 143, 129, 141 in a
+// shell) after removing the staged outputs: every output of a command is written all or none
+// (support/output_file.hpp).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
@@ -13,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/output_file.hpp"
 #include "../support/stdout_check.hpp"
 #include "cli.hpp"
 
@@ -117,6 +120,9 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "%s: %s\n", prefix.c_str(), one_line(e.what()).c_str());
         return 2;
     }
+    // SIGINT, SIGTERM (and SIGHUP, SIGPIPE) remove the staged outputs of the run and end it
+    // at once by that signal (support/output_file.hpp).
+    sphbasis::cli::install_signal_cleanup(prefix);
     for (auto& [sub, run] : subs) {
         if (!sub->parsed()) continue;
         try {

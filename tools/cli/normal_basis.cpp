@@ -45,7 +45,9 @@ Run setup_normal_basis(CLI::App& app) {
     add_path(app, "--json", o->json_path,
              "write {\"clamped\": {\"uniform\": [...], \"cosine\": [...]}, \"unclamped\": {...}}");
     return [o] {
-        if (!o->json_path.empty()) check_writable(o->json_path);
+        OutputFiles out;  // checked and staged before the work (support/output_file.hpp)
+        if (!o->json_path.empty()) out.declare(o->json_path);
+        out.prepare();
         const int bands = static_cast<int>(o->bands);
         std::vector<double> e[2][2];  // [clamped][cosine]
         for (int c = 0; c < 2; ++c)
@@ -74,8 +76,9 @@ Run setup_normal_basis(CLI::App& app) {
                 v["cosine"] = e[c][1];
                 j[names[c]] = v;
             }
-            write_file_atomic(o->json_path, dump_json(j) + "\n");
+            out.add(o->json_path, dump_json(j) + "\n");
         }
+        out.commit();
         return 0;
     };
 }

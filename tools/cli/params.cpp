@@ -43,10 +43,12 @@ struct ParamsOptions {
 };
 
 int run_params(const ParamsOptions& o) {
-    // Check the outputs first so a bad path fails before a minute of work, truncating nothing;
-    // they are written together at the end (all or none, through temporaries and renames).
+    // Check and stage the outputs first so a bad path fails before a minute of work, changing
+    // nothing; they are written together at the end, all or none (support/output_file.hpp).
+    OutputFiles outputs;
     for (const std::string* f : {&o.json_path, &o.csv_path})
-        if (!f->empty()) check_writable(*f);
+        if (!f->empty()) outputs.declare(*f);
+    outputs.prepare();
     const ThreadLimit limit(static_cast<std::size_t>(o.threads));
     const int bits = static_cast<int>(o.bits);
 
@@ -97,7 +99,6 @@ int run_params(const ParamsOptions& o) {
     }
     std::printf("\n%lld points, %lld threads, %.1f s\n", o.points, o.threads, seconds);
 
-    OutputFiles outputs;
     if (!o.json_path.empty()) {
         Json j = {{"experiment", "params"},  {"points", o.points},    {"seed", o.seed},
                   {"subtexel_bits", o.bits}, {"table_type", "float"}, {"seconds", seconds}};

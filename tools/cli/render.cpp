@@ -12,7 +12,9 @@
 //   runs (the specular ones are compared with render::render_specular_reference, not with the
 //   path tracer); with --aovs the reference's first-hit aov_{normal,albedo,position}.exr;
 //   report.json, report.md and report.html (support/report.hpp). All of them are
-//   written all or none (support/output_file.hpp): a failed run leaves the directory as it was.
+//   written all or none (support/output_file.hpp): every name is checked before any work, the
+//   files are staged in DIR/.sphbasis-staging-<pid>-<n> and moved into place together at the
+//   end, so a failed or interrupted run (SIGINT, SIGTERM) leaves the directory as it was.
 // Bakes are kept in DIR/cache/<key>.bin (support/bake_cache.hpp) unless --no-cache.
 //
 // Before any work the plan is printed on stderr (and recorded in report.json): the path
@@ -194,10 +196,9 @@ class FractionBar {
     std::atomic<long long> shown_{0};
 };
 
-/// The bytes of an OpenEXR file of `img` (float RGB, or Y for one channel): written to a
-/// staging name in `dir` by write_exr_channels (which writes only files), read back and
-/// removed, so that the EXR joins the other outputs in one all-or-none commit.
-std::string exr_bytes(const std::string& dir, const std::string& name, const render::Image& img) {
+/// The bytes of an OpenEXR file of `img` (float RGB, or Y for one channel), encoded in memory
+/// so that the EXR joins the other outputs in one all-or-none commit.
+std::string exr_bytes(const render::Image& img) {
     std::vector<std::string> channels;
     std::vector<float> values;
     if (img.channels == 1) {
@@ -212,18 +213,7 @@ std::string exr_bytes(const std::string& dir, const std::string& name, const ren
                 values.insert(values.end(), {p[0], p[1], p[2]});
             }
     }
-    const std::string stage = temporary_name_for(dir + "/" + name);
-    try {
-        write_exr_channels(stage, img.width, img.height, channels, values);
-        std::ifstream in(stage, std::ios::binary);
-        std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        if (!in.good() && !in.eof()) throw std::runtime_error("cannot read back '" + stage + "'");
-        discard_temporary(stage);
-        return bytes;
-    } catch (...) {
-        discard_temporary(stage);
-        throw;
-    }
+    return encode_exr(img.width, img.height, channels, values);
 }
 
 std::string png_bytes(const std::vector<std::uint8_t>& rgb, int w, int h) {
@@ -375,9 +365,24 @@ int run_render(const RenderOptions& o) {
     }
     if (names.empty()) throw UsageError("--representations: nothing to render");
 
-    // --- The output directory, checked before any work.
-    ensure_dir(o.out);
-    check_writable(join_path(o.out, "report.json"));
+    // --- The outputs, checked before any work: every name, a directory in the way. The
+    // output directory is created only once the scene and the settings are valid (files.prepare()
+    // below, before the bakes), with a staging directory in it, where the files wait until all
+    // of them are written (all or none).
+    OutputFiles files(o.out);
+    {
+        std::vector<std::string> outs = {"reference.exr", "reference.png", "reference_stderr.exr"};
+        if (o.aovs)
+            for (const char* a : {"aov_normal.exr", "aov_albedo.exr", "aov_position.exr"})
+                outs.push_back(a);
+        if (std::any_of(names.begin(), names.end(), is_specular))
+            for (const char* a : {"specular_reference.exr", "specular_reference.png"})
+                outs.push_back(a);
+        for (const std::string& n : names)
+            for (const char* a : {".exr", ".png", "_error.png"}) outs.push_back(n + a);
+        for (const char* a : {"report.json", "report.md", "report.html"}) outs.push_back(a);
+        for (const std::string& f : outs) files.declare_in(o.out, f);
+    }
 
     // --- Settings.
     render::TraceSettings ts;
@@ -471,6 +476,7 @@ int run_render(const RenderOptions& o) {
     std::fputs(plan_text(rep).c_str(), stderr);
 
     // --- Bakes.
+    files.prepare();
     std::unique_ptr<DiskBakeCache> cache;
     if (!o.no_cache) cache = std::make_unique<DiskBakeCache>(join_path(o.out, "cache"));
     std::vector<bool> cached_before(keys.size(), false);
@@ -517,9 +523,8 @@ int run_render(const RenderOptions& o) {
     rep.exposure = exposure;
     const render::Image* mask = ref.coverage.data.empty() ? nullptr : &ref.coverage;
 
-    OutputFiles files;
     auto add_exr = [&](const std::string& base, const render::Image& img) {
-        files.add(join_path(o.out, base + ".exr"), exr_bytes(o.out, base + ".exr", img));
+        files.add(join_path(o.out, base + ".exr"), exr_bytes(img));
     };
     auto add_image = [&](const std::string& base, const render::Image& img) {
         add_exr(base, img);
@@ -706,19 +711,9 @@ Run setup_render(CLI::App& app) {
     add_path(app, "--out", o->out, "output directory (created if missing)")
         ->type_name("DIR")
         ->capture_default_str();
-    return [o] {
-        // A run that fails leaves no trace: the output directory it created (still empty, as
-        // every file is written at the end, all at once) is removed again.
-        std::error_code ec;
-        const bool existed = std::filesystem::exists(o->out, ec);
-        try {
-            return run_render(*o);
-        } catch (...) {
-            if (!existed && std::filesystem::is_empty(o->out, ec) && !ec)
-                std::filesystem::remove(o->out, ec);
-            throw;
-        }
-    };
+    // A run that fails leaves no trace: OutputFiles removes its staging and the output
+    // directory it created (when nothing else was put there).
+    return [o] { return run_render(*o); };
 }
 
 }  // namespace sphbasis::cli

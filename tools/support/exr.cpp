@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <exception>
 #include <stdexcept>
 
@@ -13,6 +15,7 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfRgbaFile.h>
@@ -98,39 +101,71 @@ RgbImage load_exr_rgb(const std::string& path) {
 #endif
 }
 
-void write_exr_channels(const std::string& path, int width, int height,
-                        const std::vector<std::string>& names, const std::vector<float>& values) {
+#if defined(SPHBASIS_HAVE_OPENEXR)
+namespace {
+/// An OpenEXR output stream into memory, so that an image joins the other outputs of a command
+/// in one all-or-none commit (support/output_file.hpp) without a file of its own.
+class MemoryStream : public Imf::OStream {
+  public:
+    MemoryStream() : Imf::OStream("memory") {}
+    void write(const char c[], int n) override {
+        const std::size_t end = pos_ + static_cast<std::size_t>(n);
+        if (end > bytes_.size()) bytes_.resize(end);
+        std::memcpy(&bytes_[pos_], c, static_cast<std::size_t>(n));
+        pos_ = end;
+    }
+    uint64_t tellp() override { return pos_; }
+    void seekp(uint64_t pos) override { pos_ = static_cast<std::size_t>(pos); }
+    std::string take() { return std::move(bytes_); }
+
+  private:
+    std::string bytes_;
+    std::size_t pos_ = 0;
+};
+}  // namespace
+#endif
+
+std::string encode_exr(int width, int height, const std::vector<std::string>& names,
+                       const std::vector<float>& values) {
     const std::size_t nc = names.size();
     if (width < 1 || height < 1 || nc == 0 ||
         values.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * nc)
         throw std::invalid_argument(
-            "sphbasis::cli::write_exr_channels(): expected width * "
+            "sphbasis::cli::encode_exr(): expected width * "
             "height * channels values");
 #if defined(SPHBASIS_HAVE_OPENEXR)
-    const std::string temp = temporary_name_for(path);
+    Imf::Header header(width, height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    Imf::FrameBuffer fb;
+    const std::size_t xs = nc * sizeof(float), ys = xs * static_cast<std::size_t>(width);
+    char* base = reinterpret_cast<char*>(const_cast<float*>(values.data()));
+    for (std::size_t k = 0; k < nc; ++k) {
+        header.channels().insert(names[k], Imf::Channel(Imf::FLOAT));
+        fb.insert(names[k], Imf::Slice(Imf::FLOAT, base + k * sizeof(float), xs, ys));
+    }
+    MemoryStream stream;
+    {
+        Imf::OutputFile file(stream, header);
+        file.setFrameBuffer(fb);
+        file.writePixels(height);
+    }
+    return stream.take();
+#else
+    throw std::runtime_error("writing an EXR image needs OpenEXR, and this build has none");
+#endif
+}
+
+void write_exr_channels(const std::string& path, int width, int height,
+                        const std::vector<std::string>& names, const std::vector<float>& values) {
+    std::string bytes;
     try {
-        Imf::Header header(width, height);
-        header.compression() = Imf::ZIP_COMPRESSION;
-        Imf::FrameBuffer fb;
-        const std::size_t xs = nc * sizeof(float), ys = xs * static_cast<std::size_t>(width);
-        char* base = reinterpret_cast<char*>(const_cast<float*>(values.data()));
-        for (std::size_t k = 0; k < nc; ++k) {
-            header.channels().insert(names[k], Imf::Channel(Imf::FLOAT));
-            fb.insert(names[k], Imf::Slice(Imf::FLOAT, base + k * sizeof(float), xs, ys));
-        }
-        {
-            Imf::OutputFile file(temp.c_str(), header);
-            file.setFrameBuffer(fb);
-            file.writePixels(height);
-        }
+        bytes = encode_exr(width, height, names, values);
+    } catch (const std::invalid_argument&) {
+        throw;
     } catch (const std::exception& e) {
-        discard_temporary(temp);
         throw std::runtime_error("cannot write '" + path + "': " + e.what());
     }
-    commit_temporary(temp, path);
-#else
-    throw std::runtime_error("writing " + path + " needs OpenEXR, and this build has none");
-#endif
+    write_file_atomic(path, bytes);
 }
 
 }  // namespace sphbasis::cli

@@ -33,11 +33,17 @@ struct RgbImage {
 /// has no OpenEXR.
 RgbImage load_exr_rgb(const std::string& path);
 
-/// Writes a multi-channel float (32-bit) OpenEXR image with ZIP compression, channel k of
-/// pixel (x, y) (y down from the top row) at values[(y * width + x) * names.size() + k].
-/// Written to a temporary file and renamed (support/output_file.hpp). The bytes depend only
-/// on the arguments (no time stamp in the header), so equal images give equal files.
-/// Note that OpenEXR stores channels sorted by name. Throws std::runtime_error on failure.
+/// A multi-channel float (32-bit) OpenEXR image with ZIP compression, as the bytes of its file:
+/// channel k of pixel (x, y) (y down from the top row) at values[(y * width + x) *
+/// names.size() + k]. The bytes depend only on the arguments (no time stamp in the header), so
+/// equal images give equal files. Note that OpenEXR stores channels sorted by name. Throws
+/// std::invalid_argument on a size mismatch and std::runtime_error if the encoding fails or
+/// this build has no OpenEXR.
+std::string encode_exr(int width, int height, const std::vector<std::string>& names,
+                       const std::vector<float>& values);
+
+/// encode_exr() written to `path` by write_file_atomic (support/output_file.hpp). Throws
+/// std::runtime_error on failure.
 void write_exr_channels(const std::string& path, int width, int height,
                         const std::vector<std::string>& names, const std::vector<float>& values);
 
