@@ -1,7 +1,8 @@
 // Benchmarks of the SH product (ops/sh_product.hpp), float. Items are products: items_per_second
 // is products per second (n x n -> n bands, DirectXMath's XMSHMultiplyN), over 1024 pairs of
 // coefficient vectors that stay in cache.
-//   unrolled: sh::product<N> (generated code, ops/sh_product_fixed.hpp)
+//   unrolled: sh::product<N> (generated code, ops/sh_product_fixed.hpp; for float with AVX2 + FMA
+//             at 3..6 bands the Gauss-Legendre ring kernel, ops/sh_product_rings.hpp)
 //   generic:  sh::product(table, ...), the sparse kernel over a TripleTable(N, N, N)
 //   runtime:  sh::product(N, ...), band count known at run time (dispatches to the unrolled code)
 //   rgb:      unrolled, RGB lighting times scalar visibility (3 floats a coefficient)
