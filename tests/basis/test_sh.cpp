@@ -115,7 +115,10 @@ TEST_CASE("sh: unrolled kernels, row recurrence and column recurrence agree", "[
             sh::detail::eval_columns(bands, d[0], d[1], d[2], put(cols));
             for (int k = 0; k < n; ++k) {
                 const int l = sh::degree_of(k);
-                const double tol = 8 * std::numeric_limits<double>::epsilon() * norm_s(l);
+                // Worst measured over these directions, in eps * S_l: rows 3.5, columns 4.1 with
+                // FMA (x86-64-v3, native AVX-512); rows 5.0, columns 8.5 without (x86-64, SSE2:
+                // every multiply-add rounded twice). Bound 16 on every target.
+                const double tol = 16 * std::numeric_limits<double>::epsilon() * norm_s(l);
                 REQUIRE(std::fabs(fixed[static_cast<std::size_t>(k)] -
                                   rows[static_cast<std::size_t>(k)]) <= tol);
                 REQUIRE(std::fabs(fixed[static_cast<std::size_t>(k)] -
