@@ -34,10 +34,10 @@ sphbasis_cli_script(render_output_directory_in_way "render-dir-in-way-ok"
 # The same file twice is an error, before any work.
 sphbasis_cli_script(output_same_file_twice "twice-ok"
   "d=out_twice; rm -rf $d; mkdir $d && ! \"${_out_b}\" ${_params} --json $d/x --csv $d/./x >$d.out 2>$d.err && ! test -s $d.out && grep -q 'the same file as the output' $d.err && test -z \"$(ls -A $d)\" && echo twice-ok")
-# A mesh name too long for a file name (300 characters): refused before the bake (16M rays per
+# A mesh name too long (300 characters; names name output files): refused by the loader (16M rays per
 # vertex would take minutes), and no output directory is created.
 sphbasis_cli_script(bake_name_too_long "long-name-ok"
-  "d=out_long; rm -rf $d $d.json && python3 -c 'import json, sys; s = json.load(open(sys.argv[1])); s[\"meshes\"][0][\"name\"] = \"a\" * 300; json.dump(s, open(sys.argv[2], \"w\"))' ${_out_scenes}/lone_sphere.json $d.json && \"${_out_b}\" bake $d.json --rays 16777216 --out $d 2>$d.err; s=$?; test $s -eq 1 && test $(wc -l < $d.err) -eq 1 && grep -q 'a file name of 304 bytes, longer than' $d.err && ! test -e $d && echo long-name-ok")
+  "d=out_long; rm -rf $d $d.json && python3 -c 'import json, sys; s = json.load(open(sys.argv[1])); s[\"meshes\"][0][\"name\"] = \"a\" * 300; json.dump(s, open(sys.argv[2], \"w\"))' ${_out_scenes}/lone_sphere.json $d.json && \"${_out_b}\" bake $d.json --rays 16777216 --out $d 2>$d.err; s=$?; test $s -eq 1 && test $(wc -l < $d.err) -eq 1 && grep -q 'name: expected at most 200 characters' $d.err && ! test -e $d && echo long-name-ok")
 set_tests_properties(cli_bake_name_too_long PROPERTIES TIMEOUT 30)
 # The output directory is created only for a valid scene.
 sphbasis_cli_script(bake_bad_scene_creates_nothing "nothing-created-ok"

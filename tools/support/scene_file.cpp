@@ -483,7 +483,7 @@ render::Mesh load_mesh_file(const Ctx& c, const std::string& where, const std::s
             // (some files write 0 0 0 where their exporter found no normal).
             bool given = a->HasNormals();
             for (int k = 0; k < 3 && given; ++k)
-                given = a->mNormals[face.mIndices[k]].SquareLength() > 0;
+                given = a->mNormals[face.mIndices[k]].SquareLength() != 0;  // NaN: refused below
             generate.push_back(given ? 0 : 1);
         }
     }

@@ -170,12 +170,12 @@ inline double auto_exposure(const Image& image) {
     return 0.18 / std::exp(sum / double(count));
 }
 
-/// 8-bit sRGB RGB (3 bytes per pixel, rows from the top). Throws std::invalid_argument for an
-/// unknown operator (the message lists the names), a non-finite or negative exposure, or an
-/// image with fewer than 3 channels (1 channel is expanded to grey).
-inline std::vector<std::uint8_t> to_srgb8(const Image& image, double exposure,
-                                          const std::string& op) {
-    constexpr const char* fn = "render::to_srgb8";
+namespace detail {
+/// The index of tone-mapping operator `op` (tone_map_names()) after checking it, the exposure
+/// (finite, >= 0) and the image: what to_srgb8() and tone_mapped() share. Throws
+/// std::invalid_argument from `fn`.
+inline int tone_map_checked(const char* fn, const Image& image, double exposure,
+                            const std::string& op) {
     const auto names = tone_map_names();
     int k = -1;
     for (std::size_t i = 0; i < names.size(); ++i)
@@ -186,7 +186,18 @@ inline std::vector<std::uint8_t> to_srgb8(const Image& image, double exposure,
     if (!(exposure >= 0) || !std::isfinite(exposure))
         sphbasis::detail::throw_invalid(fn,
                                         "a finite exposure >= 0, got " + std::to_string(exposure));
-    detail::check_image(fn, "", image);
+    check_image(fn, "", image);
+    return k;
+}
+}  // namespace detail
+
+/// 8-bit sRGB RGB (3 bytes per pixel, rows from the top). Throws std::invalid_argument for an
+/// unknown operator (the message lists the names), a non-finite or negative exposure, or an
+/// image with fewer than 3 channels (1 channel is expanded to grey).
+inline std::vector<std::uint8_t> to_srgb8(const Image& image, double exposure,
+                                          const std::string& op) {
+    constexpr const char* fn = "render::to_srgb8";
+    const int k = detail::tone_map_checked(fn, image, exposure, op);
     const std::size_t n = std::size_t(image.width) * std::size_t(image.height);
     std::vector<std::uint8_t> out(3 * n);
     for (std::size_t i = 0; i < n; ++i) {

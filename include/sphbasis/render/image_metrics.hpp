@@ -362,17 +362,7 @@ inline Judgement judge(const char* fn, const Image& test, const Image& reference
 /// expanded). Throws std::invalid_argument as to_srgb8().
 inline Image tone_mapped(const Image& image, double exposure, const std::string& op) {
     constexpr const char* fn = "render::tone_mapped";
-    const auto names = tone_map_names();
-    int k = -1;
-    for (std::size_t i = 0; i < names.size(); ++i)
-        if (names[i] == op) k = int(i);
-    if (k < 0)
-        sphbasis::detail::throw_invalid(
-            fn, "a tone-mapping operator " + tone_map_list() + ", got \"" + op + "\"");
-    if (!(exposure >= 0) || !std::isfinite(exposure))
-        sphbasis::detail::throw_invalid(fn,
-                                        "a finite exposure >= 0, got " + std::to_string(exposure));
-    detail::check_image(fn, "", image);
+    const int k = detail::tone_map_checked(fn, image, exposure, op);
     Image out(image.width, image.height, 3);
     const std::size_t n = std::size_t(image.width) * std::size_t(image.height);
     for (std::size_t i = 0; i < n; ++i) {
