@@ -17,6 +17,17 @@
 
 namespace sphbasis_test {
 
+/// A w x h RGB image of one colour.
+inline sphbasis::render::Image constant_image(int w, int h, float r, float g, float b) {
+    sphbasis::render::Image im(w, h, 3);
+    for (std::size_t i = 0; i < std::size_t(w) * std::size_t(h); ++i) {
+        im.data[3 * i] = r;
+        im.data[3 * i + 1] = g;
+        im.data[3 * i + 2] = b;
+    }
+    return im;
+}
+
 using sphbasis::render::Image;
 
 /// v / |v|.

@@ -7,22 +7,14 @@
 #include <limits>
 #include <vector>
 
+#include "render_test_support.hpp"
 #include "sphbasis/render/image_metrics.hpp"
 
 namespace render = sphbasis::render;
 using render::Image;
+using sphbasis_test::constant_image;
 
 namespace {
-
-Image constant_image(int w, int h, float r, float g, float b) {
-    Image im(w, h, 3);
-    for (std::size_t i = 0; i < std::size_t(w * h); ++i) {
-        im.data[3 * i] = r;
-        im.data[3 * i + 1] = g;
-        im.data[3 * i + 2] = b;
-    }
-    return im;
-}
 
 int srgb8(double linear) {
     const double y =

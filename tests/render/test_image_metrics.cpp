@@ -12,10 +12,12 @@
 #include <string>
 #include <vector>
 
+#include "render_test_support.hpp"
 #include "sphbasis/render/image_metrics.hpp"
 
 namespace render = sphbasis::render;
 using render::Image;
+using sphbasis_test::constant_image;
 
 namespace {
 
@@ -69,16 +71,6 @@ const std::map<std::string, Case>& reference_cases() {
         return out;
     }();
     return cases;
-}
-
-Image constant_image(int w, int h, float r, float g, float b) {
-    Image im(w, h, 3);
-    for (std::size_t i = 0; i < std::size_t(w * h); ++i) {
-        im.data[3 * i] = r;
-        im.data[3 * i + 1] = g;
-        im.data[3 * i + 2] = b;
-    }
-    return im;
 }
 
 Image scaled(Image im, float s) {

@@ -104,17 +104,6 @@ inline std::vector<char> selection(const Image* mask, std::size_t n) {
     return s;
 }
 
-inline void check_metric_input(const char* fn, const Image& test, const Image& reference,
-                               const Image* mask) {
-    check_image(fn, "as the test image", test);
-    check_image(fn, "as the reference image", reference);
-    check_same_size(fn, "a test image", test, reference);
-    if (mask) {
-        check_image(fn, "as the mask", *mask);
-        check_same_size(fn, "a mask", *mask, reference);
-    }
-}
-
 inline void check_finite(const char* fn, const char* what, const Image& im) {
     for (std::size_t i = 0; i < im.data.size(); ++i)
         if (!std::isfinite(im.data[i])) {
@@ -125,6 +114,20 @@ inline void check_finite(const char* fn, const char* what, const Image& im) {
                                                 std::to_string(p % std::size_t(im.width)) + ", " +
                                                 std::to_string(p / std::size_t(im.width)) + ")");
         }
+}
+
+/// The checks every metric makes of its inputs: valid images of one size, finite values.
+inline void check_metric_input(const char* fn, const Image& test, const Image& reference,
+                               const Image* mask) {
+    check_image(fn, "as the test image", test);
+    check_image(fn, "as the reference image", reference);
+    check_same_size(fn, "a test image", test, reference);
+    if (mask) {
+        check_image(fn, "as the mask", *mask);
+        check_same_size(fn, "a mask", *mask, reference);
+    }
+    check_finite(fn, "the test image", test);
+    check_finite(fn, "the reference image", reference);
 }
 
 /// m of the header comment: the mean |r| over the selected pixels and 3 channels, 1 if 0.
@@ -392,8 +395,6 @@ inline Image tone_mapped(const Image& image, double exposure, const std::string&
 inline double relative_mse(const Image& test, const Image& reference, const Image* mask = nullptr) {
     constexpr const char* fn = "render::relative_mse";
     detail::check_metric_input(fn, test, reference, mask);
-    detail::check_finite(fn, "the test image", test);
-    detail::check_finite(fn, "the reference image", reference);
     return detail::relative_mse_on(
         test, reference,
         detail::selection(mask, std::size_t(reference.width) * std::size_t(reference.height)));
@@ -404,8 +405,6 @@ inline double relative_mse(const Image& test, const Image& reference, const Imag
 inline double smape(const Image& test, const Image& reference, const Image* mask = nullptr) {
     constexpr const char* fn = "render::smape";
     detail::check_metric_input(fn, test, reference, mask);
-    detail::check_finite(fn, "the test image", test);
-    detail::check_finite(fn, "the reference image", reference);
     return detail::smape_on(
         test, reference,
         detail::selection(mask, std::size_t(reference.width) * std::size_t(reference.height)));
@@ -420,8 +419,6 @@ inline double outside_stderr_fraction(const Image& test, const Image& reference,
                                       const Image* mask = nullptr) {
     constexpr const char* fn = "render::outside_stderr_fraction";
     detail::check_metric_input(fn, test, reference, mask);
-    detail::check_finite(fn, "the test image", test);
-    detail::check_finite(fn, "the reference image", reference);
     if (!(k > 0) || !std::isfinite(k))
         sphbasis::detail::throw_invalid(fn, "a finite k > 0, got " + std::to_string(k));
     if (stderr_image) {
@@ -459,8 +456,6 @@ inline Image flip_error_map(const Image& test, const Image& reference,
                             double ppd = flip_default_ppd) {
     constexpr const char* fn = "render::flip_error_map";
     detail::check_metric_input(fn, test, reference, nullptr);
-    detail::check_finite(fn, "the test image", test);
-    detail::check_finite(fn, "the reference image", reference);
     if (!(ppd >= 1 && ppd <= 1e4))
         sphbasis::detail::throw_invalid(
             fn, "pixels per degree in [1, 1e4], got " + std::to_string(ppd));
