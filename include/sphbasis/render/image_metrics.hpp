@@ -145,9 +145,10 @@ inline double metric_scale(const Image& reference, const std::vector<char>& sel)
     return m > 0 ? m : 1;
 }
 
-inline double relative_mse_on(const Image& test, const Image& reference,
-                              const std::vector<char>& sel) {
-    const double m = metric_scale(reference, sel), eps = 1e-2 * m * m;
+/// The mean of term(t_c, r_c) over the selected pixels and their 3 channels (0 if none).
+template <class Term>
+double mean_over_channels(const Image& test, const Image& reference, const std::vector<char>& sel,
+                          Term term) {
     double sum = 0;
     std::size_t count = 0;
     for (std::size_t i = 0; i < sel.size(); ++i) {
@@ -155,26 +156,25 @@ inline double relative_mse_on(const Image& test, const Image& reference,
         double t[3], r[3];
         pixel_rgb(test, i, t);
         pixel_rgb(reference, i, r);
-        for (int c = 0; c < 3; ++c) sum += (t[c] - r[c]) * (t[c] - r[c]) / (r[c] * r[c] + eps);
+        for (int c = 0; c < 3; ++c) sum += term(t[c], r[c]);
         count += 3;
     }
     return count ? sum / double(count) : 0;
 }
 
+inline double relative_mse_on(const Image& test, const Image& reference,
+                              const std::vector<char>& sel) {
+    const double m = metric_scale(reference, sel), eps = 1e-2 * m * m;
+    return mean_over_channels(test, reference, sel, [eps](double t, double r) {
+        return (t - r) * (t - r) / (r * r + eps);
+    });
+}
+
 inline double smape_on(const Image& test, const Image& reference, const std::vector<char>& sel) {
     const double m = metric_scale(reference, sel), eps = 1e-2 * m;
-    double sum = 0;
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < sel.size(); ++i) {
-        if (!sel[i]) continue;
-        double t[3], r[3];
-        pixel_rgb(test, i, t);
-        pixel_rgb(reference, i, r);
-        for (int c = 0; c < 3; ++c)
-            sum += 2 * std::fabs(t[c] - r[c]) / (std::fabs(t[c]) + std::fabs(r[c]) + eps);
-        count += 3;
-    }
-    return count ? sum / double(count) : 0;
+    return mean_over_channels(test, reference, sel, [eps](double t, double r) {
+        return 2 * std::fabs(t - r) / (std::fabs(t) + std::fabs(r) + eps);
+    });
 }
 
 /// Correlates a w x h plane with kx along rows and ky along columns (odd lengths, centred),
