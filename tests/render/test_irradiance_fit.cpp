@@ -281,14 +281,14 @@ TEST_CASE("irradiance fit: weights, skipped samples, float input and errors",
     for (int j = 0; j < 9; ++j) CHECK(r[j] == 0.0);
 }
 
-// Why the 6-function H-bases rank below SH 4 on scenes/normal_wall.json (README, "What the
-// H-basis-6 result is"): the fit minimises the error over the whole tangent hemisphere, and the
+// Why the 6-function H-bases rank below SH 4 on scenes/normal_wall.json (docs/rendering.md, "What
+// the H-basis-6 result is"): the fit minimises the error over the whole tangent hemisphere, and the
 // two functions H-basis 6 adds (azimuthal frequency 2) are spent on the sun's clamped-cosine
 // kink near the horizon, while the wall's normal map only reads normals 24-38 degrees from the
 // pole. The exact irradiance of that scene's wall (its sun in the wall's tangent frame, and its
 // nearly uniform sky and floor as a constant term), fitted on the default rule: H-basis 6 is
 // far better than SH 4 over the hemisphere and worse over the normal map's normals, where SH 9
-// and HSH 4 (which concentrates near the pole) are the best. Figures in the README.
+// and HSH 4 (which concentrates near the pole) are the best. Figures there.
 TEST_CASE(
     "irradiance fit: H-basis 6 beats SH 4 on the hemisphere and loses on normal_wall's normals",
     "[render][irradiance]") {
