@@ -59,7 +59,8 @@ Camera loop_camera(int w, int h) {
 std::array<double, 2> expected_position(std::uint64_t seed, int w, int x, int y, int s, int spp) {
     namespace rt = render::detail::rt;
     if (spp == 1) return {x + 0.5, y + 0.5};
-    const std::uint64_t key = rt::hash(seed, std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x));
+    const std::uint64_t key =
+        rt::hash(seed, std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x));
     double u, v;
     sphbasis::r2_sequence(std::uint64_t(s), u, v);
     auto frac = [](double a) { return a - std::floor(a); };
@@ -107,8 +108,8 @@ TEST_CASE("render::ImageLoop: sample positions, the box filter and the film's mo
                     const auto e = expected_position(77, cam.width, x, y, i, spp);
                     const vec3<double> d = pc.ray(e[0], e[1]).direction;
                     const vec3<double> g = dirs[{p, std::uint64_t(i)}];
-                    worst = std::max({worst, std::fabs(d.x - g.x), std::fabs(d.y - g.y),
-                                      std::fabs(d.z - g.z)});
+                    worst = std::max(
+                        {worst, std::fabs(d.x - g.x), std::fabs(d.y - g.y), std::fabs(d.z - g.z)});
                     const double v = double(p % 13) + 0.25 * double(i * i);
                     s += v;
                     q += v * v;

@@ -660,9 +660,9 @@ TEST_CASE("PathTracer: the cosine lobe's polynomial cos/sin and its batch form",
                         wz.data(), cz.data(), tmp.data());
         for (std::size_t k = 0; k < n; ++k) {
             const sphbasis::Frame<double> f(vec3<double>{nx[k], ny[k], nz[k]});
-            const auto l =
-                render::detail::cosine_hemisphere(render::detail::rt::unit(pt::hash_mixed(key[k], 45)),
-                                      render::detail::rt::unit(pt::hash_mixed(key[k], 46)));
+            const auto l = render::detail::cosine_hemisphere(
+                render::detail::rt::unit(pt::hash_mixed(key[k], 45)),
+                render::detail::rt::unit(pt::hash_mixed(key[k], 46)));
             const auto w = f.to_world(l);
             CHECK(std::fabs(wx[k] - w.x) < 1e-14);
             CHECK(std::fabs(wy[k] - w.y) < 1e-14);

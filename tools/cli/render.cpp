@@ -229,8 +229,7 @@ void render_together(const render::Representations& reps, const render::Scene& r
         ls.hits = true;
         render::ImageLoop loop(rt, camera, ls);
         const double angle = loop.pinhole().pixel_angle();
-        std::vector<render::Film> films(g1 - g0,
-                                        render::Film(camera.width, camera.height, false));
+        std::vector<render::Film> films(g1 - g0, render::Film(camera.width, camera.height, false));
         std::vector<render::Film*> fp;
         for (render::Film& f : films) fp.push_back(&f);
         loop.run(
@@ -629,8 +628,7 @@ int run_render(const RenderOptions& o) {
         render_together(reps, rt, camera, plain, rep.representation_spp, std::uint64_t(o.seed),
                         "representations", images, shade_ns, camera_seconds, camera_rays);
         render_together(reps, rt, camera, specs, rep.specular_spp, std::uint64_t(o.seed),
-                        "specular representations", images, shade_ns, camera_seconds,
-                        camera_rays);
+                        "specular representations", images, shade_ns, camera_seconds, camera_rays);
         rep.camera_ns_per_sample = camera_rays > 0 ? 1e9 * camera_seconds / double(camera_rays) : 0;
     }
 

@@ -303,7 +303,8 @@ std::string report_markdown(const Report& r) {
       << g3(r.noise_limit)
       << " of the pixel's luminance; \"judged\"), FLIP and the 3-sigma fraction over the covered "
          "pixels. "
-      << sampling_rule(r) << " Render ms are whole frames at one sample per pixel (the pixel "
+      << sampling_rule(r)
+      << " Render ms are whole frames at one sample per pixel (the pixel "
          "centre). "
       << ranking_reason << "\n\n";
     o << "| rank | representation | FLIP | rel. MSE (floored) | sMAPE (floored) | > 3 stderr | "
@@ -318,9 +319,9 @@ std::string report_markdown(const Report& r) {
           << " | " << g3(x.rel_mse_floored) << " | " << g3(x.smape_floored) << " | "
           << fixed(100 * x.outside_3_stderr, 1) << "% | " << g3(x.rmse) << " | " << g3(x.rel_mse)
           << " | " << g3(x.smape) << " | " << percent(x.judged, x.total) << " | " << bake_text(x)
-          << " | " << g3(x.shade_ns) << " | " << g3(x.render_ms_1) << " | "
-          << g3(x.render_ms_all) << " | " << bytes_text(x)
-          << " | " << md_cell(x.cannot_show.empty() ? "-" : x.cannot_show) << " |\n";
+          << " | " << g3(x.shade_ns) << " | " << g3(x.render_ms_1) << " | " << g3(x.render_ms_all)
+          << " | " << bytes_text(x) << " | " << md_cell(x.cannot_show.empty() ? "-" : x.cannot_show)
+          << " |\n";
     }
     o << "\nMetrics:\n\n";
     for (const auto& [k, v] : metric_definitions(r)) o << "- `" << k << "`: " << v << "\n";

@@ -65,7 +65,7 @@ struct ReportRow {
     double render_ms_1 = 0, render_ms_all = 0;  // per frame, one thread and all threads
     int spp = 0;          // samples per pixel of its image (the compared reference's)
     double shade_ns = 0;  // its own shading per pixel sample, thread-nanoseconds (no camera ray)
-    std::string element;                        // "texel", "vertex", "probe", "none"
+    std::string element;  // "texel", "vertex", "probe", "none"
     std::size_t bytes_per_element = 0, elements = 0;
     std::string cannot_show;
     std::string image, error_image, flip_image, exr;  // file names relative to the report

@@ -103,13 +103,17 @@ struct Film {
         return std::sqrt(var / n);
     }
     /// The image: each pixel the mean of its samples (a box filter).
-    Image mean() const { return image(3, [&](std::size_t i) { return sum[i] / spp; }); }
+    Image mean() const {
+        return image(3, [&](std::size_t i) { return sum[i] / spp; });
+    }
     /// Each pixel's standard error per channel (needs moments; +inf below two samples).
     Image standard_error() const {
         return image(3, [&](std::size_t i) { return standard_error(sum[i], sq[i], spp); });
     }
     /// One channel: the fraction of the pixel's camera rays that hit geometry.
-    Image coverage() const { return image(1, [&](std::size_t i) { return hits[i] / spp; }); }
+    Image coverage() const {
+        return image(1, [&](std::size_t i) { return hits[i] / spp; });
+    }
 
   private:
     template <class F>
@@ -123,10 +127,10 @@ struct Film {
 /// One tile's camera rays for one sample index, traced, as ImageLoop hands them to `li`.
 struct CameraBatch {
     std::size_t n = 0;
-    std::uint64_t sample = 0;                 // the sample index of every ray of the batch
-    const RTCRayHit* rays = nullptr;          // traced: hit.geomID is invalid on a miss
-    const vec3<double>* directions = nullptr; // unit, as the camera made them (double)
-    const std::uint64_t* pixels = nullptr;    // y * width + x
+    std::uint64_t sample = 0;                  // the sample index of every ray of the batch
+    const RTCRayHit* rays = nullptr;           // traced: hit.geomID is invalid on a miss
+    const vec3<double>* directions = nullptr;  // unit, as the camera made them (double)
+    const std::uint64_t* pixels = nullptr;     // y * width + x
     /// mix64(pixel_key(seed, pixel)): the seed of the pixel's other random numbers.
     const std::uint64_t* mixed_keys = nullptr;
     const Hit* hits = nullptr;  // Scene::hit of each ray (null unless the loop makes them)
@@ -223,8 +227,7 @@ class ImageLoop {
                 auto t = Clock::now();
                 for (std::size_t k = 0; k < n; ++k) {
                     const auto d = pixel_sample(B.offset[k], std::uint64_t(s), settings_.spp);
-                    const CameraRay r =
-                        camera_.ray(B.corner[k][0] + d[0], B.corner[k][1] + d[1]);
+                    const CameraRay r = camera_.ray(B.corner[k][0] + d[0], B.corner[k][1] + d[1]);
                     B.dirs[k] = r.direction;
                     Scene::set_ray(B.rays[k], r.origin, r.direction);
                 }
@@ -232,8 +235,7 @@ class ImageLoop {
                 intersect_coherent(B.rays.data(), n);
                 if (settings_.hits)
                     detail::prefetched(
-                        n,
-                        [&](std::size_t k, int stage) { scene_.prefetch_hit(B.rays[k], stage); },
+                        n, [&](std::size_t k, int stage) { scene_.prefetch_hit(B.rays[k], stage); },
                         [&](std::size_t k) { B.hits[k] = scene_.hit(B.rays[k]); });
                 B.camera_rays += n;
                 auto t1 = Clock::now();

@@ -65,9 +65,9 @@
 //     queries at the last vertex when no non-delta light needs the hit distance), and each
 //     path then adds its contributions in the order above. Camera rays are ImageLoop's: one
 //     coherent stream per tile and sample (RTC_INTERSECT_CONTEXT_FLAG_COHERENT: Embree traces
-//     them as packets). Buffers are per thread, reused across tiles and samples. Hit records (Scene::shading_hit: no tangent frame
-//     without a normal map) are made with their triangles' data prefetched a few hits ahead
-//     (Scene::prefetch_hit).
+//     them as packets). Buffers are per thread, reused across tiles and samples. Hit records
+//     (Scene::shading_hit: no tangent frame without a normal map) are made with their triangles'
+//     data prefetched a few hits ahead (Scene::prefetch_hit).
 //   * Cosine-lobe BRDF samples take the azimuth's cosine and sine from a polynomial
 //     (sphbasis::detail::cos_sin_turn, core/cos_sin_turn.hpp, within 2e-9 of libm's, far below
 //     any estimate's noise). Lambertian vertices draw them for all of a tile's paths at once in
@@ -351,7 +351,8 @@ class PathTracer {
         ls.tile = settings_.tile;
         ImageLoop loop(scene_, camera, ls);
         if (log_)
-            loop.on_camera_rays([this](const RTCRayHit* r, std::size_t n) { record(r, n, 0, true); });
+            loop.on_camera_rays(
+                [this](const RTCRayHit* r, std::size_t n) { record(r, n, 0, true); });
         const int W = camera.width, H = camera.height;
         const std::size_t N = std::size_t(W) * std::size_t(H);
         Film film(W, H, true);
@@ -737,8 +738,8 @@ class PathTracer {
     /// A shadow ray from x (offset along ng) toward w, built in place in the stream (a record
     /// built on the stack and copied reloads its small stores as one wide load, which stalls
     /// store forwarding: measured, the copies were a fifth of shade()'s time); its index.
-    std::uint32_t shadow_ray(Scratch& sc, TraceCounters& c, const V3& x, const V3& ng,
-                             const V3& w, double tmax) const {
+    std::uint32_t shadow_ray(Scratch& sc, TraceCounters& c, const V3& x, const V3& ng, const V3& w,
+                             double tmax) const {
         Scene::set_ray(sc.shadow.emplace_back(), scene_.offset_origin(x, ng, w), w, 0, tmax);
         ++c.shadow_rays;
         return static_cast<std::uint32_t>(sc.shadow.size() - 1);
@@ -815,8 +816,7 @@ class PathTracer {
             scene_.occluded(sc.shadow.data(), sc.shadow.size());
         }
         if (!sc.next.empty()) {
-            if (log_)
-                record(sc.next.data(), sc.next.size(), d.more ? 1 : d.query ? 2 : 3, false);
+            if (log_) record(sc.next.data(), sc.next.size(), d.more ? 1 : d.query ? 2 : 3, false);
             if (d.query)
                 occluded(sc.next.data(), sc.next.size());
             else
