@@ -358,7 +358,7 @@ int run_render(const RenderOptions& o) {
     {
         // The run's big arrays, estimated before any is allocated (support/memory.hpp): the
         // geometry, the images (the reference's sums and squares, its stderr, each
-        // representation's image, error image and PNGs), the lightmaps (a bake point, its result
+        // representation's film, image, error image and PNGs), the lightmaps (a bake point, its result
         // and the stored coefficients per texel, growing with the PRT bands) and the probes.
         const double pixels = double(camera.width) * double(camera.height);
         double texels = 0, geometry = 0;
@@ -369,7 +369,11 @@ int run_render(const RenderOptions& o) {
         }
         const double nb2 = double(o.prt_bands) * double(o.prt_bands);
         const double probes = scene.has_probes ? double(scene.probes.size()) : 0;
-        const double bytes = geometry + pixels * (128 + 16 * double(names.size())) +
+        // The representations' images are all kept (12 bytes a pixel each) and made in groups
+        // of films of 32 bytes a pixel, 256 MiB at most a group (one film at least).
+        const double reps = double(names.size());
+        const double films = std::max(32 * pixels, std::min(268435456.0, 32 * pixels * reps));
+        const double bytes = geometry + pixels * (128 + 28 * reps) + films +
                              texels * (256 + 64 * nb2) + probes * 512;
         check_memory(o.scene + ": ", bytes,
                      std::to_string(camera.width) + " x " + std::to_string(camera.height) +
