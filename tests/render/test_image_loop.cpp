@@ -222,6 +222,25 @@ TEST_CASE("render::ImageLoop: the path tracer, representations and specular imag
                 CHECK(img.at(x, y)[2] == Approx(0.7).epsilon(1e-6));
             }
     CHECK(sphbasis_test::max_abs_diff(img, img1) > 0);  // one sample: the centre
+    // Two representations through one loop (the CLI shares the camera rays so) give the images
+    // Representations::render gives each alone, to the bit.
+    render::Representations two(w.desc, *w.rt, rs, {"irradiance-sh9", "ao"});
+    two.prepare(nullptr);
+    ImageLoopSettings hs = ls;
+    hs.hits = true;
+    ImageLoop shared(*w.rt, cam, hs);
+    const double angle = shared.pinhole().pixel_angle();
+    Film f0(cam.width, cam.height, false), f1(cam.width, cam.height, false);
+    shared.run(0, spp, {&f0, &f1}, [&](const CameraBatch& b, std::size_t f, RGB* out) {
+        for (std::size_t k = 0; k < b.n; ++k) {
+            const render::Hit& h = b.hits[k];
+            const vec3<double>& d = b.directions[k];
+            out[k] = h.valid ? two.shade(f, h, {-d.x, -d.y, -d.z}, h.t * angle) : two.background(d);
+        }
+    });
+    CHECK(f0.mean().data == two.render(0, cam, spp).data);
+    CHECK(f1.mean().data == two.render(1, cam, spp).data);
+    CHECK(shared.stats().camera_rays == std::uint64_t(spp * cam.width * cam.height));
     // The specular images: one sample per pixel is the centre, ss x ss the loop's positions;
     // a scene without shiny materials is black in every mode.
     const Image spec = render::render_specular_reference(w.desc, *w.rt, cam, 2, seed);

@@ -207,9 +207,10 @@ class FractionBar {
 /// Renders representations `which` (indices into reps' names) together with one
 /// render::ImageLoop of `spp` samples per pixel and `seed` (the compared reference's), so that
 /// they share the camera rays and hit records: images[i] receives representation i's image
-/// (Representations::render(i, camera, spp) to the last bit), shade_ns[i] its shading
-/// thread-seconds per pixel sample in nanoseconds; camera_seconds and camera_rays grow by the
-/// shared part. Films of at most 256 MiB at a time (a group per film budget).
+/// (Representations::render(i, camera, spp)'s: the same samples, hits, shading and sums),
+/// shade_ns[i] its shading thread-seconds per pixel sample in nanoseconds; camera_seconds and
+/// camera_rays grow by the shared part. Films of at most 256 MiB at a time (a group per film
+/// budget).
 void render_together(const render::Representations& reps, const render::Scene& rt,
                      const render::Camera& camera, const std::vector<std::size_t>& which, int spp,
                      std::uint64_t seed, const char* label, std::vector<render::Image>& images,
@@ -358,8 +359,8 @@ int run_render(const RenderOptions& o) {
     {
         // The run's big arrays, estimated before any is allocated (support/memory.hpp): the
         // geometry, the images (the reference's sums and squares, its stderr, each
-        // representation's film, image, error image and PNGs), the lightmaps (a bake point, its result
-        // and the stored coefficients per texel, growing with the PRT bands) and the probes.
+        // representation's film, image, error image and PNGs), the lightmaps (a bake point, its
+        // result and the stored coefficients per texel, growing with the PRT bands) and the probes.
         const double pixels = double(camera.width) * double(camera.height);
         double texels = 0, geometry = 0;
         for (const SceneMesh& m : scene.meshes) {

@@ -26,6 +26,7 @@
 #include "../core/cos_sin_turn.hpp"
 #include "../core/frame.hpp"
 #include "detail/rt_math.hpp"
+#include "image.hpp"
 #include "lighting.hpp"
 #include "scene.hpp"
 

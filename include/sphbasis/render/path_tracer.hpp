@@ -10,10 +10,11 @@
 //   * Camera rays that escape show the environment's radiance (the background); analytic lights
 //     are not visible to camera rays (a sphere light is a light, not geometry).
 //   * At a hit the shading normal is Scene::normal_mapped(hit) when the mesh has a normal map
-//     (no normal-map work otherwise). BRDF: Lambertian albedo / pi, plus, only for meshes with
-//     shininess s > 0, the energy-normalised Blinn-Phong lobe k_s (s + 8) / (8 pi) (n.h)^s
-//     (mesh.hpp). Two-sided: a hit is shaded from the side the ray arrived on (Scene::hit turns
-//     the geometric and the shading normal to it together, whatever the winding). Light below
+//     (no normal-map work otherwise). BRDF (render::Bsdf, bsdf.hpp): Lambertian albedo / pi,
+//     plus, only for meshes with shininess s > 0, the energy-normalised Blinn-Phong lobe
+//     k_s (s + 8) / (8 pi) (n.h)^s (mesh.hpp). Two-sided: a hit is shaded from the side the
+//     ray arrived on (Scene::hit turns the geometric and the shading normal to it together,
+//     whatever the winding). Light below
 //     the geometric surface is not gathered. The diffuse lobe is the cosine about the shading
 //     normal folded above the geometric surface: a direction of the lobe below it is reflected
 //     in the geometric tangent plane (render/detail/rt_math.hpp, fold_above and folded_cosine),
