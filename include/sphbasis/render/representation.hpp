@@ -53,6 +53,7 @@
 #include "camera.hpp"
 #include "detail/rt_math.hpp"
 #include "image.hpp"
+#include "image_loop.hpp"
 #include "lighting.hpp"
 #include "representations/bake_points.hpp"
 #include "representations/family.hpp"
