@@ -105,8 +105,8 @@ class Representations {
     /// representation builds what it derives from its bakes (Representation::build()).
     void prepare(BakeCache* cache,
                  const std::function<void(std::uint64_t, std::uint64_t)>& progress = {}) {
-        const std::vector<BakeRequest>& requests_ = ctx_.requests;
-        std::vector<BakeData>& data_ = ctx_.data;
+        const std::vector<BakeRequest>& requests_ = ctx_.requests;  // the plan
+        std::vector<BakeData>& data_ = ctx_.data;                   // what this call sets
         bakes_run_ = bakes_loaded_ = 0;
         data_.assign(requests_.size(), BakeData{});
         std::vector<std::uint64_t> keys(requests_.size());
@@ -338,8 +338,8 @@ class Representations {
         return false;
     }
 
-    representations::Context ctx_;
-    const Scene& rt_;
+    representations::Context ctx_;  // what the representations see (family.hpp)
+    const Scene& rt_;               // ctx_.rt and a copy of ctx_.settings, for render()
     RepresentationSettings settings_;
     std::vector<std::string> names_;
     std::vector<std::unique_ptr<representations::Representation>> reps_;
