@@ -437,9 +437,10 @@ def vec_function(N, dx, lanes=LANES):
         for gi, tab in enumerate(lanes):
             kc, ku, kv = [], [], []
             for i, e in enumerate(tab):
-                # 8 lanes (one band per group): a padding lane i as if it held |m| = i, so that
-                # every group shares the same three vectors per angle
-                k = (i if LANES == 8 else 0) if e is None else e[1]
+                if e is None and LANES == 8:  # padding: the identity, a free lane selection
+                    kc.append(i), ku.append(i), kv.append(i)
+                    continue
+                k = 0 if e is None else e[1]
                 kc.append(k)
                 odd = k % 2 == 1
                 ku.append(k + (8 if odd else 0))   # su = -sin for odd k
