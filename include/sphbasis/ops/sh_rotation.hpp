@@ -823,7 +823,11 @@ inline std::size_t coefficient_count(int bands) noexcept {
 /// (the six entries of R R^T lane-wise), and apply() at 3 bands runs bands 0..2 as one
 /// register computation (detail::rotate_low_bands_avx512; at 4..8 bands the same kernel does
 /// bands 0..2 of rotate<N>). Measured (float, one thread, the peer harness): build + apply
-/// 3 bands about 6 ns from a matrix, 7 ns from a quaternion.
+/// 3 bands about 6 ns from a matrix, 7 ns from a quaternion. With AVX2 and no AVX-512
+/// (SPHBASIS_SH_ROTATION_AVX2) the check and bands 0..2 run the same way in 8 lanes
+/// (detail::orthonormal_within_avx2, rotate_low_bands_avx2) and bands >= 3 of rotate<4..8> one
+/// band per 8-lane register: 8 / 12 ns (3 bands) and 48 / 56 ns (6 bands) from a matrix / a
+/// quaternion at -march=x86-64-v3.
 template <class T>
 class Rotation {
     static_assert(std::is_floating_point_v<T>, "sphbasis::sh::Rotation: T is float or double.");
