@@ -553,8 +553,8 @@ TEST_CASE("lights: the colour's type and the output's are deduced separately", "
 }
 
 // A float RGB colour (RGBf above) as users write it: the 3-band lights fan it out with 16-lane
-// vector products on AVX-512 targets (detail::fan_out_rgb3); every channel must equal the light
-// of that channel alone (the same float basis values times the same float colour: exact).
+// (AVX-512) or 8-lane (AVX2) vector products (detail::fan_out_rgb3); every channel must equal the
+// light of that channel alone (the same float basis values times the same float colour: exact).
 TEST_CASE("lights: float RGB at 3 bands equals each channel", "[lights]") {
     std::mt19937 rng(1406);
     std::normal_distribution<float> nd;

@@ -175,8 +175,9 @@ sh::Mat3<double> zyz_matrix(double a, double b, double c) {
     return sh::multiply(rza, sh::multiply(ry, rzc));
 }
 
-/// rotate<N>(r), its scalar and its vector implementation (the latter in place) against the
-/// run-time sh::rotate: max |difference| over the coefficients (rotate<N> in place included).
+/// rotate<N>(r), its scalar and its vector implementations (the latter in place; the AVX2
+/// kernels against the scalar code where they are compiled) against the run-time sh::rotate: max
+/// |difference| over the coefficients (rotate<N> in place included).
 template <int N, class T>
 double rotate_direct_error(const sh::Mat3<double>& rd, bool improper, std::mt19937& rng) {
     sh::Mat3<T> r;
@@ -195,13 +196,27 @@ double rotate_direct_error(const sh::Mat3<double>& rd, bool improper, std::mt199
     if constexpr (N >= 4) sh::detail::rotate_direct_vec<N>(r.data(), v.data(), v.data());
 #endif
     if constexpr (N < 4) v = s;
+#if SPHBASIS_SH_ROTATION_AVX2
+    // the AVX2 kernels by name (in place), float
+    std::array<T, N* N> w = in;
+    if constexpr (std::is_same_v<T, float> && N == 3)
+        sh::detail::rotate_three_bands_avx2(r.data(), w.data(), w.data());
+#if SPHBASIS_SH_ROTATION_VECTOR
+    if constexpr (std::is_same_v<T, float> && N >= 4)
+        sh::detail::rotate_direct_avx2<N>(r.data(), w.data(), w.data());
+#endif
+    if constexpr (!std::is_same_v<T, float> || N < 3) w = s;
+#else
+    const std::array<T, N* N>& w = s;
+#endif
     double worst = 0;
     for (std::size_t k = 0; k < std::size_t(N * N); ++k) {
         // In place agrees with out of place to rounding (not bit for bit: the compiler may
         // contract a*b+c into an FMA differently in the two inlined copies).
         worst = std::max(
             {worst, std::fabs(double(a[k]) - double(b[k])), std::fabs(double(s[k]) - double(b[k])),
-             std::fabs(double(v[k]) - double(b[k])), std::fabs(double(ip[k]) - double(a[k]))});
+             std::fabs(double(v[k]) - double(b[k])), std::fabs(double(ip[k]) - double(a[k])),
+             std::fabs(double(w[k]) - double(s[k]))});
     }
     return worst;
 }

@@ -175,8 +175,8 @@ TEST_CASE("rotation lazy: sh::rotate and rotate_quaternion at 1..8 bands match D
 
 TEST_CASE("rotation lazy: float from_quaternion / from_matrix at 1..8 bands match D",
           "[rotation][lazy]") {
-    // The float paths with their own code (AVX-512 where enabled): the quaternion-to-matrix in
-    // registers (non-unit quaternions are normalised), the orthonormality check, the 3-band
+    // The float paths with their own code (AVX-512 or AVX2 where enabled): the quaternion-to-matrix
+    // in registers (non-unit quaternions are normalised), the orthonormality check, the 3-band
     // kernel. Reference: the leading blocks of an eager 9-band D in double.
     std::mt19937 rng(1404);
     std::normal_distribution<double> nd;
@@ -218,13 +218,20 @@ TEST_CASE("rotation lazy: float from_quaternion / from_matrix at 1..8 bands matc
     sh::Mat3<float> bad = random_matrix<float>(rng, false);
     for (float& v : bad) v *= 1.01f;
     CHECK_THROWS_AS(sh::Rotation<float>::from_matrix(3, bad), std::invalid_argument);
-    bad = random_matrix<float>(rng, false);
-    bad[8] = std::nanf("");
-    CHECK_THROWS_AS(sh::Rotation<float>::from_matrix(3, bad), std::invalid_argument);
-    // one off-diagonal error of R R^T (2e-4) above the float tolerance 3e-5, the rest exact
-    const sh::Mat3<float> skew{1, 0, 2e-4f, 0, 1, 0, 0, 0, 1};
-    CHECK_THROWS_AS(sh::Rotation<float>::from_matrix(3, skew), std::invalid_argument);
-    CHECK_NOTHROW(sh::Rotation<float>::from_matrix(3, skew, 1e-3f));
+    // a NaN in any entry (each reaches its own lanes of the vector check)
+    for (std::size_t k = 0; k < 9; ++k) {
+        bad = random_matrix<float>(rng, false);
+        bad[k] = std::nanf("");
+        CHECK_THROWS_AS(sh::Rotation<float>::from_matrix(3, bad), std::invalid_argument);
+    }
+    // I + 2e-4 E_k: one entry of R R^T off by 2e-4 or 4e-4 (a diagonal), above the float
+    // tolerance 3e-5, the rest exact; every entry k, so every lane of the check is exercised
+    for (std::size_t k = 0; k < 9; ++k) {
+        sh::Mat3<float> skew{1, 0, 0, 0, 1, 0, 0, 0, 1};
+        skew[k] += 2e-4f;
+        CHECK_THROWS_AS(sh::Rotation<float>::from_matrix(3, skew), std::invalid_argument);
+        CHECK_NOTHROW(sh::Rotation<float>::from_matrix(3, skew, 1e-3f));
+    }
 }
 
 template <class T>

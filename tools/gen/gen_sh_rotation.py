@@ -329,10 +329,10 @@ def zyz_band_function(l, dx):
 LANES = 16
 
 
-def vec_groups(N):
+def vec_groups(N, lanes=LANES):
     groups, cur, used = [], [], 0
     for l in range(3, N):
-        if used + l + 1 > LANES:
+        if used + l + 1 > lanes:
             groups.append(cur)
             cur, used = [], 0
         cur.append(l)
@@ -350,7 +350,7 @@ def lane_m(k, which):
     return k if pos else -k
 
 
-def shuffle_code(out_name, sources, srcvecs, temps, vt):
+def shuffle_code(out_name, sources, srcvecs, temps, vt, lanes=LANES):
     """Emit `const V out_name = ...` selecting lane i from srcvecs[sources[i][0]] lane
     sources[i][1] (None: don't care), with 2-operand __builtin_shufflevector steps."""
     used = sorted({s[0] for s in sources if s is not None})
@@ -365,7 +365,7 @@ def shuffle_code(out_name, sources, srcvecs, temps, vt):
                 if s is None or s[0] not in vecs:
                     idx.append(0)
                 else:
-                    idx.append(s[1] + (LANES if (len(vecs) == 2 and s[0] == b) else 0))
+                    idx.append(s[1] + (lanes if (len(vecs) == 2 and s[0] == b) else 0))
             lines.append("    const %s %s = __builtin_shufflevector(%s, %s, %s);" % (vt, name, srcvecs[a], srcvecs[b], ", ".join(map(str, idx))))
             return
         h = len(vecs) // 2
@@ -377,14 +377,16 @@ def shuffle_code(out_name, sources, srcvecs, temps, vt):
             if s is None:
                 idx.append(0)
             else:
-                idx.append(i + (LANES if s[0] in vecs[h:] else 0))
+                idx.append(i + (lanes if s[0] in vecs[h:] else 0))
         lines.append("    const %s %s = __builtin_shufflevector(%s, %s, %s);" % (vt, name, n1, n2, ", ".join(map(str, idx))))
     build(out_name, used if used else [0])
     return lines
 
 
-def vec_function(N, dx):
-    groups = vec_groups(N)
+def vec_function(N, dx, lanes=LANES):
+    """rotate_zyz_vec_N (16 lanes) or rotate_zyz_vec8_N (8 lanes: AVX2 registers for float)."""
+    LANES = lanes
+    groups = vec_groups(N, lanes)
     n2 = N * N
     starts = []
     s = 9
@@ -409,7 +411,7 @@ def vec_function(N, dx):
                 return (c, a - st)
         raise AssertionError
     body = []
-    body.append("    using V = typename rot_vec<T>::v16;")
+    body.append("    using V = typename rot_vec<T>::%s;" % ("v16" if LANES == 16 else "v8"))
     body.append("    using V8 = typename rot_vec<T>::v8;")
     for c, st in enumerate(starts):
         body.append("    V in%d;" % c)
@@ -424,7 +426,7 @@ def vec_function(N, dx):
                     continue
                 m = lane_m(e[1], which)
                 src.append(None if m is None else chunk_of(acn(e[0], m)))
-            body += shuffle_code("%s%d_0" % (nm, gi), src, inv, None, "V")
+            body += shuffle_code("%s%d_0" % (nm, gi), src, inv, None, "V", LANES)
     # angle vectors: cm8 = (1, cos t, ..., cos 7t), sm8 = (0, sin t, ...)
     for ang in ("a", "b", "g"):
         cs = ", ".join(["T(1)"] + ["c%s[%d]" % (ang, m - 1) if m < N else "T(0)" for m in range(1, 8)])
@@ -434,7 +436,10 @@ def vec_function(N, dx):
         body.append("    const V8 n%s8 = -s%s8;" % (ang, ang))
         for gi, tab in enumerate(lanes):
             kc, ku, kv = [], [], []
-            for e in tab:
+            for i, e in enumerate(tab):
+                if e is None and LANES == 8:  # padding: the identity, a free lane selection
+                    kc.append(i), ku.append(i), kv.append(i)
+                    continue
                 k = 0 if e is None else e[1]
                 kc.append(k)
                 odd = k % 2 == 1
@@ -512,13 +517,13 @@ def vec_function(N, dx):
                     where[acn(e[0], m)] = (2 * gi + which, i)
     for c, st in enumerate(starts):
         src = [where.get(st + i) for i in range(LANES)]
-        body += shuffle_code("o%d" % c, src, srcs, None, "V")
+        body += shuffle_code("o%d" % c, src, srcs, None, "V", LANES)
     for c, st in enumerate(starts):
         body.append("    std::memcpy(out + %d, &o%d, sizeof(V));" % (st, c))
     out = []
-    out.append("/// Bands 3..%d of out = D(R) in, %d bands, in 16-lane vectors (see rotate_direct_vec)." % (N - 1, N))
+    out.append("/// Bands 3..%d of out = D(R) in, %d bands, in %d-lane vectors (see rotate_direct_vec)." % (N - 1, N, LANES))
     out.append("template <class T>")
-    out.append("SPHBASIS_FORCEINLINE void rotate_zyz_vec_%d(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const T* in, T* out) noexcept {" % N)
+    out.append("SPHBASIS_FORCEINLINE void rotate_zyz_vec%s_%d(const T* ca, const T* sa, const T* cb, const T* sb, const T* cg, const T* sg, const T* in, T* out) noexcept {" % ("" if LANES == 16 else "8", N))
     out += body
     out.append("}")
     return "\n".join(out)
@@ -779,6 +784,28 @@ SPHBASIS_FORCEINLINE void rotate_direct_vec(const T* SPHBASIS_RESTRICT r, const 
 }
 #endif
 
+#if SPHBASIS_SH_ROTATION_AVX2 && SPHBASIS_SH_ROTATION_VECTOR
+/// rotate_direct_vec for float in 8-lane AVX2 registers: bands 1..2 by rotate_low_bands_avx2
+/// (ops/sh_rotation.hpp), bands >= 3 by rotate_zyz_vec8_L (one band per 8-lane group). Every
+/// read of in before the first write.
+template <int L>
+SPHBASIS_FORCEINLINE void rotate_direct_avx2(const float* SPHBASIS_RESTRICT r, const float* in, float* out) noexcept {
+    static_assert(L >= 4, "rotate_direct_avx2: L >= 4");
+    const float c0 = in[0];
+    const __m256 lov = rotate_low_bands_avx2(mat3_lo_avx2(r), mat3_r8_avx2(r), in);
+    float ca[L - 1], sa[L - 1], cb[L - 1], sb[L - 1], cg[L - 1], sg[L - 1];
+    const bool improper = zyz_multiples<L>(r, ca, sa, cb, sb, cg, sg);
+    if constexpr (L == 4) rotate_zyz_vec8_4(ca, sa, cb, sb, cg, sg, in, out);
+    if constexpr (L == 5) rotate_zyz_vec8_5(ca, sa, cb, sb, cg, sg, in, out);
+    if constexpr (L == 6) rotate_zyz_vec8_6(ca, sa, cb, sb, cg, sg, in, out);
+    if constexpr (L == 7) rotate_zyz_vec8_7(ca, sa, cb, sb, cg, sg, in, out);
+    if constexpr (L == 8) rotate_zyz_vec8_8(ca, sa, cb, sb, cg, sg, in, out);
+    if (improper) negate_odd_high_bands<L, float>(out);
+    _mm256_storeu_ps(out + 1, lov);
+    out[0] = c0;
+}
+#endif
+
 /// out = D(R) in for L bands of the row-major matrix r, D never formed:
 ///   * band 1: D^1 = R permuted to (y, z, x);
 ///   * band 2: the coefficients are a traceless symmetric Q with f(w) = w^T Q w on the sphere
@@ -801,7 +828,9 @@ SPHBASIS_FORCEINLINE void rotate_direct_vec(const T* SPHBASIS_RESTRICT r, const 
 /// pair m with -m so that a z rotation is lane-wise and the quarter turn is a few lane
 /// permutations times constants), and for C = T = float bands 0..2 in one 16-lane register
 /// (rotate_low_bands_avx512, ops/sh_rotation.hpp: R R-permuted for band 1 and the bilinear
-/// forms of R Q R^T for band 2, lane-wise); otherwise straight-line scalar code
+/// forms of R Q R^T for band 2, lane-wise). For C = T = float with AVX2 and no AVX-512
+/// (SPHBASIS_SH_ROTATION_AVX2) the same in 8-lane registers (rotate_low_bands_avx2,
+/// rotate_direct_avx2: one band >= 3 per register). Otherwise straight-line scalar code
 /// (rotate_direct_scalar). in == out is allowed: every input is read before the first write.
 template <int L, class T, class C>
 SPHBASIS_FORCEINLINE void rotate_direct(const T* SPHBASIS_RESTRICT r, const C* in, C* out) noexcept {
@@ -817,6 +846,18 @@ SPHBASIS_FORCEINLINE void rotate_direct(const T* SPHBASIS_RESTRICT r, const C* i
         rotate_direct_vec<L>(r, in, out);
         return;
     }
+#endif
+#if SPHBASIS_SH_ROTATION_AVX2
+    if constexpr (L == 3 && std::is_same_v<T, float> && std::is_same_v<C, float>) {
+        rotate_three_bands_avx2(r, in, out);
+        return;
+    }
+#if SPHBASIS_SH_ROTATION_VECTOR
+    if constexpr (L >= 4 && std::is_same_v<T, float> && std::is_same_v<C, float>) {
+        rotate_direct_avx2<L>(r, in, out);
+        return;
+    }
+#endif
 #endif
     rotate_direct_scalar<L>(r, in, out);
 }
@@ -1068,6 +1109,11 @@ def main():
     parts.append("#if SPHBASIS_SH_ROTATION_VECTOR\n")
     for n in range(4, MAX_BANDS + 1):
         parts.append(vec_function(n, dx))
+        parts.append("\n\n")
+    parts.append("#endif\n\n")
+    parts.append("#if SPHBASIS_SH_ROTATION_AVX2 && SPHBASIS_SH_ROTATION_VECTOR\n")
+    for n in range(4, MAX_BANDS + 1):
+        parts.append(vec_function(n, dx, 8))
         parts.append("\n\n")
     parts.append("#endif\n\n")
     parts.append(FOOTER)

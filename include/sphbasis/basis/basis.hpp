@@ -301,7 +301,7 @@ struct has_fixed_normalizing_kernel<
     B, N, std::void_t<decltype(B::template fixed_normalizing_kernel<N>())>> : std::true_type {};
 
 /// Compile-time band count N: B's kernel for exactly N bands, no dispatch. Out as bands_eval.
-/// Normalising evaluation goes to B's normalising kernel where it has one (SH, 4..8 bands).
+/// Normalising evaluation goes to B's normalising kernel where it has one (SH, 3..8 bands).
 template <class B, int N, bool Normalize, class X, class Y, class Z, class Out>
 SPHBASIS_FORCEINLINE void fixed_bands_eval(const char* fn, X x, Y y, Z z, Out& out) {
     static_check_components<X, Y, Z>();

@@ -409,17 +409,32 @@ struct FixedKernel {
     template <class V, class Store>
     SPHBASIS_FORCEINLINE void operator()(const V& x, const V& y, const V& z,
                                          Store&& s) const noexcept {
+#if SPHBASIS_SH_VEC8_EVAL
+        // float into an array (eval<N>, eval_unit<N>, eval at 4..8 bands): 8-lane stores
+        if constexpr (N >= 4 && std::is_same_v<V, float> &&
+                      std::is_same_v<std::decay_t<Store>, sphbasis::detail::PointerStore<float>>) {
+            eval_fixed_vec8<N>(x, y, z, s.out);
+            return;
+        }
+#endif
         eval_fixed<N>(x, y, z, s);
     }
 };
 /// 1/sqrt(r2) for a normal r2 > 0: for float on AVX-512 the 14-bit estimate and one Newton
-/// step (within ~2 ulp, as the batch path's vrsqrt), otherwise 1 / std::sqrt.
+/// step (within ~2 ulp, as the batch path's vrsqrt), on AVX the 12-bit estimate and one Newton
+/// step (relative error below 1.5 (1.5 2^-12)^2 = 2^-22.2 plus rounding, ~3 ulp, as the AVX
+/// batch path's vrsqrt), otherwise 1 / std::sqrt.
 template <class T>
 SPHBASIS_FORCEINLINE T inverse_length(T r2) noexcept {
 #if defined(__AVX512F__) && SPHBASIS_HAS_VECTOR_EXT  // core/simd.hpp includes <immintrin.h>
     if constexpr (std::is_same_v<T, float>) {
         const __m128 v = _mm_set_ss(r2);
         const float e = _mm_cvtss_f32(_mm_maskz_rsqrt14_ss(__mmask8(1), v, v));
+        return e * (1.5f - 0.5f * r2 * e * e);
+    }
+#elif defined(__AVX__) && SPHBASIS_HAS_VECTOR_EXT
+    if constexpr (std::is_same_v<T, float>) {
+        const float e = _mm_cvtss_f32(_mm_rsqrt_ss(_mm_set_ss(r2)));
         return e * (1.5f - 0.5f * r2 * e * e);
     }
 #endif
@@ -465,6 +480,14 @@ struct FixedNormalizingKernel {
             y = u.y;
             z = u.z;
         }
+#if SPHBASIS_SH_VEC8_EVAL
+        // float into an array at 4..8 bands: the direction scaled, then the 8-lane kernel
+        if constexpr (N >= 4 && std::is_same_v<T, float> &&
+                      std::is_same_v<std::decay_t<Store>, sphbasis::detail::PointerStore<float>>) {
+            eval_fixed_vec8<N>(x * inv, y * inv, z * inv, s.out);
+            return;
+        }
+#endif
         eval_fixed_scaled<N>(x, y, z, inv, s);
     }
 };
@@ -612,9 +635,9 @@ struct SH {
         else
             return sh::detail::RowKernel{N};
     }
-    /// fixed_bands_eval hook for normalising evaluation (eval<N>) of 4..8 bands: the kernel
+    /// fixed_bands_eval hook for normalising evaluation (eval<N>) of 3..8 bands: the kernel
     /// takes the direction as given and normalises inside (sh::detail::FixedNormalizingKernel).
-    template <int N, std::enable_if_t<(N >= 4 && N <= sh::detail::max_fixed_bands), int> = 0>
+    template <int N, std::enable_if_t<(N >= 3 && N <= sh::detail::max_fixed_bands), int> = 0>
     static constexpr auto fixed_normalizing_kernel() noexcept {
         return sh::detail::FixedNormalizingKernel<N>{};
     }

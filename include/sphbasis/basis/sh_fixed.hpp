@@ -6,11 +6,25 @@
 // caller decides where values go (an array, a strided SoA batch, or a running sum Σ c_i y_i).
 // The value type V is float, double or sphbasis::batch<T>. eval_fixed_scaled_N: the same values
 // at a direction of any length r, given inv = 1/r (the normalising one-call kernels).
+// eval_fixed_vec8_N (SPHBASIS_SH_VEC8_EVAL): eval_fixed_N for float into an array with the same
+// operations lane by lane, 8 values per vector operation and store (sh::eval<N>, eval_unit<N>).
 #pragma once
 
 // clang-format off
+#include <cstring>
+
 #include "../config.hpp"
 #include "../core/scalar.hpp"
+
+// SPHBASIS_SH_VEC8_EVAL: eval_fixed_vec8_N (4, 5, 6, 7, 8 bands), the one-call float kernels with
+// 8-lane vector stores, for GCC/clang with AVX2 + FMA (AVX-512 included); 0: scalar code only.
+#if !defined(SPHBASIS_SH_VEC8_EVAL)
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__AVX2__) && defined(__FMA__)
+#define SPHBASIS_SH_VEC8_EVAL 1
+#else
+#define SPHBASIS_SH_VEC8_EVAL 0
+#endif
+#endif
 
 namespace sphbasis::sh::detail {
 
@@ -922,6 +936,313 @@ SPHBASIS_FORCEINLINE void eval_fixed_scaled_8(const V& x, const V& y, const V& z
     store(63, c7);
     store(49, s7);
 }
+
+#if SPHBASIS_SH_VEC8_EVAL
+/// 4 bands for float at a unit direction into out[0..16), 8 values per vector operation (see
+/// kernel_vec8 in tools/gen/gen_sh_fixed.py): the operations of eval_fixed_4 lane by lane.
+SPHBASIS_FORCEINLINE void eval_fixed_vec8_4(float x, float y, float z, float* out) noexcept {
+    typedef float v8 __attribute__((vector_size(32)));
+    using V = float;
+    using S = float;
+    const V z2 = z * z;
+    const V c1 = x, s1 = y;
+    const V c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
+    const V c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
+    const v8 w0 = {S(1), c1, s1, c2, s2, c3, s3, S(0)};
+    const v8 w1 = {S(0), S(0), S(0), S(0), S(0), S(0), S(0), S(0)};
+    const v8 one = {S(1), S(1), S(1), S(1), S(1), S(1), S(1), S(1)};
+    const v8 zz = one * z2, zv = one * z;
+    const v8 a0_0 = {S(0.28209479177387814), S(0.48860251190291992), S(0.48860251190291992), S(0.48860251190291992), S(0.54627421529603959), S(1.0925484305920792), S(-0.31539156525251999), S(1.0925484305920792)};  // 1/(2*sqrt(pi)), sqrt(3)/(2*sqrt(pi)), sqrt(3)/(2*sqrt(pi)), sqrt(3)/(2*sqrt(pi)), sqrt(15)/(4*sqrt(pi)), sqrt(15)/(2*sqrt(pi)), -sqrt(5)/(4*sqrt(pi)), sqrt(15)/(2*sqrt(pi))
+    const v8 a0_1 = {S(0.0), S(0.0), S(0.0), S(0.0), S(0.0), S(0.0), S(0.94617469575755997), S(0.0)};  // 0, 0, 0, 0, 0, 0, 3*sqrt(5)/(4*sqrt(pi)), 0
+    v8 h0 = a0_1 * zz + a0_0;
+    h0 = h0 * __builtin_shufflevector(one, zv, 0, 1, 10, 3, 4, 13, 6, 15);
+    const v8 o0 = h0 * __builtin_shufflevector(w0, w1, 0, 2, 0, 1, 4, 2, 0, 1);
+    const v8 a1_0 = {S(0.54627421529603959), S(0.59004358992664352), S(1.4453057213202771), S(-0.45704579946446572), S(-1.1195289977703462), S(-0.45704579946446572), S(1.4453057213202771), S(0.59004358992664352)};  // sqrt(15)/(4*sqrt(pi)), sqrt(70)/(8*sqrt(pi)), sqrt(105)/(4*sqrt(pi)), -sqrt(42)/(8*sqrt(pi)), -3*sqrt(7)/(4*sqrt(pi)), -sqrt(42)/(8*sqrt(pi)), sqrt(105)/(4*sqrt(pi)), sqrt(70)/(8*sqrt(pi))
+    const v8 a1_1 = {S(0.0), S(0.0), S(0.0), S(2.2852289973223288), S(1.865881662950577), S(2.2852289973223288), S(0.0), S(0.0)};  // 0, 0, 0, 5*sqrt(42)/(8*sqrt(pi)), 5*sqrt(7)/(4*sqrt(pi)), 5*sqrt(42)/(8*sqrt(pi)), 0, 0
+    v8 h1 = a1_1 * zz + a1_0;
+    h1 = h1 * __builtin_shufflevector(one, zv, 0, 1, 10, 3, 12, 5, 14, 7);
+    const v8 o1 = h1 * __builtin_shufflevector(w0, w1, 3, 6, 4, 2, 0, 1, 3, 5);
+    std::memcpy(out + 0, &o0, sizeof(v8));
+    std::memcpy(out + 8, &o1, sizeof(v8));
+}
+
+/// 5 bands for float at a unit direction into out[0..25), 8 values per vector operation (see
+/// kernel_vec8 in tools/gen/gen_sh_fixed.py): the operations of eval_fixed_5 lane by lane.
+SPHBASIS_FORCEINLINE void eval_fixed_vec8_5(float x, float y, float z, float* out) noexcept {
+    typedef float v8 __attribute__((vector_size(32)));
+    using V = float;
+    using S = float;
+    const V z2 = z * z;
+    const V c1 = x, s1 = y;
+    const V c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
+    const V c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
+    const V c4 = x * c3 - y * s3, s4 = x * s3 + y * c3;
+    const V q2_0 = V(S(0.94617469575755997)) * z2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
+    const V q3_0 = z * (V(S(1.865881662950577)) * z2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
+    const V q4_0 = V(S(1.984313483298443)) * z * q3_0 - V(S(1.0062305898749053)) * q2_0;
+    const v8 w0 = {S(1), c1, s1, c2, s2, c3, s3, c4};
+    const v8 w1 = {s4, S(0), S(0), S(0), S(0), S(0), S(0), S(0)};
+    const v8 wq0 = {q4_0, S(0), S(0), S(0), S(0), S(0), S(0), S(0)};
+    const v8 one = {S(1), S(1), S(1), S(1), S(1), S(1), S(1), S(1)};
+    const v8 zz = one * z2, zv = one * z;
+    const v8 a0_0 = {S(0.28209479177387814), S(0.48860251190291992), S(0.48860251190291992), S(0.48860251190291992), S(0.54627421529603959), S(1.0925484305920792), S(-0.31539156525251999), S(1.0925484305920792)};  // 1/(2*sqrt(pi)), sqrt(3)/(2*sqrt(pi)), sqrt(3)/(2*sqrt(pi)), sqrt(3)/(2*sqrt(pi)), sqrt(15)/(4*sqrt(pi)), sqrt(15)/(2*sqrt(pi)), -sqrt(5)/(4*sqrt(pi)), sqrt(15)/(2*sqrt(pi))
+    const v8 a0_1 = {S(0.0), S(0.0), S(0.0), S(0.0), S(0.0), S(0.0), S(0.94617469575755997), S(0.0)};  // 0, 0, 0, 0, 0, 0, 3*sqrt(5)/(4*sqrt(pi)), 0
+    v8 h0 = a0_1 * zz + a0_0;
+    h0 = h0 * __builtin_shufflevector(one, zv, 0, 1, 10, 3, 4, 13, 6, 15);
+    const v8 o0 = h0 * __builtin_shufflevector(w0, w1, 0, 2, 0, 1, 4, 2, 0, 1);
+    const v8 a1_0 = {S(0.54627421529603959), S(0.59004358992664352), S(1.4453057213202771), S(-0.45704579946446572), S(-1.1195289977703462), S(-0.45704579946446572), S(1.4453057213202771), S(0.59004358992664352)};  // sqrt(15)/(4*sqrt(pi)), sqrt(70)/(8*sqrt(pi)), sqrt(105)/(4*sqrt(pi)), -sqrt(42)/(8*sqrt(pi)), -3*sqrt(7)/(4*sqrt(pi)), -sqrt(42)/(8*sqrt(pi)), sqrt(105)/(4*sqrt(pi)), sqrt(70)/(8*sqrt(pi))
+    const v8 a1_1 = {S(0.0), S(0.0), S(0.0), S(2.2852289973223288), S(1.865881662950577), S(2.2852289973223288), S(0.0), S(0.0)};  // 0, 0, 0, 5*sqrt(42)/(8*sqrt(pi)), 5*sqrt(7)/(4*sqrt(pi)), 5*sqrt(42)/(8*sqrt(pi)), 0, 0
+    v8 h1 = a1_1 * zz + a1_0;
+    h1 = h1 * __builtin_shufflevector(one, zv, 0, 1, 10, 3, 12, 5, 14, 7);
+    const v8 o1 = h1 * __builtin_shufflevector(w0, w1, 3, 6, 4, 2, 0, 1, 3, 5);
+    const v8 a2_0 = {S(0.62583573544917614), S(1.7701307697799304), S(-0.47308734787877998), S(-2.0071396306718676), S(0.0), S(-2.0071396306718676), S(-0.47308734787877998), S(1.7701307697799304)};  // 3*sqrt(35)/(16*sqrt(pi)), 3*sqrt(70)/(8*sqrt(pi)), -3*sqrt(5)/(8*sqrt(pi)), -9*sqrt(10)/(8*sqrt(pi)), 0, -9*sqrt(10)/(8*sqrt(pi)), -3*sqrt(5)/(8*sqrt(pi)), 3*sqrt(70)/(8*sqrt(pi))
+    const v8 a2_1 = {S(0.0), S(0.0), S(3.3116114351514603), S(4.683325804901024), S(0.0), S(4.683325804901024), S(3.3116114351514603), S(0.0)};  // 0, 0, 21*sqrt(5)/(8*sqrt(pi)), 21*sqrt(10)/(8*sqrt(pi)), 0, 21*sqrt(10)/(8*sqrt(pi)), 21*sqrt(5)/(8*sqrt(pi)), 0
+    v8 h2 = a2_1 * zz + a2_0;
+    h2 = h2 * __builtin_shufflevector(one, zv, 0, 9, 2, 11, 4, 13, 6, 15);
+    h2 = __builtin_shufflevector(h2, wq0, 0, 1, 2, 3, 8, 5, 6, 7);
+    const v8 o2 = h2 * __builtin_shufflevector(w0, w1, 8, 6, 4, 2, 0, 1, 3, 5);
+    std::memcpy(out + 0, &o0, sizeof(v8));
+    std::memcpy(out + 8, &o1, sizeof(v8));
+    std::memcpy(out + 16, &o2, sizeof(v8));
+    out[24] = V(S(0.62583573544917614)) * c4;
+}
+
+/// 6 bands for float at a unit direction into out[0..36), 8 values per vector operation (see
+/// kernel_vec8 in tools/gen/gen_sh_fixed.py): the operations of eval_fixed_6 lane by lane.
+SPHBASIS_FORCEINLINE void eval_fixed_vec8_6(float x, float y, float z, float* out) noexcept {
+    typedef float v8 __attribute__((vector_size(32)));
+    using V = float;
+    using S = float;
+    const V z2 = z * z;
+    const V c1 = x, s1 = y;
+    const V c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
+    const V c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
+    const V c4 = x * c3 - y * s3, s4 = x * s3 + y * c3;
+    const V c5 = x * c4 - y * s4, s5 = x * s4 + y * c4;
+    const V q2_0 = V(S(0.94617469575755997)) * z2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
+    const V q3_0 = z * (V(S(1.865881662950577)) * z2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
+    const V q4_0 = V(S(1.984313483298443)) * z * q3_0 - V(S(1.0062305898749053)) * q2_0;
+    const V q5_0 = V(S(1.9899748742132399)) * z * q4_0 - V(S(1.002853072844814)) * q3_0;
+    const V q3_1 = V(S(2.2852289973223288)) * z2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
+    const V q4_1 = z * (V(S(4.683325804901024)) * z2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
+    const V q5_1 = V(S(2.0310096011589902)) * z * q4_1 - V(S(0.99103120896511487)) * q3_1;
+    const v8 w0 = {S(1), c1, s1, c2, s2, c3, s3, c4};
+    const v8 w1 = {s4, c5, s5, S(0), S(0), S(0), S(0), S(0)};
+    const v8 wq0 = {q4_0, q5_0, q5_1, S(0), S(0), S(0), S(0), S(0)};
+    const v8 one = {S(1), S(1), S(1), S(1), S(1), S(1), S(1), S(1)};
+    const v8 zz = one * z2, zv = one * z;
+    const v8 a0_0 = {S(0.28209479177387814), S(0.48860251190291992), S(0.48860251190291992), S(0.48860251190291992), S(0.54627421529603959), S(1.0925484305920792), S(-0.31539156525251999), S(1.0925484305920792)};  // 1/(2*sqrt(pi)), sqrt(3)/(2*sqrt(pi)), sqrt(3)/(2*sqrt(pi)), sqrt(3)/(2*sqrt(pi)), sqrt(15)/(4*sqrt(pi)), sqrt(15)/(2*sqrt(pi)), -sqrt(5)/(4*sqrt(pi)), sqrt(15)/(2*sqrt(pi))
+    const v8 a0_1 = {S(0.0), S(0.0), S(0.0), S(0.0), S(0.0), S(0.0), S(0.94617469575755997), S(0.0)};  // 0, 0, 0, 0, 0, 0, 3*sqrt(5)/(4*sqrt(pi)), 0
+    v8 h0 = a0_1 * zz + a0_0;
+    h0 = h0 * __builtin_shufflevector(one, zv, 0, 1, 10, 3, 4, 13, 6, 15);
+    const v8 o0 = h0 * __builtin_shufflevector(w0, w1, 0, 2, 0, 1, 4, 2, 0, 1);
+    const v8 a1_0 = {S(0.54627421529603959), S(0.59004358992664352), S(1.4453057213202771), S(-0.45704579946446572), S(-1.1195289977703462), S(-0.45704579946446572), S(1.4453057213202771), S(0.59004358992664352)};  // sqrt(15)/(4*sqrt(pi)), sqrt(70)/(8*sqrt(pi)), sqrt(105)/(4*sqrt(pi)), -sqrt(42)/(8*sqrt(pi)), -3*sqrt(7)/(4*sqrt(pi)), -sqrt(42)/(8*sqrt(pi)), sqrt(105)/(4*sqrt(pi)), sqrt(70)/(8*sqrt(pi))
+    const v8 a1_1 = {S(0.0), S(0.0), S(0.0), S(2.2852289973223288), S(1.865881662950577), S(2.2852289973223288), S(0.0), S(0.0)};  // 0, 0, 0, 5*sqrt(42)/(8*sqrt(pi)), 5*sqrt(7)/(4*sqrt(pi)), 5*sqrt(42)/(8*sqrt(pi)), 0, 0
+    v8 h1 = a1_1 * zz + a1_0;
+    h1 = h1 * __builtin_shufflevector(one, zv, 0, 1, 10, 3, 12, 5, 14, 7);
+    const v8 o1 = h1 * __builtin_shufflevector(w0, w1, 3, 6, 4, 2, 0, 1, 3, 5);
+    const v8 a2_0 = {S(0.62583573544917614), S(1.7701307697799304), S(-0.47308734787877998), S(-2.0071396306718676), S(0.0), S(-2.0071396306718676), S(-0.47308734787877998), S(1.7701307697799304)};  // 3*sqrt(35)/(16*sqrt(pi)), 3*sqrt(70)/(8*sqrt(pi)), -3*sqrt(5)/(8*sqrt(pi)), -9*sqrt(10)/(8*sqrt(pi)), 0, -9*sqrt(10)/(8*sqrt(pi)), -3*sqrt(5)/(8*sqrt(pi)), 3*sqrt(70)/(8*sqrt(pi))
+    const v8 a2_1 = {S(0.0), S(0.0), S(3.3116114351514603), S(4.683325804901024), S(0.0), S(4.683325804901024), S(3.3116114351514603), S(0.0)};  // 0, 0, 21*sqrt(5)/(8*sqrt(pi)), 21*sqrt(10)/(8*sqrt(pi)), 0, 21*sqrt(10)/(8*sqrt(pi)), 21*sqrt(5)/(8*sqrt(pi)), 0
+    v8 h2 = a2_1 * zz + a2_0;
+    h2 = h2 * __builtin_shufflevector(one, zv, 0, 9, 2, 11, 4, 13, 6, 15);
+    h2 = __builtin_shufflevector(h2, wq0, 0, 1, 2, 3, 8, 5, 6, 7);
+    const v8 o2 = h2 * __builtin_shufflevector(w0, w1, 8, 6, 4, 2, 0, 1, 3, 5);
+    const v8 a3_0 = {S(0.62583573544917614), S(0.65638205684017015), S(2.0756623148810411), S(-0.48923829943525038), S(-2.3967683924866621), S(0.0), S(0.0), S(0.0)};  // 3*sqrt(35)/(16*sqrt(pi)), 3*sqrt(154)/(32*sqrt(pi)), 3*sqrt(385)/(16*sqrt(pi)), -sqrt(770)/(32*sqrt(pi)), -sqrt(1155)/(8*sqrt(pi)), 0, 0, 0
+    const v8 a3_1 = {S(0.0), S(0.0), S(0.0), S(4.4031446949172537), S(7.1903051774599858), S(0.0), S(0.0), S(0.0)};  // 0, 0, 0, 9*sqrt(770)/(32*sqrt(pi)), 3*sqrt(1155)/(8*sqrt(pi)), 0, 0, 0
+    v8 h3 = a3_1 * zz + a3_0;
+    h3 = h3 * __builtin_shufflevector(one, zv, 0, 1, 10, 3, 12, 5, 6, 7);
+    h3 = __builtin_shufflevector(h3, wq0, 0, 1, 2, 3, 4, 10, 9, 10);
+    const v8 o3 = h3 * __builtin_shufflevector(w0, w1, 7, 10, 8, 6, 4, 2, 0, 1);
+    const v8 a4_0 = {S(-2.3967683924866621), S(0.0), S(0.0), S(0.0), S(-2.3967683924866621), S(-0.48923829943525038), S(2.0756623148810411), S(0.65638205684017015)};  // -sqrt(1155)/(8*sqrt(pi)), 0, 0, 0, -sqrt(1155)/(8*sqrt(pi)), -sqrt(770)/(32*sqrt(pi)), 3*sqrt(385)/(16*sqrt(pi)), 3*sqrt(154)/(32*sqrt(pi))
+    const v8 a4_1 = {S(7.1903051774599858), S(0.0), S(0.0), S(0.0), S(7.1903051774599858), S(4.4031446949172537), S(0.0), S(0.0)};  // 3*sqrt(1155)/(8*sqrt(pi)), 0, 0, 0, 3*sqrt(1155)/(8*sqrt(pi)), 9*sqrt(770)/(32*sqrt(pi)), 0, 0
+    v8 h4 = a4_1 * zz + a4_0;
+    h4 = h4 * __builtin_shufflevector(one, zv, 8, 1, 2, 3, 12, 5, 14, 7);
+    h4 = __builtin_shufflevector(h4, wq0, 0, 10, 9, 10, 4, 5, 6, 7);
+    const v8 o4 = h4 * __builtin_shufflevector(w0, w1, 4, 2, 0, 1, 3, 5, 7, 9);
+    std::memcpy(out + 0, &o0, sizeof(v8));
+    std::memcpy(out + 8, &o1, sizeof(v8));
+    std::memcpy(out + 16, &o2, sizeof(v8));
+    std::memcpy(out + 24, &o3, sizeof(v8));
+    std::memcpy(out + 28, &o4, sizeof(v8));
+}
+
+/// 7 bands for float at a unit direction into out[0..49), 8 values per vector operation (see
+/// kernel_vec8 in tools/gen/gen_sh_fixed.py): the operations of eval_fixed_7 lane by lane.
+SPHBASIS_FORCEINLINE void eval_fixed_vec8_7(float x, float y, float z, float* out) noexcept {
+    typedef float v8 __attribute__((vector_size(32)));
+    using V = float;
+    using S = float;
+    const V z2 = z * z;
+    const V c1 = x, s1 = y;
+    const V c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
+    const V c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
+    const V c4 = x * c3 - y * s3, s4 = x * s3 + y * c3;
+    const V c5 = x * c4 - y * s4, s5 = x * s4 + y * c4;
+    const V c6 = x * c5 - y * s5, s6 = x * s5 + y * c5;
+    const V q2_0 = V(S(0.94617469575755997)) * z2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
+    const V q3_0 = z * (V(S(1.865881662950577)) * z2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
+    const V q4_0 = V(S(1.984313483298443)) * z * q3_0 - V(S(1.0062305898749053)) * q2_0;
+    const V q5_0 = V(S(1.9899748742132399)) * z * q4_0 - V(S(1.002853072844814)) * q3_0;
+    const V q6_0 = V(S(1.9930434571835662)) * z * q5_0 - V(S(1.0015420209622192)) * q4_0;
+    const V q3_1 = V(S(2.2852289973223288)) * z2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
+    const V q4_1 = z * (V(S(4.683325804901024)) * z2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
+    const V q5_1 = V(S(2.0310096011589902)) * z * q4_1 - V(S(0.99103120896511487)) * q3_1;
+    const V q6_1 = V(S(2.0213149892370277)) * z * q5_1 - V(S(0.99522670305623862)) * q4_1;
+    const V q4_2 = V(S(3.3116114351514603)) * z2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
+    const V q5_2 = z * (V(S(7.1903051774599858)) * z2 + V(S(-2.3967683924866621)));  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
+    const V q6_2 = V(S(2.1139418156609704)) * z * q5_2 - V(S(0.97361012046232687)) * q4_2;
+    const v8 w0 = {S(1), c1, s1, c2, s2, c3, s3, c4};
+    const v8 w1 = {s4, c5, s5, c6, s6, S(0), S(0), S(0)};
+    const v8 wq0 = {q4_0, q5_0, q5_1, q6_0, q6_1, q6_2, S(0), S(0)};
+    const v8 one = {S(1), S(1), S(1), S(1), S(1), S(1), S(1), S(1)};
+    const v8 zz = one * z2, zv = one * z;
+    const v8 a0_0 = {S(0.28209479177387814), S(0.48860251190291992), S(0.48860251190291992), S(0.48860251190291992), S(0.54627421529603959), S(1.0925484305920792), S(-0.31539156525251999), S(1.0925484305920792)};  // 1/(2*sqrt(pi)), sqrt(3)/(2*sqrt(pi)), sqrt(3)/(2*sqrt(pi)), sqrt(3)/(2*sqrt(pi)), sqrt(15)/(4*sqrt(pi)), sqrt(15)/(2*sqrt(pi)), -sqrt(5)/(4*sqrt(pi)), sqrt(15)/(2*sqrt(pi))
+    const v8 a0_1 = {S(0.0), S(0.0), S(0.0), S(0.0), S(0.0), S(0.0), S(0.94617469575755997), S(0.0)};  // 0, 0, 0, 0, 0, 0, 3*sqrt(5)/(4*sqrt(pi)), 0
+    v8 h0 = a0_1 * zz + a0_0;
+    h0 = h0 * __builtin_shufflevector(one, zv, 0, 1, 10, 3, 4, 13, 6, 15);
+    const v8 o0 = h0 * __builtin_shufflevector(w0, w1, 0, 2, 0, 1, 4, 2, 0, 1);
+    const v8 a1_0 = {S(0.54627421529603959), S(0.59004358992664352), S(1.4453057213202771), S(-0.45704579946446572), S(-1.1195289977703462), S(-0.45704579946446572), S(1.4453057213202771), S(0.59004358992664352)};  // sqrt(15)/(4*sqrt(pi)), sqrt(70)/(8*sqrt(pi)), sqrt(105)/(4*sqrt(pi)), -sqrt(42)/(8*sqrt(pi)), -3*sqrt(7)/(4*sqrt(pi)), -sqrt(42)/(8*sqrt(pi)), sqrt(105)/(4*sqrt(pi)), sqrt(70)/(8*sqrt(pi))
+    const v8 a1_1 = {S(0.0), S(0.0), S(0.0), S(2.2852289973223288), S(1.865881662950577), S(2.2852289973223288), S(0.0), S(0.0)};  // 0, 0, 0, 5*sqrt(42)/(8*sqrt(pi)), 5*sqrt(7)/(4*sqrt(pi)), 5*sqrt(42)/(8*sqrt(pi)), 0, 0
+    v8 h1 = a1_1 * zz + a1_0;
+    h1 = h1 * __builtin_shufflevector(one, zv, 0, 1, 10, 3, 12, 5, 14, 7);
+    const v8 o1 = h1 * __builtin_shufflevector(w0, w1, 3, 6, 4, 2, 0, 1, 3, 5);
+    const v8 a2_0 = {S(0.62583573544917614), S(1.7701307697799304), S(-0.47308734787877998), S(-2.0071396306718676), S(0.0), S(-2.0071396306718676), S(-0.47308734787877998), S(1.7701307697799304)};  // 3*sqrt(35)/(16*sqrt(pi)), 3*sqrt(70)/(8*sqrt(pi)), -3*sqrt(5)/(8*sqrt(pi)), -9*sqrt(10)/(8*sqrt(pi)), 0, -9*sqrt(10)/(8*sqrt(pi)), -3*sqrt(5)/(8*sqrt(pi)), 3*sqrt(70)/(8*sqrt(pi))
+    const v8 a2_1 = {S(0.0), S(0.0), S(3.3116114351514603), S(4.683325804901024), S(0.0), S(4.683325804901024), S(3.3116114351514603), S(0.0)};  // 0, 0, 21*sqrt(5)/(8*sqrt(pi)), 21*sqrt(10)/(8*sqrt(pi)), 0, 21*sqrt(10)/(8*sqrt(pi)), 21*sqrt(5)/(8*sqrt(pi)), 0
+    v8 h2 = a2_1 * zz + a2_0;
+    h2 = h2 * __builtin_shufflevector(one, zv, 0, 9, 2, 11, 4, 13, 6, 15);
+    h2 = __builtin_shufflevector(h2, wq0, 0, 1, 2, 3, 8, 5, 6, 7);
+    const v8 o2 = h2 * __builtin_shufflevector(w0, w1, 8, 6, 4, 2, 0, 1, 3, 5);
+    const v8 a3_0 = {S(0.62583573544917614), S(0.65638205684017015), S(2.0756623148810411), S(-0.48923829943525038), S(-2.3967683924866621), S(0.0), S(0.0), S(0.0)};  // 3*sqrt(35)/(16*sqrt(pi)), 3*sqrt(154)/(32*sqrt(pi)), 3*sqrt(385)/(16*sqrt(pi)), -sqrt(770)/(32*sqrt(pi)), -sqrt(1155)/(8*sqrt(pi)), 0, 0, 0
+    const v8 a3_1 = {S(0.0), S(0.0), S(0.0), S(4.4031446949172537), S(7.1903051774599858), S(0.0), S(0.0), S(0.0)};  // 0, 0, 0, 9*sqrt(770)/(32*sqrt(pi)), 3*sqrt(1155)/(8*sqrt(pi)), 0, 0, 0
+    v8 h3 = a3_1 * zz + a3_0;
+    h3 = h3 * __builtin_shufflevector(one, zv, 0, 1, 10, 3, 12, 5, 6, 7);
+    h3 = __builtin_shufflevector(h3, wq0, 0, 1, 2, 3, 4, 10, 9, 10);
+    const v8 o3 = h3 * __builtin_shufflevector(w0, w1, 7, 10, 8, 6, 4, 2, 0, 1);
+    const v8 a4_0 = {S(-2.3967683924866621), S(-0.48923829943525038), S(2.0756623148810411), S(0.65638205684017015), S(0.6831841051919143), S(2.3666191622317521), S(-0.50456490072872417), S(-2.7636157785447706)};  // -sqrt(1155)/(8*sqrt(pi)), -sqrt(770)/(32*sqrt(pi)), 3*sqrt(385)/(16*sqrt(pi)), 3*sqrt(154)/(32*sqrt(pi)), sqrt(6006)/(64*sqrt(pi)), 3*sqrt(2002)/(32*sqrt(pi)), -3*sqrt(91)/(32*sqrt(pi)), -3*sqrt(2730)/(32*sqrt(pi))
+    const v8 a4_1 = {S(7.1903051774599858), S(4.4031446949172537), S(0.0), S(0.0), S(0.0), S(0.0), S(5.5502139080159658), S(10.133257854664159)};  // 3*sqrt(1155)/(8*sqrt(pi)), 9*sqrt(770)/(32*sqrt(pi)), 0, 0, 0, 0, 33*sqrt(91)/(32*sqrt(pi)), 11*sqrt(2730)/(32*sqrt(pi))
+    v8 h4 = a4_1 * zz + a4_0;
+    h4 = h4 * __builtin_shufflevector(one, zv, 8, 1, 10, 3, 4, 13, 6, 15);
+    const v8 o4 = h4 * __builtin_shufflevector(w0, w1, 3, 5, 7, 9, 12, 10, 8, 6);
+    const v8 a5_0 = {S(0.0), S(0.0), S(0.0), S(0.0), S(0.0), S(-2.7636157785447706), S(-0.50456490072872417), S(2.3666191622317521)};  // 0, 0, 0, 0, 0, -3*sqrt(2730)/(32*sqrt(pi)), -3*sqrt(91)/(32*sqrt(pi)), 3*sqrt(2002)/(32*sqrt(pi))
+    const v8 a5_1 = {S(0.0), S(0.0), S(0.0), S(0.0), S(0.0), S(10.133257854664159), S(5.5502139080159658), S(0.0)};  // 0, 0, 0, 0, 0, 11*sqrt(2730)/(32*sqrt(pi)), 33*sqrt(91)/(32*sqrt(pi)), 0
+    v8 h5 = a5_1 * zz + a5_0;
+    h5 = h5 * __builtin_shufflevector(one, zv, 0, 1, 2, 3, 4, 13, 6, 15);
+    h5 = __builtin_shufflevector(h5, wq0, 13, 12, 11, 12, 13, 5, 6, 7);
+    const v8 o5 = h5 * __builtin_shufflevector(w0, w1, 4, 2, 0, 1, 3, 5, 7, 9);
+    std::memcpy(out + 0, &o0, sizeof(v8));
+    std::memcpy(out + 8, &o1, sizeof(v8));
+    std::memcpy(out + 16, &o2, sizeof(v8));
+    std::memcpy(out + 24, &o3, sizeof(v8));
+    std::memcpy(out + 32, &o4, sizeof(v8));
+    std::memcpy(out + 40, &o5, sizeof(v8));
+    out[48] = V(S(0.6831841051919143)) * c6;
+}
+
+/// 8 bands for float at a unit direction into out[0..64), 8 values per vector operation (see
+/// kernel_vec8 in tools/gen/gen_sh_fixed.py): the operations of eval_fixed_8 lane by lane.
+SPHBASIS_FORCEINLINE void eval_fixed_vec8_8(float x, float y, float z, float* out) noexcept {
+    typedef float v8 __attribute__((vector_size(32)));
+    using V = float;
+    using S = float;
+    const V z2 = z * z;
+    const V c1 = x, s1 = y;
+    const V c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
+    const V c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
+    const V c4 = x * c3 - y * s3, s4 = x * s3 + y * c3;
+    const V c5 = x * c4 - y * s4, s5 = x * s4 + y * c4;
+    const V c6 = x * c5 - y * s5, s6 = x * s5 + y * c5;
+    const V c7 = x * c6 - y * s6, s7 = x * s6 + y * c6;
+    const V q2_0 = V(S(0.94617469575755997)) * z2 + V(S(-0.31539156525251999));  // 3*sqrt(5)/(4*sqrt(pi)) z^2 + -sqrt(5)/(4*sqrt(pi))
+    const V q3_0 = z * (V(S(1.865881662950577)) * z2 + V(S(-1.1195289977703462)));  // z (5*sqrt(7)/(4*sqrt(pi)) z^2 + -3*sqrt(7)/(4*sqrt(pi)))
+    const V q4_0 = V(S(1.984313483298443)) * z * q3_0 - V(S(1.0062305898749053)) * q2_0;
+    const V q5_0 = V(S(1.9899748742132399)) * z * q4_0 - V(S(1.002853072844814)) * q3_0;
+    const V q6_0 = V(S(1.9930434571835662)) * z * q5_0 - V(S(1.0015420209622192)) * q4_0;
+    const V q7_0 = V(S(1.9948914348241344)) * z * q6_0 - V(S(1.000927213921958)) * q5_0;
+    const V q3_1 = V(S(2.2852289973223288)) * z2 + V(S(-0.45704579946446572));  // 5*sqrt(42)/(8*sqrt(pi)) z^2 + -sqrt(42)/(8*sqrt(pi))
+    const V q4_1 = z * (V(S(4.683325804901024)) * z2 + V(S(-2.0071396306718676)));  // z (21*sqrt(10)/(8*sqrt(pi)) z^2 + -9*sqrt(10)/(8*sqrt(pi)))
+    const V q5_1 = V(S(2.0310096011589902)) * z * q4_1 - V(S(0.99103120896511487)) * q3_1;
+    const V q6_1 = V(S(2.0213149892370277)) * z * q5_1 - V(S(0.99522670305623862)) * q4_1;
+    const V q7_1 = V(S(2.0155644370746373)) * z * q6_1 - V(S(0.99715504402183208)) * q5_1;
+    const V q4_2 = V(S(3.3116114351514603)) * z2 + V(S(-0.47308734787877998));  // 21*sqrt(5)/(8*sqrt(pi)) z^2 + -3*sqrt(5)/(8*sqrt(pi))
+    const V q5_2 = z * (V(S(7.1903051774599858)) * z2 + V(S(-2.3967683924866621)));  // z (3*sqrt(1155)/(8*sqrt(pi)) z^2 + -sqrt(1155)/(8*sqrt(pi)))
+    const V q6_2 = V(S(2.1139418156609704)) * z * q5_2 - V(S(0.97361012046232687)) * q4_2;
+    const V q7_2 = V(S(2.0816659994661326)) * z * q6_2 - V(S(0.9847319278346619)) * q5_2;
+    const V q5_3 = V(S(4.4031446949172537)) * z2 + V(S(-0.48923829943525038));  // 9*sqrt(770)/(32*sqrt(pi)) z^2 + -sqrt(770)/(32*sqrt(pi))
+    const V q6_3 = z * (V(S(10.133257854664159)) * z2 + V(S(-2.7636157785447706)));  // z (11*sqrt(2730)/(32*sqrt(pi)) z^2 + -3*sqrt(2730)/(32*sqrt(pi)))
+    const V q7_3 = V(S(2.2079402165819619)) * z * q6_3 - V(S(0.95940322360024699)) * q5_3;
+    const v8 w0 = {S(1), c1, s1, c2, s2, c3, s3, c4};
+    const v8 w1 = {s4, c5, s5, c6, s6, c7, s7, S(0)};
+    const v8 wq0 = {q4_0, q5_0, q5_1, q6_0, q6_1, q6_2, q7_0, q7_1};
+    const v8 wq1 = {q7_2, q7_3, S(0), S(0), S(0), S(0), S(0), S(0)};
+    const v8 one = {S(1), S(1), S(1), S(1), S(1), S(1), S(1), S(1)};
+    const v8 zz = one * z2, zv = one * z;
+    const v8 a0_0 = {S(0.28209479177387814), S(0.48860251190291992), S(0.48860251190291992), S(0.48860251190291992), S(0.54627421529603959), S(1.0925484305920792), S(-0.31539156525251999), S(1.0925484305920792)};  // 1/(2*sqrt(pi)), sqrt(3)/(2*sqrt(pi)), sqrt(3)/(2*sqrt(pi)), sqrt(3)/(2*sqrt(pi)), sqrt(15)/(4*sqrt(pi)), sqrt(15)/(2*sqrt(pi)), -sqrt(5)/(4*sqrt(pi)), sqrt(15)/(2*sqrt(pi))
+    const v8 a0_1 = {S(0.0), S(0.0), S(0.0), S(0.0), S(0.0), S(0.0), S(0.94617469575755997), S(0.0)};  // 0, 0, 0, 0, 0, 0, 3*sqrt(5)/(4*sqrt(pi)), 0
+    v8 h0 = a0_1 * zz + a0_0;
+    h0 = h0 * __builtin_shufflevector(one, zv, 0, 1, 10, 3, 4, 13, 6, 15);
+    const v8 o0 = h0 * __builtin_shufflevector(w0, w1, 0, 2, 0, 1, 4, 2, 0, 1);
+    const v8 a1_0 = {S(0.54627421529603959), S(0.59004358992664352), S(1.4453057213202771), S(-0.45704579946446572), S(-1.1195289977703462), S(-0.45704579946446572), S(1.4453057213202771), S(0.59004358992664352)};  // sqrt(15)/(4*sqrt(pi)), sqrt(70)/(8*sqrt(pi)), sqrt(105)/(4*sqrt(pi)), -sqrt(42)/(8*sqrt(pi)), -3*sqrt(7)/(4*sqrt(pi)), -sqrt(42)/(8*sqrt(pi)), sqrt(105)/(4*sqrt(pi)), sqrt(70)/(8*sqrt(pi))
+    const v8 a1_1 = {S(0.0), S(0.0), S(0.0), S(2.2852289973223288), S(1.865881662950577), S(2.2852289973223288), S(0.0), S(0.0)};  // 0, 0, 0, 5*sqrt(42)/(8*sqrt(pi)), 5*sqrt(7)/(4*sqrt(pi)), 5*sqrt(42)/(8*sqrt(pi)), 0, 0
+    v8 h1 = a1_1 * zz + a1_0;
+    h1 = h1 * __builtin_shufflevector(one, zv, 0, 1, 10, 3, 12, 5, 14, 7);
+    const v8 o1 = h1 * __builtin_shufflevector(w0, w1, 3, 6, 4, 2, 0, 1, 3, 5);
+    const v8 a2_0 = {S(0.62583573544917614), S(1.7701307697799304), S(-0.47308734787877998), S(-2.0071396306718676), S(0.0), S(-2.0071396306718676), S(-0.47308734787877998), S(1.7701307697799304)};  // 3*sqrt(35)/(16*sqrt(pi)), 3*sqrt(70)/(8*sqrt(pi)), -3*sqrt(5)/(8*sqrt(pi)), -9*sqrt(10)/(8*sqrt(pi)), 0, -9*sqrt(10)/(8*sqrt(pi)), -3*sqrt(5)/(8*sqrt(pi)), 3*sqrt(70)/(8*sqrt(pi))
+    const v8 a2_1 = {S(0.0), S(0.0), S(3.3116114351514603), S(4.683325804901024), S(0.0), S(4.683325804901024), S(3.3116114351514603), S(0.0)};  // 0, 0, 21*sqrt(5)/(8*sqrt(pi)), 21*sqrt(10)/(8*sqrt(pi)), 0, 21*sqrt(10)/(8*sqrt(pi)), 21*sqrt(5)/(8*sqrt(pi)), 0
+    v8 h2 = a2_1 * zz + a2_0;
+    h2 = h2 * __builtin_shufflevector(one, zv, 0, 9, 2, 11, 4, 13, 6, 15);
+    h2 = __builtin_shufflevector(h2, wq0, 0, 1, 2, 3, 8, 5, 6, 7);
+    const v8 o2 = h2 * __builtin_shufflevector(w0, w1, 8, 6, 4, 2, 0, 1, 3, 5);
+    const v8 a3_0 = {S(0.62583573544917614), S(0.65638205684017015), S(2.0756623148810411), S(-0.48923829943525038), S(-2.3967683924866621), S(0.0), S(0.0), S(0.0)};  // 3*sqrt(35)/(16*sqrt(pi)), 3*sqrt(154)/(32*sqrt(pi)), 3*sqrt(385)/(16*sqrt(pi)), -sqrt(770)/(32*sqrt(pi)), -sqrt(1155)/(8*sqrt(pi)), 0, 0, 0
+    const v8 a3_1 = {S(0.0), S(0.0), S(0.0), S(4.4031446949172537), S(7.1903051774599858), S(0.0), S(0.0), S(0.0)};  // 0, 0, 0, 9*sqrt(770)/(32*sqrt(pi)), 3*sqrt(1155)/(8*sqrt(pi)), 0, 0, 0
+    v8 h3 = a3_1 * zz + a3_0;
+    h3 = h3 * __builtin_shufflevector(one, zv, 0, 1, 10, 3, 12, 5, 6, 7);
+    h3 = __builtin_shufflevector(h3, wq0, 0, 1, 2, 3, 4, 10, 9, 10);
+    const v8 o3 = h3 * __builtin_shufflevector(w0, w1, 7, 10, 8, 6, 4, 2, 0, 1);
+    const v8 a4_0 = {S(-2.3967683924866621), S(-0.48923829943525038), S(2.0756623148810411), S(0.65638205684017015), S(0.6831841051919143), S(2.3666191622317521), S(-0.50456490072872417), S(-2.7636157785447706)};  // -sqrt(1155)/(8*sqrt(pi)), -sqrt(770)/(32*sqrt(pi)), 3*sqrt(385)/(16*sqrt(pi)), 3*sqrt(154)/(32*sqrt(pi)), sqrt(6006)/(64*sqrt(pi)), 3*sqrt(2002)/(32*sqrt(pi)), -3*sqrt(91)/(32*sqrt(pi)), -3*sqrt(2730)/(32*sqrt(pi))
+    const v8 a4_1 = {S(7.1903051774599858), S(4.4031446949172537), S(0.0), S(0.0), S(0.0), S(0.0), S(5.5502139080159658), S(10.133257854664159)};  // 3*sqrt(1155)/(8*sqrt(pi)), 9*sqrt(770)/(32*sqrt(pi)), 0, 0, 0, 0, 33*sqrt(91)/(32*sqrt(pi)), 11*sqrt(2730)/(32*sqrt(pi))
+    v8 h4 = a4_1 * zz + a4_0;
+    h4 = h4 * __builtin_shufflevector(one, zv, 8, 1, 10, 3, 4, 13, 6, 15);
+    const v8 o4 = h4 * __builtin_shufflevector(w0, w1, 3, 5, 7, 9, 12, 10, 8, 6);
+    const v8 a5_0 = {S(0.0), S(0.0), S(0.0), S(0.0), S(0.0), S(-2.7636157785447706), S(-0.50456490072872417), S(2.3666191622317521)};  // 0, 0, 0, 0, 0, -3*sqrt(2730)/(32*sqrt(pi)), -3*sqrt(91)/(32*sqrt(pi)), 3*sqrt(2002)/(32*sqrt(pi))
+    const v8 a5_1 = {S(0.0), S(0.0), S(0.0), S(0.0), S(0.0), S(10.133257854664159), S(5.5502139080159658), S(0.0)};  // 0, 0, 0, 0, 0, 11*sqrt(2730)/(32*sqrt(pi)), 33*sqrt(91)/(32*sqrt(pi)), 0
+    v8 h5 = a5_1 * zz + a5_0;
+    h5 = h5 * __builtin_shufflevector(one, zv, 0, 1, 2, 3, 4, 13, 6, 15);
+    h5 = __builtin_shufflevector(h5, wq0, 13, 12, 11, 12, 13, 5, 6, 7);
+    const v8 o5 = h5 * __builtin_shufflevector(w0, w1, 4, 2, 0, 1, 3, 5, 7, 9);
+    const v8 a6_0 = {S(0.6831841051919143), S(0.70716273252459616), S(2.6459606618019), S(-0.51891557872026028), S(-3.1134934723215619), S(0.0), S(0.0), S(0.0)};  // sqrt(6006)/(64*sqrt(pi)), 3*sqrt(715)/(64*sqrt(pi)), 3*sqrt(10010)/(64*sqrt(pi)), -3*sqrt(385)/(64*sqrt(pi)), -9*sqrt(385)/(32*sqrt(pi)), 0, 0, 0
+    const v8 a6_1 = {S(0.0), S(0.0), S(0.0), S(6.7459025233633838), S(13.491805046726768), S(0.0), S(0.0), S(0.0)};  // 0, 0, 0, 39*sqrt(385)/(64*sqrt(pi)), 39*sqrt(385)/(32*sqrt(pi)), 0, 0, 0
+    v8 h6 = a6_1 * zz + a6_0;
+    h6 = h6 * __builtin_shufflevector(one, zv, 0, 1, 10, 3, 12, 5, 6, 7);
+    h6 = __builtin_shufflevector(h6, wq0, 0, 1, 2, 3, 4, 5, 6, 15);
+    h6 = __builtin_shufflevector(h6, wq1, 0, 1, 2, 3, 4, 9, 8, 7);
+    const v8 o6 = h6 * __builtin_shufflevector(w0, w1, 11, 14, 12, 10, 8, 6, 4, 2);
+    const v8 a7_0 = {S(0.0), S(0.0), S(0.0), S(0.0), S(-3.1134934723215619), S(-0.51891557872026028), S(2.6459606618019), S(0.70716273252459616)};  // 0, 0, 0, 0, -9*sqrt(385)/(32*sqrt(pi)), -3*sqrt(385)/(64*sqrt(pi)), 3*sqrt(10010)/(64*sqrt(pi)), 3*sqrt(715)/(64*sqrt(pi))
+    const v8 a7_1 = {S(0.0), S(0.0), S(0.0), S(0.0), S(13.491805046726768), S(6.7459025233633838), S(0.0), S(0.0)};  // 0, 0, 0, 0, 39*sqrt(385)/(32*sqrt(pi)), 39*sqrt(385)/(64*sqrt(pi)), 0, 0
+    v8 h7 = a7_1 * zz + a7_0;
+    h7 = h7 * __builtin_shufflevector(one, zv, 0, 1, 2, 3, 12, 5, 14, 7);
+    h7 = __builtin_shufflevector(h7, wq0, 14, 15, 2, 3, 4, 5, 6, 7);
+    h7 = __builtin_shufflevector(h7, wq1, 0, 1, 8, 9, 4, 5, 6, 7);
+    const v8 o7 = h7 * __builtin_shufflevector(w0, w1, 0, 1, 3, 5, 7, 9, 11, 13);
+    std::memcpy(out + 0, &o0, sizeof(v8));
+    std::memcpy(out + 8, &o1, sizeof(v8));
+    std::memcpy(out + 16, &o2, sizeof(v8));
+    std::memcpy(out + 24, &o3, sizeof(v8));
+    std::memcpy(out + 32, &o4, sizeof(v8));
+    std::memcpy(out + 40, &o5, sizeof(v8));
+    std::memcpy(out + 48, &o6, sizeof(v8));
+    std::memcpy(out + 56, &o7, sizeof(v8));
+}
+
+/// eval_fixed_vec8_N dispatched on a compile-time band count (N in 4, 5, 6, 7, 8).
+template <int N>
+SPHBASIS_FORCEINLINE void eval_fixed_vec8(float x, float y, float z, float* out) noexcept {
+    if constexpr (N == 4) eval_fixed_vec8_4(x, y, z, out);
+    else if constexpr (N == 5) eval_fixed_vec8_5(x, y, z, out);
+    else if constexpr (N == 6) eval_fixed_vec8_6(x, y, z, out);
+    else if constexpr (N == 7) eval_fixed_vec8_7(x, y, z, out);
+    else if constexpr (N == 8) eval_fixed_vec8_8(x, y, z, out);
+}
+#endif
 
 /// Dispatch on a compile-time band count.
 template <int N, class V, class Store>

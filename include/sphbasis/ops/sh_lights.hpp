@@ -228,7 +228,20 @@ SPHBASIS_FORCEINLINE std::array<C, sizeof...(Ls)> light_band_colours(Band&& band
     return {{band(static_cast<int>(Ls))...}};
 }
 
-#if defined(__AVX512F__) && (defined(__GNUC__) || defined(__clang__))
+// SPHBASIS_SH_LIGHTS_VECTOR: the 3-band RGB fan-out in AVX-512 (16-lane) or AVX2 (8-lane)
+// registers (GCC/clang); 0 where neither is enabled.
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__AVX512F__)
+#define SPHBASIS_SH_LIGHTS_VECTOR 512
+#elif (defined(__GNUC__) || defined(__clang__)) && defined(__AVX2__)
+#define SPHBASIS_SH_LIGHTS_VECTOR 256
+#else
+#define SPHBASIS_SH_LIGHTS_VECTOR 0
+#endif
+#if SPHBASIS_SH_LIGHTS_VECTOR
+#include <immintrin.h>
+#endif
+
+#if SPHBASIS_SH_LIGHTS_VECTOR
 /// C is three packed floats that C * float scales one by one: trivially copyable, 12 bytes,
 /// float scalar, and (checked once per type at run time, on the values 1, 2, 4 times 0.5) its
 /// operator* acting on the three floats of its representation. Such colours (any float RGB
@@ -251,6 +264,7 @@ bool packed_rgb() {
     return ok;
 }
 
+#if SPHBASIS_SH_LIGHTS_VECTOR == 512
 /// out (27 floats) = y[k] * colour[band of k][channel] for 3 bands: two 16-lane products of
 /// permuted y and colour vectors, stored as 16 + 8 + 2 + 1 floats (no masked store whose
 /// 64-byte span would block later loads).
@@ -277,6 +291,35 @@ SPHBASIS_FORCEINLINE void fan_out_rgb3(const float* yv, const float* col, float*
     _mm_storel_pi(reinterpret_cast<__m64*>(out + 24), h);
     _mm_store_ss(out + 26, _mm_movehl_ps(h, h));
 }
+#elif SPHBASIS_SH_LIGHTS_VECTOR == 256
+/// fan_out_rgb3 in 8-lane registers: y and the colours as lanes 0..7 and 1..8 of their nine
+/// values, three 8-lane products of permuted vectors (bands 1..2 read the colours shifted by
+/// one), the last three floats y_8 times band 2's colour.
+SPHBASIS_FORCEINLINE void fan_out_rgb3(const float* yv, const float* col, float* out) noexcept {
+    const __m256 ylo = _mm256_setr_ps(yv[0], yv[1], yv[2], yv[3], yv[4], yv[5], yv[6], yv[7]);
+    // from the scalars, not loaded: the colours were just written (no store forwarding)
+    const __m256 clo =
+        _mm256_setr_ps(col[0], col[1], col[2], col[3], col[4], col[5], col[6], col[7]);
+    const __m256 chi =
+        _mm256_setr_ps(col[1], col[2], col[3], col[4], col[5], col[6], col[7], col[8]);
+    const auto p = [](__m256 v, __m256i idx) { return _mm256_permutevar8x32_ps(v, idx); };
+    // lane i of out + 8 c: y index (8 c + i) / 3, colour 3 * band + (8 c + i) % 3
+    const __m256 o0 = _mm256_mul_ps(p(ylo, _mm256_setr_epi32(0, 0, 0, 1, 1, 1, 2, 2)),
+                                    p(clo, _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 3, 4)));
+    const __m256 o1 = _mm256_mul_ps(p(ylo, _mm256_setr_epi32(2, 3, 3, 3, 4, 4, 4, 5)),
+                                    p(chi, _mm256_setr_epi32(4, 2, 3, 4, 5, 6, 7, 5)));
+    const __m256 o2 = _mm256_mul_ps(p(ylo, _mm256_setr_epi32(5, 5, 6, 6, 6, 7, 7, 7)),
+                                    p(chi, _mm256_setr_epi32(6, 7, 5, 6, 7, 5, 6, 7)));
+    const __m128 o3 =
+        _mm_mul_ps(_mm_set1_ps(yv[8]),
+                   _mm256_castps256_ps128(p(chi, _mm256_setr_epi32(5, 6, 7, 7, 7, 7, 7, 7))));
+    _mm256_storeu_ps(out, o0);
+    _mm256_storeu_ps(out + 8, o1);
+    _mm256_storeu_ps(out + 16, o2);
+    _mm_storel_pi(reinterpret_cast<__m64*>(out + 24), o3);
+    _mm_store_ss(out + 26, _mm_movehl_ps(o3, o3));
+}
+#endif
 #endif
 
 /// out_k = band(l) * y_k(d) for the N^2 functions of N bands (l the band of k), y at the
@@ -291,7 +334,7 @@ SPHBASIS_FORCEINLINE void zonal_out_fixed(E x, E y, E z, Band&& band, C* out) no
                   "C * coefficient_scalar_t<C> (specialise sphbasis::coefficient_scalar).");
     using S = coefficient_scalar_t<C>;
     const std::array<C, N> colour = light_band_colours<C>(band, std::make_index_sequence<N>{});
-#if defined(__AVX512F__) && (defined(__GNUC__) || defined(__clang__))
+#if SPHBASIS_SH_LIGHTS_VECTOR
     if constexpr (N == 3 && ZeroBands == 0 && std::is_same_v<E, float> && maybe_packed_rgb_v<C>) {
         if (packed_rgb<C>()) {
             float yv[9];
