@@ -37,7 +37,7 @@ const std::string& map_path() {
                 const double ph = 6.283185307179586 * (x + 0.5) / width;
                 const double sun = std::exp(200 * (std::sin(th) * std::cos(ph - 1) - 1));
                 const double sky = 0.5 + 0.4 * std::cos(th);
-                float* p = &px[(static_cast<std::size_t>(y) * width + x) * 3];
+                float* p = &px[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3];
                 p[0] = static_cast<float>(sky * 0.6 + 50 * sun) + noise(rng);
                 p[1] = static_cast<float>(sky * 0.8 + 45 * sun) + noise(rng);
                 p[2] = static_cast<float>(sky * 1.0 + 40 * sun) + noise(rng);
@@ -66,7 +66,8 @@ void project_sh3(benchmark::State& state) {
         sphbasis::sh::project_latlong_fn(
             3, width, height,
             [&](int c, int r) {
-                const float* p = &img.rgb[(static_cast<std::size_t>(r) * width + c) * 3];
+                const float* p =
+                    &img.rgb[(std::size_t(r) * std::size_t(width) + std::size_t(c)) * 3];
                 return Rgb{p[0], p[1], p[2]};
             },
             out);

@@ -66,7 +66,8 @@ struct EnvMap {
     long long negative = 0;  // texels with a negative channel (kept as they are)
 
     Rgb texel_latlong(int col, int row) const {
-        const float* p = images[0].rgb.data() + 3 * (static_cast<std::size_t>(row) * width + col);
+        const float* p =
+            images[0].rgb.data() + 3 * (std::size_t(row) * std::size_t(width) + std::size_t(col));
         return {p[0], p[1], p[2]};
     }
     Rgb texel_cube(int face, int col, int row) const {
@@ -76,7 +77,8 @@ struct EnvMap {
             param::cross_pixel(cross, width, face, col, row, x, y);
         else
             img = &images[static_cast<std::size_t>(face)];
-        const float* p = img->rgb.data() + 3 * (static_cast<std::size_t>(y) * img->width + x);
+        const float* p =
+            img->rgb.data() + 3 * (std::size_t(y) * std::size_t(img->width) + std::size_t(x));
         return {p[0], p[1], p[2]};
     }
 };
@@ -353,8 +355,8 @@ int run_project(ProjectOptions& o) {
     }
     if (!quat.empty())
         for (int j = 0; j < 3; ++j)
-            sh::rotate_quaternion(bands, quat[0], quat[1], quat[2], quat[3], ch.data() + j * n2,
-                                  ch.data() + j * n2);
+            sh::rotate_quaternion(bands, quat[0], quat[1], quat[2], quat[3],
+                                  ch.data() + std::size_t(j) * n2, ch.data() + std::size_t(j) * n2);
     const std::vector<double> kernel =
         is_sh ? sh::clamped_cosine_kernel(bands) : std::vector<double>{};
     Json window_json = {
@@ -376,11 +378,13 @@ int run_project(ProjectOptions& o) {
         window_json["lambda"] = std::isinf(lambda) ? Json("inf") : Json(lambda);
         window_json["weights"] = w;
         for (int j = 0; j < 3; ++j)
-            sh::apply_window(bands, w.data(), ch.data() + j * n2, ch.data() + j * n2);
+            sh::apply_window(bands, w.data(), ch.data() + std::size_t(j) * n2,
+                             ch.data() + std::size_t(j) * n2);
     }
     if (convolve)
         for (int j = 0; j < 3; ++j)
-            sh::convolve(bands, kernel.data(), ch.data() + j * n2, ch.data() + j * n2);
+            sh::convolve(bands, kernel.data(), ch.data() + std::size_t(j) * n2,
+                         ch.data() + std::size_t(j) * n2);
     auto at = [&](std::size_t k, int j) { return ch[static_cast<std::size_t>(j) * n2 + k]; };
 
     // Format.

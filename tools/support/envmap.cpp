@@ -74,7 +74,7 @@ LinearRgbImage load_stb(const std::string& path, bool hdr) {
     if (hdr) {
         std::unique_ptr<float, StbFree> px(stbi_loadf(path.c_str(), &w, &h, &n, 3));
         if (!px) throw std::runtime_error(stbi_failure_reason());
-        img.rgb.assign(px.get(), px.get() + static_cast<std::size_t>(w) * h * 3);
+        img.rgb.assign(px.get(), px.get() + std::size_t(w) * std::size_t(h) * 3);
         img.format = "hdr";
     } else {
         const bool wide = stbi_is_16_bit(path.c_str()) != 0;
@@ -82,7 +82,7 @@ LinearRgbImage load_stb(const std::string& path, bool hdr) {
             if (wide) {
                 std::unique_ptr<stbi_us, StbFree> px(stbi_load_16(path.c_str(), &w, &h, &n, 3));
                 if (!px) throw std::runtime_error(stbi_failure_reason());
-                const std::size_t k = static_cast<std::size_t>(w) * h * 3;
+                const std::size_t k = std::size_t(w) * std::size_t(h) * 3;
                 img.rgb.resize(k);
                 for (std::size_t i = 0; i < k; ++i)
                     img.rgb[i] = static_cast<float>(srgb_to_linear(px.get()[i] / 65535.0));
@@ -90,7 +90,7 @@ LinearRgbImage load_stb(const std::string& path, bool hdr) {
             }
             std::unique_ptr<stbi_uc, StbFree> px(stbi_load(path.c_str(), &w, &h, &n, 3));
             if (!px) throw std::runtime_error(stbi_failure_reason());
-            const std::size_t k = static_cast<std::size_t>(w) * h * 3;
+            const std::size_t k = std::size_t(w) * std::size_t(h) * 3;
             float table[256];
             for (int v = 0; v < 256; ++v) table[v] = static_cast<float>(srgb_to_linear(v / 255.0));
             img.rgb.resize(k);
