@@ -22,11 +22,11 @@ function(project_bad name regex)
 endfunction()
 project_bad(missing_file "cannot read '.*nope.exr': No such file" ${_pm}/nope.exr)
 project_bad(not_an_image "cannot read .*: Image not of any known type" ${_pm}/bad_text.exr.txt)
-project_bad(cross_aspect "--layout cross expects 4:3 .* got 96 x 96" --layout cross ${_pm}/bad_square.exr)
+project_bad(cross_aspect ".*--layout cross expects 4:3 .* got 96 x 96" --layout cross ${_pm}/bad_square.exr)
 project_bad(faces_unequal "six square faces of one size; face -Z .* is 8 x 8"
             --layout faces ${_pm}/const_face_px.exr ${_pm}/const_face_nx.exr ${_pm}/const_face_py.exr
             ${_pm}/const_face_ny.exr ${_pm}/const_face_pz.exr ${_pm}/bad_face_small.exr)
-project_bad(faces_count "expected six face files" --layout faces ${_pm}/const_face_px.exr)
+project_bad(faces_count "--layout faces: expected six face files" --layout faces ${_pm}/const_face_px.exr)
 project_bad(nan_texel "pixel \\(7, 5\\) channel G is nan; expected finite radiance" ${_pm}/bad_nan.exr)
 project_bad(unknown_format "--format: expected json, cpp, glsl, hlsl, unity, threejs or filament, got 'xml'"
             ${_pm}/const_equirect.exr --format xml)
