@@ -47,3 +47,8 @@ project_bad(hemi_window "--irradiance, --window and --rotate work on SH"
 sphbasis_cli_script(project_no_partial "no-partial-ok"
                     "rm -f ${_pm}/partial.json; ! \"${_cli}\" project ${_pm}/bad_nan.exr --out ${_pm}/partial.json 2>/dev/null && test ! -e ${_pm}/partial.json && echo no-partial-ok")
 set_tests_properties(cli_project_no_partial PROPERTIES FIXTURES_REQUIRED project_maps)
+# A committed real map (data/envmaps, CC0): at 5 bands its radiance rings below zero, and the
+# auto window finds a lambda > 0 with a certified non-negative lower bound.
+sphbasis_cli_test(project_real_auto_window
+                  "\"window\":\\{\"kind\":\"auto\",\"certified_lower_bound\":[0-9][^,]*,\"achieved\":true,\"relative_l2_change\":[^,]*,\"of\":\"radiance\",\"lambda\":0\\.[0-9]*[1-9]"
+                  project ${PROJECT_SOURCE_DIR}/data/envmaps/sunset.exr --bands 5 --window auto)
