@@ -522,7 +522,7 @@ Run setup_project(CLI::App& app) {
     app.add_option("--format", o->format, "json, cpp, glsl, hlsl, unity, threejs or filament")
         ->type_name("FORMAT")
         ->capture_default_str();
-    add_path(app, "--out", o->out, "write to FILE (all or none) instead of standard output");
+    add_path(app, "--out", o->out, "write to PATH (all or none) instead of standard output");
     app.footer(
         "Project an environment map onto a basis (docs/project.md). Texels are weighted by their\n"
         "exact solid angles; non-finite texels are refused. Lat-long: row 0 at +z, phi =\n"
