@@ -42,6 +42,7 @@
 #include "param/dual_orthographic.hpp"
 #include "param/dual_paraboloid.hpp"
 #include "param/cubemap.hpp"
+#include "param/cube_cross.hpp"
 #include "param/latlong.hpp"
 #include "param/octahedral.hpp"
 #include "param/reconstruction_error.hpp"

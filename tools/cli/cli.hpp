@@ -26,5 +26,6 @@ Run setup_bake(CLI::App& app);
 Run setup_bake_merge(CLI::App& app);
 Run setup_normal_basis(CLI::App& app);
 Run setup_render(CLI::App& app);
+Run setup_project(CLI::App& app);
 
 }  // namespace sphbasis::cli

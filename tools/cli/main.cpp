@@ -33,6 +33,8 @@ const Command commands[] = {
     {"params", "the spherical parameterization experiment", sphbasis::cli::setup_params},
     {"gaunt", "a real Gaunt (SH tripling) coefficient", sphbasis::cli::setup_gaunt},
     {"rotate", "rotate SH coefficients", sphbasis::cli::setup_rotate},
+    {"project", "project an environment map onto SH (or any basis): JSON, C++, GLSL, HLSL, engines",
+     sphbasis::cli::setup_project},
     {"bake", "bake AO, bent normals, visibility, transfer, irradiance (Embree)",
      sphbasis::cli::setup_bake},
     {"bake-merge", "join the shards of `bake --shard I/N`", sphbasis::cli::setup_bake_merge},
