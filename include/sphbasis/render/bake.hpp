@@ -168,6 +168,41 @@ enum Quantity : unsigned {
     transfer_matrix = 1u << 6,
 };
 
+/// Every quantity, in bit order.
+inline constexpr Quantity all_quantities[] = {
+    Quantity::ao,         Quantity::bent,     Quantity::visibility,     Quantity::transfer,
+    Quantity::irradiance, Quantity::radiance, Quantity::transfer_matrix};
+
+/// The name of a quantity, as the enumerator is spelled ("ao", "transfer_matrix"): the names
+/// of the CLI's --quantities and of the files' settings. "" for a value that is not one flag.
+inline const char* quantity_name(unsigned q) noexcept {
+    switch (q) {
+        case Quantity::ao:
+            return "ao";
+        case Quantity::bent:
+            return "bent";
+        case Quantity::visibility:
+            return "visibility";
+        case Quantity::transfer:
+            return "transfer";
+        case Quantity::irradiance:
+            return "irradiance";
+        case Quantity::radiance:
+            return "radiance";
+        case Quantity::transfer_matrix:
+            return "transfer_matrix";
+        default:
+            return "";
+    }
+}
+
+/// The quantity of a name (quantity_name()'s inverse), or 0 for an unknown name.
+inline unsigned quantity_of_name(const std::string& name) noexcept {
+    for (Quantity q : all_quantities)
+        if (name == quantity_name(q)) return q;
+    return 0;
+}
+
 struct BakeSettings {
     unsigned quantities = Quantity::ao;
     int bands = 3;  // SH bands of visibility, transfer, radiance; transfer_matrix: of the lighting
@@ -221,26 +256,44 @@ struct Pass {
     double seconds = 0;
 };
 
-struct SceneDesc {
-    std::vector<MeshView> meshes;
-    Environment environment;
-    std::vector<Light> lights;
-};
-
 }  // namespace sphbasis::render
 
 namespace sphbasis::render {
 
 /// Bakes the requested quantities of a scene. The constructor validates the scene and the
-/// settings (std::invalid_argument with a message), builds the Embree scene and derives the
-/// pass plan; bake() runs exactly the planned passes, in parallel on oneTBB.
+/// settings (std::invalid_argument with a message), builds the Embree scene (or borrows one)
+/// and derives the pass plan; bake() runs exactly the planned passes, in parallel on oneTBB.
 class Baker {
   public:
+    /// Builds the ray-tracing scene of scene.meshes (the "build" pass).
     Baker(const SceneDesc& scene, const BakeSettings& settings)
         : settings_(validated(settings)),
-          scene_(timed_scene(scene.meshes, build_seconds_)),
+          owned_(timed_scene(scene.meshes, build_seconds_)),
+          scene_(*owned_),
           env_(scene.environment),
           lights_(scene.lights) {
+        init();
+    }
+    /// Borrows `built`, a Scene of the same meshes (render::Scene(scene.meshes)), which must
+    /// outlive the Baker: one BVH for a renderer and its bakes. The lighting is scene's; the
+    /// "build" pass costs 0 s here. Results equal those of the building constructor.
+    Baker(const Scene& built, const SceneDesc& scene, const BakeSettings& settings)
+        : settings_(validated(settings)),
+          scene_(built),
+          env_(scene.environment),
+          lights_(scene.lights) {
+        if (built.mesh_count() != scene.meshes.size())
+            sphbasis::detail::throw_invalid(
+                "render::Baker", "a Scene of the " + std::to_string(scene.meshes.size()) +
+                                     " meshes of the SceneDesc, got one of " +
+                                     std::to_string(built.mesh_count()));
+        init();
+    }
+    Baker(const Baker&) = delete;
+    Baker& operator=(const Baker&) = delete;
+
+  private:
+    void init() {
         validate_lighting();
         qmc_ = detail::rt::QmcTable(static_cast<std::size_t>(settings_.rays));
         stats_ = std::make_unique<Stat[]>(stat_count());
@@ -251,6 +304,8 @@ class Baker {
             prepare_quadrature();
         publish_plan();
     }
+
+  public:
     /// The passes that will run (name, reason); after bake(), with rays and seconds.
     const std::vector<Pass>& plan() const noexcept { return plan_; }
     /// Results for each point (same order). `progress(k)` (optional) is called with the number
@@ -418,9 +473,9 @@ class Baker {
         }
         return s;
     }
-    static Scene timed_scene(const std::vector<MeshView>& m, double& seconds) {
+    static std::unique_ptr<Scene> timed_scene(const std::vector<MeshView>& m, double& seconds) {
         const auto t0 = Clock::now();
-        Scene s(m);
+        auto s = std::make_unique<Scene>(m);
         seconds = std::chrono::duration<double>(Clock::now() - t0).count();
         return s;
     }
@@ -467,8 +522,9 @@ class Baker {
         const bool force = settings_.force_all_passes;
         const bool occl = scene_.can_occlude();
         stats_[build].planned = true;
-        stats_[build].reason = "Embree scene of " + std::to_string(scene_.triangle_count()) +
-                               " triangles (" + std::to_string(scene_.degenerate_triangles()) +
+        stats_[build].reason = std::string(owned_ ? "" : "borrowed ") + "Embree scene of " +
+                               std::to_string(scene_.triangle_count()) + " triangles (" +
+                               std::to_string(scene_.degenerate_triangles()) +
                                " degenerate skipped)";
         if (!occl && !force) {
             stats_[analytic].planned = true;
@@ -1620,7 +1676,8 @@ class Baker {
 
     BakeSettings settings_;
     double build_seconds_ = 0;
-    Scene scene_;
+    std::unique_ptr<Scene> owned_;  // null when the Scene is borrowed
+    const Scene& scene_;
     Environment env_;
     std::vector<Light> lights_;
     std::vector<Pass> plan_;
