@@ -96,11 +96,23 @@ TEST_CASE("bake points: tangents are those of render::Scene's hits at the same p
         const LightmapLayout lay = texel_layout(meshes, 0, 16);
         REQUIRE(lay.samples.size() > 50);
         for (const LightmapSample& s : lay.samples) {
+            // Aimed a little inside the sample's triangle: samples clamped onto the square's
+            // outer edges would let a ray graze past it.
+            const std::uint32_t* tri = m.indices.data() + 3 * s.triangle;
+            const auto corner = [&](int k, int d) {
+                return double(m.positions[3 * std::size_t(tri[k]) + std::size_t(d)]);
+            };
+            const vec3<double> c{(corner(0, 0) + corner(1, 0) + corner(2, 0)) / 3,
+                                 (corner(0, 1) + corner(1, 1) + corner(2, 1)) / 3,
+                                 (corner(0, 2) + corner(1, 2) + corner(2, 2)) / 3};
             const vec3<double> n = s.point.n;
-            const Hit h = scene.intersect(
-                {s.surface.x + 0.5 * n.x, s.surface.y + 0.5 * n.y, s.surface.z + 0.5 * n.z},
-                {-n.x, -n.y, -n.z});
+            const vec3<double> q{s.surface.x + 1e-3 * (c.x - s.surface.x),
+                                 s.surface.y + 1e-3 * (c.y - s.surface.y),
+                                 s.surface.z + 1e-3 * (c.z - s.surface.z)};
+            const Hit h = scene.intersect({q.x + 0.5 * n.x, q.y + 0.5 * n.y, q.z + 0.5 * n.z},
+                                          {-n.x, -n.y, -n.z});
             REQUIRE(h.valid);
+            CHECK(h.primitive == s.triangle);
             CHECK(s.point.tangent.x == Approx(h.tangent.x).margin(1e-5));
             CHECK(s.point.tangent.y == Approx(h.tangent.y).margin(1e-5));
             CHECK(s.point.tangent.z == Approx(h.tangent.z).margin(1e-5));
