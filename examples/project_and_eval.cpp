@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <sphbasis/sphbasis.hpp>
 
-namespace sb = sphbasis;  // an alias, not `using namespace`: see the README
+namespace sb = sphbasis;  // an alias, not `using namespace`: see the README, "Use it"
 
 int main() {
     // Radiance: a sky brighter towards +z and +x.

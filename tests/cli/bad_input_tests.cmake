@@ -89,7 +89,7 @@ sphbasis_cli_bad(bad_render_max_spp_one "render: --max-spp: expected 2 <= N <= 1
                  render ${_bi_render}/tiny_sun.json --max-spp 1)
 sphbasis_cli_bad(bad_scene_spp_one "render: [^ ]*spp_one.json: render.spp: expected an integer in \\[2, 1048576\\], got 1\n"
                  render ${_bi_render}/spp_one.json)
-# The families of the README are accepted (the error is the next option's) ...
+# The families of docs/rendering.md are accepted (the error is the next option's) ...
 sphbasis_cli_bad(render_family_names "render: --noise: expected a relative noise in \\(0, 1\\), got 1.5\n"
                  render ${_bi_render}/tiny_sun.json --representations lxh-pca36,prt-cpca-7-3,lxh-pca1 --noise 1.5)
 # ... and their bounds are not.

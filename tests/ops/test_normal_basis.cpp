@@ -90,7 +90,7 @@ TEST_CASE("normal basis: the course notes' values come from the unclamped varian
     // The clamped variant is far from them at M = 4.
     CHECK(cu[3] - 93.9 > 4);
     CHECK(cc[3] - 96.4 > 2.5);
-    // Our values (the README's table).
+    // Our values (the table of docs/techniques.md).
     CHECK(uu[3] == Approx(93.92).margin(0.005));
     CHECK(uc[3] == Approx(96.29).margin(0.005));
     CHECK(cu[3] == Approx(98.35).margin(0.005));

@@ -1,5 +1,6 @@
-// The conventions a user needs when moving from DirectXMath's SHMath (README, "Coming from
-// DirectXMath"): one test per statement, our side computed here, DirectXMath's side as numbers.
+// The conventions a user needs when moving from DirectXMath's SHMath (docs/conventions.md, "Coming
+// from DirectXMath"): one test per statement, our side computed here, DirectXMath's side as
+// numbers.
 //
 // DirectXMath's figures are hard-coded: DirectXMath d33ba2f (SHMath/DirectXSH.cpp), float, as
 // measured by the peer comparison harness (its checker's published factors and exit radiances;

@@ -1,6 +1,6 @@
 // sphbasis: the one way the library reports bad input at its API boundaries.
 //
-// Policy (also in the README's conventions):
+// Policy (also in docs/conventions.md):
 //   * Checked at API boundaries (run-time band or function counts, buffer sizes, null buffers,
 //     ranges of parameters, files): std::invalid_argument with the message
 //         "sphbasis::<function>(): expected <what was expected>, got <what was passed>"

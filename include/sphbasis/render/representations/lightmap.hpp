@@ -1,0 +1,119 @@
+// sphbasis render tier: irradiance lightmaps in a directional basis (representations/
+// family.hpp):
+//   lightmap-sh4, -sh9, -hbasis4, -hbasis6, -hbasis-mod6, -hl2, -hsh4, -hsh9
+//                             the bake's `irradiance` in that basis (basis/registry.hpp), per
+//                             texel, bilinear, evaluated at the normal-mapped normal in the
+//                             texel's tangent frame (Ishmukhametov, "Irradiance Normal
+//                             Mapping"). Meshes without UVs fall back to irradiance-sh9 (noted).
+// Each reads a bake of the irradiance in its basis (bounces, lighting-dependent: static
+// lighting, the render-time rotation is ignored).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "../../basis/registry.hpp"
+#include "../../core/constants.hpp"
+#include "family.hpp"
+
+namespace sphbasis::render::representations {
+
+class Lightmap : public Representation {
+  public:
+    static void list(std::vector<std::string>& out) {
+        for (const auto& t : table()) out.push_back(std::string("lightmap-") + t.first);
+    }
+    static bool accepts(const std::string& name) {
+        for (const auto& t : table())
+            if (name == std::string("lightmap-") + t.first) return true;
+        return false;
+    }
+    Lightmap(const std::string& name, const Context& ctx) : Representation(name) {
+        const char* no_bounce = ctx.settings.bounces > 0 ? "" : "; no interreflection";
+        const std::string b = name.substr(9);
+        for (const auto& t : table())
+            if (b == t.first) {
+                basis_ = &find_basis(t.second.first);
+                coeffs_ = t.second.second;
+            }
+        if (!basis_)  // the table and accepts() disagree
+            sphbasis::detail::throw_invalid("render::Representations",
+                                            "a lightmap basis, got '" + b + "'");
+        (void)basis_->functions(coeffs_);  // checks the count
+        element = "texel";
+        bytes_per_element = 3 * std::size_t(coeffs_) * sizeof(float);
+        cannot_show = std::string("static lighting (ignores the render-time rotation)") +
+                      "; directional detail beyond " + std::to_string(coeffs_) + " " +
+                      basis_->name + " functions" + no_bounce;
+        for (const MeshView& m : ctx.scene.meshes)
+            if (!has_uvs(m)) {
+                cannot_show += "; meshes without UVs fall back to irradiance-sh9";
+                break;
+            }
+    }
+    void plan(Context& ctx) override {
+        const std::size_t nm = ctx.scene.meshes.size();
+        mesh_bake.assign(nm, -1);
+        for (std::size_t m = 0; m < nm; ++m) {
+            if (!has_uvs(ctx.scene.meshes[m])) {
+                ctx.needs_sh = true;
+                continue;
+            }
+            BakeRequest q;
+            q.mesh = m;
+            q.where = BakeRequest::Where::texel;
+            q.lightmap_size = ctx.settings.lightmap_size;
+            q.lighting_dependent = true;
+            q.settings = ctx.base_settings(Quantity::irradiance, ctx.settings.bounces);
+            q.settings.basis = basis_->name;
+            q.settings.coeffs = coeffs_;
+            mesh_bake[m] = ctx.add_request(q);
+        }
+    }
+    RGB shade(const Context& ctx, const Hit& hit, const vec3<double>&, double) const override {
+        const int b = mesh_bake[hit.mesh];
+        if (b < 0) return sh_shade(ctx.sh.irr, Scene::normal_mapped(hit), hit.albedo);
+        std::array<double, 3 * 16> e;
+        lookup(ctx.fields[std::size_t(b)], hit, e.data());
+        using namespace detail::rt;
+        const V3 nm = Scene::normal_mapped(hit);
+        const V3 ns = hit.shading_normal, t = hit.tangent;
+        const V3 bt = cross(ns, t) * hit.bitangent_sign;
+        // The basis lives on the tangent hemisphere: a mapped normal below it (a steep
+        // map) is read at the horizon.
+        V3 local{dot(nm, t), dot(nm, bt), std::max(dot(nm, ns), 0.0)};
+        local = normalized(local, {0, 0, 1});
+        std::array<double, 16> y;
+        basis_->eval_d(coeffs_, local.x, local.y, local.z, y.data());
+        const std::size_t n = std::size_t(coeffs_);
+        RGB out{0, 0, 0};
+        for (std::size_t c = 0; c < 3; ++c) {
+            double s = 0;
+            for (std::size_t k = 0; k < n; ++k) s += e[c * n + k] * y[k];
+            out[c] = hit.albedo[c] * s * constants::inv_pi;
+        }
+        return out;
+    }
+
+  private:
+    /// Name suffix -> (basis registry name, coefficients), in report order.
+    static const std::vector<std::pair<const char*, std::pair<const char*, int>>>& table() {
+        static const std::vector<std::pair<const char*, std::pair<const char*, int>>> t{
+            {"sh4", {"sh", 4}},
+            {"sh9", {"sh", 9}},
+            {"hbasis4", {"hbasis", 4}},
+            {"hbasis6", {"hbasis", 6}},
+            {"hbasis-mod6", {"hbasis-mod", 6}},
+            {"hl2", {"hl2", 3}},
+            {"hsh4", {"hsh", 4}},
+            {"hsh9", {"hsh", 9}}};
+        return t;
+    }
+    const BasisInfo* basis_ = nullptr;
+    int coeffs_ = 0;
+};
+
+}  // namespace sphbasis::render::representations
