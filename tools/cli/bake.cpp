@@ -90,21 +90,21 @@ namespace {
 constexpr int kRecordFormat = 3;
 
 // The quantities the command bakes (names: render::quantity_name()).
-constexpr unsigned kQuantities[] = {render::Quantity::ao,         render::Quantity::bent,
-                                    render::Quantity::visibility, render::Quantity::transfer,
-                                    render::Quantity::irradiance, render::Quantity::radiance};
+constexpr render::Quantity kQuantities[] = {
+    render::Quantity::ao,       render::Quantity::bent,       render::Quantity::visibility,
+    render::Quantity::transfer, render::Quantity::irradiance, render::Quantity::radiance};
 
-unsigned parse_quantities(const std::string& s) {
-    unsigned q = 0;
+render::Quantity parse_quantities(const std::string& s) {
+    render::Quantity q{};
     std::vector<std::string> names;
-    for (unsigned b : kQuantities) names.push_back(render::quantity_name(b));
+    for (render::Quantity b : kQuantities) names.push_back(render::quantity_name(b));
     std::stringstream in(s);
     std::string item;
     while (std::getline(in, item, ',')) {
-        unsigned bit = 0;
-        for (unsigned b : kQuantities)
+        render::Quantity bit{};
+        for (render::Quantity b : kQuantities)
             if (item == render::quantity_name(b)) bit = b;
-        if (bit == 0) {
+        if (!any(bit)) {
             const std::string near = item.size() <= 64 ? closest_key(item, names) : "";
             throw UsageError("--quantities: unknown quantity '" + quote_input(item) + "'" +
                              (near.empty() ? std::string(" (expected ao, bent, visibility, "
@@ -113,7 +113,7 @@ unsigned parse_quantities(const std::string& s) {
         }
         q |= bit;
     }
-    if (q == 0) throw UsageError("--quantities: expected a list such as ao,bent");
+    if (!any(q)) throw UsageError("--quantities: expected a list such as ao,bent");
     return q;
 }
 
@@ -362,21 +362,21 @@ bool any_rgb_transfer(const Layout& L, const std::vector<double>& rec) {
 
 std::vector<Column> columns(const render::BakeSettings& s, const Layout& L, bool rgb_transfer) {
     std::vector<Column> c;
-    const unsigned q = s.quantities;
+    const render::Quantity q = s.quantities;
     auto list = [&](const std::string& prefix, std::size_t off, std::size_t n) {
         for (std::size_t i = 0; i < n; ++i) c.push_back({prefix + std::to_string(i), off + i});
     };
-    if (q & render::Quantity::ao) c.insert(c.end(), {{"ao", L.ao}, {"ao_stderr", L.ao + 1}});
-    if (q & render::Quantity::bent)
+    if (has(q, render::Quantity::ao)) c.insert(c.end(), {{"ao", L.ao}, {"ao_stderr", L.ao + 1}});
+    if (has(q, render::Quantity::bent))
         c.insert(c.end(), {{"bent_x", L.bent},
                            {"bent_y", L.bent + 1},
                            {"bent_z", L.bent + 2},
                            {"bent_stderr", L.bent_se}});
-    if (q & render::Quantity::visibility) {
+    if (has(q, render::Quantity::visibility)) {
         list("vis_", L.vis, L.b2);
         list("vis_stderr_", L.vis_se, L.b2);
     }
-    if (q & render::Quantity::transfer) {
+    if (has(q, render::Quantity::transfer)) {
         if (rgb_transfer) {
             list("transfer_r_", L.tr, L.b2);
             list("transfer_g_", L.tr + L.b2, L.b2);
@@ -386,13 +386,13 @@ std::vector<Column> columns(const render::BakeSettings& s, const Layout& L, bool
         }
         list("transfer_stderr_", L.tr_se, L.b2);
     }
-    if (q & render::Quantity::irradiance) {
+    if (has(q, render::Quantity::irradiance)) {
         list("irr_r_", L.irr, L.nc);
         list("irr_g_", L.irr + L.nc, L.nc);
         list("irr_b_", L.irr + 2 * L.nc, L.nc);
         list("irr_stderr_", L.irr_se, L.nc);
     }
-    if (q & render::Quantity::radiance) {
+    if (has(q, render::Quantity::radiance)) {
         list("rad_r_", L.rad, L.b2);
         list("rad_g_", L.rad + L.b2, L.b2);
         list("rad_b_", L.rad + 2 * L.b2, L.b2);
@@ -407,8 +407,8 @@ std::vector<Column> columns(const render::BakeSettings& s, const Layout& L, bool
 
 Json settings_json(const render::BakeSettings& s) {
     Json q = Json::array();
-    for (unsigned b : kQuantities)
-        if (s.quantities & b) q.push_back(render::quantity_name(b));
+    for (render::Quantity b : kQuantities)
+        if (has(s.quantities, b)) q.push_back(render::quantity_name(b));
     Json j = {{"quantities", q},    {"bands", s.bands},        {"basis", s.basis},
               {"coeffs", s.coeffs}, {"rays", s.rays},          {"bounces", s.bounces},
               {"seed", s.seed},     {"max_distance", nullptr}, {"target_error", s.target_error}};
@@ -570,7 +570,7 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
 void print_points(const Work& w, const render::BakeSettings& s, const std::vector<double>& rec,
                   std::size_t begin) {
     const Layout L(s);
-    const unsigned q = s.quantities;
+    const render::Quantity q = s.quantities;
     auto list = [&](const double* p, std::size_t n) {
         Json a = Json::array();
         for (std::size_t i = 0; i < n; ++i) a.push_back(p[i]);
@@ -585,27 +585,27 @@ void print_points(const Work& w, const render::BakeSettings& s, const std::vecto
         const vec3<double>& p = w.points[i].p;
         Json line = {{"p", {p.x, p.y, p.z}}};
         if (w.surface[i]) line["n"] = {w.given_n[i][0], w.given_n[i][1], w.given_n[i][2]};
-        if (q & render::Quantity::ao) {
+        if (has(q, render::Quantity::ao)) {
             line["ao"] = r[L.ao];
             line["ao_stderr"] = r[L.ao + 1];
         }
-        if (q & render::Quantity::bent) {
+        if (has(q, render::Quantity::bent)) {
             line["bent"] = list(r + L.bent, 3);
             line["bent_stderr"] = r[L.bent_se];
         }
-        if (q & render::Quantity::visibility) {
+        if (has(q, render::Quantity::visibility)) {
             line["visibility"] = list(r + L.vis, L.b2);
             line["visibility_stderr"] = list(r + L.vis_se, L.b2);
         }
-        if (q & render::Quantity::transfer) {
+        if (has(q, render::Quantity::transfer)) {
             line["transfer"] = r[L.tr_rgb] != 0 ? rgb(r + L.tr, L.b2) : list(r + L.tr, L.b2);
             line["transfer_stderr"] = list(r + L.tr_se, L.b2);
         }
-        if (q & render::Quantity::irradiance) {
+        if (has(q, render::Quantity::irradiance)) {
             line["irradiance"] = rgb(r + L.irr, L.nc);
             line["irradiance_stderr"] = list(r + L.irr_se, L.nc);
         }
-        if (q & render::Quantity::radiance) {
+        if (has(q, render::Quantity::radiance)) {
             line["radiance"] = rgb(r + L.rad, L.b2);
             line["radiance_stderr"] = list(r + L.rad_se, L.b2);
             line["inside"] = r[L.inside] != 0;
@@ -783,7 +783,7 @@ int run_bake(const BakeOptions& o) {
         throw UsageError("give either --target or --points, not both");
     if (points_mode) target.kind = TargetKind::points;
     // Probes are free points (no surface, no normal): only radiance is defined there.
-    if (target.kind == TargetKind::probes && (s.quantities & ~unsigned(render::Quantity::radiance)))
+    if (target.kind == TargetKind::probes && any(s.quantities & ~render::Quantity::radiance))
         throw UsageError(
             "--target probes: probes bake only radiance (they have no surface "
             "normal for ao, bent, visibility, transfer or irradiance); give "
@@ -823,7 +823,7 @@ int run_bake(const BakeOptions& o) {
     const auto t_layout0 = Clock::now();
     const Work w = make_work(scene, target, o.points);
     const double t_layout = seconds_since(t_layout0);
-    if (points_mode && (s.quantities & ~unsigned(render::Quantity::radiance)))
+    if (points_mode && any(s.quantities & ~render::Quantity::radiance))
         for (std::size_t i = 0; i < w.points.size(); ++i)
             if (!w.surface[i])
                 throw UsageError((o.points == "-" ? std::string("standard input") : o.points) +
@@ -960,7 +960,7 @@ int run_merge(const MergeOptions& o) {
 
     render::BakeSettings s;
     const Json& js = h0.at("settings");
-    s.quantities = 0;
+    s.quantities = render::Quantity{};
     for (const Json& q : js.at("quantities"))
         s.quantities |= render::quantity_of_name(q.get<std::string>());
     s.bands = js.at("bands").get<int>();

@@ -157,8 +157,9 @@
 
 namespace sphbasis::render {
 
-/// The quantities a bake can produce (bit flags).
-enum Quantity : unsigned {
+/// The quantities a bake can produce: flags, combined with | into a set (BakeSettings::
+/// quantities); has(set, q) asks whether a set holds any of q.
+enum class Quantity : unsigned {
     ao = 1u << 0,
     bent = 1u << 1,
     visibility = 1u << 2,
@@ -168,6 +169,21 @@ enum Quantity : unsigned {
     transfer_matrix = 1u << 6,
 };
 
+constexpr Quantity operator|(Quantity a, Quantity b) noexcept {
+    return static_cast<Quantity>(static_cast<unsigned>(a) | static_cast<unsigned>(b));
+}
+constexpr Quantity operator&(Quantity a, Quantity b) noexcept {
+    return static_cast<Quantity>(static_cast<unsigned>(a) & static_cast<unsigned>(b));
+}
+constexpr Quantity operator~(Quantity a) noexcept {
+    return static_cast<Quantity>(~static_cast<unsigned>(a));
+}
+constexpr Quantity& operator|=(Quantity& a, Quantity b) noexcept { return a = a | b; }
+/// True when the set holds a flag.
+constexpr bool any(Quantity set) noexcept { return static_cast<unsigned>(set) != 0; }
+/// True when `set` holds any of the flags of `q`.
+constexpr bool has(Quantity set, Quantity q) noexcept { return any(set & q); }
+
 /// Every quantity, in bit order.
 inline constexpr Quantity all_quantities[] = {
     Quantity::ao,         Quantity::bent,     Quantity::visibility,     Quantity::transfer,
@@ -175,7 +191,7 @@ inline constexpr Quantity all_quantities[] = {
 
 /// The name of a quantity, as the enumerator is spelled ("ao", "transfer_matrix"): the names
 /// of the CLI's --quantities and of the files' settings. "" for a value that is not one flag.
-inline const char* quantity_name(unsigned q) noexcept {
+inline const char* quantity_name(Quantity q) noexcept {
     switch (q) {
         case Quantity::ao:
             return "ao";
@@ -191,20 +207,27 @@ inline const char* quantity_name(unsigned q) noexcept {
             return "radiance";
         case Quantity::transfer_matrix:
             return "transfer_matrix";
-        default:
-            return "";
     }
+    return "";
 }
 
-/// The quantity of a name (quantity_name()'s inverse), or 0 for an unknown name.
-inline unsigned quantity_of_name(const std::string& name) noexcept {
+/// The quantity of a name (quantity_name()'s inverse), or the empty set for an unknown name.
+inline Quantity quantity_of_name(const std::string& name) noexcept {
     for (Quantity q : all_quantities)
         if (name == quantity_name(q)) return q;
-    return 0;
+    return Quantity{};
+}
+
+/// The names of the flags of a set, comma-separated in bit order ("ao,transfer").
+inline std::string quantity_names(Quantity set) {
+    std::string s;
+    for (Quantity q : all_quantities)
+        if (has(set, q)) s += (s.empty() ? "" : ",") + std::string(quantity_name(q));
+    return s;
 }
 
 struct BakeSettings {
-    unsigned quantities = Quantity::ao;
+    Quantity quantities = Quantity::ao;  // a set (|)
     int bands = 3;  // SH bands of visibility, transfer, radiance; transfer_matrix: of the lighting
     std::string basis = "sh";  // basis of `irradiance` (a name of find_basis())
     int coeffs = 9;            // its coefficient count
@@ -299,8 +322,8 @@ class Baker {
         stats_ = std::make_unique<Stat[]>(stat_count());
         stats_[build].seconds = build_seconds_;
         derive_plan();
-        if (settings_.quantities & Quantity::irradiance) prepare_irradiance();
-        if (settings_.quantities & (Quantity::irradiance | Quantity::radiance))
+        if (has(settings_.quantities, Quantity::irradiance)) prepare_irradiance();
+        if (has(settings_.quantities, Quantity::irradiance | Quantity::radiance))
             prepare_quadrature();
         publish_plan();
     }
@@ -350,11 +373,12 @@ class Baker {
     static std::size_t result_bytes(const BakeSettings& s) noexcept {
         const std::size_t n = std::size_t(s.bands) * std::size_t(s.bands), d = sizeof(double);
         std::size_t b = sizeof(PointResult);
-        if (s.quantities & Quantity::visibility) b += 2 * n * d;
-        if (s.quantities & Quantity::transfer) b += 4 * n * d;
-        if (s.quantities & Quantity::irradiance) b += 4 * std::size_t(std::max(s.coeffs, 0)) * d;
-        if (s.quantities & Quantity::radiance) b += 4 * n * d;
-        if (s.quantities & Quantity::transfer_matrix) b += 36 * n * d;
+        if (has(s.quantities, Quantity::visibility)) b += 2 * n * d;
+        if (has(s.quantities, Quantity::transfer)) b += 4 * n * d;
+        if (has(s.quantities, Quantity::irradiance))
+            b += 4 * std::size_t(std::max(s.coeffs, 0)) * d;
+        if (has(s.quantities, Quantity::radiance)) b += 4 * n * d;
+        if (has(s.quantities, Quantity::transfer_matrix)) b += 36 * n * d;
         return b;
     }
     /// The ray-tracing scene.
@@ -446,15 +470,14 @@ class Baker {
 
     static BakeSettings validated(const BakeSettings& s) {
         const char* fn = "render::Baker";
-        const unsigned all = Quantity::ao | Quantity::bent | Quantity::visibility |
-                             Quantity::transfer | Quantity::irradiance | Quantity::radiance |
-                             Quantity::transfer_matrix;
-        if (s.quantities == 0 || (s.quantities & ~all))
+        Quantity all{};
+        for (Quantity q : all_quantities) all |= q;
+        if (!any(s.quantities) || any(s.quantities & ~all))
             sphbasis::detail::throw_invalid(
                 fn,
                 "quantities: a non-empty set of ao, bent, visibility, transfer, irradiance, "
                 "radiance, transfer_matrix, got the bit set " +
-                    std::to_string(s.quantities));
+                    std::to_string(static_cast<unsigned>(s.quantities)));
         sphbasis::detail::check_range(fn, "bands", s.bands, 1, 16);
         sphbasis::detail::check_range(fn, "rays", s.rays, 1, 1 << 24);
         sphbasis::detail::check_range(fn, "bounces", s.bounces, 0, 64);
@@ -464,7 +487,7 @@ class Baker {
         if (!(s.target_error >= 0) || !std::isfinite(s.target_error))
             sphbasis::detail::throw_invalid(
                 fn, "a finite target_error >= 0, got " + std::to_string(s.target_error));
-        if (s.quantities & Quantity::irradiance) {
+        if (has(s.quantities, Quantity::irradiance)) {
             const BasisInfo& b = find_basis(s.basis);
             if (!b.valid_count(s.coeffs))
                 sphbasis::detail::throw_invalid(fn, std::string("coeffs: ") + b.count_rule() +
@@ -511,7 +534,7 @@ class Baker {
         }
     }
 
-    bool wants(unsigned q) const noexcept { return (settings_.quantities & q) != 0; }
+    bool wants(Quantity q) const noexcept { return has(settings_.quantities, q); }
     bool has_directional() const noexcept {
         for (const auto& l : lights_)
             if (l.type == Light::Type::directional) return true;
