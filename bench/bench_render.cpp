@@ -29,6 +29,7 @@
 #include <map>
 #include <memory>
 #include <sphbasis/render/bake.hpp>
+#include <sphbasis/render/image_loop.hpp>
 #include <sphbasis/render/path_tracer.hpp>
 #include <sphbasis/render/representation.hpp>
 #include <sphbasis/render/shapes.hpp>
@@ -467,7 +468,8 @@ BENCHMARK(trace_copies)->Apply(trace_args);
 // ---------------------------------------------------------------------------------------------
 // Representation shading (render/representation.hpp): the cost per pixel of each
 // representation's shade() at precomputed camera hits, one thread ("what accuracy costs in
-// time"; camera rays and bakes are not timed). Items are pixels: ns per pixel = 1e9 /
+// time"; camera rays and bakes are not timed: camera_rays times the rays and hit records the
+// representations share, as render::ImageLoop makes them). Items are pixels: ns per pixel = 1e9 /
 // items_per_second. Scene: a UV sphere (16 x 32) over a 4 x 4 plane under a lat-long sky and a
 // sun, 64 x 64 camera, bakes of 32 rays, 64 x 64 lightmaps, 1 bounce.
 
@@ -484,6 +486,7 @@ struct ShadeFixture {
     std::vector<double> footprints;
     std::vector<std::string> names;
     std::string error;
+    Camera camera;
 
     ShadeFixture() {
         meshes.push_back(shapes::sphere({0, 0, 0.6}, 0.5, 16, 32));
@@ -520,7 +523,7 @@ struct ShadeFixture {
             reps = std::make_unique<Representations>(desc, *rt, s, names);
         }
         reps->prepare(nullptr);
-        Camera cam;
+        Camera& cam = camera;
         cam.position = {0, -3, 1.5};
         cam.look_at = {0, 0, 0.3};
         cam.width = cam.height = 64;
@@ -560,6 +563,26 @@ void shade_representation(benchmark::State& state, const std::string& name) {
     state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(f.hits.size()));
     state.counters["bytes_per_element"] = double(f.reps->stats(index).bytes_per_element);
 }
+
+/// The camera rays and hit records every representation's image shares (render::ImageLoop with
+/// hits, an li that shades nothing), one thread: the part of a frame the shade/<name> rows
+/// leave out. Items are pixels (one sample each, the pixel centre).
+void camera_rays(benchmark::State& state) {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    ShadeFixture& f = shade_fixture();
+    ImageLoopSettings ls;
+    ls.hits = true;
+    ImageLoop loop(*f.rt, f.camera, ls);
+    for (auto _ : state) {
+        Film film(f.camera.width, f.camera.height, false);
+        loop.run(0, 1, {&film}, [](const CameraBatch& b, std::size_t, RGB* out) {
+            for (std::size_t k = 0; k < b.n; ++k) out[k] = {b.hits[k].t, 0, 0};
+        });
+        benchmark::DoNotOptimize(film.sum.data());
+    }
+    state.SetItemsProcessed(std::int64_t(state.iterations()) * f.camera.width * f.camera.height);
+}
+BENCHMARK(camera_rays)->Unit(benchmark::kMicrosecond);
 
 [[maybe_unused]] const bool shade_registered = [] {
     for (const std::string& n : representation_names())

@@ -8,7 +8,8 @@ report.md and report.html exist and link every image; no temporary file or stagi
 is left in DIR; every
 metric of every row is a finite number in its range (flip in [0, 1], smape_floored in [0, 2],
 outside_3_stderr in [0, 1], the rest >= 0); the ranks are 1..N in the order of flip; report.json
-names the ranking metric and defines every metric; report.html has the sortable table (id
+names the ranking metric and defines every metric; the sampling rule (every representation at
+its reference's sample count, a finite shading time); report.html has the sortable table (id
 "results", one row per representation, a data-v sort key in every numeric cell), the inline sort
 script, an inline SVG plot with a point per representation, each representation's image in its
 row, and no external resource (no http(s): URL in a src or href).
@@ -95,6 +96,29 @@ def main():
                 fail("representation %s: %s = %r, expected a finite number in [0, %s]"
                      % (row["name"], k, v, hi))
         files += [row["image"], row["error_image"], row["flip_image"], row["exr"]]
+    # The sampling rule: every representation has the sample count of the reference it is
+    # compared with (the path tracer's final count, or the specular reference's ss x ss), and a
+    # shading time apart from the shared camera rays.
+    smp = r.get("sampling", {})
+    for k in ("rule", "filter", "representation_spp", "specular_spp", "camera_ns_per_sample"):
+        if k not in smp:
+            fail("report.json: sampling has no key %r" % k)
+    if smp["representation_spp"] != r["reference"]["spp"]:
+        fail("report.json: representations at %r spp, the reference at %r"
+             % (smp["representation_spp"], r["reference"]["spp"]))
+    for row in r["representations"]:
+        want = (smp["specular_spp"] if row["against"] == "specular reference"
+                else smp["representation_spp"])
+        if row.get("spp") != want:
+            fail("representation %s: %r spp, expected %r (its reference's)"
+                 % (row["name"], row.get("spp"), want))
+        v = row.get("shade_ns_per_sample")
+        if not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0:
+            fail("representation %s: shade_ns_per_sample = %r" % (row["name"], v))
+    if "specular_reference" in r and \
+            smp["specular_spp"] != r["specular_reference"]["supersampling"] ** 2:
+        fail("report.json: specular representations at %r spp, the reference at %r^2"
+             % (smp["specular_spp"], r["specular_reference"]["supersampling"]))
     if r.get("ranked_by") != "flip" or not r.get("ranking_reason"):
         fail("report.json: ranked_by %r, expected 'flip' with a ranking_reason" % r.get("ranked_by"))
     for k in METRICS:

@@ -562,17 +562,13 @@ TEST_CASE("PathTracer: a tile's paths traced together equal paths traced one at 
     PathTracer t(*scene, env, {sun(unit({0.5, 0.3, 1}), 2), ball}, s);
     const render::TraceResult r = t.render(cam);
     const render::PinholeCamera pc(cam);
-    double r2u, r2v;
-    sphbasis::r2_sequence(0, r2u, r2v);
     namespace rt = render::detail::rt;
     int checked = 0;
     for (int y = 0; y < cam.height; ++y)
         for (int x = 0; x < cam.width; ++x) {
             const auto p = std::uint64_t(y * cam.width + x);
-            const std::uint64_t key = rt::hash(s.seed, p);
-            const double px = x + rt::rotate01(r2u, rt::unit(rt::hash(key, 0x6a09e667u)));
-            const double py = y + rt::rotate01(r2v, rt::unit(rt::hash(key, 0xbb67ae85u)));
-            const render::CameraRay cr = pc.ray(px, py);
+            // One sample per pixel: the pixel centre (render::ImageLoop).
+            const render::CameraRay cr = pc.ray(x + 0.5, y + 0.5);
             const RGB L = t.radiance(cr.origin, cr.direction, p, 0);
             for (std::size_t c = 0; c < 3; ++c) {
                 const double v = r.color.data[3 * std::size_t(p) + c];
@@ -664,9 +660,9 @@ TEST_CASE("PathTracer: the cosine lobe's polynomial cos/sin and its batch form",
                         wz.data(), cz.data(), tmp.data());
         for (std::size_t k = 0; k < n; ++k) {
             const sphbasis::Frame<double> f(vec3<double>{nx[k], ny[k], nz[k]});
-            const auto l =
-                pt::cosine_hemisphere(render::detail::rt::unit(pt::hash_mixed(key[k], 45)),
-                                      render::detail::rt::unit(pt::hash_mixed(key[k], 46)));
+            const auto l = render::detail::cosine_hemisphere(
+                render::detail::rt::unit(pt::hash_mixed(key[k], 45)),
+                render::detail::rt::unit(pt::hash_mixed(key[k], 46)));
             const auto w = f.to_world(l);
             CHECK(std::fabs(wx[k] - w.x) < 1e-14);
             CHECK(std::fabs(wy[k] - w.y) < 1e-14);

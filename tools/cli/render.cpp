@@ -17,6 +17,13 @@
 //   end, so a failed or interrupted run (SIGINT, SIGTERM) leaves the directory as it was.
 // Bakes are kept in DIR/cache/<key>.bin (support/bake_cache.hpp) unless --no-cache.
 //
+// Sampling: every image comes from render::ImageLoop (render/image_loop.hpp). The
+// representations compared with the path tracer are rendered with its seed and its final
+// sample count, the specular ones with the specular reference's seed and ss x ss samples, so
+// each pair of compared images shares every sample position and the box filter; the
+// representations of a group share the camera rays and hit records, whose cost is measured
+// once (report: camera_ns_per_sample) apart from each one's shading (shade_ns_per_sample).
+//
 // Before any work the plan is printed on stderr (and recorded in report.json): the path
 // tracer's effects, the bakes each representation reads (with their cache keys), the passes
 // skipped and why. The scene's "render" object gives the defaults of --spp/--noise, --exposure
@@ -39,6 +46,7 @@
 #include <set>
 #include <sphbasis/render/camera.hpp>
 #include <sphbasis/render/image.hpp>
+#include <sphbasis/render/image_loop.hpp>
 #include <sphbasis/render/image_metrics.hpp>
 #include <sphbasis/render/path_tracer.hpp>
 #include <sphbasis/render/representation.hpp>
@@ -181,6 +189,58 @@ class FractionBar {
     std::atomic<long long> shown_{0};
 };
 
+/// Renders representations `which` (indices into reps' names) together with one
+/// render::ImageLoop of `spp` samples per pixel and `seed` (the compared reference's), so that
+/// they share the camera rays and hit records: images[i] receives representation i's image
+/// (Representations::render(i, camera, spp)'s: the same samples, hits, shading and sums),
+/// shade_ns[i] its shading thread-seconds per pixel sample in nanoseconds; camera_seconds and
+/// camera_rays grow by the shared part. Films of at most 256 MiB at a time (a group per film
+/// budget).
+void render_together(const render::Representations& reps, const render::Scene& rt,
+                     const render::Camera& camera, const std::vector<std::size_t>& which, int spp,
+                     std::uint64_t seed, const char* label, std::vector<render::Image>& images,
+                     std::vector<double>& shade_ns, double& camera_seconds,
+                     std::uint64_t& camera_rays) {
+    if (which.empty()) return;
+    const std::size_t N = std::size_t(camera.width) * std::size_t(camera.height);
+    const std::size_t per_group = std::max<std::size_t>(1, (std::size_t(256) << 20) / (32 * N));
+    FractionBar bar(label);
+    std::atomic<std::uint64_t> done{0};
+    const std::uint64_t total = std::uint64_t(N) * std::uint64_t(spp) * which.size();
+    for (std::size_t g0 = 0; g0 < which.size(); g0 += per_group) {
+        const std::size_t g1 = std::min(which.size(), g0 + per_group);
+        render::ImageLoopSettings ls;
+        ls.seed = seed;
+        ls.spp = spp;
+        ls.hits = true;
+        render::ImageLoop loop(rt, camera, ls);
+        const double angle = loop.pinhole().pixel_angle();
+        std::vector<render::Film> films(g1 - g0, render::Film(camera.width, camera.height, false));
+        std::vector<render::Film*> fp;
+        for (render::Film& f : films) fp.push_back(&f);
+        loop.run(
+            0, spp, fp,
+            [&](const render::CameraBatch& b, std::size_t f, render::RGB* out) {
+                const std::size_t i = which[g0 + f];
+                for (std::size_t k = 0; k < b.n; ++k) {
+                    const render::Hit& h = b.hits[k];
+                    const vec3<double>& d = b.directions[k];
+                    out[k] = h.valid ? reps.shade(i, h, {-d.x, -d.y, -d.z}, h.t * angle)
+                                     : reps.background(d);
+                }
+            },
+            [&](std::uint64_t d) { bar(done.fetch_add(d * (g1 - g0)) + d * (g1 - g0), total); });
+        const render::ImageLoopStats& st = loop.stats();
+        for (std::size_t f = 0; f < films.size(); ++f) {
+            images[which[g0 + f]] = films[f].mean();
+            shade_ns[which[g0 + f]] = 1e9 * st.shade_seconds[f] / (double(N) * spp);
+        }
+        camera_seconds += st.camera_seconds;
+        camera_rays += st.camera_rays;
+    }
+    bar.done();
+}
+
 /// The bytes of an OpenEXR file of `img` (float RGB, or Y for one channel), encoded in memory
 /// so that the EXR joins the other outputs in one all-or-none commit.
 std::string exr_bytes(const render::Image& img) {
@@ -284,8 +344,8 @@ int run_render(const RenderOptions& o) {
     {
         // The run's big arrays, estimated before any is allocated (support/memory.hpp): the
         // geometry, the images (the reference's sums and squares, its stderr, each
-        // representation's image, error image and PNGs), the lightmaps (a bake point, its result
-        // and the stored coefficients per texel, growing with the PRT bands) and the probes.
+        // representation's film, image, error image and PNGs), the lightmaps (a bake point, its
+        // result and the stored coefficients per texel, growing with the PRT bands) and the probes.
         const double pixels = double(camera.width) * double(camera.height);
         double texels = 0, geometry = 0;
         for (const SceneMesh& m : scene.meshes) {
@@ -295,7 +355,11 @@ int run_render(const RenderOptions& o) {
         }
         const double nb2 = double(o.prt_bands) * double(o.prt_bands);
         const double probes = scene.has_probes ? double(scene.probes.size()) : 0;
-        const double bytes = geometry + pixels * (128 + 16 * double(names.size())) +
+        // The representations' images are all kept (12 bytes a pixel each) and made in groups
+        // of films of 32 bytes a pixel, 256 MiB at most a group (one film at least).
+        const double reps = double(names.size());
+        const double films = std::max(32 * pixels, std::min(268435456.0, 32 * pixels * reps));
+        const double bytes = geometry + pixels * (128 + 28 * reps) + films +
                              texels * (256 + 64 * nb2) + probes * 512;
         check_memory(o.scene + ": ", bytes,
                      std::to_string(camera.width) + " x " + std::to_string(camera.height) +
@@ -531,13 +595,35 @@ int run_render(const RenderOptions& o) {
     render::Image spec_ref;
     if (want_specular) {
         const auto t0 = Clock::now();
-        spec_ref = render::render_specular_reference(desc, rt, camera, int(o.specular_ss));
+        spec_ref = render::render_specular_reference(desc, rt, camera, int(o.specular_ss),
+                                                     static_cast<std::uint64_t>(o.seed));
         rep.specular_reference_seconds = seconds_since(t0);
         add_image("specular_reference", spec_ref);
         rep.specular_reference_image = "specular_reference.png";
     }
 
-    // --- Each representation: the image with all threads, its time with one thread.
+    // --- The representations' images: one render::ImageLoop per comparison, with the
+    // compared reference's seed and sample count (the sampling rule, report.hpp), the camera
+    // rays and hit records shared by the representations of a group.
+    rep.representation_spp = ref.spp;
+    rep.specular_spp = want_specular ? int(o.specular_ss * o.specular_ss) : 0;
+    std::vector<render::Image> images(names.size());
+    std::vector<double> shade_ns(names.size(), 0.0);
+    {
+        std::vector<std::size_t> plain, specs;
+        for (std::size_t i = 0; i < names.size(); ++i)
+            (is_specular(names[i]) ? specs : plain).push_back(i);
+        double camera_seconds = 0;
+        std::uint64_t camera_rays = 0;
+        render_together(reps, rt, camera, plain, rep.representation_spp, std::uint64_t(o.seed),
+                        "representations", images, shade_ns, camera_seconds, camera_rays);
+        render_together(reps, rt, camera, specs, rep.specular_spp, std::uint64_t(o.seed),
+                        "specular representations", images, shade_ns, camera_seconds, camera_rays);
+        rep.camera_ns_per_sample = camera_rays > 0 ? 1e9 * camera_seconds / double(camera_rays) : 0;
+    }
+
+    // --- Each representation: its errors, and the time of a frame at one sample per pixel
+    // (the pixel centre) with one thread and with all threads.
     // FLIP compares what the PNGs show: both images tone-mapped as they are.
     rep.flip_ppd = render::flip_default_ppd;
     const render::Image ref_shown = render::tone_mapped(ref.color, exposure, rep.tonemap);
@@ -549,9 +635,9 @@ int run_render(const RenderOptions& o) {
         std::fprintf(stderr, "sphbasis render: %s\n", n.c_str());
         ReportRow row;
         row.name = n;
-        // The image (which also warms up whatever the representation builds lazily), then
-        // the timed frames: one on one thread, one on all threads.
-        const render::Image img = reps.render(i, camera);
+        const render::Image& img = images[i];
+        row.spp = is_specular(n) ? rep.specular_spp : rep.representation_spp;
+        row.shade_ns = shade_ns[i];
         one_thread.execute([&] {
             const auto t1 = Clock::now();
             (void)reps.render(i, camera);

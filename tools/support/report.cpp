@@ -126,6 +126,8 @@ Json rows_json(const Report& r) {
                         {"bakes_cached", x.cached},
                         {"render_ms_1_thread", x.render_ms_1},
                         {"render_ms_all_threads", x.render_ms_all},
+                        {"spp", x.spp},
+                        {"shade_ns_per_sample", x.shade_ns},
                         {"element", x.element},
                         {"bytes_per_element", x.bytes_per_element},
                         {"elements", x.elements},
@@ -165,6 +167,24 @@ std::string html_escape(const std::string& s) {
         }
     }
     return o;
+}
+
+std::string sampling_rule(const Report& r) {
+    std::ostringstream o;
+    o << "Sampling: every image comes from one loop (render::ImageLoop): sample i of a pixel lies "
+         "at R2 point i rotated by an offset hashed from (seed, pixel) (the pixel centre when an "
+         "image has one sample), every sample of a pixel weighs the same (box filter). A "
+         "representation is rendered with the seed and the sample count of the image it is "
+         "compared with, so the two share every sample position: "
+      << r.representation_spp << " spp against the path tracer";
+    if (r.specular_reference)
+        o << ", " << r.specular_spp << " (" << r.specular_ss << "x" << r.specular_ss
+          << ") against the specular reference, each sample reading the mip level of the whole "
+             "pixel's footprint";
+    o << ". Shading ns/pixel is a representation's own shading per pixel sample on one thread; "
+         "the camera rays and hit records the representations share cost "
+      << g3(r.camera_ns_per_sample) << " ns per pixel sample, shown once.";
+    return o.str();
 }
 
 void rank_rows(Report& r) {
@@ -256,6 +276,11 @@ Json report_json(const Report& r) {
         j["specular_reference"] = {{"supersampling", r.specular_ss},
                                    {"seconds", r.specular_reference_seconds},
                                    {"image", r.specular_reference_image}};
+    j["sampling"] = {{"rule", sampling_rule(r)},
+                     {"filter", "box"},
+                     {"representation_spp", r.representation_spp},
+                     {"specular_spp", r.specular_spp},
+                     {"camera_ns_per_sample", r.camera_ns_per_sample}};
     j["bakes"] = bakes;
     j["bakes_run"] = r.bakes_run;
     j["bakes_loaded"] = r.bakes_loaded;
@@ -277,12 +302,16 @@ std::string report_markdown(const Report& r) {
          "standard error at most "
       << g3(r.noise_limit)
       << " of the pixel's luminance; \"judged\"), FLIP and the 3-sigma fraction over the covered "
-         "pixels. Render times are per frame. "
+         "pixels. "
+      << sampling_rule(r)
+      << " Render ms are whole frames at one sample per pixel (the pixel "
+         "centre). "
       << ranking_reason << "\n\n";
     o << "| rank | representation | FLIP | rel. MSE (floored) | sMAPE (floored) | > 3 stderr | "
-         "RMSE | rel. MSE | sMAPE | judged | bake s | render ms (1 thread) | render ms ("
+         "RMSE | rel. MSE | sMAPE | judged | bake s | shading ns/pixel | render ms (1 thread) | "
+         "render ms ("
       << r.threads << " threads) | memory | cannot show |\n";
-    o << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n";
+    o << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n";
     for (std::size_t k : by_rank(r)) {
         const ReportRow& x = r.rows[k];
         o << "| " << x.rank << " | " << md_cell(x.name)
@@ -290,8 +319,9 @@ std::string report_markdown(const Report& r) {
           << " | " << g3(x.rel_mse_floored) << " | " << g3(x.smape_floored) << " | "
           << fixed(100 * x.outside_3_stderr, 1) << "% | " << g3(x.rmse) << " | " << g3(x.rel_mse)
           << " | " << g3(x.smape) << " | " << percent(x.judged, x.total) << " | " << bake_text(x)
-          << " | " << g3(x.render_ms_1) << " | " << g3(x.render_ms_all) << " | " << bytes_text(x)
-          << " | " << md_cell(x.cannot_show.empty() ? "-" : x.cannot_show) << " |\n";
+          << " | " << g3(x.shade_ns) << " | " << g3(x.render_ms_1) << " | " << g3(x.render_ms_all)
+          << " | " << bytes_text(x) << " | " << md_cell(x.cannot_show.empty() ? "-" : x.cannot_show)
+          << " |\n";
     }
     o << "\nMetrics:\n\n";
     for (const auto& [k, v] : metric_definitions(r)) o << "- `" << k << "`: " << v << "\n";
@@ -318,14 +348,14 @@ std::string report_markdown(const Report& r) {
 
 namespace {
 
-/// The inline SVG plot: each row's flip against its render time (all threads), log axes.
+/// The inline SVG plot: each row's flip against its own shading time per pixel sample, log axes.
 std::string cost_plot_svg(const Report& r) {
     const double W = 640, H = 400, left = 70, right = 170, top = 20, bottom = 50;
     double xmin = 1e300, xmax = 0, ymin = 1e300, ymax = 0;
     for (const ReportRow& x : r.rows) {
-        if (x.render_ms_all > 0) {
-            xmin = std::min(xmin, x.render_ms_all);
-            xmax = std::max(xmax, x.render_ms_all);
+        if (x.shade_ns > 0) {
+            xmin = std::min(xmin, x.shade_ns);
+            xmax = std::max(xmax, x.shade_ns);
         }
         if (x.flip > 0) {
             ymin = std::min(ymin, x.flip);
@@ -350,7 +380,7 @@ std::string cost_plot_svg(const Report& r) {
     std::ostringstream o;
     o << "<svg id=\"cost-plot\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W
       << "\" height=\"" << H << "\" viewBox=\"0 0 " << W << " " << H
-      << "\" font-size=\"11\" role=\"img\" aria-label=\"FLIP against render time\">\n";
+      << "\" font-size=\"11\" role=\"img\" aria-label=\"FLIP against shading time\">\n";
     o << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << W - left - right
       << "\" height=\"" << H - top - bottom << "\" fill=\"none\" stroke=\"#888\"/>\n";
     // Grid lines at 1, 2 and 5 times each decade (labelled; 1 only over more than 2 decades).
@@ -373,8 +403,8 @@ std::string cost_plot_svg(const Report& r) {
               << "\" text-anchor=\"end\">" << g3(v) << "</text>\n";
         }
     o << "<text x=\"" << (left + W - right) / 2 << "\" y=\"" << H - 12
-      << "\" text-anchor=\"middle\">render ms per frame (" << r.threads
-      << " threads, log)</text>\n";
+      << "\" text-anchor=\"middle\">shading ns per pixel sample (one thread, log; camera rays "
+      << g3(r.camera_ns_per_sample) << " ns apart)</text>\n";
     o << "<text transform=\"translate(16," << (top + H - bottom) / 2
       << ") rotate(-90)\" text-anchor=\"middle\">FLIP (log; lower is better)</text>\n";
     // Points in rank order; a name is written where it overlaps no name already written (the
@@ -382,9 +412,9 @@ std::string cost_plot_svg(const Report& r) {
     std::vector<std::array<double, 4>> placed;  // x0, y0, x1, y1 of the names written
     for (std::size_t k : by_rank(r)) {
         const ReportRow& x = r.rows[k];
-        const double cx = px(x.render_ms_all), cy = py(x.flip);
+        const double cx = px(x.shade_ns), cy = py(x.flip);
         o << "<g><title>" << html_escape(x.name) << ": FLIP " << g3(x.flip) << ", "
-          << g3(x.render_ms_all) << " ms</title><circle cx=\"" << cx << "\" cy=\"" << cy
+          << g3(x.shade_ns) << " ns</title><circle cx=\"" << cx << "\" cy=\"" << cy
           << "\" r=\"4\" fill=\"#3b528b\"/>";
         const std::array<double, 4> box = {cx + 6, cy - 7, cx + 6 + 6.2 * double(x.name.size()),
                                            cy + 5};
@@ -458,12 +488,14 @@ std::string report_html(const Report& r) {
       << html_escape(r.tonemap) << ", exposure " << g3(r.exposure)
       << (r.auto_exposure ? " (auto)" : "") << ". Errors over judged pixels (the reference's "
       << "standard error at most " << g3(r.noise_limit) << " of the luminance).</p>\n";
+    o << "<p>" << html_escape(sampling_rule(r)) << "</p>\n";
     o << "<p>" << html_escape(ranking_reason)
       << " Click a column header to sort by it; click again to reverse.</p>\n";
     o << "<table id=\"results\">\n<thead><tr><th>rank</th><th>representation</th>"
          "<th>image</th><th>FLIP map</th><th>FLIP</th><th>rel. MSE (floored)</th>"
          "<th>sMAPE (floored)</th><th>&gt; 3 stderr</th><th>RMSE</th><th>rel. MSE</th>"
-         "<th>sMAPE</th><th>judged</th><th>bake s</th><th>render ms (1 thread)</th>"
+         "<th>sMAPE</th><th>judged</th><th>bake s</th><th>shading ns/pixel</th>"
+         "<th>render ms (1 thread)</th>"
          "<th>render ms ("
       << r.threads << " threads)</th><th>memory</th><th>cannot show</th></tr></thead>\n<tbody>\n";
     auto num = [&o](double v, const std::string& text) {
@@ -490,6 +522,7 @@ std::string report_html(const Report& r) {
         num(x.smape, g3(x.smape));
         num(x.total ? double(x.judged) / double(x.total) : 0.0, percent(x.judged, x.total));
         num(x.bake_seconds, bake_text(x));
+        num(x.shade_ns, g3(x.shade_ns));
         num(x.render_ms_1, g3(x.render_ms_1));
         num(x.render_ms_all, g3(x.render_ms_all));
         num(double(x.bytes_per_element) * double(x.elements), bytes_text(x));

@@ -4,7 +4,7 @@
 // The data are filled by tools/cli/render.cpp and written by three pure functions (strings,
 // so that the caller writes them with the images all or none). report.html is self-contained:
 // inline CSS, a small inline script that sorts the table by the column clicked, an inline SVG
-// plot of the error against the render time (log axes), the images linked by relative file names
+// plot of the error against the shading time (log axes), the images linked by relative file names
 // (the PNGs beside it), so the directory can be copied and viewed offline; it reads nothing from
 // the network.
 //
@@ -17,6 +17,12 @@
 // is dominated neither by dark pixels nor by a few outliers, and sees edges and aliasing (the
 // specular comparison) that per-pixel ratios miss; rel_mse_floored is the check in linear
 // radiance beside it.
+//
+// Sampling (sampling_rule()): every image is made by render::ImageLoop, and a representation is
+// rendered with the sample positions, box filter and sample count of the reference it is
+// compared with. Times: each row's shade_ns is the representation's own shading per pixel
+// sample; the camera rays and hit records the representations share are measured once
+// (camera_ns_per_sample) and shown apart. render_ms_* are whole frames at one sample per pixel.
 #pragma once
 
 #include <cstddef>
@@ -57,7 +63,9 @@ struct ReportRow {
     std::uint64_t bake_rays = 0;
     bool cached = false;
     double render_ms_1 = 0, render_ms_all = 0;  // per frame, one thread and all threads
-    std::string element;                        // "texel", "vertex", "probe", "none"
+    int spp = 0;          // samples per pixel of its image (the compared reference's)
+    double shade_ns = 0;  // its own shading per pixel sample, thread-nanoseconds (no camera ray)
+    std::string element;  // "texel", "vertex", "probe", "none"
     std::size_t bytes_per_element = 0, elements = 0;
     std::string cannot_show;
     std::string image, error_image, flip_image, exr;  // file names relative to the report
@@ -83,6 +91,11 @@ struct Report {
     bool specular_reference = false;
     int specular_ss = 0;
     double specular_reference_seconds = 0;
+    // The sampling rule (sampling_rule()): the representations' samples per pixel (the
+    // reference's final count; the specular ones: specular_ss^2) and the shared camera rays'
+    // cost (generation, tracing, hit records) per pixel sample, thread-nanoseconds.
+    int representation_spp = 0, specular_spp = 0;
+    double camera_ns_per_sample = 0;
     // The plan and the bakes.
     std::vector<PlanStep> plan;
     std::vector<PlannedBake> bakes;
@@ -93,6 +106,10 @@ struct Report {
     // Files (relative names).
     std::string reference_image, reference_exr, reference_stderr_exr, specular_reference_image;
 };
+
+/// The rule by which the compared images are sampled (report.json's "sampling.rule", the
+/// reports' text): one loop, the same positions, filter and counts.
+std::string sampling_rule(const Report& r);
 
 /// Sets each row's rank: 1 for the lowest flip, ties in the order of the rows.
 void rank_rows(Report& r);

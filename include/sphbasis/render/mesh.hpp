@@ -46,7 +46,7 @@ struct MeshView {
     TextureView normal_map{};
     /// Blinn-Phong specular: exponent s > 0 enables it (0: the material is purely diffuse);
     /// `specular` is the RGB reflectance k_s in [0, 1] of the energy-normalised lobe
-    /// k_s (s + 8) / (8 pi) (n.h)^s (render/path_tracer.hpp). The bake ignores both.
+    /// k_s (s + 8) / (8 pi) (n.h)^s (render/bsdf.hpp). The bake ignores both.
     float shininess = 0;
     std::array<float, 3> specular{0.04f, 0.04f, 0.04f};
 };

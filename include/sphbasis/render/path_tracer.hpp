@@ -2,16 +2,19 @@
 // scene enables.
 //
 // Light transport (all radiances linear RGB, surfaces two-sided, albedo from render::Hit):
-//   * Primary rays from a PinholeCamera, `spp` jittered samples per pixel (stratified by a
-//     per-pixel scrambled low-discrepancy sequence; every random number is a hash of
-//     (seed, pixel, sample, dimension), so images do not depend on threads or tile order).
+//   * Primary rays from render::ImageLoop (image_loop.hpp, the loop every image of the library
+//     comes from): `spp` samples per pixel at the loop's positions (a per-pixel scrambled R2
+//     sequence; the pixel centre when spp_max = 1), a box filter; every random number is a hash
+//     of (seed, pixel, sample, dimension), so images do not depend on threads or tile order.
+//     The tracer is the loop's `li`: what one camera ray's path brings back.
 //   * Camera rays that escape show the environment's radiance (the background); analytic lights
 //     are not visible to camera rays (a sphere light is a light, not geometry).
 //   * At a hit the shading normal is Scene::normal_mapped(hit) when the mesh has a normal map
-//     (no normal-map work otherwise). BRDF: Lambertian albedo / pi, plus, only for meshes with
-//     shininess s > 0, the energy-normalised Blinn-Phong lobe k_s (s + 8) / (8 pi) (n.h)^s
-//     (mesh.hpp). Two-sided: a hit is shaded from the side the ray arrived on (Scene::hit turns
-//     the geometric and the shading normal to it together, whatever the winding). Light below
+//     (no normal-map work otherwise). BRDF (render::Bsdf, bsdf.hpp): Lambertian albedo / pi,
+//     plus, only for meshes with shininess s > 0, the energy-normalised Blinn-Phong lobe
+//     k_s (s + 8) / (8 pi) (n.h)^s (mesh.hpp). Two-sided: a hit is shaded from the side the
+//     ray arrived on (Scene::hit turns the geometric and the shading normal to it together,
+//     whatever the winding). Light below
 //     the geometric surface is not gathered. The diffuse lobe is the cosine about the shading
 //     normal folded above the geometric surface: a direction of the lobe below it is reflected
 //     in the geometric tangent plane (render/detail/rt_math.hpp, fold_above and folded_cosine),
@@ -47,10 +50,11 @@
 // normal maps, no specular evaluations without shiny materials, no bounce rays with bounces = 0).
 //
 // Implementation notes (what the tests and counters rely on):
-//   * Random numbers: the pixel position of sample i is point i of the R2 sequence
-//     (core/sampling.hpp) with a per-pixel Cranley-Patterson rotation hashed from (seed, pixel);
-//     every other dimension is rt::unit(hash(hash(hash(seed, pixel), sample), dimension)), so
-//     the progressive passes continue one sequence and nothing depends on threads or tiles.
+//   * Random numbers: the pixel position of sample i is ImageLoop's (render::pixel_sample():
+//     point i of the R2 sequence, core/sampling.hpp, with a per-pixel Cranley-Patterson rotation
+//     hashed from (seed, pixel)); every other dimension is
+//     rt::unit(hash(hash(hash(seed, pixel), sample), dimension)), so the progressive passes
+//     continue one sequence and nothing depends on threads or tiles.
 //   * Per path vertex: one environment sample (lat-long maps only), one sample per analytic
 //     light, then one BRDF sample. The BRDF-sampled ray continues the path (a bounce ray) while
 //     bounces remain; at the last vertex it is traced only when an emitter can be reached by it
@@ -60,11 +64,11 @@
 //     together a vertex at a time. At each depth the shadow rays of all live paths are traced
 //     as one stream (rtcOccluded1M), their BRDF rays as another (rtcIntersect1M; occlusion
 //     queries at the last vertex when no non-delta light needs the hit distance), and each
-//     path then adds its contributions in the order above. Camera rays are one coherent stream
-//     per tile (RTC_INTERSECT_CONTEXT_FLAG_COHERENT: Embree traces them as packets). Buffers
-//     are per tile, reused across samples. Hit records (Scene::shading_hit: no tangent frame
-//     without a normal map) are made with their triangles' data prefetched a few hits ahead
-//     (Scene::prefetch_hit).
+//     path then adds its contributions in the order above. Camera rays are ImageLoop's: one
+//     coherent stream per tile and sample (RTC_INTERSECT_CONTEXT_FLAG_COHERENT: Embree traces
+//     them as packets). Buffers are per thread, reused across tiles and samples. Hit records
+//     (Scene::shading_hit: no tangent frame without a normal map) are made with their triangles'
+//     data prefetched a few hits ahead (Scene::prefetch_hit).
 //   * Cosine-lobe BRDF samples take the azimuth's cosine and sine from a polynomial
 //     (sphbasis::detail::cos_sin_turn, core/cos_sin_turn.hpp, within 2e-9 of libm's, far below
 //     any estimate's noise). Lambertian vertices draw them for all of a tile's paths at once in
@@ -97,13 +101,14 @@
 #include "../core/constants.hpp"
 #include "../core/cos_sin_turn.hpp"
 #include "../core/error.hpp"
-#include "../core/frame.hpp"
 #include "../core/sampling.hpp"
 #include "../core/simd.hpp"
+#include "bsdf.hpp"
 #include "camera.hpp"
 #include "detail/rt_math.hpp"
 #include "environment_sampler.hpp"
 #include "image.hpp"
+#include "image_loop.hpp"
 #include "lighting.hpp"
 #include "scene.hpp"
 
@@ -188,98 +193,9 @@ std::pair<int, int> count_materials(const S& scene) {
     }
 }
 
-/// body(k) for k in [0, n), with prefetch(k, stage) issued ahead of it: stage 0 at k + 2 d,
-/// stage 1 (which reads what stage 0 fetched) at k + d, d = 8 (about a memory latency of
-/// hit-record work): Scene::prefetch_hit's two stages, software-pipelined.
-template <class Prefetch, class Body>
-void prefetched(std::size_t n, Prefetch&& prefetch, Body&& body) {
-    constexpr std::size_t d = 8;
-    for (std::size_t k = 0; k < std::min(n, 2 * d); ++k) prefetch(k, 0);
-    for (std::size_t k = 0; k < std::min(n, d); ++k) prefetch(k, 1);
-    for (std::size_t k = 0; k < n; ++k) {
-        if (k + 2 * d < n) prefetch(k + 2 * d, 0);
-        if (k + d < n) prefetch(k + d, 1);
-        body(k);
-    }
-}
-
 /// cos(2 pi v), sin(2 pi v) on [0, 1] (core/cos_sin_turn.hpp, generated): a polynomial without
 /// branches or libm calls (libm's sincos was 4-5% of the tracer's time).
 using sphbasis::detail::cos_sin_turn;
-
-/// square_to_cosine_hemisphere (core/sampling.hpp) with cos_sin_turn for the azimuth.
-inline V3 cosine_hemisphere(double u, double v) noexcept {
-    const double r = std::sqrt(u);
-    double c, s;
-    cos_sin_turn(v, c, s);
-    return {r * c, r * s, std::sqrt(std::max(0.0, 1 - u))};
-}
-
-/// Diffuse plus (shininess > 0 only) the energy-normalised Blinn-Phong lobe. The diffuse lobe
-/// is folded above the geometric surface (rt::fold_above, rt::folded_cosine): n is the shading
-/// normal, ng the geometric one, both facing the side the path arrived on.
-struct Bsdf {
-    RGB albedo{0, 0, 0}, ks{0, 0, 0};
-    double s = 0, p_spec = 0;
-    bool spec = false;
-    V3 n{0, 0, 1}, ng{0, 0, 1};
-
-    static double lum(const RGB& c) noexcept { return luminance(c[0], c[1], c[2]); }
-    void init(const Hit& h, const V3& shading) noexcept {
-        albedo = h.albedo;
-        n = shading;
-        ng = h.geometric_normal;
-        spec = h.shininess > 0;
-        if (spec) {
-            ks = h.specular;
-            s = h.shininess;
-            const double a = lum(albedo), b = lum(ks);
-            p_spec = a + b > 0 ? b / (a + b) : 0.5;
-        }
-    }
-    /// The BRDF times the cosine toward wi above the geometric surface: albedo / pi times the
-    /// folded cosine cf = rt::folded_cosine(n, ng, wi) (> 0, computed by the caller), plus the
-    /// Blinn-Phong lobe times max(n.wi, 0).
-    RGB eval_cos(const V3& wo, const V3& wi, double cf, TraceCounters& c) const noexcept {
-        using namespace rt;
-        const double d = cf * constants::inv_pi;
-        RGB f{albedo[0] * d, albedo[1] * d, albedo[2] * d};
-        if (spec) {
-            ++c.specular_evaluations;
-            const V3 h = normalized(wo + wi, n);
-            const double nh = dot(n, h), cs = dot(n, wi);
-            if (nh > 0 && cs > 0) {
-                const double k = (s + 8) / (8 * constants::pi) * std::pow(nh, s) * cs;
-                for (std::size_t i = 0; i < 3; ++i) f[i] += ks[i] * k;
-            }
-        }
-        return f;
-    }
-    double pdf(const V3& wo, const V3& wi, TraceCounters& c) const noexcept {
-        using namespace rt;
-        const double pd = folded_cosine(n, ng, wi) * constants::inv_pi;
-        if (!spec) return pd;
-        ++c.specular_evaluations;
-        const V3 h = normalized(wo + wi, n);
-        const double nh = dot(n, h), oh = std::fabs(dot(wo, h));
-        double ps = 0;
-        if (nh > 0 && oh > 0) ps = (s + 1) * constants::inv_two_pi * std::pow(nh, s) / (4 * oh);
-        return (1 - p_spec) * pd + p_spec * ps;
-    }
-    /// A direction from three uniform numbers (u0 picks the lobe).
-    V3 sample(const V3& wo, double u0, double u1, double u2) const noexcept {
-        using namespace rt;
-        const Frame<double> f(n);
-        if (spec && u0 < p_spec) {
-            const double ct = std::pow(u1, 1 / (s + 1));
-            const double st = std::sqrt(std::max(0.0, (1 - ct) * (1 + ct)));
-            const double phi = constants::two_pi * u2;
-            const V3 h = f.to_world(V3{st * std::cos(phi), st * std::sin(phi), ct});
-            return normalized(h * (2 * dot(wo, h)) - wo, n);
-        }
-        return fold_above(ng, normalized(f.to_world(cosine_hemisphere(u1, u2)), n));
-    }
-};
 
 /// rt::hash(a, b) with mix64(a) already computed (mixed_a): a path's random numbers share a.
 /// A test pins it to rt::hash.
@@ -430,112 +346,66 @@ class PathTracer {
         const Camera& camera,
         const std::function<void(std::uint64_t, std::uint64_t)>& progress = {}) const {
         const auto t0 = std::chrono::steady_clock::now();
-        const PinholeCamera cam(camera);
+        ImageLoopSettings ls;
+        ls.seed = settings_.seed;
+        ls.spp = settings_.spp_max;
+        ls.tile = settings_.tile;
+        ImageLoop loop(scene_, camera, ls);
+        if (log_)
+            loop.on_camera_rays(
+                [this](const RTCRayHit* r, std::size_t n) { record(r, n, 0, true); });
         const int W = camera.width, H = camera.height;
         const std::size_t N = std::size_t(W) * std::size_t(H);
-        std::vector<double> sum(3 * N, 0.0), sq(3 * N, 0.0), hits(N, 0.0);
+        Film film(W, H, true);
         std::vector<double> aov(settings_.aovs ? 9 * N : 0, 0.0);
         TraceResult res;
-        std::mutex merge;
         std::atomic<std::uint64_t> done{0};
         const std::uint64_t total = std::uint64_t(N) * std::uint64_t(settings_.spp_max);
         tbb::enumerable_thread_specific<TileBuffers> buffers;
         int spp = 0, target = settings_.spp_min;
         double noise = std::numeric_limits<double>::infinity();
+        // Li of a batch of camera rays: the paths, and the first-hit AOVs.
+        auto li = [&](const CameraBatch& b, std::size_t, RGB* L) {
+            TileBuffers& B = buffers.local();
+            if (settings_.aovs && B.first.size() < b.n) B.first.resize(b.n);
+            First* first = settings_.aovs ? B.first.data() : nullptr;
+            shade(b.rays, b.n, b.mixed_keys, b.sample, B.counters, first, L, B.scratch);
+            if (first)
+                for (std::size_t k = 0; k < b.n; ++k) {
+                    if (!first[k].hit) continue;
+                    double* o = &aov[9 * std::size_t(b.pixels[k])];
+                    const V3* v[3] = {&first[k].normal, &first[k].albedo, &first[k].position};
+                    for (int q = 0; q < 3; ++q) {
+                        o[3 * q] += v[q]->x;
+                        o[3 * q + 1] += v[q]->y;
+                        o[3 * q + 2] += v[q]->z;
+                    }
+                }
+        };
         for (;;) {
-            const int a = spp, b = target;
-            for_each_tile(W, H, settings_.tile, [&](int x0, int y0, int x1, int y1) {
-                TraceCounters c;
-                const std::size_t tw = std::size_t(x1 - x0), n = tw * std::size_t(y1 - y0);
-                // The thread's buffers (kept across tiles and passes; at least n long).
-                TileBuffers& B = buffers.local();
-                B.reserve(n, settings_.aovs);
-                std::vector<RTCRayHit>& rays = B.rays;
-                std::vector<double>& jitter = B.jitter;
-                std::vector<std::uint64_t>&pixel = B.pixel, &mixed = B.mixed;
-                std::vector<double>& corner = B.corner;  // the pixel's integer coordinates
-                std::vector<RGB>& radiance = B.radiance;
-                std::vector<First>& first = B.first;
-                Scratch& scratch = B.scratch;
-                for (std::size_t k = 0; k < n; ++k) {
-                    const std::size_t px = std::size_t(x0) + k % tw, py = std::size_t(y0) + k / tw;
-                    pixel[k] = py * std::size_t(W) + px;
-                    corner[2 * k] = double(px);
-                    corner[2 * k + 1] = double(py);
-                    const std::uint64_t key = pixel_key(pixel[k]);
-                    mixed[k] = detail::rt::mix64(key);
-                    jitter[2 * k] = detail::rt::unit(detail::rt::hash(key, 0x6a09e667u));
-                    jitter[2 * k + 1] = detail::rt::unit(detail::rt::hash(key, 0xbb67ae85u));
-                }
-                for (int s = a; s < b; ++s) {
-                    double r2u, r2v;
-                    r2_sequence(std::uint64_t(s), r2u, r2v);
-                    for (std::size_t k = 0; k < n; ++k) {
-                        const double px = corner[2 * k] + detail::rt::rotate01(r2u, jitter[2 * k]);
-                        const double py =
-                            corner[2 * k + 1] + detail::rt::rotate01(r2v, jitter[2 * k + 1]);
-                        const CameraRay cr = cam.ray(px, py);
-                        Scene::set_ray(rays[k], cr.origin, cr.direction);
-                    }
-                    if (log_) record(rays.data(), n, 0, true);
-                    intersect_coherent(rays.data(), n);
-                    c.camera_rays += n;
-                    shade(rays.data(), n, mixed.data(), std::uint64_t(s), c,
-                          settings_.aovs ? first.data() : nullptr, radiance.data(), scratch);
-                    for (std::size_t k = 0; k < n; ++k) {
-                        const std::size_t p = std::size_t(pixel[k]);
-                        const RGB& L = radiance[k];
-                        for (std::size_t ch = 0; ch < 3; ++ch) {
-                            sum[3 * p + ch] += L[ch];
-                            sq[3 * p + ch] += L[ch] * L[ch];
-                        }
-                        if (rays[k].hit.geomID != RTC_INVALID_GEOMETRY_ID) hits[p] += 1;
-                        if (settings_.aovs && first[k].hit) {
-                            double* o = &aov[9 * p];
-                            const V3* v[3] = {&first[k].normal, &first[k].albedo,
-                                              &first[k].position};
-                            for (int q = 0; q < 3; ++q) {
-                                o[3 * q] += v[q]->x;
-                                o[3 * q + 1] += v[q]->y;
-                                o[3 * q + 2] += v[q]->z;
-                            }
-                        }
-                    }
-                }
-                {
-                    std::lock_guard<std::mutex> lock(merge);
-                    res.counters += c;
-                }
-                const std::uint64_t d = done.fetch_add(std::uint64_t(n) * std::uint64_t(b - a)) +
-                                        std::uint64_t(n) * std::uint64_t(b - a);
-                if (progress) progress(d, total);
+            loop.run(spp, target, {&film}, li, [&](std::uint64_t d) {
+                const std::uint64_t now = done.fetch_add(d) + d;
+                if (progress) progress(now, total);
             });
-            spp = b;
-            noise = relative_noise(sum, sq, spp);
+            spp = target;
+            noise = relative_noise(film.sum, film.sq, spp);
             if ((settings_.target_noise > 0 && noise <= settings_.target_noise) ||
                 spp >= settings_.spp_max)
                 break;
             target = std::min(settings_.spp_max, 2 * spp);
         }
+        for (const TileBuffers& B : buffers) res.counters += B.counters;
+        res.counters.camera_rays += loop.stats().camera_rays;
         // Images.
-        res.color = Image(W, H, 3);
-        res.stderr_ = Image(W, H, 3);
-        res.coverage = Image(W, H, 1);
+        res.color = film.mean();
+        res.stderr_ = film.standard_error();
+        res.coverage = film.coverage();
         if (settings_.aovs) {
             res.normal = Image(W, H, 3);
             res.albedo = Image(W, H, 3);
             res.position = Image(W, H, 3);
-        }
-        const double inv = 1.0 / spp;
-        for (std::size_t p = 0; p < N; ++p) {
-            for (std::size_t ch = 0; ch < 3; ++ch) {
-                const double m = sum[3 * p + ch] * inv;
-                res.color.data[3 * p + ch] = static_cast<float>(m);
-                res.stderr_.data[3 * p + ch] =
-                    static_cast<float>(stderr_of(sum[3 * p + ch], sq[3 * p + ch], spp));
-            }
-            res.coverage.data[p] = static_cast<float>(hits[p] * inv);
-            if (settings_.aovs)
+            const double inv = 1.0 / spp;
+            for (std::size_t p = 0; p < N; ++p)
                 for (std::size_t ch = 0; ch < 3; ++ch) {
                     res.normal.data[3 * p + ch] = static_cast<float>(aov[9 * p + ch] * inv);
                     res.albedo.data[3 * p + ch] = static_cast<float>(aov[9 * p + 3 + ch] * inv);
@@ -564,7 +434,7 @@ class PathTracer {
         ++c.camera_rays;
         RGB L;
         Scratch scratch;
-        const std::uint64_t mixed = detail::rt::mix64(pixel_key(pixel));
+        const std::uint64_t mixed = detail::rt::mix64(pixel_key(settings_.seed, pixel));
         shade(&r, 1, &mixed, sample, c, nullptr, &L, scratch);
         std::lock_guard<std::mutex> lock(*mutex_);
         counters_ += c;
@@ -600,15 +470,8 @@ class PathTracer {
         V3 normal{0, 0, 0}, albedo{0, 0, 0}, position{0, 0, 0};
     };
 
-    std::uint64_t pixel_key(std::uint64_t pixel) const noexcept {
-        return detail::rt::hash(settings_.seed, pixel);
-    }
-
     static double stderr_of(double s, double q, int n) noexcept {
-        if (n < 2) return std::numeric_limits<double>::infinity();
-        const double m = s / n;
-        const double var = std::max(0.0, (q - s * m) / (n - 1));
-        return std::sqrt(var / n);
+        return Film::standard_error(s, q, n);
     }
 
     static double relative_noise(const std::vector<double>& sum, const std::vector<double>& sq,
@@ -661,38 +524,33 @@ class PathTracer {
         // The BRDF sample's inputs and outputs by path (structure of arrays).
         std::vector<std::uint64_t> key;
         std::vector<double> nx, ny, nz, wx, wy, wz, cz, tmp;
+        std::size_t alive = 0;  // live paths
+        void kill(PathState& P) noexcept {
+            P.alive = false;
+            --alive;
+        }
+        /// Room for n paths and their streams (no allocation once grown).
+        void grow(std::size_t n, std::size_t lights) {
+            if (paths.size() >= n) return;
+            paths.resize(n);
+            shadow.reserve(n * (1 + lights));
+            pending.reserve(n * (1 + lights));
+            next.reserve(n);
+            next_path.reserve(n);
+            key.assign(n, 0);
+            for (auto* v : {&nx, &ny, &wx, &wy, &wz, &cz}) v->assign(n, 0.0);
+            nz.assign(n, 1.0);
+            tmp.assign(3 * n, 0.0);
+        }
     };
 
-    /// A thread's per-tile buffers in render(), kept across its tiles (no allocation per tile).
+    /// A thread's buffers in render(), kept across its batches (no allocation per sample once
+    /// grown), and its counters.
     struct TileBuffers {
-        std::vector<RTCRayHit> rays;
-        std::vector<double> jitter, corner;
-        std::vector<std::uint64_t> pixel, mixed;
-        std::vector<RGB> radiance;
         std::vector<First> first;
         Scratch scratch;
-        void reserve(std::size_t n, bool aovs) {
-            if (rays.size() >= n && (!aovs || first.size() >= n)) return;
-            rays.resize(n);
-            jitter.resize(2 * n);
-            corner.resize(2 * n);
-            pixel.resize(n);
-            mixed.resize(n);
-            radiance.resize(n);
-            if (aovs) first.resize(n);
-        }
+        TraceCounters counters;
     };
-
-    /// Camera rays of a tile: one stream with Embree's coherent flag (it traces them as packets).
-    void intersect_coherent(RTCRayHit* rays, std::size_t n) const {
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        for (std::size_t i = 0; i < n; i += 1024) {
-            const auto m = static_cast<unsigned>(std::min<std::size_t>(1024, n - i));
-            rtcIntersect1M(scene_.handle(), &ctx, rays + i, m, sizeof(RTCRayHit));
-        }
-    }
 
     /// Occlusion queries of n rays of RTCRayHit records (the ray part), as one stream.
     void occluded(RTCRayHit* rays, std::size_t n) const {
@@ -704,27 +562,63 @@ class PathTracer {
         }
     }
 
-    /// n paths from traced camera rays (mixed[k] = mix64(pixel_key(pixel)) and `sample` index
-    /// the random numbers), one vertex depth at a time: at each depth every live path's shadow
-    /// rays are traced as one stream and its BRDF rays as another (the paths stay independent:
-    /// every path adds its contributions in the order a path-at-a-time tracer would). L[k]
-    /// receives path k's radiance; first (optional) its first-hit AOVs.
+    /// n paths from traced camera rays (mixed[k] = mix64(pixel_key(seed, pixel)) and `sample`
+    /// index the random numbers), one vertex depth at a time: at each depth every live path's
+    /// shadow rays are traced as one stream and its BRDF rays as another (the paths stay
+    /// independent: every path adds its contributions in the order a path-at-a-time tracer
+    /// would). L[k] receives path k's radiance; first (optional) its first-hit AOVs. The stages,
+    /// in order, per depth: sample_emitters (next-event estimation), the cosine lobes of all
+    /// paths (detail::pt::cosine_lobe), sample_bsdf, trace_streams, add_direct, add_bsdf_hits,
+    /// next_vertices.
     void shade(const RTCRayHit* primary, std::size_t n, const std::uint64_t* mixed,
                std::uint64_t sample, TraceCounters& c, First* first, RGB* L, Scratch& sc) const {
-        using namespace detail::rt;
-        if (sc.paths.size() < n) {
-            sc.paths.resize(n);
-            sc.shadow.reserve(n * (1 + lights_.size()));
-            sc.pending.reserve(n * (1 + lights_.size()));
-            sc.next.reserve(n);
-            sc.next_path.reserve(n);
-            sc.key.assign(n, 0);
-            for (auto* v : {&sc.nx, &sc.ny, &sc.wx, &sc.wy, &sc.wz, &sc.cz}) v->assign(n, 0.0);
-            sc.nz.assign(n, 1.0);
-            sc.tmp.assign(3 * n, 0.0);
+        sc.grow(n, lights_.size());
+        start_paths(primary, n, mixed, sample, first, sc);
+        const std::uint64_t stride = 8 + 2 * lights_.size();
+        for (int depth = 0; sc.alive > 0; ++depth) {
+            Depth d;
+            d.depth = depth;
+            d.d0 = 2 + stride * std::uint64_t(depth);
+            d.more = settings_.bounces < 0 || depth < settings_.bounces;
+            // The last vertex's BRDF rays need a distance only for sphere lights: without
+            // non-delta lights they are occlusion queries.
+            d.query = !d.more && !nondelta_;
+            sc.shadow.clear();
+            sc.pending.clear();
+            sc.next.clear();
+            sc.next_path.clear();
+            sample_emitters(d, n, c, first, sc);
+            // The cosine-lobe directions of all n paths (dead ones included: no branch), in
+            // arrays, by loops the compiler vectorises: hashes, the azimuth's polynomial and the
+            // frame of the normal; the square roots by detail::pt::sqrt_array (std::sqrt keeps
+            // a libm call for errno, which stops vectorisation).
+            detail::pt::cosine_lobe(n, d.d0, sc.key.data(), sc.nx.data(), sc.ny.data(),
+                                    sc.nz.data(), sc.wx.data(), sc.wy.data(), sc.wz.data(),
+                                    sc.cz.data(), sc.tmp.data());
+            sample_bsdf(d, n, c, sc);
+            trace_streams(d, sc);
+            add_direct(sc);
+            add_bsdf_hits(d, sc);
+            if (d.more) next_vertices(sc);
         }
-        std::size_t alive = 0;
-        detail::pt::prefetched(
+        for (std::size_t k = 0; k < n; ++k) L[k] = sc.paths[k].L;
+    }
+
+    /// One depth of shade(): the random-number dimension of its first sample (d0), whether
+    /// the path continues after it (more) and whether its BRDF rays are occlusion queries.
+    struct Depth {
+        int depth = 0;
+        std::uint64_t d0 = 0;
+        bool more = false, query = false;
+    };
+
+    /// Stage 1: the paths' first vertices from the camera rays' hits (escaped rays take the
+    /// background and end), their random-number keys and first-hit AOVs.
+    void start_paths(const RTCRayHit* primary, std::size_t n, const std::uint64_t* mixed,
+                     std::uint64_t sample, First* first, Scratch& sc) const {
+        using namespace detail::rt;
+        sc.alive = 0;
+        detail::prefetched(
             n, [&](std::size_t k, int stage) { scene_.prefetch_hit(primary[k], stage); },
             [&](std::size_t k) {
                 PathState& P = sc.paths[k];
@@ -737,7 +631,7 @@ class PathTracer {
                     return;
                 }
                 P.alive = true;
-                ++alive;
+                ++sc.alive;
                 P.L = {0, 0, 0};
                 P.beta = {1, 1, 1};
                 // The outgoing direction matters only to the Blinn-Phong lobe.
@@ -749,255 +643,262 @@ class PathTracer {
                     first[k].position = P.h.position;
                 }
             });
-        const std::uint64_t stride = 8 + 2 * lights_.size();
-        const int bounces = settings_.bounces;
+    }
+
+    /// Stage 2, per live path: the shading normal (normal map), next-event estimation (the
+    /// environment's and each analytic light's sample: a shadow ray and a pending contribution
+    /// each), and whether a BRDF sample follows (its key and normal into the lobe arrays).
+    void sample_emitters(const Depth& d, std::size_t n, TraceCounters& c, First* first,
+                         Scratch& sc) const {
+        using namespace detail::rt;
         constexpr double inf = std::numeric_limits<double>::infinity();
-        detail::pt::Bsdf bsdf;
-        for (int depth = 0; alive > 0; ++depth) {
-            const std::uint64_t d0 = 2 + stride * std::uint64_t(depth);
-            const bool more = bounces < 0 || depth < bounces;
-            sc.shadow.clear();
-            sc.pending.clear();
-            sc.next.clear();
-            sc.next_path.clear();
-            auto kill = [&alive](PathState& P) {
-                P.alive = false;
-                --alive;
-            };
-            // Rays and contributions are built in place in the (reserved) buffers: a record
-            // built on the stack and copied reloads its small stores as one wide load, which
-            // stalls store forwarding (measured: the copies were a fifth of shade()'s time).
-            auto shadow_ray = [&](const V3& x, const V3& ng, const V3& w, double tmax) {
-                Scene::set_ray(sc.shadow.emplace_back(), scene_.offset_origin(x, ng, w), w, 0,
-                               tmax);
-                ++c.shadow_rays;
-                return static_cast<std::uint32_t>(sc.shadow.size() - 1);
-            };
-            // Next-event estimation and the BRDF sample of every live path.
-            for (std::size_t k = 0; k < n; ++k) {
-                PathState& P = sc.paths[k];
-                if (!P.alive) continue;
-                const Hit& h = P.h;
-                const auto path = static_cast<std::uint32_t>(k);
+        Bsdf bsdf;
+        for (std::size_t k = 0; k < n; ++k) {
+            PathState& P = sc.paths[k];
+            if (!P.alive) continue;
+            const Hit& h = P.h;
+            const auto path = static_cast<std::uint32_t>(k);
+            const std::uint64_t key = P.key;
+            auto rnd = [key](std::uint64_t dim) { return unit(detail::pt::hash_mixed(key, dim)); };
+            V3 ns = h.shading_normal;
+            if (h.normal_map) {
+                ++c.normal_map_lookups;
+                ns = Scene::normal_mapped(h);
+            }
+            if (first && d.depth == 0) first[k].normal = ns;
+            if (!emitters_) {
+                sc.kill(P);
+                continue;
+            }
+            const V3 ng = h.geometric_normal, x = h.position;
+            P.x = x;
+            bsdf.init(h, ns);
+            // Environment: importance sampled, balance heuristic against the BRDF.
+            if (env_nee_) {
+                ++c.environment_samples;
+                const auto es = sampler_.sample(rnd(d.d0), rnd(d.d0 + 1));
+                const double cf = folded_cosine(ns, ng, es.w);
+                if (es.pdf > 0 && cf > 0 && !detail::pt::is_zero(es.radiance)) {
+                    const RGB f = bsdf.eval_cos(P.wo, es.w, cf, c.specular_evaluations);
+                    const double pb = bsdf.pdf(P.wo, es.w, c.specular_evaluations);
+                    const std::uint32_t ray = shadow_ray(sc, c, x, ng, es.w, inf);
+                    Pending& pe = sc.pending.emplace_back();
+                    pe.path = path;
+                    pe.ray = ray;
+                    for (std::size_t i = 0; i < 3; ++i) pe.a[i] = P.beta[i] * f[i] * es.radiance[i];
+                    pe.k = 1 / (es.pdf + pb);
+                }
+            }
+            // Analytic lights.
+            for (std::size_t li = 0; li < lights_.size(); ++li) {
+                const Light& light = lights_[li];
+                ++c.light_samples;
+                const std::uint64_t dl = d.d0 + 8 + 2 * li;
+                // A directional light's sample depends on nothing: computed (and checked) once.
+                LightSample drawn;
+                const LightSample* lsp = &drawn;
+                if (light.type == Light::Type::directional) {
+                    if (!fixed_ok_[li]) continue;
+                    lsp = &fixed_samples_[li];
+                } else {
+                    drawn = sample_light(light, x, rnd(dl), rnd(dl + 1));
+                    if (!usable(drawn)) continue;
+                }
+                const LightSample& ls = *lsp;
+                const double cf = folded_cosine(ns, ng, ls.w);
+                if (!(cf > 0)) continue;
+                const RGB f = bsdf.eval_cos(P.wo, ls.w, cf, c.specular_evaluations);
+                double kw;
+                if (ls.delta) {
+                    kw = 1;
+                } else {
+                    const double pb = bsdf.pdf(P.wo, ls.w, c.specular_evaluations);
+                    kw = 1 / (ls.pdf + pb);
+                }
+                const std::uint32_t ray =
+                    ls.distance > 0 ? shadow_ray(sc, c, x, ng, ls.w, ls.distance) : Pending::none;
+                Pending& pe = sc.pending.emplace_back();
+                pe.path = path;
+                pe.ray = ray;
+                pe.k = kw;
+                for (std::size_t i = 0; i < 3; ++i) pe.a[i] = P.beta[i] * f[i] * ls.radiance[i];
+            }
+            // BRDF sample: continues the path and/or reaches the emitters. Drawn for every live
+            // path at once (cosine_lobe, then sample_bsdf).
+            if (!d.more && !env_any_ && !nondelta_) {
+                sc.kill(P);
+                continue;
+            }
+            sc.key[k] = key;
+            sc.nx[k] = ns.x;
+            sc.ny[k] = ns.y;
+            sc.nz[k] = ns.z;
+        }
+    }
+
+    /// A shadow ray from x (offset along ng) toward w, built in place in the stream (a record
+    /// built on the stack and copied reloads its small stores as one wide load, which stalls
+    /// store forwarding: measured, the copies were a fifth of shade()'s time); its index.
+    std::uint32_t shadow_ray(Scratch& sc, TraceCounters& c, const V3& x, const V3& ng, const V3& w,
+                             double tmax) const {
+        Scene::set_ray(sc.shadow.emplace_back(), scene_.offset_origin(x, ng, w), w, 0, tmax);
+        ++c.shadow_rays;
+        return static_cast<std::uint32_t>(sc.shadow.size() - 1);
+    }
+
+    /// Stage 3, per live path: the BRDF direction (the cosine lobe's, folded above the
+    /// geometric surface, for Lambertian vertices; Bsdf::sample for shiny ones), its weight
+    /// f cos / pdf and the ray into the BRDF stream (a bounce ray, or at the last vertex a ray
+    /// counted as a shadow ray).
+    void sample_bsdf(const Depth& d, std::size_t n, TraceCounters& c, Scratch& sc) const {
+        using namespace detail::rt;
+        Bsdf bsdf;
+        for (std::size_t k = 0; k < n; ++k) {
+            PathState& P = sc.paths[k];
+            if (!P.alive) continue;
+            const Hit& h = P.h;
+            const auto path = static_cast<std::uint32_t>(k);
+            const V3 ng = h.geometric_normal, x = P.x;
+            V3 wi;
+            double pb;
+            RGB w;
+            if (!(h.shininess > 0)) {
+                // Lambertian: the folded cosine lobe's weight f cos / pdf is the albedo (the
+                // frame is orthonormal: no renormalisation). Only a direction exactly in the
+                // tangent plane (probability 0) ends the path.
+                wi = fold_above(ng, {sc.wx[k], sc.wy[k], sc.wz[k]});
+                const double cf = folded_cosine({sc.nx[k], sc.ny[k], sc.nz[k]}, ng, wi);
+                if (!(cf > 0)) {
+                    sc.kill(P);
+                    continue;
+                }
+                pb = cf * constants::inv_pi;
+                w = detail::pt::mul(P.beta, h.albedo);
+            } else {
+                const V3 ns{sc.nx[k], sc.ny[k], sc.nz[k]};
+                bsdf.init(h, ns);
                 const std::uint64_t key = P.key;
                 auto rnd = [key](std::uint64_t dim) {
                     return unit(detail::pt::hash_mixed(key, dim));
                 };
-                V3 ns = h.shading_normal;
-                if (h.normal_map) {
-                    ++c.normal_map_lookups;
-                    ns = Scene::normal_mapped(h);
-                }
-                if (first && depth == 0) first[k].normal = ns;
-                if (!emitters_) {
-                    kill(P);
+                wi = bsdf.sample(P.wo, rnd(d.d0 + 2), rnd(d.d0 + 3), rnd(d.d0 + 4));
+                // A specular direction below the geometric surface ends the path.
+                const double cf = folded_cosine(ns, ng, wi);
+                if (!(cf > 0)) {
+                    sc.kill(P);
                     continue;
                 }
-                const V3 ng = h.geometric_normal, x = h.position;
-                P.x = x;
-                bsdf.init(h, ns);
-                // Environment: importance sampled, balance heuristic against the BRDF.
-                if (env_nee_) {
-                    ++c.environment_samples;
-                    const auto es = sampler_.sample(rnd(d0), rnd(d0 + 1));
-                    const double cf = folded_cosine(ns, ng, es.w);
-                    if (es.pdf > 0 && cf > 0 && !detail::pt::is_zero(es.radiance)) {
-                        const RGB f = bsdf.eval_cos(P.wo, es.w, cf, c);
-                        const double pb = bsdf.pdf(P.wo, es.w, c);
-                        const std::uint32_t ray = shadow_ray(x, ng, es.w, inf);
-                        Pending& pe = sc.pending.emplace_back();
-                        pe.path = path;
-                        pe.ray = ray;
-                        for (std::size_t i = 0; i < 3; ++i)
-                            pe.a[i] = P.beta[i] * f[i] * es.radiance[i];
-                        pe.k = 1 / (es.pdf + pb);
-                    }
-                }
-                // Analytic lights.
-                for (std::size_t li = 0; li < lights_.size(); ++li) {
-                    const Light& light = lights_[li];
-                    ++c.light_samples;
-                    const std::uint64_t dl = d0 + 8 + 2 * li;
-                    // A directional light's sample depends on nothing: computed (and checked)
-                    // once.
-                    LightSample drawn;
-                    const LightSample* lsp = &drawn;
-                    if (light.type == Light::Type::directional) {
-                        if (!fixed_ok_[li]) continue;
-                        lsp = &fixed_samples_[li];
-                    } else {
-                        drawn = sample_light(light, x, rnd(dl), rnd(dl + 1));
-                        if (!usable(drawn)) continue;
-                    }
-                    const LightSample& ls = *lsp;
-                    const double cf = folded_cosine(ns, ng, ls.w);
-                    if (!(cf > 0)) continue;
-                    const RGB f = bsdf.eval_cos(P.wo, ls.w, cf, c);
-                    double k;
-                    if (ls.delta) {
-                        k = 1;
-                    } else {
-                        const double pb = bsdf.pdf(P.wo, ls.w, c);
-                        k = 1 / (ls.pdf + pb);
-                    }
-                    const std::uint32_t ray =
-                        ls.distance > 0 ? shadow_ray(x, ng, ls.w, ls.distance) : Pending::none;
-                    Pending& pe = sc.pending.emplace_back();
-                    pe.path = path;
-                    pe.ray = ray;
-                    pe.k = k;
-                    for (std::size_t i = 0; i < 3; ++i) pe.a[i] = P.beta[i] * f[i] * ls.radiance[i];
-                }
-                // BRDF sample: continues the path and/or reaches the emitters. Drawn below for
-                // every live path at once.
-                if (!more && !env_any_ && !nondelta_) {
-                    kill(P);
+                pb = bsdf.pdf(P.wo, wi, c.specular_evaluations);
+                if (!(pb > 0)) {
+                    sc.kill(P);
                     continue;
                 }
-                sc.key[k] = key;
-                sc.nx[k] = ns.x;
-                sc.ny[k] = ns.y;
-                sc.nz[k] = ns.z;
+                const RGB f = bsdf.eval_cos(P.wo, wi, cf, c.specular_evaluations);
+                w = {f[0] / pb, f[1] / pb, f[2] / pb};
+                for (std::size_t i = 0; i < 3; ++i) w[i] *= P.beta[i];
             }
-            // The cosine-lobe directions of all n paths (dead ones included: no branch), in
-            // arrays, by loops the compiler vectorises: hashes, the azimuth's polynomial and the
-            // frame of the normal; the square roots by detail::pt::sqrt_array (std::sqrt keeps
-            // a libm call for errno, which stops vectorisation).
-            detail::pt::cosine_lobe(n, d0, sc.key.data(), sc.nx.data(), sc.ny.data(), sc.nz.data(),
-                                    sc.wx.data(), sc.wy.data(), sc.wz.data(), sc.cz.data(),
-                                    sc.tmp.data());
-            for (std::size_t k = 0; k < n; ++k) {
-                PathState& P = sc.paths[k];
-                if (!P.alive) continue;
-                const Hit& h = P.h;
-                const auto path = static_cast<std::uint32_t>(k);
-                const V3 ng = h.geometric_normal, x = P.x;
-                V3 wi;
-                double pb;
-                RGB w;
-                if (!(h.shininess > 0)) {
-                    // Lambertian: the folded cosine lobe's weight f cos / pdf is the albedo
-                    // (the frame is orthonormal: no renormalisation). Only a direction exactly
-                    // in the tangent plane (probability 0) ends the path.
-                    wi = fold_above(ng, {sc.wx[k], sc.wy[k], sc.wz[k]});
-                    const double cf = folded_cosine({sc.nx[k], sc.ny[k], sc.nz[k]}, ng, wi);
-                    if (!(cf > 0)) {
-                        kill(P);
-                        continue;
-                    }
-                    pb = cf * constants::inv_pi;
-                    w = detail::pt::mul(P.beta, h.albedo);
-                } else {
-                    const V3 ns{sc.nx[k], sc.ny[k], sc.nz[k]};
-                    bsdf.init(h, ns);
-                    const std::uint64_t key = P.key;
-                    auto rnd = [key](std::uint64_t dim) {
-                        return unit(detail::pt::hash_mixed(key, dim));
-                    };
-                    wi = bsdf.sample(P.wo, rnd(d0 + 2), rnd(d0 + 3), rnd(d0 + 4));
-                    // A specular direction below the geometric surface ends the path.
-                    const double cf = folded_cosine(ns, ng, wi);
-                    if (!(cf > 0)) {
-                        kill(P);
-                        continue;
-                    }
-                    pb = bsdf.pdf(P.wo, wi, c);
-                    if (!(pb > 0)) {
-                        kill(P);
-                        continue;
-                    }
-                    const RGB f = bsdf.eval_cos(P.wo, wi, cf, c);
-                    w = {f[0] / pb, f[1] / pb, f[2] / pb};
-                    for (std::size_t i = 0; i < 3; ++i) w[i] *= P.beta[i];
-                }
-                P.w = w;
-                P.wi = wi;
-                P.pb = pb;
-                Scene::set_ray(sc.next.emplace_back(), scene_.offset_origin(x, ng, wi), wi);
-                sc.next_path.push_back(path);
-                if (more)
-                    ++c.bounce_rays;
-                else
-                    ++c.shadow_rays;
-            }
-            // Trace both streams, then add the contributions in each path's order.
-            if (!sc.shadow.empty()) {
-                if (log_) record(sc.shadow.data(), sc.shadow.size());
-                scene_.occluded(sc.shadow.data(), sc.shadow.size());
-            }
-            // The last vertex's BRDF rays need a distance only for sphere lights: without
-            // non-delta lights they are occlusion queries.
-            const bool query = !more && !nondelta_;
-            if (!sc.next.empty()) {
-                if (log_) record(sc.next.data(), sc.next.size(), more ? 1 : query ? 2 : 3, false);
-                if (query)
-                    occluded(sc.next.data(), sc.next.size());
-                else
-                    scene_.intersect(sc.next.data(), sc.next.size());
-            }
-            for (const Pending& pe : sc.pending) {
-                if (pe.ray != Pending::none && Scene::is_occluded(sc.shadow[pe.ray])) continue;
-                RGB& Lp = sc.paths[pe.path].L;
-                for (std::size_t i = 0; i < 3; ++i) Lp[i] += pe.a[i] * pe.k;
-            }
-            for (std::size_t j = 0; j < sc.next.size(); ++j) {
-                PathState& P = sc.paths[sc.next_path[j]];
-                const RTCRayHit& r = sc.next[j];
-                const V3& wi = P.wi;
-                const RGB& w = P.w;
-                const double pb = P.pb;
-                const bool miss =
-                    query ? !Scene::is_occluded(r.ray) : r.hit.geomID == RTC_INVALID_GEOMETRY_ID;
-                const double t = miss ? inf : double(r.ray.tfar);
-                if (miss && env_any_) {
-                    const RGB Le = env_radiance(wi);
-                    const double k = env_nee_ ? pb / (pb + sampler_.pdf(wi)) : 1.0;
-                    for (std::size_t i = 0; i < 3; ++i) P.L[i] += w[i] * Le[i] * k;
-                }
-                if (nondelta_)
-                    for (const Light& light : lights_) {
-                        if (light.type == Light::Type::directional) continue;
-                        const RGB Ll = light_radiance(light, wi, P.x);
-                        if (detail::pt::is_zero(Ll)) continue;
-                        if (light.type == Light::Type::sphere) {
-                            const double tb = detail::pt::ball_distance(P.x, wi, light.position,
-                                                                        std::fabs(light.radius));
-                            if (!(tb < t)) continue;
-                        } else if (!miss) {
-                            continue;
-                        }
-                        const double pl = sample_light_pdf(light, P.x, wi);
-                        const double k = pb / (pb + pl);
-                        for (std::size_t i = 0; i < 3; ++i) P.L[i] += w[i] * Ll[i] * k;
-                    }
-                if (!more || miss) {
-                    kill(P);
-                    continue;
-                }
-                P.beta = w;
-                if (bounces < 0 && depth >= 3) {
-                    const double q = std::min(0.95, std::max({P.beta[0], P.beta[1], P.beta[2]}));
-                    if (!(unit(detail::pt::hash_mixed(P.key, d0 + 5)) < q)) {
-                        kill(P);
-                        continue;
-                    }
-                    for (auto& v : P.beta) v /= q;
-                }
-                P.wo = -wi;
-            }
-            // The next vertices, in a loop of their own (their loads overlap).
-            if (more)
-                detail::pt::prefetched(
-                    sc.next.size(),
-                    [&](std::size_t j, int stage) { scene_.prefetch_hit(sc.next[j], stage); },
-                    [&](std::size_t j) {
-                        PathState& P = sc.paths[sc.next_path[j]];
-                        if (!P.alive) return;
-                        scene_.shading_hit(sc.next[j], P.h);
-                        if (!P.h.valid) kill(P);
-                    });
+            P.w = w;
+            P.wi = wi;
+            P.pb = pb;
+            Scene::set_ray(sc.next.emplace_back(), scene_.offset_origin(x, ng, wi), wi);
+            sc.next_path.push_back(path);
+            if (d.more)
+                ++c.bounce_rays;
+            else
+                ++c.shadow_rays;
         }
-        for (std::size_t k = 0; k < n; ++k) L[k] = sc.paths[k].L;
+    }
+
+    /// Stage 4: the shadow stream, then the BRDF stream (closest hits, or occlusion queries
+    /// when d.query).
+    void trace_streams(const Depth& d, Scratch& sc) const {
+        if (!sc.shadow.empty()) {
+            if (log_) record(sc.shadow.data(), sc.shadow.size());
+            scene_.occluded(sc.shadow.data(), sc.shadow.size());
+        }
+        if (!sc.next.empty()) {
+            if (log_) record(sc.next.data(), sc.next.size(), d.more ? 1 : d.query ? 2 : 3, false);
+            if (d.query)
+                occluded(sc.next.data(), sc.next.size());
+            else
+                scene_.intersect(sc.next.data(), sc.next.size());
+        }
+    }
+
+    /// Stage 5: the next-event contributions whose shadow rays were not occluded.
+    static void add_direct(Scratch& sc) noexcept {
+        for (const Pending& pe : sc.pending) {
+            if (pe.ray != Pending::none && Scene::is_occluded(sc.shadow[pe.ray])) continue;
+            RGB& Lp = sc.paths[pe.path].L;
+            for (std::size_t i = 0; i < 3; ++i) Lp[i] += pe.a[i] * pe.k;
+        }
+    }
+
+    /// Stage 6, per BRDF ray: the emitters it reaches (the environment on a miss, non-delta
+    /// lights), MIS-weighted against their samples; then the path ends (last vertex or a miss)
+    /// or continues with the new throughput (Russian roulette when unbounded).
+    void add_bsdf_hits(const Depth& d, Scratch& sc) const {
+        using namespace detail::rt;
+        constexpr double inf = std::numeric_limits<double>::infinity();
+        for (std::size_t j = 0; j < sc.next.size(); ++j) {
+            PathState& P = sc.paths[sc.next_path[j]];
+            const RTCRayHit& r = sc.next[j];
+            const V3& wi = P.wi;
+            const RGB& w = P.w;
+            const double pb = P.pb;
+            const bool miss =
+                d.query ? !Scene::is_occluded(r.ray) : r.hit.geomID == RTC_INVALID_GEOMETRY_ID;
+            const double t = miss ? inf : double(r.ray.tfar);
+            if (miss && env_any_) {
+                const RGB Le = env_radiance(wi);
+                const double k = env_nee_ ? pb / (pb + sampler_.pdf(wi)) : 1.0;
+                for (std::size_t i = 0; i < 3; ++i) P.L[i] += w[i] * Le[i] * k;
+            }
+            if (nondelta_)
+                for (const Light& light : lights_) {
+                    if (light.type == Light::Type::directional) continue;
+                    const RGB Ll = light_radiance(light, wi, P.x);
+                    if (detail::pt::is_zero(Ll)) continue;
+                    if (light.type == Light::Type::sphere) {
+                        const double tb = detail::pt::ball_distance(P.x, wi, light.position,
+                                                                    std::fabs(light.radius));
+                        if (!(tb < t)) continue;
+                    } else if (!miss) {
+                        continue;
+                    }
+                    const double pl = sample_light_pdf(light, P.x, wi);
+                    const double k = pb / (pb + pl);
+                    for (std::size_t i = 0; i < 3; ++i) P.L[i] += w[i] * Ll[i] * k;
+                }
+            if (!d.more || miss) {
+                sc.kill(P);
+                continue;
+            }
+            P.beta = w;
+            if (settings_.bounces < 0 && d.depth >= 3) {
+                const double q = std::min(0.95, std::max({P.beta[0], P.beta[1], P.beta[2]}));
+                if (!(unit(detail::pt::hash_mixed(P.key, d.d0 + 5)) < q)) {
+                    sc.kill(P);
+                    continue;
+                }
+                for (auto& v : P.beta) v /= q;
+            }
+            P.wo = -wi;
+        }
+    }
+
+    /// Stage 7: the hit records of the paths that continue, in a loop of their own (their
+    /// loads overlap; prefetched a few hits ahead).
+    void next_vertices(Scratch& sc) const {
+        detail::prefetched(
+            sc.next.size(),
+            [&](std::size_t j, int stage) { scene_.prefetch_hit(sc.next[j], stage); },
+            [&](std::size_t j) {
+                PathState& P = sc.paths[sc.next_path[j]];
+                if (!P.alive) return;
+                scene_.shading_hit(sc.next[j], P.h);
+                if (!P.h.valid) sc.kill(P);
+            });
     }
 
     /// A light sample that can contribute: a positive finite pdf and some radiance.

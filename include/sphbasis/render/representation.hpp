@@ -54,6 +54,7 @@
 #include "camera.hpp"
 #include "detail/rt_math.hpp"
 #include "image.hpp"
+#include "image_loop.hpp"
 #include "lighting.hpp"
 #include "representations/bake_points.hpp"
 #include "representations/family.hpp"
@@ -105,8 +106,8 @@ class Representations {
     /// representation builds what it derives from its bakes (Representation::build()).
     void prepare(BakeCache* cache,
                  const std::function<void(std::uint64_t, std::uint64_t)>& progress = {}) {
-        const std::vector<BakeRequest>& requests_ = ctx_.requests;
-        std::vector<BakeData>& data_ = ctx_.data;
+        const std::vector<BakeRequest>& requests_ = ctx_.requests;  // the plan
+        std::vector<BakeData>& data_ = ctx_.data;                   // what this call sets
         bakes_run_ = bakes_loaded_ = 0;
         data_.assign(requests_.size(), BakeData{});
         std::vector<std::uint64_t> keys(requests_.size());
@@ -203,43 +204,30 @@ class Representations {
         if (!hit.valid) return {0, 0, 0};
         return r.shade(ctx_, hit, view, footprint);
     }
-    /// One image: a camera ray per pixel centre (spp > 1: jittered, averaged); escaped rays
-    /// show the (rotated) environment like the ground truth. Multithreaded by 16 x 16 tiles;
-    /// deterministic (the jitter hashes (seed, pixel, sample)). Throws std::invalid_argument
-    /// for a bad index, camera or spp < 1.
+    /// One image from render::ImageLoop (image_loop.hpp): spp samples per pixel at the loop's
+    /// positions for settings.seed (spp = 1: the pixel centre; otherwise the same positions as
+    /// every image of that seed and count, the path tracer's included), a box filter; each
+    /// sample reads normal maps at the whole pixel's footprint. Escaped rays show the (rotated)
+    /// environment like the ground truth. Multithreaded by 16 x 16 tiles; deterministic.
+    /// Throws std::invalid_argument for a bad index, camera or spp outside [1, 2^20].
     Image render(std::size_t index, const Camera& camera, int spp = 1) const {
         rep(index, "render::Representations::render");
         sphbasis::detail::check_range("render::Representations::render", "spp", spp, 1, 1 << 20);
-        const PinholeCamera pc(camera);
-        Image img(camera.width, camera.height, 3);
-        const double angle = pc.pixel_angle();
-        for_each_tile(camera.width, camera.height, 16, [&](int x0, int y0, int x1, int y1) {
-            for (int y = y0; y < y1; ++y)
-                for (int x = x0; x < x1; ++x) {
-                    RGB sum{0, 0, 0};
-                    const std::uint64_t pixel =
-                        std::uint64_t(y) * std::uint64_t(camera.width) + std::uint64_t(x);
-                    for (int s = 0; s < spp; ++s) {
-                        double dx = 0.5, dy = 0.5;
-                        if (spp > 1) {
-                            const std::uint64_t h = detail::rt::hash(
-                                settings_.seed ^ 0x72656e646572ull, pixel, std::uint64_t(s));
-                            dx = detail::rt::unit(h);
-                            dy = detail::rt::unit(detail::rt::mix64(h));
-                        }
-                        const CameraRay ray = pc.ray(x + dx, y + dy);
-                        const Hit h = rt_.intersect(ray.origin, ray.direction);
-                        const vec3<double> view{-ray.direction.x, -ray.direction.y,
-                                                -ray.direction.z};
-                        const RGB c = h.valid ? shade(index, h, view, h.t * angle)
-                                              : background(ray.direction);
-                        for (std::size_t k = 0; k < 3; ++k) sum[k] += c[k];
-                    }
-                    float* p = img.at(x, y);
-                    for (std::size_t k = 0; k < 3; ++k) p[k] = static_cast<float>(sum[k] / spp);
-                }
+        ImageLoopSettings ls;
+        ls.seed = settings_.seed;
+        ls.spp = spp;
+        ls.hits = true;
+        ImageLoop loop(rt_, camera, ls);
+        const double angle = loop.pinhole().pixel_angle();
+        Film film(camera.width, camera.height, false);
+        loop.run(0, spp, {&film}, [&](const CameraBatch& b, std::size_t, RGB* out) {
+            for (std::size_t k = 0; k < b.n; ++k) {
+                const Hit& h = b.hits[k];
+                const vec3<double>& d = b.directions[k];
+                out[k] = h.valid ? shade(index, h, {-d.x, -d.y, -d.z}, h.t * angle) : background(d);
+            }
         });
-        return img;
+        return film.mean();
     }
     /// The radiance an escaped camera ray shows: the environment at R^T d (R the render-time
     /// lighting rotation); analytic lights are not visible to camera rays.
@@ -361,8 +349,8 @@ class Representations {
         return false;
     }
 
-    representations::Context ctx_;
-    const Scene& rt_;
+    representations::Context ctx_;  // what the representations see (family.hpp)
+    const Scene& rt_;               // ctx_.rt and a copy of ctx_.settings, for render()
     RepresentationSettings settings_;
     std::vector<std::string> names_;
     std::vector<std::unique_ptr<representations::Representation>> reps_;

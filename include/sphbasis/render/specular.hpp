@@ -11,8 +11,11 @@
 //              sparkling and too-bright highlights under minification);
 //   toksvig:   k_s (s + 8) / (8 pi) * toksvig::specular(Na.h / ..., |Na|, s) * (n.l), the lobe
 //              widened by f_t (Toksvig eq. 6-8, with the brief's energy scaling);
-//   reference: the finest level, normalised, averaged over ss x ss subpixel camera rays
+//   reference: the finest level, normalised, averaged over ss x ss camera rays per pixel
 //              (render_specular_reference), i.e. what the pixel should show.
+// Every image here comes from render::ImageLoop (image_loop.hpp): an aliased or toksvig image
+// compared with the reference is made with the same ss x ss sample positions (same seed), each
+// sample reading the mip level of the whole pixel's footprint.
 // Lights: the scene's directional lights (irradiance `color` on a surface facing it, as
 // lighting.hpp defines), times the shadow-free n.l; other lights and the environment are not part
 // of the specular comparison. Meshes with shininess 0 contribute 0; without a normal map the
@@ -31,9 +34,10 @@
 //  - toksvig: k_s (s + 8)/(8 pi) toksvig::specular(Na.h, |Na|, s) (n.l): eq. 8's factor
 //    (1 + f_t s)/(1 + s) preserves the energy of the half-vector lobe, so the outer constant
 //    stays the unwidened (s + 8)/(8 pi).
-//  - reference: the ss x ss rays sit at the centres of ss x ss equal strata of the pixel (an
-//    ordered grid: deterministic, no random numbers); misses and non-shiny meshes give 0.
-//  - The energy of the normalised lobe is about 1, not exactly 1: blinn_phong_lobe().
+//  - reference: the ss x ss rays sit at ImageLoop's positions (a per-pixel scrambled R2
+//    sequence, deterministic; the centre when ss = 1); misses and non-shiny meshes give 0.
+//  - The lobe is bsdf.hpp's (the path tracer's): its energy is about 1, not exactly 1
+//    (blinn_phong_lobe()).
 #pragma once
 
 #include <embree3/rtcore.h>
@@ -52,26 +56,16 @@
 #include "../core/error.hpp"
 #include "../shading/toksvig.hpp"
 #include "bake.hpp"
+#include "bsdf.hpp"
 #include "camera.hpp"
 #include "detail/rt_math.hpp"
 #include "image.hpp"
+#include "image_loop.hpp"
 #include "lighting.hpp"
 #include "normal_maps.hpp"
 #include "scene.hpp"
 
 namespace sphbasis::render {
-
-/// The energy-normalised Blinn-Phong lobe (s + 8)/(8 pi) max(n.h, 0)^s (without k_s and n.l).
-/// Over light directions l with the view along n, (lobe) (n.l) integrates to
-/// (s + 8) [2 (1 - 2^(-(s+4)/2))/(s + 4) - (1 - 2^(-(s+2)/2))/(s + 2)], about 1 but not
-/// exactly: 1.024 at s = 1, 1.075 at s = 8, 1.027 at s = 64, 1.002 at s = 1000. The factor
-/// (s + 8)/(8 pi) is the usual approximation of the exact normalisation (Akenine-Moller, Haines
-/// and Hoffman, "Real-Time Rendering", 3rd ed., 2008, section 7.6), kept because the path
-/// tracer and every game engine use it. s = 0 gives 1/pi (the constant lobe).
-inline double blinn_phong_lobe(double n_dot_h, double shininess) noexcept {
-    const double c = n_dot_h > 0 ? (n_dot_h < 1 ? n_dot_h : 1.0) : 0.0;
-    return (shininess + 8) / (8 * sphbasis::constants::pi) * std::pow(c, shininess);
-}
 
 /// A box-filtered mip chain of a tangent-space normal map, averages not renormalised.
 /// Level 0 holds the decoded normals 2c - 1 of the map (as stored, not normalised); level k + 1
@@ -317,7 +311,7 @@ class SpecularShading {
             const V3 h = hv * (1 / hl);
             double lobe;
             if (mode == Mode::toksvig)
-                lobe = (s + 8) / (8 * sphbasis::constants::pi) *
+                lobe = blinn_phong_normalization(s) *
                        toksvig::specular(dot(na, h), std::min(len, 1.0), s);
             else
                 lobe = blinn_phong_lobe(dot(n, h), s);
@@ -377,71 +371,61 @@ class SpecularShading {
 };
 
 namespace detail {
-/// Renders the specular image: samples x samples camera rays per pixel at the centres of
-/// that many strata, each shaded in `mode` with the footprint of one sample (the pixel's
-/// width / samples), averaged.
+/// The specular image in `mode` from render::ImageLoop: spp samples per pixel (the pixel
+/// centre when spp = 1), each shaded with the whole pixel's footprint (pixel_footprint()),
+/// averaged (a box filter).
 inline Image render_specular_image(const SceneDesc& scene, const Scene& rt, const Camera& camera,
-                                   SpecularShading::Mode mode, int samples) {
-    const PinholeCamera pc(camera);
+                                   SpecularShading::Mode mode, int spp, std::uint64_t seed) {
+    ImageLoopSettings ls;
+    ls.seed = seed;
+    ls.spp = spp;
+    ls.hits = true;
+    ImageLoop loop(rt, camera, ls);
     const SpecularShading shading(scene);
     if (rt.mesh_count() != scene.meshes.size())
         sphbasis::detail::throw_invalid("render::render_specular",
                                         "a ray-tracing scene of the description's " +
                                             std::to_string(scene.meshes.size()) + " meshes, got " +
                                             std::to_string(rt.mesh_count()));
-    Image img(camera.width, camera.height, 3);
-    const std::size_t per_pixel = std::size_t(samples) * std::size_t(samples);
-    const double inv = 1.0 / samples, weight = 1.0 / static_cast<double>(per_pixel);
-    for_each_tile(camera.width, camera.height, 16, [&](int x0, int y0, int x1, int y1) {
-        std::vector<RTCRayHit> rays(per_pixel);
-        std::vector<vec3<double>> dirs(per_pixel);
-        for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x) {
-                for (int b = 0; b < samples; ++b)
-                    for (int a = 0; a < samples; ++a) {
-                        const std::size_t i =
-                            std::size_t(b) * std::size_t(samples) + std::size_t(a);
-                        const CameraRay r = pc.ray(x + (a + 0.5) * inv, y + (b + 0.5) * inv);
-                        dirs[i] = r.direction;
-                        Scene::set_ray(rays[i], r.origin, r.direction);
-                    }
-                rt.intersect(rays.data(), per_pixel);
-                RGB sum{0, 0, 0};
-                for (std::size_t i = 0; i < per_pixel; ++i) {
-                    const Hit h = rt.hit(rays[i]);
-                    if (!h.valid) continue;
-                    const vec3<double> view{-dirs[i].x, -dirs[i].y, -dirs[i].z};
-                    const double fp = pixel_footprint(pc, dirs[i], h) * inv;
-                    const RGB c = shading.shade(mode, h, view, fp);
-                    for (std::size_t k = 0; k < 3; ++k) sum[k] += c[k];
-                }
-                float* px = img.at(x, y);
-                for (std::size_t k = 0; k < 3; ++k) px[k] = static_cast<float>(sum[k] * weight);
-            }
+    Film film(camera.width, camera.height, false);
+    loop.run(0, spp, {&film}, [&](const CameraBatch& b, std::size_t, RGB* out) {
+        for (std::size_t k = 0; k < b.n; ++k) {
+            const Hit& h = b.hits[k];
+            const vec3<double>& d = b.directions[k];
+            out[k] = h.valid ? shading.shade(mode, h, {-d.x, -d.y, -d.z},
+                                             pixel_footprint(loop.pinhole(), d, h))
+                             : RGB{0, 0, 0};
+        }
     });
-    return img;
+    return film.mean();
 }
 }  // namespace detail
 
-/// The specular image of a mode at one camera ray through each pixel centre (aliased or
-/// toksvig: the mip level of the pixel's footprint; reference: level 0, i.e. one sample of
-/// the reference). Throws std::invalid_argument for an invalid camera, a scene SpecularShading
-/// rejects, or `rt` not built from `scene` (different mesh count).
+/// The specular image of a mode (aliased or toksvig: the mip level of the pixel's footprint;
+/// reference: level 0) from render::ImageLoop with `spp` samples per pixel (1: the pixel
+/// centre; more: the loop's positions for `seed`, the same as every other image of that seed
+/// and count), each reading the whole pixel's footprint (what a renderer reads at this
+/// resolution), averaged. Throws std::invalid_argument for an invalid camera, spp outside
+/// [1, 4096], a scene SpecularShading rejects, or `rt` not built from `scene` (different mesh
+/// count).
 inline Image render_specular(const SceneDesc& scene, const Scene& rt, const Camera& camera,
-                             SpecularShading::Mode mode) {
-    return detail::render_specular_image(scene, rt, camera, mode, 1);
+                             SpecularShading::Mode mode, int spp = 1, std::uint64_t seed = 0) {
+    sphbasis::detail::check_range("render::render_specular", "spp", spp, 1, 4096);
+    return detail::render_specular_image(scene, rt, camera, mode, spp, seed);
 }
 
 /// The supersampled reference of the specular comparison (header comment): ss x ss camera
-/// rays per pixel, one at the centre of each of ss x ss equal strata (an ordered grid, so no
-/// random numbers: deterministic whatever the thread count), each shaded with the finest level
-/// normalised (Mode::reference), averaged with equal weights (a box pixel filter).
-/// Throws std::invalid_argument unless 1 <= ss <= 64, and as render_specular(). Cost:
-/// width x height x ss^2 rays, in tiles of 16 x 16 pixels on oneTBB.
+/// rays per pixel at render::ImageLoop's positions for `seed` (the pixel centre when ss = 1),
+/// each shaded with the finest level normalised (Mode::reference), averaged with equal weights
+/// (a box pixel filter). Deterministic whatever the thread count. A specular representation
+/// compared with it is rendered with the same ss x ss samples and seed (render_specular(...,
+/// ss * ss, seed)). Throws std::invalid_argument unless 1 <= ss <= 64, and as
+/// render_specular(). Cost: width x height x ss^2 rays, in tiles of 16 x 16 pixels on oneTBB.
 inline Image render_specular_reference(const SceneDesc& scene, const Scene& rt,
-                                       const Camera& camera, int ss) {
+                                       const Camera& camera, int ss, std::uint64_t seed = 0) {
     sphbasis::detail::check_range("render::render_specular_reference", "ss", ss, 1, 64);
-    return detail::render_specular_image(scene, rt, camera, SpecularShading::Mode::reference, ss);
+    return detail::render_specular_image(scene, rt, camera, SpecularShading::Mode::reference,
+                                         ss * ss, seed);
 }
 
 }  // namespace sphbasis::render

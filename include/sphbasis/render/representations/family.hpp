@@ -123,6 +123,13 @@ inline RGB sh_shade(const std::array<std::array<double, 9>, 3>& C, const vec3<do
     return out;
 }
 
+/// sum_k t[k] l[k] over n coefficients (a transfer vector applied to the lighting's SH).
+inline double transfer_dot(const double* t, const std::vector<double>& l, std::size_t n) noexcept {
+    double s = 0;
+    for (std::size_t k = 0; k < n; ++k) s += t[k] * l[k];
+    return s;
+}
+
 /// What a representation sees of the Representations that owns it.
 struct Context {
     Context(const SceneDesc& scene_, const Scene& rt_, const RepresentationSettings& settings_)
@@ -181,17 +188,24 @@ struct Context {
                 0.5 * (rt.bounds_min().y + rt.bounds_max().y),
                 0.5 * (rt.bounds_min().z + rt.bounds_max().z)};
     }
+    /// The SH of the distant lighting on `bands` bands, not rotated: the environment's plus
+    /// every light's seen from centre() (header comment).
+    std::vector<RGB> distant_sh(int bands) const {
+        std::vector<RGB> L = project_sh(scene.environment, bands);
+        const vec3<double> c0 = centre();
+        const std::size_t n = std::size_t(bands) * std::size_t(bands);
+        for (const Light& l : scene.lights) {
+            const std::vector<RGB> s = project_sh(l, bands, c0);
+            for (std::size_t k = 0; k < n; ++k)
+                for (std::size_t c = 0; c < 3; ++c) L[k][c] += s[k][c];
+        }
+        return L;
+    }
     /// Sets `sh` from the scene's lighting and settings.lighting_rotation.
     void prepare_lighting() {
         const int nb = std::max(3, settings.prt_bands);
         const std::size_t n = std::size_t(nb) * std::size_t(nb);
-        std::vector<RGB> L = project_sh(scene.environment, nb);
-        const vec3<double> c0 = centre();
-        for (const Light& l : scene.lights) {
-            const std::vector<RGB> s = project_sh(l, nb, c0);
-            for (std::size_t k = 0; k < n; ++k)
-                for (std::size_t c = 0; c < 3; ++c) L[k][c] += s[k][c];
-        }
+        const std::vector<RGB> L = distant_sh(nb);
         std::array<std::vector<double>, 3> ch;
         for (std::size_t c = 0; c < 3; ++c) {
             ch[c].resize(n);
@@ -307,6 +321,7 @@ class Representation {
         return "texel";
     }
 
+    // Set by the family's constructor (what stats() reports) and by plan() (the bakes).
     std::string name;
     std::string element = "none", cannot_show;
     std::size_t bytes_per_element = 0;

@@ -102,14 +102,8 @@ class Lxh : public Representation {
     /// The SH of the distant lighting on `bands` bands, rotated by lighting_rotation,
     /// interleaved (coefficient i, channel c at [3 i + c]) as lxh_matrix() reads it.
     static std::vector<double> lighting(const Context& ctx, int bands) {
-        std::vector<RGB> L = project_sh(ctx.scene.environment, bands);
-        const vec3<double> centre = ctx.centre();
+        const std::vector<RGB> L = ctx.distant_sh(bands);
         const std::size_t n = std::size_t(bands) * std::size_t(bands);
-        for (const Light& l : ctx.scene.lights) {
-            const std::vector<RGB> s = project_sh(l, bands, centre);
-            for (std::size_t k = 0; k < n; ++k)
-                for (std::size_t c = 0; c < 3; ++c) L[k][c] += s[k][c];
-        }
         std::vector<double> out(3 * n), ch(n), rot(n);
         for (std::size_t c = 0; c < 3; ++c) {
             for (std::size_t k = 0; k < n; ++k) ch[k] = L[k][c];

@@ -67,11 +67,8 @@ class Prt : public Representation {
         lookup(ctx.fields[std::size_t(b)], hit, t.data());
         const std::size_t n = std::size_t(ctx.settings.prt_bands * ctx.settings.prt_bands);
         RGB out{0, 0, 0};
-        for (std::size_t c = 0; c < 3; ++c) {
-            double s = 0;
-            for (std::size_t k = 0; k < n; ++k) s += t[c * n + k] * ctx.sh.prt[c][k];
-            out[c] = hit.albedo[c] * s;
-        }
+        for (std::size_t c = 0; c < 3; ++c)
+            out[c] = hit.albedo[c] * transfer_dot(t.data() + c * n, ctx.sh.prt[c], n);
         return out;
     }
     void stats(const Context& ctx, RepresentationStats& s) const override {

@@ -93,8 +93,7 @@ class PrtNormalMap : public Representation {
         const RGB um = sh_shade(ctx.sh.irr, Scene::normal_mapped(hit), hit.albedo);
         RGB out{0, 0, 0};
         for (std::size_t c = 0; c < 3; ++c) {
-            double sh = 0;
-            for (std::size_t k = 0; k < n; ++k) sh += t[c * n + k] * ctx.sh.prt[c][k];
+            const double sh = transfer_dot(t.data() + c * n, ctx.sh.prt[c], n);
             out[c] = u0[c] > 1e-12 ? std::max(sh, 0.0) / u0[c] * um[c] : 0.0;
         }
         return out;
@@ -114,9 +113,7 @@ class PrtNormalMap : public Representation {
         for (std::size_t c = 0; c < 3; ++c) {
             double e = 0;
             for (std::size_t i = 0; i < 9; ++i) {
-                const double* row = m.data() + c * 9 * n + i * n;
-                double li = 0;
-                for (std::size_t k = 0; k < n; ++k) li += row[k] * ctx.sh.prt[c][k];
+                const double li = transfer_dot(m.data() + c * 9 * n + i * n, ctx.sh.prt[c], n);
                 e += ctx.sh.cosine9[i] * li * y[i];
             }
             out[c] = hit.albedo[c] * e;
@@ -160,10 +157,7 @@ class PrtNormalMap : public Representation {
         for (std::size_t c = 0; c < 3; ++c) {
             double e = 0;
             for (std::size_t k = 0; k < mv; ++k) {
-                const double* row = g.data() + (c * mv + k) * n;
-                double h = 0;
-                for (std::size_t j = 0; j < n; ++j) h += row[j] * ctx.sh.prt[c][j];
-                e += p[k] * h;
+                e += p[k] * transfer_dot(g.data() + (c * mv + k) * n, ctx.sh.prt[c], n);
             }
             out[c] = hit.albedo[c] * e * constants::inv_pi;
         }
