@@ -245,7 +245,7 @@ void bare(benchmark::State& state) {
     state.SetLabel(s.label);
 }
 
-void bake(benchmark::State& state, unsigned quantities, int bands) {
+void bake(benchmark::State& state, Quantity quantities, int bands) {
     const Run run(state);
     if (!run.ok(state)) return;
     const BenchScene& s = run.s;

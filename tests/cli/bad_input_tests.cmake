@@ -127,13 +127,14 @@ sphbasis_cli_script(bad_long_option "long-option-ok [0-9]+ chars"
 sphbasis_cli_script(loader_80000_meshes "loader-time-ok"
   "python3 ${CMAKE_CURRENT_SOURCE_DIR}/cli/time_loader.py \"${_bi_cli}\" 80000 2.0")
 
-# --- bake-merge: a shard whose header lost a key (or has one of the wrong type) is one line
-# naming the file, not nlohmann's exception text (label bake: it bakes the shard first).
-set(_bi_edit_shard "import json, struct, sys; p, key, value = sys.argv[1], sys.argv[2], sys.argv[3]; b = open(p, 'rb').read(); n = struct.unpack('<Q', b[8:16])[0]; h = json.loads(b[16:16 + n]); h.pop(key) if value == 'DELETE' else h.__setitem__(key, json.loads(value)); t = json.dumps(h).encode(); open(p, 'wb').write(b[:8] + struct.pack('<Q', len(t)) + t + b[16 + n:])")
+# --- bake-merge: a shard whose header lost a key (or has one of the wrong type), with a valid
+# checksum (cli/edit_shard.py recomputes it), is one line naming the file, not nlohmann's
+# exception text (label bake: it bakes the shard first).
+set(_bi_edit_shard ${CMAKE_CURRENT_SOURCE_DIR}/cli/edit_shard.py)
 sphbasis_script_test(bake bad_merge_header_key "bad-input-ok: sphbasis bake-merge: [^ ]*bi_merge/bake.shard-0-of-2.bin: corrupt shard header \\(key 'rays' not found\\)\n"
-  "rm -rf bi_merge && \"${_bi_cli}\" bake ${_bi_scenes}/lone_sphere.json --rays 4 --shard 0/2 --out bi_merge 2>/dev/null && python3 -c \"${_bi_edit_shard}\" bi_merge/bake.shard-0-of-2.bin rays DELETE && err=$(\"${_bi_cli}\" bake-merge bi_merge/bake.shard-0-of-2.bin 2>&1 >/dev/null); rc=$?; n=$(printf '%s\\n' \"$err\" | wc -l); if [ $rc -eq 1 ] && [ $n -eq 1 ]; then echo \"bad-input-ok: $err\"; else echo \"rc=$rc lines=$n: $err\"; fi")
+  "rm -rf bi_merge && \"${_bi_cli}\" bake ${_bi_scenes}/lone_sphere.json --rays 4 --shard 0/2 --out bi_merge 2>/dev/null && python3 ${_bi_edit_shard} bi_merge/bake.shard-0-of-2.bin rays DELETE && err=$(\"${_bi_cli}\" bake-merge bi_merge/bake.shard-0-of-2.bin 2>&1 >/dev/null); rc=$?; n=$(printf '%s\\n' \"$err\" | wc -l); if [ $rc -eq 1 ] && [ $n -eq 1 ]; then echo \"bad-input-ok: $err\"; else echo \"rc=$rc lines=$n: $err\"; fi")
 sphbasis_script_test(bake bad_merge_header_type "bad-input-ok: sphbasis bake-merge: [^ ]*bi_merge2/bake.shard-0-of-2.bin: corrupt shard header \\(type must be number, but is null\\)\n"
-  "rm -rf bi_merge2 && \"${_bi_cli}\" bake ${_bi_scenes}/lone_sphere.json --rays 4 --shard 0/2 --out bi_merge2 2>/dev/null && python3 -c \"${_bi_edit_shard}\" bi_merge2/bake.shard-0-of-2.bin scene_fnv1a null && err=$(\"${_bi_cli}\" bake-merge bi_merge2/bake.shard-0-of-2.bin 2>&1 >/dev/null); rc=$?; n=$(printf '%s\\n' \"$err\" | wc -l); if [ $rc -eq 1 ] && [ $n -eq 1 ]; then echo \"bad-input-ok: $err\"; else echo \"rc=$rc lines=$n: $err\"; fi")
+  "rm -rf bi_merge2 && \"${_bi_cli}\" bake ${_bi_scenes}/lone_sphere.json --rays 4 --shard 0/2 --out bi_merge2 2>/dev/null && python3 ${_bi_edit_shard} bi_merge2/bake.shard-0-of-2.bin points null && err=$(\"${_bi_cli}\" bake-merge bi_merge2/bake.shard-0-of-2.bin 2>&1 >/dev/null); rc=$?; n=$(printf '%s\\n' \"$err\" | wc -l); if [ $rc -eq 1 ] && [ $n -eq 1 ]; then echo \"bad-input-ok: $err\"; else echo \"rc=$rc lines=$n: $err\"; fi")
 # A mesh name longer than a file name can be.
 sphbasis_cli_bad_env(bad_long_mesh_name "bake: [^ ]*bi_name.json: meshes\\[0\\].name: expected at most 200 characters \\(it names output files\\), got 'nnnnn[n]*... \\(300 bytes\\)'\n"
                      "python3 -c \"import json; json.dump({'meshes': [{'shape': 'quad', 'name': 'n' * 300}]}, open('bi_name.json', 'w'))\" &&"

@@ -554,7 +554,7 @@ TEST_CASE("render::Baker: bad input", "[render]") {
     s.rays = 0;
     CHECK_THROWS_WITH(Baker(d, s), Catch::Contains("rays"));
     s = BakeSettings{};
-    s.quantities = 0;
+    s.quantities = Quantity{};
     CHECK_THROWS_AS(Baker(d, s), std::invalid_argument);
     s = BakeSettings{};
     s.max_distance = std::numeric_limits<double>::quiet_NaN();

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "sphbasis/render/bake.hpp"
+#include "sphbasis/render/bake_points.hpp"
 #include "sphbasis/render/lightmap.hpp"
 #include "sphbasis/render/shapes.hpp"
 
@@ -24,20 +25,11 @@ TEST_CASE("bake targets: per-texel ao equals per-vertex ao interpolated, on a fi
     settings.rays = 1024;
     Baker baker(scene, settings);
 
-    std::vector<BakePoint> vertices(plane.vertex_count());
-    for (std::size_t v = 0; v < vertices.size(); ++v) {
-        vertices[v].p = {plane.positions[3 * v], plane.positions[3 * v + 1],
-                         plane.positions[3 * v + 2]};
-        vertices[v].n = {0, 0, 1};
-        vertices[v].id = v;
-    }
-    const std::vector<PointResult> at_vertices = baker.bake(vertices);
+    const std::vector<PointResult> at_vertices = baker.bake(vertex_points(scene.meshes, 0));
 
-    const LightmapLayout layout = layout_lightmap(plane.view(), 24, 24, 1u << 20);
+    const LightmapLayout layout = texel_layout(scene.meshes, 0, 24);
     REQUIRE(layout.samples.size() == 24u * 24u);  // the quad's UVs cover the whole map
-    std::vector<BakePoint> texels;
-    for (const LightmapSample& s : layout.samples) texels.push_back(s.point);
-    const std::vector<PointResult> at_texels = baker.bake(texels);
+    const std::vector<PointResult> at_texels = baker.bake(texel_points(layout));
 
     // Interpolation error of ao over a cell of 1/16 at this height is below 2e-3; the Monte
     // Carlo error of the difference is about sqrt(2) x the standard errors.

@@ -14,7 +14,7 @@
 #include "sphbasis/core/quadrature.hpp"
 #include "sphbasis/core/sampling.hpp"
 #include "sphbasis/param/latlong.hpp"
-#include "sphbasis/render/bake.hpp"  // its Quantity enumerators share the namespace
+#include "sphbasis/render/bake.hpp"  // beside lighting.hpp: no name of one hides the other's
 #include "sphbasis/render/lighting.hpp"
 
 using sphbasis::vec3;

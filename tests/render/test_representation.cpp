@@ -611,3 +611,47 @@ TEST_CASE("representations: lightmap texels sit where the UVs say (texel ao agai
     CHECK(dark > 0);
     CHECK(diff < 0.25 * dark);
 }
+
+TEST_CASE("representations: a render's bakes are the bake command's, bit for bit",
+          "[render][bake]") {
+    // The same settings and points (render/bake_points.hpp: one id scheme, one tangent rule)
+    // give the same samples: what `sphbasis render` bakes for a request equals what
+    // `sphbasis bake` (a Baker over vertex_points / texel_layout of the whole scene) bakes.
+    World w = sphere_on_plane(true);
+    w.desc.environment = sphbasis_test::constant_environment({0.4, 0.5, 0.6});
+    w.build();
+    render::RepresentationSettings s = settings(16, 1, 8);
+    s.seed = 11;
+    const std::vector<std::string> names{"ao", "prt-texel", "lightmap-hbasis4"};
+    render::Representations r(w.desc, *w.rt, s, names);
+    r.prepare(nullptr);
+    REQUIRE(r.bakes().size() >= 4);
+    std::size_t compared = 0;
+    for (std::size_t i = 0; i < r.bakes().size(); ++i) {
+        const render::BakeRequest& q = r.bakes()[i];
+        if (q.where == render::BakeRequest::Where::probes) continue;
+        std::vector<render::BakePoint> pts;
+        render::LightmapLayout layout;
+        if (q.where == render::BakeRequest::Where::vertex) {
+            pts = render::vertex_points(w.desc.meshes, q.mesh);
+        } else {
+            layout = render::texel_layout(w.desc.meshes, q.mesh, q.lightmap_size);
+            pts = render::texel_points(layout);
+        }
+        render::Baker baker(w.desc, q.settings);  // its own BVH, as the command builds
+        const std::vector<render::PointResult> want = baker.bake(pts);
+        const std::vector<render::PointResult>& got = r.bake_data(i).results;
+        INFO("bake " << i << " of mesh " << q.mesh);
+        REQUIRE(got.size() == want.size());
+        for (std::size_t k = 0; k < got.size(); ++k) {
+            CHECK(got[k].ao == want[k].ao);
+            CHECK(got[k].bent.z == want[k].bent.z);
+            for (std::size_t c = 0; c < 3; ++c) {
+                CHECK(got[k].transfer[c] == want[k].transfer[c]);
+                CHECK(got[k].irradiance[c] == want[k].irradiance[c]);
+            }
+        }
+        ++compared;
+    }
+    CHECK(compared >= 4);
+}

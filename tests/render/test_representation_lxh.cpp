@@ -124,7 +124,7 @@ TEST_CASE("lxh representations: the plan bakes visibility only for lxh-*, tables
         CHECK(r.lxh_tables_built() == 0);
         CHECK(r.compressions_built() == 0);
         for (const auto& q : r.bakes())
-            CHECK_FALSE(q.settings.quantities & render::Quantity::visibility);
+            CHECK_FALSE(has(q.settings.quantities, render::Quantity::visibility));
     }
     {
         // unc6 and pca4 read the same 6-band visibility; unc3 its own; one table per bands.

@@ -9,13 +9,15 @@
 // Precomputed Visibility" (JGT 2009), section 3.1; Ishmukhametov, "Irradiance Normal Mapping"
 // (thesis), section 1.9.
 //
-// Where (--target):
+// Where (--target): the points, their ids, normals and tangents are render/bake_points.hpp's
+// (shared with `sphbasis render`):
 //   vertices     every vertex of every mesh; point id = global vertex index in scene order.
 //                Writes OUT/<mesh>.ply per mesh (support/ply.hpp lists the property names).
 //   texels:RES   a RES x RES lightmap per mesh in its UV set (render::layout_lightmap; point
-//                id = mesh index * RES^2 + y * RES + x), gutters dilated by kGutter texels.
-//                Writes OUT/<mesh>.exr (float channels named as the PLY properties, plus
-//                "coverage": 1 where a texel was baked, 0 in gutters and empty space).
+//                id = mesh index * RES^2 + y * RES + x), gutters dilated by render::lightmap_gutter
+//                texels (render::assemble_lightmap). Writes OUT/<mesh>.exr (float channels named as
+//                the PLY properties, plus "coverage": 1 where a texel was baked, 0 in gutters and
+//                empty space).
 //   probes       the scene's "probes" grid (point id = probe index). Writes OUT/probes.json.
 //   --points F   points read from F or standard input ('-'): `x y z nx ny nz` (surface) or
 //                `x y z` (free point) per line, '#' comments and blank lines skipped; point
@@ -36,8 +38,11 @@
 // as it was.
 //
 // Sharding: --shard I/N bakes the points with index in [floor(P I / N), floor(P (I + 1) / N))
-// of the P points in id order and writes OUT/bake.shard-I-of-N.bin (the raw results and a JSON
-// header); `sphbasis bake-merge` reads all N shards, reloads the scene and writes the same
+// of the P points in id order and writes OUT/bake.shard-I-of-N.bin (render/bake_file.hpp's
+// format, docs/bake-format.md: the raw results and a JSON header, the input hash of the scene
+// file, every file it reads, the target and the settings, and a checksum); `sphbasis
+// bake-merge` reads all N shards, refuses a corrupt one, one of another bake and all of them
+// when the scene or a file it reads changed since, reloads the scene and writes the same
 // files as one run would. Results depend only on (seed, point id, settings) (render/bake.hpp),
 // so the merged data files are bit-identical to an unsharded bake's; bake.json differs only in
 // its timings and its "shards" entry. With --points, a shard prints its own lines (merging is
@@ -50,14 +55,16 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <sphbasis/basis/registry.hpp>
 #include <sphbasis/render/bake.hpp>
+#include <sphbasis/render/bake_file.hpp>
+#include <sphbasis/render/bake_points.hpp>
 #include <sphbasis/render/lightmap.hpp>
 #include <sphbasis/render/probe_grid.hpp>
 #include <sstream>
@@ -77,35 +84,27 @@ namespace sphbasis::cli {
 
 namespace {
 
-constexpr int kGutter = 4;  // texels dilated around each chart
-constexpr char kShardMagic[8] = {'S', 'P', 'H', 'B', 'S', 'H', 'R', 'D'};
 // The layout of a result record (struct Layout), recorded in each shard's header as
-// "record_format" and checked by bake-merge. 2: irr_stderr and rad_stderr added (shards without
-// the key are format 1 and are refused). 3: bent_stderr added after bent.
+// "record_format", part of its input hash and checked by bake-merge. 2: irr_stderr and
+// rad_stderr added. 3: bent_stderr added after bent.
 constexpr int kRecordFormat = 3;
 
-const std::vector<std::pair<std::string, unsigned>>& quantity_names() {
-    static const std::vector<std::pair<std::string, unsigned>> q = {
-        {"ao", render::Quantity::ao},
-        {"bent", render::Quantity::bent},
-        {"visibility", render::Quantity::visibility},
-        {"transfer", render::Quantity::transfer},
-        {"irradiance", render::Quantity::irradiance},
-        {"radiance", render::Quantity::radiance}};
-    return q;
-}
+// The quantities the command bakes (names: render::quantity_name()).
+constexpr render::Quantity kQuantities[] = {
+    render::Quantity::ao,       render::Quantity::bent,       render::Quantity::visibility,
+    render::Quantity::transfer, render::Quantity::irradiance, render::Quantity::radiance};
 
-unsigned parse_quantities(const std::string& s) {
-    unsigned q = 0;
+render::Quantity parse_quantities(const std::string& s) {
+    render::Quantity q{};
     std::vector<std::string> names;
-    for (const auto& [n, bit] : quantity_names()) names.push_back(n);
+    for (render::Quantity b : kQuantities) names.push_back(render::quantity_name(b));
     std::stringstream in(s);
     std::string item;
     while (std::getline(in, item, ',')) {
-        unsigned bit = 0;
-        for (const auto& [n, b] : quantity_names())
-            if (n == item) bit = b;
-        if (bit == 0) {
+        render::Quantity bit{};
+        for (render::Quantity b : kQuantities)
+            if (item == render::quantity_name(b)) bit = b;
+        if (!any(bit)) {
             const std::string near = item.size() <= 64 ? closest_key(item, names) : "";
             throw UsageError("--quantities: unknown quantity '" + quote_input(item) + "'" +
                              (near.empty() ? std::string(" (expected ao, bent, visibility, "
@@ -114,7 +113,7 @@ unsigned parse_quantities(const std::string& s) {
         }
         q |= bit;
     }
-    if (q == 0) throw UsageError("--quantities: expected a list such as ao,bent");
+    if (!any(q)) throw UsageError("--quantities: expected a list such as ao,bent");
     return q;
 }
 
@@ -185,56 +184,15 @@ struct Work {
     std::vector<std::array<double, 3>> given_n;   // points: the normal as given
 };
 
-std::vector<float> vertex_normals(const render::Mesh& m) {
-    if (!m.normals.empty()) return m.normals;
-    // Area-weighted face normals (a mesh from a format without normals and no Assimp pass).
-    std::vector<float> n(m.positions.size(), 0.0f);
-    for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
-        const float* p0 = &m.positions[3 * std::size_t(m.indices[t])];
-        const float* p1 = &m.positions[3 * std::size_t(m.indices[t + 1])];
-        const float* p2 = &m.positions[3 * std::size_t(m.indices[t + 2])];
-        const float a[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
-        const float b[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-        const float c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                            a[0] * b[1] - a[1] * b[0]};
-        for (int k = 0; k < 3; ++k)
-            for (int d = 0; d < 3; ++d)
-                n[3 * std::size_t(m.indices[t + std::size_t(k)]) + std::size_t(d)] += c[d];
-    }
-    return n;
-}
-
+// Vertices, texels and probes: the library's bake points (render/bake_points.hpp: the id scheme,
+// normals and tangents shared with `sphbasis render`).
 Work vertex_work(const SceneFile& scene) {
     Work w;
-    std::uint64_t id = 0;
-    for (const SceneMesh& sm : scene.meshes) {
+    const render::SceneDesc desc = scene.scene_desc();
+    for (std::size_t k = 0; k < desc.meshes.size(); ++k) {
         w.mesh_begin.push_back(w.points.size());
-        const render::Mesh& m = sm.mesh;
-        const std::vector<float> n = vertex_normals(m);
-        for (std::size_t v = 0; v < m.vertex_count(); ++v) {
-            render::BakePoint p;
-            p.p = {m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]};
-            p.n = {n[3 * v], n[3 * v + 1], n[3 * v + 2]};
-            if (!m.tangents.empty()) {
-                // The contract wants a unit tangent orthogonal to n (or zero): Gram-Schmidt,
-                // since file tangents are not exactly orthogonal to smoothed normals.
-                const double nx = n[3 * v], ny = n[3 * v + 1], nz = n[3 * v + 2];
-                const double nn = nx * nx + ny * ny + nz * nz;
-                double tx = m.tangents[4 * v], ty = m.tangents[4 * v + 1],
-                       tz = m.tangents[4 * v + 2];
-                if (nn > 0) {
-                    const double d = (tx * nx + ty * ny + tz * nz) / nn;
-                    tx -= d * nx;
-                    ty -= d * ny;
-                    tz -= d * nz;
-                }
-                const double tl = std::sqrt(tx * tx + ty * ty + tz * tz);
-                if (tl > 1e-6 && std::isfinite(tl)) p.tangent = {tx / tl, ty / tl, tz / tl};
-                p.bitangent_sign = m.tangents[4 * v + 3] < 0 ? -1 : 1;
-            }
-            p.id = id++;
-            w.points.push_back(p);
-        }
+        const std::vector<render::BakePoint> p = render::vertex_points(desc.meshes, k);
+        w.points.insert(w.points.end(), p.begin(), p.end());
     }
     w.mesh_begin.push_back(w.points.size());
     return w;
@@ -242,6 +200,7 @@ Work vertex_work(const SceneFile& scene) {
 
 Work texel_work(const SceneFile& scene, int res) {
     Work w;
+    const render::SceneDesc desc = scene.scene_desc();
     for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
         const SceneMesh& sm = scene.meshes[k];
         if (sm.mesh.uvs.empty())
@@ -249,9 +208,7 @@ Work texel_work(const SceneFile& scene, int res) {
                                      sm.name +
                                      "'): a texel bake needs a UV set, and this mesh has none");
         w.mesh_begin.push_back(w.points.size());
-        const std::uint64_t base = static_cast<std::uint64_t>(k) * static_cast<std::uint64_t>(res) *
-                                   static_cast<std::uint64_t>(res);
-        w.layouts.push_back(render::layout_lightmap(sm.mesh.view(), res, res, base));
+        w.layouts.push_back(render::texel_layout(desc.meshes, k, res));
         for (const render::LightmapSample& s : w.layouts.back().samples)
             w.points.push_back(s.point);
     }
@@ -265,15 +222,7 @@ Work probe_work(const SceneFile& scene) {
                                  ": --target probes needs a \"probes\" grid in the "
                                  "scene (docs/scene-format.md)");
     Work w;
-    const render::ProbeGrid& g = scene.probes;
-    for (int k = 0; k < g.counts[2]; ++k)
-        for (int j = 0; j < g.counts[1]; ++j)
-            for (int i = 0; i < g.counts[0]; ++i) {
-                render::BakePoint p;
-                p.p = g.position(i, j, k);
-                p.id = g.index(i, j, k);
-                w.points.push_back(p);
-            }
+    w.points = render::probe_points(scene.probes);
     return w;
 }
 
@@ -413,21 +362,21 @@ bool any_rgb_transfer(const Layout& L, const std::vector<double>& rec) {
 
 std::vector<Column> columns(const render::BakeSettings& s, const Layout& L, bool rgb_transfer) {
     std::vector<Column> c;
-    const unsigned q = s.quantities;
+    const render::Quantity q = s.quantities;
     auto list = [&](const std::string& prefix, std::size_t off, std::size_t n) {
         for (std::size_t i = 0; i < n; ++i) c.push_back({prefix + std::to_string(i), off + i});
     };
-    if (q & render::Quantity::ao) c.insert(c.end(), {{"ao", L.ao}, {"ao_stderr", L.ao + 1}});
-    if (q & render::Quantity::bent)
+    if (has(q, render::Quantity::ao)) c.insert(c.end(), {{"ao", L.ao}, {"ao_stderr", L.ao + 1}});
+    if (has(q, render::Quantity::bent))
         c.insert(c.end(), {{"bent_x", L.bent},
                            {"bent_y", L.bent + 1},
                            {"bent_z", L.bent + 2},
                            {"bent_stderr", L.bent_se}});
-    if (q & render::Quantity::visibility) {
+    if (has(q, render::Quantity::visibility)) {
         list("vis_", L.vis, L.b2);
         list("vis_stderr_", L.vis_se, L.b2);
     }
-    if (q & render::Quantity::transfer) {
+    if (has(q, render::Quantity::transfer)) {
         if (rgb_transfer) {
             list("transfer_r_", L.tr, L.b2);
             list("transfer_g_", L.tr + L.b2, L.b2);
@@ -437,13 +386,13 @@ std::vector<Column> columns(const render::BakeSettings& s, const Layout& L, bool
         }
         list("transfer_stderr_", L.tr_se, L.b2);
     }
-    if (q & render::Quantity::irradiance) {
+    if (has(q, render::Quantity::irradiance)) {
         list("irr_r_", L.irr, L.nc);
         list("irr_g_", L.irr + L.nc, L.nc);
         list("irr_b_", L.irr + 2 * L.nc, L.nc);
         list("irr_stderr_", L.irr_se, L.nc);
     }
-    if (q & render::Quantity::radiance) {
+    if (has(q, render::Quantity::radiance)) {
         list("rad_r_", L.rad, L.b2);
         list("rad_g_", L.rad + L.b2, L.b2);
         list("rad_b_", L.rad + 2 * L.b2, L.b2);
@@ -458,8 +407,8 @@ std::vector<Column> columns(const render::BakeSettings& s, const Layout& L, bool
 
 Json settings_json(const render::BakeSettings& s) {
     Json q = Json::array();
-    for (const auto& [n, bit] : quantity_names())
-        if (s.quantities & bit) q.push_back(n);
+    for (render::Quantity b : kQuantities)
+        if (has(s.quantities, b)) q.push_back(render::quantity_name(b));
     Json j = {{"quantities", q},    {"bands", s.bands},        {"basis", s.basis},
               {"coeffs", s.coeffs}, {"rays", s.rays},          {"bounces", s.bounces},
               {"seed", s.seed},     {"max_distance", nullptr}, {"target_error", s.target_error}};
@@ -486,20 +435,6 @@ std::vector<render::Pass> plan_of(const Json& j) {
         plan.push_back(p);
     }
     return plan;
-}
-
-std::uint64_t fnv1a_of_file(const std::string& path) {
-    std::ifstream f(path, std::ios::binary);
-    std::uint64_t h = 1469598103934665603ull;
-    char buf[65536];
-    while (f) {
-        f.read(buf, sizeof buf);
-        for (std::streamsize i = 0; i < f.gcount(); ++i) {
-            h ^= static_cast<unsigned char>(buf[i]);
-            h *= 1099511628211ull;
-        }
-    }
-    return h;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -542,7 +477,8 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
     if (w.target.kind == TargetKind::vertices) {
         for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
             const render::Mesh& m = scene.meshes[k].mesh;
-            const std::vector<float> n = vertex_normals(m);
+            const std::vector<double> nd = render::vertex_normals(m.view());
+            const std::vector<float> n(nd.begin(), nd.end());
             std::vector<std::string> names = {"x", "y", "z", "nx", "ny", "nz"};
             for (const Column& c : cols) names.push_back(c.name);
             std::vector<float> vals;
@@ -568,19 +504,14 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
     } else if (w.target.kind == TargetKind::texels) {
         for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
             const render::LightmapLayout& lay = w.layouts[k];
-            const std::size_t nch = nc + 1;  // + coverage
+            const std::size_t nch = nc + 1;  // + coverage, set after the dilation
             const std::size_t npx = std::size_t(lay.width) * std::size_t(lay.height);
-            std::vector<float> img(npx * nch, 0.0f);
-            for (std::size_t i = 0; i < lay.samples.size(); ++i) {
-                const render::LightmapSample& smp = lay.samples[i];
-                const std::size_t px =
-                    std::size_t(smp.y) * std::size_t(lay.width) + std::size_t(smp.x);
-                const double* r = rec.data() + (w.mesh_begin[k] + i) * L.stride;
-                for (std::size_t c = 0; c < nc; ++c)
-                    img[px * nch + c] = static_cast<float>(r[cols[c].offset]);
-            }
-            render::dilate(img.data(), lay.width, lay.height, static_cast<int>(nch), lay.covered,
-                           kGutter);
+            std::vector<float> img = render::assemble_lightmap(
+                lay, static_cast<int>(nch), [&](std::size_t i, float* px) {
+                    const double* r = rec.data() + (w.mesh_begin[k] + i) * L.stride;
+                    for (std::size_t c = 0; c < nc; ++c)
+                        px[c] = static_cast<float>(r[cols[c].offset]);
+                });
             for (std::size_t p = 0; p < npx; ++p) img[p * nch + nc] = lay.covered[p] ? 1.0f : 0.0f;
             std::vector<std::string> names;
             for (const Column& c : cols) names.push_back(c.name);
@@ -596,7 +527,7 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
                                {"height", lay.height},
                                {"texels_baked", lay.samples.size()},
                                {"skipped_triangles", lay.skipped_triangles},
-                               {"gutter", kGutter},
+                               {"gutter", render::lightmap_gutter},
                                {"channels", cn}});
         }
     } else if (w.target.kind == TargetKind::probes) {
@@ -639,7 +570,7 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
 void print_points(const Work& w, const render::BakeSettings& s, const std::vector<double>& rec,
                   std::size_t begin) {
     const Layout L(s);
-    const unsigned q = s.quantities;
+    const render::Quantity q = s.quantities;
     auto list = [&](const double* p, std::size_t n) {
         Json a = Json::array();
         for (std::size_t i = 0; i < n; ++i) a.push_back(p[i]);
@@ -654,27 +585,27 @@ void print_points(const Work& w, const render::BakeSettings& s, const std::vecto
         const vec3<double>& p = w.points[i].p;
         Json line = {{"p", {p.x, p.y, p.z}}};
         if (w.surface[i]) line["n"] = {w.given_n[i][0], w.given_n[i][1], w.given_n[i][2]};
-        if (q & render::Quantity::ao) {
+        if (has(q, render::Quantity::ao)) {
             line["ao"] = r[L.ao];
             line["ao_stderr"] = r[L.ao + 1];
         }
-        if (q & render::Quantity::bent) {
+        if (has(q, render::Quantity::bent)) {
             line["bent"] = list(r + L.bent, 3);
             line["bent_stderr"] = r[L.bent_se];
         }
-        if (q & render::Quantity::visibility) {
+        if (has(q, render::Quantity::visibility)) {
             line["visibility"] = list(r + L.vis, L.b2);
             line["visibility_stderr"] = list(r + L.vis_se, L.b2);
         }
-        if (q & render::Quantity::transfer) {
+        if (has(q, render::Quantity::transfer)) {
             line["transfer"] = r[L.tr_rgb] != 0 ? rgb(r + L.tr, L.b2) : list(r + L.tr, L.b2);
             line["transfer_stderr"] = list(r + L.tr_se, L.b2);
         }
-        if (q & render::Quantity::irradiance) {
+        if (has(q, render::Quantity::irradiance)) {
             line["irradiance"] = rgb(r + L.irr, L.nc);
             line["irradiance_stderr"] = list(r + L.irr_se, L.nc);
         }
-        if (q & render::Quantity::radiance) {
+        if (has(q, render::Quantity::radiance)) {
             line["radiance"] = rgb(r + L.rad, L.b2);
             line["radiance_stderr"] = list(r + L.rad_se, L.b2);
             line["inside"] = r[L.inside] != 0;
@@ -685,37 +616,34 @@ void print_points(const Work& w, const render::BakeSettings& s, const std::vecto
 }
 
 // ---------------------------------------------------------------------------------------------
-// Shard files: magic, u64 header length, JSON header, u64 record count, u64 stride, doubles.
+// Shard files: render/bake_file.hpp's format (docs/bake-format.md), kind shard. Payload: the
+// JSON header (string), u64 stride, the records (u64 count of doubles, then the doubles). Input
+// hash: shard_input_hash().
 
-void put_u64(std::string& out, std::uint64_t v) {
-    for (int i = 0; i < 8; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
-}
-std::uint64_t get_u64(const std::string& in, std::size_t& pos, const std::string& file) {
-    if (pos + 8 > in.size()) throw std::runtime_error(file + ": truncated shard file");
-    std::uint64_t v = 0;
-    for (int i = 0; i < 8; ++i)
-        v |= std::uint64_t(static_cast<unsigned char>(in[pos + std::size_t(i)])) << (8 * i);
-    pos += 8;
-    return v;
+/// What a shard's records depend on: the scene's files (input_hash(SceneFile)), the target,
+/// the settings and the record layout.
+std::uint64_t shard_input_hash(std::uint64_t scene_hash, const std::string& target,
+                               const Json& settings) {
+    return render::InputHash()
+        .u64(scene_hash)
+        .str(target)
+        .str(settings.dump())
+        .u64(kRecordFormat)
+        .value();
 }
 
-std::string shard_bytes(const Json& header, const std::vector<double>& rec, std::size_t stride) {
-    std::string out(kShardMagic, sizeof kShardMagic);
-    const std::string h = header.dump();
-    put_u64(out, h.size());
-    out += h;
-    put_u64(out, stride == 0 ? 0 : rec.size() / stride);
-    put_u64(out, stride);
-    for (double d : rec) {
-        std::uint64_t u;
-        std::memcpy(&u, &d, 8);
-        put_u64(out, u);
-    }
-    return out;
+std::vector<std::uint8_t> shard_bytes(std::uint64_t input_hash, const Json& header,
+                                      const std::vector<double>& rec, std::size_t stride) {
+    render::ByteWriter w;
+    w.str(header.dump());
+    w.u64(stride);
+    w.f64s(rec);
+    return render::write_bake_file(render::BakeFileKind::shard, input_hash, w.bytes());
 }
 
 struct ShardData {
     Json header;
+    std::uint64_t input_hash = 0;
     std::vector<double> rec;
     std::uint64_t stride = 0;  // doubles per record
 };
@@ -733,9 +661,8 @@ void check_shard_header(const Json& h, const std::string& file) {
             throw std::runtime_error(file + ": corrupt shard header (end before begin)");
         (void)h.at("scene").get<std::string>();
         (void)h.at("scene_file").get<std::string>();
-        (void)h.at("scene_fnv1a").get<std::uint64_t>();
         (void)h.at("target").get<std::string>();
-        (void)h.at("points");
+        (void)h.at("points").get<std::size_t>();
         (void)h.at("rays").get<std::uint64_t>();
         (void)h.at("seconds").at("bake").get<double>();
         (void)plan_of(h.at("plan"));
@@ -761,40 +688,41 @@ ShardData read_shard(const std::string& file) {
         throw std::runtime_error(file + ": not a regular file; expected a shard file");
     std::ifstream f(file, std::ios::binary);
     if (!f) throw std::runtime_error("cannot open shard file '" + file + "'");
-    std::stringstream buf;
-    buf << f.rdbuf();
-    const std::string in = buf.str();
-    if (in.size() < 8 || std::memcmp(in.data(), kShardMagic, 8) != 0)
-        throw std::runtime_error(file + ": not a shard file of sphbasis bake");
-    std::size_t pos = 8;
-    const std::uint64_t hl = get_u64(in, pos, file);
-    if (pos + hl > in.size()) throw std::runtime_error(file + ": truncated shard file");
+    const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(f)),
+                                          std::istreambuf_iterator<char>());
+    if (f.bad()) throw std::runtime_error("cannot read shard file '" + file + "'");
     ShardData d;
+    std::string text;
     try {
-        d.header = Json::parse(in.substr(pos, hl));
+        const render::BakeFileView v = render::read_bake_file(bytes, render::BakeFileKind::shard);
+        d.input_hash = v.input_hash;
+        render::ByteReader r(v.payload, v.payload_size, "bake-merge");
+        text = r.str();
+        d.stride = r.u64();
+        d.rec = r.f64s();
+        r.finish();
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(file + ": not a shard file of this sphbasis bake (" + e.what() +
+                                 ")");
+    }
+    try {
+        d.header = Json::parse(text);
     } catch (const std::exception&) {
         throw std::runtime_error(file + ": corrupt shard header");
     }
     if (!d.header.is_object()) throw std::runtime_error(file + ": corrupt shard header");
-    const int format = d.header.is_object() && d.header.contains("record_format") &&
-                               d.header["record_format"].is_number_integer()
-                           ? d.header["record_format"].get<int>()
-                           : 1;
+    const int format =
+        d.header.contains("record_format") && d.header["record_format"].is_number_integer()
+            ? d.header["record_format"].get<int>()
+            : 1;
     if (format != kRecordFormat)
         throw std::runtime_error(file + ": a shard of record format " + std::to_string(format) +
                                  ", this sphbasis reads format " + std::to_string(kRecordFormat) +
                                  ": bake the shards again with this version");
     check_shard_header(d.header, file);
-    pos += hl;
-    const std::uint64_t n = get_u64(in, pos, file), stride = get_u64(in, pos, file);
-    if (stride == 0 || n > (in.size() - pos) / 8 / stride || pos + n * stride * 8 != in.size())
-        throw std::runtime_error(file + ": truncated shard file");
-    d.stride = stride;
-    d.rec.resize(n * stride);
-    for (double& x : d.rec) {
-        const std::uint64_t u = get_u64(in, pos, file);
-        std::memcpy(&x, &u, 8);
-    }
+    if (d.stride == 0 || d.rec.size() % d.stride != 0)
+        throw std::runtime_error(file + ": corrupt shard (" + std::to_string(d.rec.size()) +
+                                 " numbers in records of " + std::to_string(d.stride) + ")");
     return d;
 }
 
@@ -855,7 +783,7 @@ int run_bake(const BakeOptions& o) {
         throw UsageError("give either --target or --points, not both");
     if (points_mode) target.kind = TargetKind::points;
     // Probes are free points (no surface, no normal): only radiance is defined there.
-    if (target.kind == TargetKind::probes && (s.quantities & ~unsigned(render::Quantity::radiance)))
+    if (target.kind == TargetKind::probes && any(s.quantities & ~render::Quantity::radiance))
         throw UsageError(
             "--target probes: probes bake only radiance (they have no surface "
             "normal for ao, bent, visibility, transfer or irradiance); give "
@@ -870,6 +798,9 @@ int run_bake(const BakeOptions& o) {
                 stderr, "sphbasis bake: %s: meshes[%zu] ('%s'): %zu degenerate triangles dropped\n",
                 scene.path.c_str(), k, scene.meshes[k].name.c_str(),
                 scene.meshes[k].dropped_triangles);
+    // What a shard's records depend on, hashed from the files as loaded (bake-merge recomputes it).
+    const bool sharded = shard.count > 1 && !points_mode && write_files;
+    const std::uint64_t scene_hash = sharded ? input_hash(scene) : 0;
     const double t_load = seconds_since(t_start);
 
     // The points' memory, estimated before the layout allocates it.
@@ -892,7 +823,7 @@ int run_bake(const BakeOptions& o) {
     const auto t_layout0 = Clock::now();
     const Work w = make_work(scene, target, o.points);
     const double t_layout = seconds_since(t_layout0);
-    if (points_mode && (s.quantities & ~unsigned(render::Quantity::radiance)))
+    if (points_mode && any(s.quantities & ~render::Quantity::radiance))
         for (std::size_t i = 0; i < w.points.size(); ++i)
             if (!w.surface[i])
                 throw UsageError((o.points == "-" ? std::string("standard input") : o.points) +
@@ -905,7 +836,7 @@ int run_bake(const BakeOptions& o) {
     const std::string shard_file =
         "bake.shard-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".bin";
     if (write_files) {
-        if (shard.count > 1 && !points_mode) {
+        if (sharded) {
             out.declare_in(o.out, shard_file);
         } else {
             declare_outputs(out, o.out, scene, w.target,
@@ -964,14 +895,16 @@ int run_bake(const BakeOptions& o) {
     if (points_mode) print_points(w, s, rec, begin);
     const auto t_write0 = Clock::now();
     if (write_files) {
-        if (shard.count > 1 && !points_mode) {
+        if (sharded) {
             std::error_code ec;
             Json header = summary;
             header["scene_file"] = std::filesystem::absolute(scene.path, ec).string();
-            header["scene_fnv1a"] = fnv1a_of_file(scene.path);
             header["record_format"] = kRecordFormat;
             header["seconds"] = {{"load", t_load}, {"layout", t_layout}, {"bake", t_bake}};
-            out.add(join_path(o.out, shard_file), shard_bytes(header, rec, L.stride));
+            const std::vector<std::uint8_t> bytes =
+                shard_bytes(shard_input_hash(scene_hash, w.target.text(), settings_json(s)), header,
+                            rec, L.stride);
+            out.add(join_path(o.out, shard_file), std::string(bytes.begin(), bytes.end()));
         } else {
             if (!points_mode) summary["outputs"] = write_outputs(scene, w, s, rec, o.out, out);
             summary["seconds"] = {{"load", t_load},
@@ -1005,10 +938,13 @@ int run_merge(const MergeOptions& o) {
     std::vector<const ShardData*> by_index(static_cast<std::size_t>(count), nullptr);
     for (std::size_t k = 0; k < parts.size(); ++k) {
         const Json& h = parts[k].header;
-        for (const char* key : {"scene_file", "scene_fnv1a", "target", "points", "settings"})
+        for (const char* key : {"scene_file", "target", "points", "settings"})
             if (h.at(key) != h0.at(key))
                 throw UsageError(o.shards[k] + ": not from the same bake as " + o.shards[0] +
                                  " (\"" + key + "\" differs)");
+        if (parts[k].input_hash != parts[0].input_hash)
+            throw UsageError(o.shards[k] + ": not from the same bake as " + o.shards[0] +
+                             " (the input hash differs: another scene file or version of it)");
         if (h.at("shard").at("count").get<long long>() != count)
             throw UsageError(o.shards[k] + ": a shard of " +
                              std::to_string(h.at("shard").at("count").get<long long>()) +
@@ -1020,16 +956,13 @@ int run_merge(const MergeOptions& o) {
         by_index[i] = &parts[k];
     }
     const std::string scene_file = h0.at("scene_file").get<std::string>();
-    if (fnv1a_of_file(scene_file) != h0.at("scene_fnv1a").get<std::uint64_t>())
-        throw std::runtime_error(scene_file + ": the scene changed since the shards were baked");
     const SceneFile scene = load_scene(scene_file);
 
     render::BakeSettings s;
     const Json& js = h0.at("settings");
-    s.quantities = 0;
+    s.quantities = render::Quantity{};
     for (const Json& q : js.at("quantities"))
-        for (const auto& [n, bit] : quantity_names())
-            if (q.get<std::string>() == n) s.quantities |= bit;
+        s.quantities |= render::quantity_of_name(q.get<std::string>());
     s.bands = js.at("bands").get<int>();
     s.basis = js.at("basis").get<std::string>();
     s.coeffs = js.at("coeffs").get<int>();
@@ -1039,7 +972,18 @@ int run_merge(const MergeOptions& o) {
     if (!js.at("max_distance").is_null()) s.max_distance = js.at("max_distance").get<double>();
     s.target_error = js.at("target_error").get<double>();
 
+    // Everything the records depend on, recomputed from the files as they are now: a scene, mesh
+    // or image edited since the bake (or settings edited in a header) is refused here.
+    if (shard_input_hash(input_hash(scene), h0.at("target").get<std::string>(), settings_json(s)) !=
+        parts[0].input_hash)
+        throw std::runtime_error(scene_file +
+                                 ": the scene or a file it reads changed since the shards were "
+                                 "baked (their input hash differs); bake the shards again");
     const Work w = make_work(scene, parse_target(h0.at("target").get<std::string>()), "");
+    if (h0.at("points").get<std::size_t>() != w.points.size())
+        throw std::runtime_error(o.shards[0] + ": a bake of " +
+                                 std::to_string(h0.at("points").get<std::size_t>()) +
+                                 " points, the scene has " + std::to_string(w.points.size()));
     const Layout L(s);
     std::vector<double> rec;
     rec.reserve(w.points.size() * L.stride);

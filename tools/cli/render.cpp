@@ -140,21 +140,6 @@ vec3<double> rotated(const Mat3<double>& r, const vec3<double>& v) {
             r[6] * v.x + r[7] * v.y + r[8] * v.z};
 }
 
-std::string quantity_text(unsigned q) {
-    static const std::pair<const char*, unsigned> names[] = {
-        {"ao", render::Quantity::ao},
-        {"bent", render::Quantity::bent},
-        {"visibility", render::Quantity::visibility},
-        {"transfer", render::Quantity::transfer},
-        {"irradiance", render::Quantity::irradiance},
-        {"radiance", render::Quantity::radiance},
-        {"transfer_matrix", render::Quantity::transfer_matrix}};
-    std::string s;
-    for (const auto& [n, bit] : names)
-        if (q & bit) s += (s.empty() ? "" : ",") + std::string(n);
-    return s;
-}
-
 std::string where_text(render::BakeRequest::Where w) {
     switch (w) {
         case render::BakeRequest::Where::vertex:
@@ -170,10 +155,10 @@ std::string where_text(render::BakeRequest::Where w) {
 std::string request_details(const render::BakeRequest& r) {
     const render::BakeSettings& s = r.settings;
     std::string d;
-    if (s.quantities & (render::Quantity::visibility | render::Quantity::transfer |
-                        render::Quantity::radiance | render::Quantity::transfer_matrix))
+    if (has(s.quantities, render::Quantity::visibility | render::Quantity::transfer |
+                              render::Quantity::radiance | render::Quantity::transfer_matrix))
         d += "bands " + std::to_string(s.bands) + ", ";
-    if (s.quantities & render::Quantity::irradiance)
+    if (has(s.quantities, render::Quantity::irradiance))
         d += "basis " + s.basis + " (" + std::to_string(s.coeffs) + "), ";
     d += "rays " + std::to_string(s.rays) + ", bounces " + std::to_string(s.bounces) + ", seed " +
          std::to_string(s.seed);
@@ -518,7 +503,7 @@ int run_render(const RenderOptions& o) {
         b.where = where_text(r.where);
         if (r.where != render::BakeRequest::Where::probes && r.mesh < scene.meshes.size())
             b.mesh = scene.meshes[r.mesh].name;
-        b.quantities = quantity_text(r.settings.quantities);
+        b.quantities = render::quantity_names(r.settings.quantities);
         b.details = request_details(r);
         keys.push_back(render::bake_key(desc, r));
         b.key = hex_key(keys.back());

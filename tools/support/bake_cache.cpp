@@ -36,7 +36,11 @@ bool DiskBakeCache::load(std::uint64_t key, render::BakeData& out) {
         std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
                                         std::istreambuf_iterator<char>());
         if (in.bad()) throw std::runtime_error("cannot read it");
-        render::BakeData d = render::deserialize(bytes);
+        const render::BakeFileView v = render::read_bake_file(bytes, render::BakeFileKind::cache);
+        if (v.input_hash != key)
+            throw std::runtime_error("a bake of another key (" + hex_key(v.input_hash) + ")");
+        render::BakeData d =
+            render::deserialize(std::vector<std::uint8_t>(v.payload, v.payload + v.payload_size));
         d.from_cache = true;
         out = std::move(d);
         ++hits_;
@@ -56,7 +60,8 @@ void DiskBakeCache::store(std::uint64_t key, const render::BakeData& data) {
     if (ec)
         throw std::runtime_error("cannot create the bake cache directory '" + dir_ +
                                  "': " + ec.message());
-    const std::vector<std::uint8_t> bytes = render::serialize(data);
+    const std::vector<std::uint8_t> bytes =
+        render::write_bake_file(render::BakeFileKind::cache, key, render::serialize(data));
     write_file_atomic(path_of(key), bytes.data(), bytes.size());
     ++stores_;
 }

@@ -1,15 +1,17 @@
 // sphbasis CLI support: the disk cache of `sphbasis render`'s bakes (render::BakeCache).
 //
 // One file per bake, DIR/<key>.bin with the key as 16 lower-case hex digits
-// (render::bake_key(): a hash of everything the bake depends on), holding
-// render::serialize(BakeData). Files are written to a temporary name and renamed
-// (support/output_file.hpp), so a killed run leaves whole files or none. A file that cannot be
-// read back (truncated, foreign, from another version) is reported as a warning and treated as
-// missing: the bake runs again and the file is replaced.
+// (render::bake_key(): a hash of everything the bake depends on), in the format of the bake
+// shards (render/bake_file.hpp, docs/bake-format.md): kind "cache", the key as input hash, a
+// checksum, and render::serialize(BakeData) as payload. Files are written to a temporary name
+// and renamed (support/output_file.hpp), so a killed run leaves whole files or none. A file that
+// cannot be read back (truncated, bit-flipped, foreign, of another key or version) is reported
+// as a warning and treated as missing: the bake runs again and the file is replaced.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <sphbasis/render/bake_file.hpp>
 #include <sphbasis/render/representation.hpp>
 #include <string>
 #include <vector>

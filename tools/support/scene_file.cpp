@@ -1,6 +1,7 @@
 // sphbasis CLI support: load_scene (see scene_file.hpp and docs/scene-format.md).
 #include "scene_file.hpp"
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <sys/stat.h>
@@ -72,8 +73,9 @@ std::string shown_path(const std::string& s, std::size_t n = 120) {
 // Errors with the file and the JSON path
 
 struct Ctx {
-    std::string file;  // as given on the command line
-    std::string dir;   // its directory, with a trailing '/', or ""
+    std::string file;                            // as given on the command line
+    std::string dir;                             // its directory, with a trailing '/', or ""
+    std::vector<std::string>* inputs = nullptr;  // every file read besides the scene's
     [[noreturn]] void fail(const std::string& where, const std::string& msg) const {
         throw std::runtime_error(file + ": " + (where.empty() ? "" : where + ": ") + msg);
     }
@@ -220,6 +222,7 @@ std::string file_path(const Ctx& c, const json& j, const std::string& where, con
     if (S_ISDIR(st.st_mode)) c.fail(where, "'" + shown_path(p) + "' is a directory, not a file");
     if (!S_ISREG(st.st_mode))
         c.fail(where, "'" + shown_path(p) + "' is not a regular file (a FIFO, socket or device)");
+    if (c.inputs != nullptr) c.inputs->push_back(p);
     return p;
 }
 
@@ -429,6 +432,21 @@ render::Mesh make_shape(const Ctx& c, const json& j, const std::string& where,
 // ---------------------------------------------------------------------------------------------
 // Assimp
 
+/// Assimp's file system, noting every file the importer opens (an OBJ's .mtl, a glTF's
+/// buffers) for the scene's input hash.
+class RecordingIO : public Assimp::DefaultIOSystem {
+  public:
+    explicit RecordingIO(std::vector<std::string>* files) : files_(files) {}
+    Assimp::IOStream* Open(const char* file, const char* mode) override {
+        Assimp::IOStream* s = DefaultIOSystem::Open(file, mode);
+        if (s != nullptr && files_ != nullptr && file != nullptr) files_->push_back(file);
+        return s;
+    }
+
+  private:
+    std::vector<std::string>* files_;
+};
+
 render::Mesh load_mesh_file(const Ctx& c, const std::string& where, const std::string& path,
                             double smoothing_angle_deg) {
     {
@@ -436,6 +454,7 @@ render::Mesh load_mesh_file(const Ctx& c, const std::string& where, const std::s
         if (!probe) c.fail(where, "cannot open mesh file '" + path + "'");
     }
     Assimp::Importer importer;
+    importer.SetIOHandler(new RecordingIO(c.inputs));  // the importer owns it
     // Tangents need UVs and the file's normals. PreTransformVertices bakes the file's node
     // hierarchy into world positions. Normals the file lacks are generated below with a crease
     // angle (mesh_normals.hpp says why not by Assimp).
@@ -989,6 +1008,7 @@ SceneFile load_scene(const std::string& path) {
     check_keys(c, j, "", {"meshes", "environment", "lights", "camera", "probes", "render"});
     SceneFile s;
     s.path = path;
+    c.inputs = &s.inputs;
     if (!j.contains("meshes")) c.fail("", "missing \"meshes\"");
     const json& meshes = j["meshes"];
     if (!meshes.is_array() || meshes.empty())
@@ -1060,6 +1080,22 @@ SceneFile load_scene(const std::string& path) {
             c.fail("probes.counts", "too many probes (at most 2^26)");
     }
     return s;
+}
+
+std::uint64_t input_hash(const SceneFile& scene) {
+    render::InputHash h;
+    std::vector<std::string> files = {scene.path};
+    for (const std::string& f : scene.inputs)
+        if (std::find(files.begin(), files.end(), f) == files.end()) files.push_back(f);
+    for (const std::string& f : files) {
+        std::ifstream in(f, std::ios::binary);
+        std::stringstream buf;
+        buf << in.rdbuf();
+        if (!in && !in.eof())
+            throw std::runtime_error("cannot read '" + f + "' again to hash the scene's inputs");
+        h.str(buf.str());
+    }
+    return h.value();
 }
 
 }  // namespace sphbasis::cli

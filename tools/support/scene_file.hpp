@@ -13,8 +13,10 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <sphbasis/render/bake.hpp>
+#include <sphbasis/render/bake_file.hpp>
 #include <sphbasis/render/lighting.hpp>
 #include <sphbasis/render/mesh.hpp>
 #include <sphbasis/render/probe_grid.hpp>
@@ -70,6 +72,9 @@ struct SceneFile {
     SceneRender render;
     bool has_probes = false;
     render::ProbeGrid probes;  // "probes": {"min", "max", "counts"}
+    /// Every file the load read besides the scene file (meshes and what their importer opened,
+    /// images, the environment map), in the order read; repeats possible.
+    std::vector<std::string> inputs;
 
     /// Views of the meshes and the lighting for render::Baker (valid while *this lives).
     render::SceneDesc scene_desc() const;
@@ -77,6 +82,11 @@ struct SceneFile {
 
 /// Loads a scene file (see the file comment). Throws std::runtime_error with one line.
 SceneFile load_scene(const std::string& path);
+
+/// XXH3-64 (render::InputHash) of the bytes of the scene file and of every file it read
+/// (SceneFile::inputs, each once, in order): what a bake's results depend on besides the
+/// settings. Reads the files again; throws std::runtime_error if one cannot be read.
+std::uint64_t input_hash(const SceneFile& scene);
 
 /// Loads an image as linear floats with 3 channels: 8- and 16-bit formats through stb_image,
 /// converted from sRGB when `srgb`; .hdr and .exr as stored. Throws std::runtime_error.

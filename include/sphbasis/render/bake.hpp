@@ -157,8 +157,9 @@
 
 namespace sphbasis::render {
 
-/// The quantities a bake can produce (bit flags).
-enum Quantity : unsigned {
+/// The quantities a bake can produce: flags, combined with | into a set (BakeSettings::
+/// quantities); has(set, q) asks whether a set holds any of q.
+enum class Quantity : unsigned {
     ao = 1u << 0,
     bent = 1u << 1,
     visibility = 1u << 2,
@@ -168,8 +169,65 @@ enum Quantity : unsigned {
     transfer_matrix = 1u << 6,
 };
 
+constexpr Quantity operator|(Quantity a, Quantity b) noexcept {
+    return static_cast<Quantity>(static_cast<unsigned>(a) | static_cast<unsigned>(b));
+}
+constexpr Quantity operator&(Quantity a, Quantity b) noexcept {
+    return static_cast<Quantity>(static_cast<unsigned>(a) & static_cast<unsigned>(b));
+}
+constexpr Quantity operator~(Quantity a) noexcept {
+    return static_cast<Quantity>(~static_cast<unsigned>(a));
+}
+constexpr Quantity& operator|=(Quantity& a, Quantity b) noexcept { return a = a | b; }
+/// True when the set holds a flag.
+constexpr bool any(Quantity set) noexcept { return static_cast<unsigned>(set) != 0; }
+/// True when `set` holds any of the flags of `q`.
+constexpr bool has(Quantity set, Quantity q) noexcept { return any(set & q); }
+
+/// Every quantity, in bit order.
+inline constexpr Quantity all_quantities[] = {
+    Quantity::ao,         Quantity::bent,     Quantity::visibility,     Quantity::transfer,
+    Quantity::irradiance, Quantity::radiance, Quantity::transfer_matrix};
+
+/// The name of a quantity, as the enumerator is spelled ("ao", "transfer_matrix"): the names
+/// of the CLI's --quantities and of the files' settings. "" for a value that is not one flag.
+inline const char* quantity_name(Quantity q) noexcept {
+    switch (q) {
+        case Quantity::ao:
+            return "ao";
+        case Quantity::bent:
+            return "bent";
+        case Quantity::visibility:
+            return "visibility";
+        case Quantity::transfer:
+            return "transfer";
+        case Quantity::irradiance:
+            return "irradiance";
+        case Quantity::radiance:
+            return "radiance";
+        case Quantity::transfer_matrix:
+            return "transfer_matrix";
+    }
+    return "";
+}
+
+/// The quantity of a name (quantity_name()'s inverse), or the empty set for an unknown name.
+inline Quantity quantity_of_name(const std::string& name) noexcept {
+    for (Quantity q : all_quantities)
+        if (name == quantity_name(q)) return q;
+    return Quantity{};
+}
+
+/// The names of the flags of a set, comma-separated in bit order ("ao,transfer").
+inline std::string quantity_names(Quantity set) {
+    std::string s;
+    for (Quantity q : all_quantities)
+        if (has(set, q)) s += (s.empty() ? "" : ",") + std::string(quantity_name(q));
+    return s;
+}
+
 struct BakeSettings {
-    unsigned quantities = Quantity::ao;
+    Quantity quantities = Quantity::ao;  // a set (|)
     int bands = 3;  // SH bands of visibility, transfer, radiance; transfer_matrix: of the lighting
     std::string basis = "sh";  // basis of `irradiance` (a name of find_basis())
     int coeffs = 9;            // its coefficient count
@@ -221,36 +279,56 @@ struct Pass {
     double seconds = 0;
 };
 
-struct SceneDesc {
-    std::vector<MeshView> meshes;
-    Environment environment;
-    std::vector<Light> lights;
-};
-
 }  // namespace sphbasis::render
 
 namespace sphbasis::render {
 
 /// Bakes the requested quantities of a scene. The constructor validates the scene and the
-/// settings (std::invalid_argument with a message), builds the Embree scene and derives the
-/// pass plan; bake() runs exactly the planned passes, in parallel on oneTBB.
+/// settings (std::invalid_argument with a message), builds the Embree scene (or borrows one)
+/// and derives the pass plan; bake() runs exactly the planned passes, in parallel on oneTBB.
 class Baker {
   public:
+    /// Builds the ray-tracing scene of scene.meshes (the "build" pass).
     Baker(const SceneDesc& scene, const BakeSettings& settings)
         : settings_(validated(settings)),
-          scene_(timed_scene(scene.meshes, build_seconds_)),
+          owned_(timed_scene(scene.meshes, build_seconds_)),
+          scene_(*owned_),
           env_(scene.environment),
           lights_(scene.lights) {
+        init();
+    }
+    /// Borrows `built`, a Scene of the same meshes (render::Scene(scene.meshes)), which must
+    /// outlive the Baker: one BVH for a renderer and its bakes. The lighting is scene's; the
+    /// "build" pass costs 0 s here. Results equal those of the building constructor.
+    Baker(const Scene& built, const SceneDesc& scene, const BakeSettings& settings)
+        : settings_(validated(settings)),
+          scene_(built),
+          env_(scene.environment),
+          lights_(scene.lights) {
+        if (built.mesh_count() != scene.meshes.size())
+            sphbasis::detail::throw_invalid(
+                "render::Baker", "a Scene of the " + std::to_string(scene.meshes.size()) +
+                                     " meshes of the SceneDesc, got one of " +
+                                     std::to_string(built.mesh_count()));
+        init();
+    }
+    Baker(const Baker&) = delete;
+    Baker& operator=(const Baker&) = delete;
+
+  private:
+    void init() {
         validate_lighting();
         qmc_ = detail::rt::QmcTable(static_cast<std::size_t>(settings_.rays));
         stats_ = std::make_unique<Stat[]>(stat_count());
         stats_[build].seconds = build_seconds_;
         derive_plan();
-        if (settings_.quantities & Quantity::irradiance) prepare_irradiance();
-        if (settings_.quantities & (Quantity::irradiance | Quantity::radiance))
+        if (has(settings_.quantities, Quantity::irradiance)) prepare_irradiance();
+        if (has(settings_.quantities, Quantity::irradiance | Quantity::radiance))
             prepare_quadrature();
         publish_plan();
     }
+
+  public:
     /// The passes that will run (name, reason); after bake(), with rays and seconds.
     const std::vector<Pass>& plan() const noexcept { return plan_; }
     /// Results for each point (same order). `progress(k)` (optional) is called with the number
@@ -295,11 +373,12 @@ class Baker {
     static std::size_t result_bytes(const BakeSettings& s) noexcept {
         const std::size_t n = std::size_t(s.bands) * std::size_t(s.bands), d = sizeof(double);
         std::size_t b = sizeof(PointResult);
-        if (s.quantities & Quantity::visibility) b += 2 * n * d;
-        if (s.quantities & Quantity::transfer) b += 4 * n * d;
-        if (s.quantities & Quantity::irradiance) b += 4 * std::size_t(std::max(s.coeffs, 0)) * d;
-        if (s.quantities & Quantity::radiance) b += 4 * n * d;
-        if (s.quantities & Quantity::transfer_matrix) b += 36 * n * d;
+        if (has(s.quantities, Quantity::visibility)) b += 2 * n * d;
+        if (has(s.quantities, Quantity::transfer)) b += 4 * n * d;
+        if (has(s.quantities, Quantity::irradiance))
+            b += 4 * std::size_t(std::max(s.coeffs, 0)) * d;
+        if (has(s.quantities, Quantity::radiance)) b += 4 * n * d;
+        if (has(s.quantities, Quantity::transfer_matrix)) b += 36 * n * d;
         return b;
     }
     /// The ray-tracing scene.
@@ -391,15 +470,14 @@ class Baker {
 
     static BakeSettings validated(const BakeSettings& s) {
         const char* fn = "render::Baker";
-        const unsigned all = Quantity::ao | Quantity::bent | Quantity::visibility |
-                             Quantity::transfer | Quantity::irradiance | Quantity::radiance |
-                             Quantity::transfer_matrix;
-        if (s.quantities == 0 || (s.quantities & ~all))
+        Quantity all{};
+        for (Quantity q : all_quantities) all |= q;
+        if (!any(s.quantities) || any(s.quantities & ~all))
             sphbasis::detail::throw_invalid(
                 fn,
                 "quantities: a non-empty set of ao, bent, visibility, transfer, irradiance, "
                 "radiance, transfer_matrix, got the bit set " +
-                    std::to_string(s.quantities));
+                    std::to_string(static_cast<unsigned>(s.quantities)));
         sphbasis::detail::check_range(fn, "bands", s.bands, 1, 16);
         sphbasis::detail::check_range(fn, "rays", s.rays, 1, 1 << 24);
         sphbasis::detail::check_range(fn, "bounces", s.bounces, 0, 64);
@@ -409,7 +487,7 @@ class Baker {
         if (!(s.target_error >= 0) || !std::isfinite(s.target_error))
             sphbasis::detail::throw_invalid(
                 fn, "a finite target_error >= 0, got " + std::to_string(s.target_error));
-        if (s.quantities & Quantity::irradiance) {
+        if (has(s.quantities, Quantity::irradiance)) {
             const BasisInfo& b = find_basis(s.basis);
             if (!b.valid_count(s.coeffs))
                 sphbasis::detail::throw_invalid(fn, std::string("coeffs: ") + b.count_rule() +
@@ -418,9 +496,9 @@ class Baker {
         }
         return s;
     }
-    static Scene timed_scene(const std::vector<MeshView>& m, double& seconds) {
+    static std::unique_ptr<Scene> timed_scene(const std::vector<MeshView>& m, double& seconds) {
         const auto t0 = Clock::now();
-        Scene s(m);
+        auto s = std::make_unique<Scene>(m);
         seconds = std::chrono::duration<double>(Clock::now() - t0).count();
         return s;
     }
@@ -456,7 +534,7 @@ class Baker {
         }
     }
 
-    bool wants(unsigned q) const noexcept { return (settings_.quantities & q) != 0; }
+    bool wants(Quantity q) const noexcept { return has(settings_.quantities, q); }
     bool has_directional() const noexcept {
         for (const auto& l : lights_)
             if (l.type == Light::Type::directional) return true;
@@ -467,8 +545,9 @@ class Baker {
         const bool force = settings_.force_all_passes;
         const bool occl = scene_.can_occlude();
         stats_[build].planned = true;
-        stats_[build].reason = "Embree scene of " + std::to_string(scene_.triangle_count()) +
-                               " triangles (" + std::to_string(scene_.degenerate_triangles()) +
+        stats_[build].reason = std::string(owned_ ? "" : "borrowed ") + "Embree scene of " +
+                               std::to_string(scene_.triangle_count()) + " triangles (" +
+                               std::to_string(scene_.degenerate_triangles()) +
                                " degenerate skipped)";
         if (!occl && !force) {
             stats_[analytic].planned = true;
@@ -1620,7 +1699,8 @@ class Baker {
 
     BakeSettings settings_;
     double build_seconds_ = 0;
-    Scene scene_;
+    std::unique_ptr<Scene> owned_;  // null when the Scene is borrowed
+    const Scene& scene_;
     Environment env_;
     std::vector<Light> lights_;
     std::vector<Pass> plan_;

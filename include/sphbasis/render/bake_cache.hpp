@@ -193,7 +193,7 @@ struct Reader {
 };
 
 inline void write_settings(Writer& w, const BakeSettings& s) {
-    w.u32(s.quantities);
+    w.u32(static_cast<std::uint32_t>(s.quantities));
     w.i32(s.bands);
     w.str(s.basis);
     w.i32(s.coeffs);
@@ -206,7 +206,7 @@ inline void write_settings(Writer& w, const BakeSettings& s) {
 }
 inline BakeSettings read_settings(Reader& r) {
     BakeSettings s;
-    s.quantities = r.u32();
+    s.quantities = static_cast<Quantity>(r.u32());  // checked by the Baker and the key
     s.bands = r.i32();
     s.basis = r.str();
     s.coeffs = r.i32();
@@ -271,7 +271,7 @@ constexpr std::uint32_t format_version = 3;
 /// the arrays.
 inline std::uint64_t bake_key(const SceneDesc& scene, const BakeRequest& request) {
     repr_detail::Hasher h;
-    h.str("sphbasis bake key 1");
+    h.str("sphbasis bake key 2");  // 2: the shared point ids (render/bake_points.hpp)
     const std::vector<std::uint8_t> req = repr_detail::request_bytes(request);
     h.bytes(req.data(), req.size());
     h.word(scene.meshes.size());

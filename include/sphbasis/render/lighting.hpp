@@ -12,8 +12,8 @@
 //     Monte Carlo with occlusion (direction, pdf, radiance, distance to the emitter), and
 //     project_sh(light, bands[, x]), the SH coefficients of the light's radiance
 //     (ops/sh_lights.hpp does the work); project_sh(environment, bands) likewise.
-//     (The free functions carry a light_ prefix: render::radiance and render::irradiance are
-//     enumerators of render::Quantity in bake.hpp.)
+//     (The free functions carry a light_ prefix, apart from the bake quantities
+//     render::Quantity::radiance and ::irradiance of bake.hpp.)
 //
 // Irradiance of a uniform spherical cap. A cap of angular radius a about the unit direction d,
 // of radiance L, seen from a surface with unit normal n, cos(beta) = n . d, delivers

@@ -481,4 +481,34 @@ inline void dilate(float* image, int width, int height, int channels,
     }
 }
 
+/// Texels dilated around each chart by assemble_lightmap(): enough for bilinear filtering and
+/// the first mip levels (each halving needs one more texel of gutter).
+inline constexpr int lightmap_gutter = 4;
+
+/// The lightmap image of a layout: `channels` floats per texel, row-major from the top row,
+/// sample i's values written by pack(i, float* out) (channels floats) at its texel, gutters
+/// dilated by lightmap_gutter texels (dilate()), zero farther away. Throws
+/// std::invalid_argument for channels < 1 or a layout whose sizes disagree.
+/// Cost O(samples * channels + lightmap_gutter * width * height * channels).
+template <class Pack>
+std::vector<float> assemble_lightmap(const LightmapLayout& layout, int channels, Pack&& pack) {
+    constexpr const char* fn = "render::assemble_lightmap";
+    lightmap_detail::check_lightmap_size(fn, layout.width, layout.height);
+    if (channels < 1)
+        sphbasis::detail::throw_invalid(fn, "channels >= 1, got " + std::to_string(channels));
+    const std::size_t ch = std::size_t(channels);
+    const std::size_t w = std::size_t(layout.width), texels = w * std::size_t(layout.height);
+    std::vector<float> image(texels * ch, 0.0f);
+    for (std::size_t i = 0; i < layout.samples.size(); ++i) {
+        const LightmapSample& s = layout.samples[i];
+        if (s.x < 0 || s.y < 0 || s.x >= layout.width || s.y >= layout.height)
+            sphbasis::detail::throw_invalid(
+                fn, "samples inside the layout, got sample " + std::to_string(i) + " at (" +
+                        std::to_string(s.x) + ", " + std::to_string(s.y) + ")");
+        pack(i, image.data() + (std::size_t(s.y) * w + std::size_t(s.x)) * ch);
+    }
+    dilate(image.data(), layout.width, layout.height, channels, layout.covered, lightmap_gutter);
+    return image;
+}
+
 }  // namespace sphbasis::render

@@ -27,7 +27,8 @@
 //
 // Bakes: each representation declares the bakes it reads (BakeRequest, render/bake_cache.hpp)
 // in plan(); prepare() runs each distinct request once (requests with equal settings share one
-// Baker: one Embree build), or loads it from a BakeCache under bake_key(). Only what a
+// Baker, and every Baker borrows the renderer's Scene: one Embree build), or loads it from a
+// BakeCache under bake_key(). Only what a
 // requested representation reads is built after the bakes (tables per distinct (K, N), one PCA
 // per lxh-pca, fields per prt-*); lxh_tables_built() and compressions_built() count them.
 //
@@ -138,7 +139,8 @@ class Representations {
             const BakeRequest& q = requests_[i];
             const auto t0 = std::chrono::steady_clock::now();
             std::unique_ptr<Baker>& baker = bakers[repr_detail::settings_bytes(q.settings)];
-            if (!baker) baker = std::make_unique<Baker>(ctx_.scene, q.settings);
+            // Borrowing the renderer's Scene: a run builds one BVH.
+            if (!baker) baker = std::make_unique<Baker>(rt_, ctx_.scene, q.settings);
             const std::uint64_t rays0 = baker->rays_traced();
             BakeData& d = data_[i];
             d.request = q;
@@ -322,6 +324,8 @@ class Representations {
         }
     }
 
+    /// A loaded bake fits its request and the scene: every count, and every texel index, is
+    /// checked before use (a cache entry that does not fit is baked again).
     bool consistent(const BakeData& d, const BakeRequest& q) const {
         if (repr_detail::request_bytes(d.request) != repr_detail::request_bytes(q)) return false;
         switch (q.where) {
@@ -329,11 +333,18 @@ class Representations {
                 return d.results.size() == q.probes.size();
             case BakeRequest::Where::vertex:
                 return d.results.size() == ctx_.scene.meshes[q.mesh].vertex_count;
-            case BakeRequest::Where::texel:
-                return d.layout.width == q.lightmap_size && d.layout.height == q.lightmap_size &&
-                       d.results.size() == d.layout.samples.size() &&
-                       d.layout.covered.size() ==
-                           std::size_t(d.layout.width) * std::size_t(d.layout.height);
+            case BakeRequest::Where::texel: {
+                const LightmapLayout& l = d.layout;
+                if (!(l.width == q.lightmap_size && l.height == q.lightmap_size &&
+                      d.results.size() == l.samples.size() &&
+                      l.covered.size() == std::size_t(l.width) * std::size_t(l.height)))
+                    return false;
+                for (const LightmapSample& s : l.samples)
+                    if (s.x < 0 || s.y < 0 || s.x >= l.width || s.y >= l.height ||
+                        s.triangle >= ctx_.scene.meshes[q.mesh].triangle_count)
+                        return false;
+                return true;
+            }
         }
         return false;
     }

@@ -53,6 +53,7 @@
 #include "../core/frame.hpp"
 #include "../core/vec.hpp"
 #include "detail/rt_math.hpp"
+#include "lighting.hpp"
 #include "mesh.hpp"
 
 namespace sphbasis::render {
@@ -61,6 +62,15 @@ namespace sphbasis::render {
 /// (Baker::bake): Embree builds its bounds in float and squares extents, and aborts on an
 /// assertion from about 1.8e18; 1e15 keeps every such product far from overflow.
 inline constexpr double coordinate_limit = 1e15;
+
+/// A scene as the library takes it: meshes as arrays (borrowed: they must outlive every user of
+/// the description), the distant environment and the analytic lights (render/lighting.hpp).
+/// render::Scene is built from `meshes`; render::Baker and the renderers read the lighting.
+struct SceneDesc {
+    std::vector<MeshView> meshes;
+    Environment environment;
+    std::vector<Light> lights;
+};
 
 /// What a ray hit. Barycentrics: position = (1 - u - v) p0 + u p1 + v p2 of the mesh's
 /// triangle `primitive` (index into the mesh's own triangle list, degenerate ones included).

@@ -153,7 +153,7 @@ struct Context {
         requests.push_back(q);
         return int(requests.size() - 1);
     }
-    BakeSettings base_settings(unsigned quantities, int bounces) const {
+    BakeSettings base_settings(Quantity quantities, int bounces) const {
         BakeSettings s;
         s.quantities = quantities;
         s.rays = settings.rays;

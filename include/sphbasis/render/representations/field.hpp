@@ -3,10 +3,10 @@
 //
 // A Field holds one bake's values (or values derived from them) at float precision: per vertex
 // (interpolated with the hit's barycentrics), per lightmap texel (read bilinearly at Hit::uv
-// with clamp-to-edge, texel (0, 0) at uv (0, 1); gutters dilated by `gutter` texels with
-// render::dilate()), or per probe (double, interpolated trilinearly by the caller). Lightmaps
-// are baked on the front side of each surface (the side of its normal); a back-face hit reads
-// the front's data.
+// with clamp-to-edge, texel (0, 0) at uv (0, 1); render::assemble_lightmap(), gutters of
+// render::lightmap_gutter texels), or per probe (double, interpolated trilinearly by the caller).
+// Lightmaps are baked on the front side of each surface (the side of its normal); a back-face hit
+// reads the front's data.
 #pragma once
 
 #include <algorithm>
@@ -33,34 +33,32 @@ struct Field {
     ProbeGrid grid;
 };
 
-inline constexpr int gutter = 4;  // texels dilated around each chart
-
 /// Channels of a result: ao + bent (4), transfer (3 bands^2) or irradiance (3 coeffs).
 inline int channels_of(const BakeSettings& s) noexcept {
-    if (s.quantities & Quantity::transfer_matrix) return 27 * s.bands * s.bands;
-    if (s.quantities & Quantity::transfer) return 3 * s.bands * s.bands;
-    if (s.quantities & Quantity::irradiance) return 3 * s.coeffs;
-    if (s.quantities & Quantity::visibility) return s.bands * s.bands;
+    if (has(s.quantities, Quantity::transfer_matrix)) return 27 * s.bands * s.bands;
+    if (has(s.quantities, Quantity::transfer)) return 3 * s.bands * s.bands;
+    if (has(s.quantities, Quantity::irradiance)) return 3 * s.coeffs;
+    if (has(s.quantities, Quantity::visibility)) return s.bands * s.bands;
     return 4;
 }
 inline void pack(const BakeSettings& s, const PointResult& r, float* out) noexcept {
-    if (s.quantities & Quantity::transfer_matrix) {
+    if (has(s.quantities, Quantity::transfer_matrix)) {
         const std::size_t n = 9 * std::size_t(s.bands * s.bands);
         for (std::size_t c = 0; c < 3; ++c)
             for (std::size_t k = 0; k < n; ++k)
                 out[c * n + k] =
                     k < r.transfer_matrix[c].size() ? float(r.transfer_matrix[c][k]) : 0.f;
-    } else if (s.quantities & Quantity::transfer) {
+    } else if (has(s.quantities, Quantity::transfer)) {
         const std::size_t n = std::size_t(s.bands * s.bands);
         for (std::size_t c = 0; c < 3; ++c)
             for (std::size_t k = 0; k < n; ++k)
                 out[c * n + k] = k < r.transfer[c].size() ? float(r.transfer[c][k]) : 0.f;
-    } else if (s.quantities & Quantity::irradiance) {
+    } else if (has(s.quantities, Quantity::irradiance)) {
         const std::size_t n = std::size_t(s.coeffs);
         for (std::size_t c = 0; c < 3; ++c)
             for (std::size_t k = 0; k < n; ++k)
                 out[c * n + k] = k < r.irradiance[c].size() ? float(r.irradiance[c][k]) : 0.f;
-    } else if (s.quantities & Quantity::visibility) {
+    } else if (has(s.quantities, Quantity::visibility)) {
         const std::size_t n = std::size_t(s.bands * s.bands);
         for (std::size_t k = 0; k < n; ++k)
             out[k] = k < r.visibility.size() ? float(r.visibility[k]) : 0.f;
@@ -73,7 +71,8 @@ inline void pack(const BakeSettings& s, const PointResult& r, float* out) noexce
 }
 
 /// A vertex or texel field of `channels` values per point of bake d, point i's written by
-/// pack_point(i, out) (texel gutters dilated).
+/// pack_point(i, out) (texels: render::assemble_lightmap, the lightmap `sphbasis bake` writes,
+/// gutters of lightmap_gutter texels).
 template <class PackPoint>
 Field make_field(const BakeData& d, int channels, PackPoint&& pack_point) {
     Field f;
@@ -87,13 +86,7 @@ Field make_field(const BakeData& d, int channels, PackPoint&& pack_point) {
     }
     f.width = d.layout.width;
     f.height = d.layout.height;
-    f.data.assign(std::size_t(f.width) * std::size_t(f.height) * ch, 0.f);
-    for (std::size_t i = 0; i < d.results.size(); ++i) {
-        const LightmapSample& s = d.layout.samples[i];
-        pack_point(
-            i, f.data.data() + (std::size_t(s.y) * std::size_t(f.width) + std::size_t(s.x)) * ch);
-    }
-    dilate(f.data.data(), f.width, f.height, f.channels, d.layout.covered, gutter);
+    f.data = assemble_lightmap(d.layout, channels, pack_point);
     return f;
 }
 
