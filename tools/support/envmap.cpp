@@ -10,13 +10,9 @@
 #include <exception>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 
-#if defined(SPHBASIS_HAVE_OPENEXR)
-#include <ImfChannelList.h>
-#include <ImfFrameBuffer.h>
-#include <ImfHeader.h>
-#include <ImfInputFile.h>
-#endif
+#include "exr.hpp"
 
 namespace sphbasis::cli {
 
@@ -27,41 +23,13 @@ double srgb_to_linear(double v) {
 namespace {
 
 LinearRgbImage load_exr(const std::string& path) {
-#if defined(SPHBASIS_HAVE_OPENEXR)
-    Imf::InputFile file(path.c_str());
-    const Imath::Box2i dw = file.header().dataWindow();
-    const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
-    const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
-    if (w < 1 || h < 1 || w > (1 << 20) || h > (1 << 20))
-        throw std::runtime_error("expected 1 to 2^20 pixels a side, got " + std::to_string(w) +
-                                 " x " + std::to_string(h));
-    const Imf::ChannelList& ch = file.header().channels();
-    const bool grey = ch.findChannel("R") == nullptr && ch.findChannel("Y") != nullptr;
+    RgbImage stored = read_exr_rgb_as_stored(path);
     LinearRgbImage img;
-    img.width = static_cast<int>(w);
-    img.height = static_cast<int>(h);
+    img.width = stored.width;
+    img.height = stored.height;
+    img.rgb = std::move(stored.rgb);
     img.format = "exr";
-    img.rgb.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3, 0.0f);
-    const std::size_t xs = 3 * sizeof(float), ys = xs * static_cast<std::size_t>(w);
-    char* base = reinterpret_cast<char*>(img.rgb.data()) -
-                 static_cast<std::ptrdiff_t>(dw.min.x) * static_cast<std::ptrdiff_t>(xs) -
-                 static_cast<std::ptrdiff_t>(dw.min.y) * static_cast<std::ptrdiff_t>(ys);
-    Imf::FrameBuffer fb;
-    const char* names[3] = {"R", "G", "B"};
-    for (int c = 0; c < (grey ? 1 : 3); ++c)
-        fb.insert(grey ? "Y" : names[c],
-                  Imf::Slice(Imf::FLOAT, base + c * static_cast<std::ptrdiff_t>(sizeof(float)), xs,
-                             ys, 1, 1, 0.0));
-    file.setFrameBuffer(fb);
-    file.readPixels(dw.min.y, dw.max.y);
-    if (grey)
-        for (std::size_t i = 0; i < img.rgb.size(); i += 3)
-            img.rgb[i + 1] = img.rgb[i + 2] = img.rgb[i];
     return img;
-#else
-    (void)path;
-    throw std::runtime_error("reading EXR needs OpenEXR, and this build has none");
-#endif
 }
 
 struct StbFree {

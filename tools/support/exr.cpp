@@ -60,45 +60,52 @@ LuminanceImage load_exr_luminance(const std::string& path) {
 #endif
 }
 
-RgbImage load_exr_rgb(const std::string& path) {
+RgbImage read_exr_rgb_as_stored(const std::string& path) {
 #if defined(SPHBASIS_HAVE_OPENEXR)
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i dw = file.header().dataWindow();
+    const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
+    const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
+    if (w < 1 || h < 1 || w > (1 << 20) || h > (1 << 20))
+        throw std::runtime_error("expected 1 to 2^20 pixels a side, got " + std::to_string(w) +
+                                 " x " + std::to_string(h));
+    const Imf::ChannelList& ch = file.header().channels();
+    const bool grey = ch.findChannel("R") == nullptr && ch.findChannel("Y") != nullptr;
+    RgbImage img;
+    img.width = static_cast<int>(w);
+    img.height = static_cast<int>(h);
+    img.rgb.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3, 0.0f);
+    const std::size_t xs = 3 * sizeof(float), ys = xs * static_cast<std::size_t>(w);
+    char* base = reinterpret_cast<char*>(img.rgb.data()) -
+                 static_cast<std::ptrdiff_t>(dw.min.x) * static_cast<std::ptrdiff_t>(xs) -
+                 static_cast<std::ptrdiff_t>(dw.min.y) * static_cast<std::ptrdiff_t>(ys);
+    Imf::FrameBuffer fb;
+    const char* names[3] = {"R", "G", "B"};
+    for (int c = 0; c < (grey ? 1 : 3); ++c)
+        fb.insert(grey ? "Y" : names[c],
+                  Imf::Slice(Imf::FLOAT, base + c * static_cast<std::ptrdiff_t>(sizeof(float)), xs,
+                             ys, 1, 1, 0.0));
+    file.setFrameBuffer(fb);
+    file.readPixels(dw.min.y, dw.max.y);
+    if (grey)
+        for (std::size_t i = 0; i < img.rgb.size(); i += 3)
+            img.rgb[i + 1] = img.rgb[i + 2] = img.rgb[i];
+    return img;
+#else
+    (void)path;
+    throw std::runtime_error("reading EXR needs OpenEXR, and this build has none");
+#endif
+}
+
+RgbImage load_exr_rgb(const std::string& path) {
     try {
-        Imf::InputFile file(path.c_str());
-        const Imath::Box2i dw = file.header().dataWindow();
-        const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
-        if (w < 1 || h < 1) throw std::runtime_error("empty image");
-        const Imf::ChannelList& ch = file.header().channels();
-        const bool grey = ch.findChannel("R") == nullptr && ch.findChannel("Y") != nullptr;
-        RgbImage img;
-        img.width = w;
-        img.height = h;
-        img.rgb.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3, 0.0f);
-        const std::size_t xs = 3 * sizeof(float), ys = xs * static_cast<std::size_t>(w);
-        char* base = reinterpret_cast<char*>(img.rgb.data()) -
-                     static_cast<std::ptrdiff_t>(dw.min.x) * static_cast<std::ptrdiff_t>(xs) -
-                     static_cast<std::ptrdiff_t>(dw.min.y) * static_cast<std::ptrdiff_t>(ys);
-        Imf::FrameBuffer fb;
-        const char* names[3] = {"R", "G", "B"};
-        for (int c = 0; c < (grey ? 1 : 3); ++c)
-            fb.insert(grey ? "Y" : names[c],
-                      Imf::Slice(Imf::FLOAT, base + c * static_cast<std::ptrdiff_t>(sizeof(float)),
-                                 xs, ys, 1, 1, 0.0));
-        file.setFrameBuffer(fb);
-        file.readPixels(dw.min.y, dw.max.y);
-        for (std::size_t i = 0; i < img.rgb.size(); i += 3) {
-            if (grey) img.rgb[i + 1] = img.rgb[i + 2] = img.rgb[i];
-            for (std::size_t c = 0; c < 3; ++c) {
-                float& v = img.rgb[i + c];
-                if (!(std::isfinite(v) && v > 0)) v = 0.0f;
-            }
-        }
+        RgbImage img = read_exr_rgb_as_stored(path);
+        for (float& v : img.rgb)
+            if (!(std::isfinite(v) && v > 0)) v = 0.0f;
         return img;
     } catch (const std::exception& e) {
         throw std::runtime_error("cannot read EXR '" + path + "': " + e.what());
     }
-#else
-    throw std::runtime_error("reading " + path + " needs OpenEXR, and this build has none");
-#endif
 }
 
 #if defined(SPHBASIS_HAVE_OPENEXR)

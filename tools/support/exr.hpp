@@ -33,6 +33,12 @@ struct RgbImage {
 /// has no OpenEXR.
 RgbImage load_exr_rgb(const std::string& path);
 
+/// The R, G, B channels of an OpenEXR image as stored, as float (a file with only a Y channel
+/// is read as grey; missing channels are 0): nothing clamped, non-finite values kept (the
+/// caller decides). Throws std::runtime_error with OpenEXR's message, or "expected 1 to 2^20
+/// pixels a side", or when this build has no OpenEXR. load_exr_rgb is this one, cleaned.
+RgbImage read_exr_rgb_as_stored(const std::string& path);
+
 /// A multi-channel float (32-bit) OpenEXR image with ZIP compression, as the bytes of its file:
 /// channel k of pixel (x, y) (y down from the top row) at values[(y * width + x) *
 /// names.size() + k]. The bytes depend only on the arguments (no time stamp in the header), so
