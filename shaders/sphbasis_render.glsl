@@ -194,7 +194,7 @@ vec3 sphbasis_prt_ratio(vec3 shadowed, vec3 C[9], vec3 ns, vec3 nm, vec3 albedo)
 {
     vec3 u0 = sphbasis_sh_shade(C, ns);
     vec3 um = albedo * sphbasis_sh_shade(C, nm);
-    vec3 r;
+    vec3 r = vec3(0.0);
     for (int c = 0; c < 3; ++c)
         r[c] = u0[c] > 1e-12 ? max(shadowed[c], 0.0) / u0[c] * um[c] : 0.0;
     return r;
