@@ -41,7 +41,9 @@ hand-written C++ literals are read and must round to the same floats as the exac
 clamped-cosine factors (core/clamped_cosine.hpp), the SH -> modified H-basis irradiance of
 Ishmukhametov's Listings 2.1 and 2.2 (correctly rounded) and Toksvig's eqs. 6, 8 and 9
 (shading/toksvig.hpp), and the direction <-> texture mappings of param/ (octahedral, cube map with
-the D3D10/OpenGL face selection, concentric, paraboloid and the dual paraboloid texel layout).
+the D3D10/OpenGL face selection, concentric, paraboloid and the dual paraboloid texel layout),
+and the HSH, Makhotkin and Zernike evaluation of 1..8 bands (tools/gen/hemi_shader.py: the
+row-recurrence table of basis/detail/jacobi.hpp, built exactly and rounded to float).
 """
 import re
 import struct
