@@ -173,6 +173,70 @@ double scale_zernike(int n) { return std::sqrt((n + 1) / pi); }
 // ---------------------------------------------------------------------------------------------
 // Cube-map footprint and lxh-unc.
 
+// lxh-pcaM: the mean's and the M vectors' RGB tables (texel x (M + 1) x 3) blended at the
+// normal, then albedo (T_0 + sum_j w_j T_j) / pi, as Lxh::shade_pca.
+bool check_lxh_pca(const Gl& gl, const std::vector<float>& dirs,
+                   const sphbasis::param::CubeMap<float>& cube, std::mt19937& rng) {
+    const unsigned count = unsigned(dirs.size() / 4);
+    constexpr int m = 8, ch = 3 * (m + 1);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f), pos(0.2f, 1.0f);
+    std::vector<float> table(cube.texel_count() * std::size_t(ch)), table_abs(table.size());
+    for (std::size_t k = 0; k < table.size(); ++k)
+        table[k] = u(rng), table_abs[k] = std::abs(table[k]);
+    std::vector<float> w(std::size_t(count) * m), albedo(std::size_t(count) * 3);
+    for (float& v : w) v = 2.0f * u(rng);
+    for (float& v : albedo) v = pos(rng);
+    const std::string body =
+        "    vec3 d = vec3(in0[4u * i], in0[4u * i + 1u], in0[4u * i + 2u]);\n"
+        "    int idx[4]; float wt[4];\n"
+        "    sphbasis_cube_footprint(d, " +
+        std::to_string(cube.width()) +
+        ", idx, wt);\n"
+        "    vec3 t[" +
+        std::to_string(m + 1) +
+        "];\n"
+        "    for (int j = 0; j <= " +
+        std::to_string(m) +
+        "; ++j) {\n"
+        "        t[j] = vec3(0.0);\n"
+        "        for (int q = 0; q < 4; ++q) {\n"
+        "            uint b = uint(idx[q] * " +
+        std::to_string(ch) +
+        " + 3 * j);\n"
+        "            t[j] += wt[q] * vec3(in1[b], in1[b + 1u], in1[b + 2u]);\n"
+        "        }\n"
+        "    }\n"
+        "    vec3 e[SPHBASIS_MAX_VECTORS]; float w[SPHBASIS_MAX_VECTORS];\n"
+        "    for (int j = 0; j < " +
+        std::to_string(m) + "; ++j) { e[j] = t[j + 1]; w[j] = in2[i * " + std::to_string(m) +
+        "u + uint(j)]; }\n"
+        "    vec3 a = vec3(in3[3u * i], in3[3u * i + 1u], in3[3u * i + 2u]);\n"
+        "    vec3 s = a * sphbasis_pca_exit(t[0], e, w, " +
+        std::to_string(m) +
+        ") * sphbasis_inv_pi;\n"
+        "    outv[3u * i] = s.x; outv[3u * i + 1u] = s.y; outv[3u * i + 2u] = s.z;\n";
+    const std::vector<float> gpu = run(gl, body, {&dirs, &table, &w, &albedo}, count, 3);
+    Worst wst;
+    std::vector<float> t(static_cast<std::size_t>(ch)), tabs(t.size());
+    for (unsigned i = 0; i < count; ++i) {
+        const float x = dirs[4 * i], y = dirs[4 * i + 1], z = dirs[4 * i + 2];
+        sphbasis::param::lookup(cube, table.data(), std::size_t(ch), x, y, z, t.data());
+        sphbasis::param::lookup(cube, table_abs.data(), std::size_t(ch), x, y, z, tabs.data());
+        for (std::size_t c = 0; c < 3; ++c) {
+            double e = t[c], mag = tabs[c];
+            for (std::size_t j = 0; j < std::size_t(m); ++j) {
+                const double wj = w[std::size_t(i) * m + j];
+                e += wj * double(t[3 * (j + 1) + c]);
+                mag += std::abs(wj) * double(tabs[3 * (j + 1) + c]);
+            }
+            const double a = albedo[3 * i + c];
+            wst.add(gpu[3 * std::size_t(i) + c], a * e / pi, a * mag / pi);
+        }
+    }
+    return wst.report("lxh-pca8: sphbasis_pca_exit on the blended tables, vs double",
+                      max_ulps_shading);
+}
+
 bool check_lxh(const Gl& gl, const std::vector<float>& dirs) {
     const unsigned count = unsigned(dirs.size() / 4);
     constexpr int n = 8;  // texels a face edge: a third of the directions read across a seam
@@ -256,7 +320,7 @@ bool check_lxh(const Gl& gl, const std::vector<float>& dirs) {
     std::printf("  sphbasis_cube_footprint: %zu of %u x 4 taps differ from CubeMap<float>  %s\n",
                 taps_differ, count, taps_differ == 0 ? "ok" : "FAIL");
     ok = fw.report("sphbasis_cube_footprint weights (ulps of 1)", max_ulps_footprint) && ok;
-    return ok && taps_differ == 0;
+    return check_lxh_pca(gl, dirs, cube, rng) && ok && taps_differ == 0;
 }
 
 // ---------------------------------------------------------------------------------------------
