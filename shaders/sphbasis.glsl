@@ -865,4 +865,124 @@ vec3 sphbasis_dual_paraboloid_uv_to_direction(int face, vec2 uv, int n)
     return d;
 }
 
+/// Recurrence table of hsh: RowTable<float, 8> of basis/detail/jacobi.hpp (the
+/// normalised Jacobi steps p_k = (pz z - d) p_{k-1} - c p_{k-2} and the sectoral starts),
+/// each entry the float nearest to the exact value (generator: tools/gen/hemi_shader.py).
+const float sphbasis_hsh_pz[28] = float[28](3.46410155, 3.87298346, 4.47213602, 3.94405317, 4.18330002, 5.29150248, 3.96862698, 4.09878016, 4.5825758, 6.0, 3.97994971, 4.06201935, 4.34248114, 4.97493696, 6.63324976, 3.98608685, 4.0426302, 4.22788382, 4.60273647, 5.34789658, 7.21110249, 3.98978281, 4.03112888, 4.16333199, 4.4158802, 4.86172438, 5.70087719, 7.74596691);
+const float sphbasis_hsh_d[28] = float[28](1.73205078, 1.93649173, 2.23606801, 1.97202659, 2.09165001, 2.64575124, 1.98431349, 2.04939008, 2.2912879, 3.0, 1.98997486, 2.03100967, 2.17124057, 2.48746848, 3.31662488, 1.99304342, 2.0213151, 2.11394191, 2.30136824, 2.67394829, 3.60555124, 1.99489141, 2.01556444, 2.08166599, 2.2079401, 2.43086219, 2.85043859, 3.87298346);
+const float sphbasis_hsh_c[28] = float[28](0.0, 1.11803401, 0.0, 1.01835012, 0.935414374, 0.0, 1.00623059, 0.979795873, 0.866025388, 0.0, 1.00285304, 0.991031229, 0.9476071, 0.82915622, 0.0, 1.00154197, 0.995226681, 0.973610103, 0.925184906, 0.806225777, 0.0, 1.00092721, 0.99715507, 0.984731913, 0.959403217, 0.909090936, 0.790569425, 0.0);
+const float sphbasis_hsh_start[8] = float[8](0.398942292, 0.690988302, 0.772548378, 0.834447622, 0.885065377, 0.92826438, 0.966168225, 1.00007915);
+
+/// Hemispherical harmonics (Gautron et al., EGSR 2004): bands^2 functions
+/// (1 <= bands <= 8) at the unit direction dir, ACN order, as
+/// sphbasis::hsh::eval_unit(bands, ...) in float (the row recurrence of
+/// basis/detail/jacobi.hpp, same operation order); 0 below the horizon. Entries from
+/// sh::count(bands) on are left unwritten.
+void sphbasis_hsh_eval(vec3 dir, int bands, out float h[64])
+{
+    float x = dir.x; float y = dir.y; float z = dir.z;
+    float zc = max(z, 0.0);
+    float g = 2.0 * sqrt(zc / (1.0 + zc));
+    float X = x * g; float Y = y * g;
+    float E = z >= 0.0 ? 1.0 : 0.0;
+    float cm[8]; float sm[8]; float cur[8]; float prev[8];
+    cm[0] = 1.0; sm[0] = 0.0; cm[1] = X; sm[1] = Y;
+    for (int m = 2; m < bands; ++m) {
+        cm[m] = X * cm[m - 1] - Y * sm[m - 1];
+        sm[m] = X * sm[m - 1] + Y * cm[m - 1];
+    }
+    for (int l = 0; l < bands; ++l) {
+        int o = l * (l - 1) / 2;
+        for (int m = 0; m < l; ++m) {
+            float v = (sphbasis_hsh_pz[o + m] * zc - sphbasis_hsh_d[o + m]) * cur[m] - sphbasis_hsh_c[o + m] * prev[m];
+            prev[m] = cur[m]; cur[m] = v;
+        }
+        cur[l] = sphbasis_hsh_start[l] * E; prev[l] = 0.0;
+        int k = l * (l + 1);
+        h[k] = cur[0];
+        for (int m = 1; m <= l; ++m) { h[k + m] = cur[m] * cm[m]; h[k - m] = cur[m] * sm[m]; }
+    }
+}
+
+/// Recurrence table of makhotkin: RowTable<float, 8> of basis/detail/jacobi.hpp (the
+/// normalised Jacobi steps p_k = (pz z - d) p_{k-1} - c p_{k-2} and the sectoral starts),
+/// each entry the float nearest to the exact value (generator: tools/gen/hemi_shader.py).
+const float sphbasis_makhotkin_pz[28] = float[28](4.2426405, 4.08248281, 5.0, 4.04145193, 4.42718887, 5.71547604, 4.02492237, 4.2426405, 4.81070232, 6.36396122, 4.01663208, 4.15760899, 4.49073124, 5.1854496, 6.95701075, 4.01188707, 4.11096096, 4.33333349, 4.74692869, 5.54321861, 7.50555372, 4.00891876, 4.08248281, 4.2426405, 4.52267027, 5.0, 5.88348389, 8.01783752);
+const float sphbasis_makhotkin_d[28] = float[28](2.82842708, 2.1773243, 3.0, 2.07846093, 2.40333104, 3.26598644, 2.04440498, 2.22233558, 2.59625196, 3.53553391, 2.02860212, 2.14179873, 2.35876799, 2.7760489, 3.79473329, 2.01997113, 2.09860253, 2.24242425, 2.4896481, 2.94604635, 4.04145193, 2.01473856, 2.07264519, 2.17571306, 2.34251118, 2.61538458, 3.10768652, 4.27617979);
+const float sphbasis_makhotkin_c[28] = float[28](0.0, 0.962250471, 0.0, 0.989949465, 0.885437727, 0.0, 0.995909989, 0.958314836, 0.841697574, 0.0, 0.997940242, 0.979957879, 0.933487654, 0.814814806, 0.0, 0.998818636, 0.988780022, 0.964950502, 0.915432453, 0.796781659, 0.0, 0.999260068, 0.993072629, 0.979070902, 0.95275712, 0.90200305, 0.783884108, 0.0);
+const float sphbasis_makhotkin_start[8] = float[8](0.564189613, 0.977205038, 1.09254849, 1.18008721, 1.25167143, 1.31276417, 1.36636817, 1.41432548);
+
+/// The Makhotkin basis (JQSRT 1996): bands^2 functions
+/// (1 <= bands <= 8) at the unit direction dir, ACN order, as
+/// sphbasis::makhotkin::eval_unit(bands, ...) in float (the row recurrence of
+/// basis/detail/jacobi.hpp, same operation order); 0 below the horizon. Entries from
+/// sh::count(bands) on are left unwritten.
+void sphbasis_makhotkin_eval(vec3 dir, int bands, out float h[64])
+{
+    float x = dir.x; float y = dir.y; float z = dir.z;
+    float zc = max(z, 0.0);
+    float g = 2.0 * sqrt(zc / (1.0 + zc));
+    float X = x * g; float Y = y * g;
+    float E = sqrt(zc);
+    float cm[8]; float sm[8]; float cur[8]; float prev[8];
+    cm[0] = 1.0; sm[0] = 0.0; cm[1] = X; sm[1] = Y;
+    for (int m = 2; m < bands; ++m) {
+        cm[m] = X * cm[m - 1] - Y * sm[m - 1];
+        sm[m] = X * sm[m - 1] + Y * cm[m - 1];
+    }
+    for (int l = 0; l < bands; ++l) {
+        int o = l * (l - 1) / 2;
+        for (int m = 0; m < l; ++m) {
+            float v = (sphbasis_makhotkin_pz[o + m] * zc - sphbasis_makhotkin_d[o + m]) * cur[m] - sphbasis_makhotkin_c[o + m] * prev[m];
+            prev[m] = cur[m]; cur[m] = v;
+        }
+        cur[l] = sphbasis_makhotkin_start[l] * E; prev[l] = 0.0;
+        int k = l * (l + 1);
+        h[k] = cur[0];
+        for (int m = 1; m <= l; ++m) { h[k + m] = cur[m] * cm[m]; h[k - m] = cur[m] * sm[m]; }
+    }
+}
+
+/// Recurrence table of zernike: RowTable<float, 8> of basis/detail/jacobi.hpp (the
+/// normalised Jacobi steps p_k = (pz z - d) p_{k-1} - c p_{k-2} and the sectoral starts),
+/// each entry the float nearest to the exact value (generator: tools/gen/hemi_shader.py).
+const float sphbasis_zernike_pz[12] = float[12](-3.46410155, -4.2426405, -3.87298346, -5.16397762, -4.08248281, -6.12372446, -3.94405317, -4.43705988, -7.09929562, -4.04145193, -4.84974241, -8.08290386);
+const float sphbasis_zernike_d[12] = float[12](-1.73205078, -1.41421354, -1.93649173, -1.29099441, -1.90515864, -1.22474492, -1.97202659, -1.84877491, -1.18321598, -1.96299088, -1.80133283, -1.15470052);
+const float sphbasis_zernike_c[12] = float[12](0.0, 0.0, 1.11803401, 0.0, 0.962250471, 0.0, 1.01835012, 0.859232962, 0.0, 0.989949465, 0.791959584, 0.0);
+const float sphbasis_zernike_start[8] = float[8](0.398942292, 0.797884583, 0.977205038, 1.12837923, 1.26156628, 1.3819766, 1.49270535, 1.59576917);
+
+/// Koenderink's hemispherical Zernike basis (ECCV 1996): bands(bands+1)/2 functions
+/// (1 <= bands <= 8) at the unit direction dir, index n(n+1)/2 + (n+m)/2 order, as
+/// sphbasis::zernike::eval_unit(bands, ...) in float (the row recurrence of
+/// basis/detail/jacobi.hpp, same operation order); 0 below the horizon. Entries from
+/// zernike::count(bands) on are left unwritten.
+void sphbasis_zernike_eval(vec3 dir, int bands, out float h[36])
+{
+    float x = dir.x; float y = dir.y; float z = dir.z;
+    float zc = max(z, 0.0);
+    float g = 1.0 / sqrt(1.0 + zc);
+    float X = x * g; float Y = y * g;
+    float E = z >= 0.0 ? 1.0 : 0.0;
+    float cm[8]; float sm[8]; float cur[8]; float prev[8];
+    cm[0] = 1.0; sm[0] = 0.0; cm[1] = X; sm[1] = Y;
+    for (int m = 2; m < bands; ++m) {
+        cm[m] = X * cm[m - 1] - Y * sm[m - 1];
+        sm[m] = X * sm[m - 1] + Y * cm[m - 1];
+    }
+    for (int l = 0; l < bands; ++l) {
+        int par = l % 2; int half_l = l / 2;
+        int o = half_l * (half_l - 1) + par * half_l;
+        for (int j = 0; j < half_l; ++j) {
+            int m = par + 2 * j;
+            float v = (sphbasis_zernike_pz[o + j] * zc - sphbasis_zernike_d[o + j]) * cur[m] - sphbasis_zernike_c[o + j] * prev[m];
+            prev[m] = cur[m]; cur[m] = v;
+        }
+        cur[l] = sphbasis_zernike_start[l] * E; prev[l] = 0.0;
+        int base = l * (l + 1) / 2;
+        for (int i = 0; i < (l + 1) / 2; ++i) h[base + i] = cur[l - 2 * i] * sm[l - 2 * i];
+        if (par == 0) h[base + half_l] = cur[0];
+        for (int m = 2 - par; m <= l; m += 2) h[base + (l + m) / 2] = cur[m] * cm[m];
+    }
+}
+
 #endif  // SPHBASIS_GLSL

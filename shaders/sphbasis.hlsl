@@ -864,4 +864,124 @@ float3 sphbasis_dual_paraboloid_uv_to_direction(int face, float2 uv, int n)
     return d;
 }
 
+/// Recurrence table of hsh: RowTable<float, 8> of basis/detail/jacobi.hpp (the
+/// normalised Jacobi steps p_k = (pz z - d) p_{k-1} - c p_{k-2} and the sectoral starts),
+/// each entry the float nearest to the exact value (generator: tools/gen/hemi_shader.py).
+static const float sphbasis_hsh_pz[28] = {3.46410155f, 3.87298346f, 4.47213602f, 3.94405317f, 4.18330002f, 5.29150248f, 3.96862698f, 4.09878016f, 4.5825758f, 6.0f, 3.97994971f, 4.06201935f, 4.34248114f, 4.97493696f, 6.63324976f, 3.98608685f, 4.0426302f, 4.22788382f, 4.60273647f, 5.34789658f, 7.21110249f, 3.98978281f, 4.03112888f, 4.16333199f, 4.4158802f, 4.86172438f, 5.70087719f, 7.74596691f};
+static const float sphbasis_hsh_d[28] = {1.73205078f, 1.93649173f, 2.23606801f, 1.97202659f, 2.09165001f, 2.64575124f, 1.98431349f, 2.04939008f, 2.2912879f, 3.0f, 1.98997486f, 2.03100967f, 2.17124057f, 2.48746848f, 3.31662488f, 1.99304342f, 2.0213151f, 2.11394191f, 2.30136824f, 2.67394829f, 3.60555124f, 1.99489141f, 2.01556444f, 2.08166599f, 2.2079401f, 2.43086219f, 2.85043859f, 3.87298346f};
+static const float sphbasis_hsh_c[28] = {0.0f, 1.11803401f, 0.0f, 1.01835012f, 0.935414374f, 0.0f, 1.00623059f, 0.979795873f, 0.866025388f, 0.0f, 1.00285304f, 0.991031229f, 0.9476071f, 0.82915622f, 0.0f, 1.00154197f, 0.995226681f, 0.973610103f, 0.925184906f, 0.806225777f, 0.0f, 1.00092721f, 0.99715507f, 0.984731913f, 0.959403217f, 0.909090936f, 0.790569425f, 0.0f};
+static const float sphbasis_hsh_start[8] = {0.398942292f, 0.690988302f, 0.772548378f, 0.834447622f, 0.885065377f, 0.92826438f, 0.966168225f, 1.00007915f};
+
+/// Hemispherical harmonics (Gautron et al., EGSR 2004): bands^2 functions
+/// (1 <= bands <= 8) at the unit direction dir, ACN order, as
+/// sphbasis::hsh::eval_unit(bands, ...) in float (the row recurrence of
+/// basis/detail/jacobi.hpp, same operation order); 0 below the horizon. Entries from
+/// sh::count(bands) on are left unwritten.
+void sphbasis_hsh_eval(float3 dir, int bands, out float h[64])
+{
+    float x = dir.x; float y = dir.y; float z = dir.z;
+    float zc = max(z, 0.0f);
+    float g = 2.0f * sqrt(zc / (1.0f + zc));
+    float X = x * g; float Y = y * g;
+    float E = z >= 0.0f ? 1.0f : 0.0f;
+    float cm[8]; float sm[8]; float cur[8]; float prev[8];
+    cm[0] = 1.0f; sm[0] = 0.0f; cm[1] = X; sm[1] = Y;
+    for (int m = 2; m < bands; ++m) {
+        cm[m] = X * cm[m - 1] - Y * sm[m - 1];
+        sm[m] = X * sm[m - 1] + Y * cm[m - 1];
+    }
+    for (int l = 0; l < bands; ++l) {
+        int o = l * (l - 1) / 2;
+        for (int m = 0; m < l; ++m) {
+            float v = (sphbasis_hsh_pz[o + m] * zc - sphbasis_hsh_d[o + m]) * cur[m] - sphbasis_hsh_c[o + m] * prev[m];
+            prev[m] = cur[m]; cur[m] = v;
+        }
+        cur[l] = sphbasis_hsh_start[l] * E; prev[l] = 0.0f;
+        int k = l * (l + 1);
+        h[k] = cur[0];
+        for (int m = 1; m <= l; ++m) { h[k + m] = cur[m] * cm[m]; h[k - m] = cur[m] * sm[m]; }
+    }
+}
+
+/// Recurrence table of makhotkin: RowTable<float, 8> of basis/detail/jacobi.hpp (the
+/// normalised Jacobi steps p_k = (pz z - d) p_{k-1} - c p_{k-2} and the sectoral starts),
+/// each entry the float nearest to the exact value (generator: tools/gen/hemi_shader.py).
+static const float sphbasis_makhotkin_pz[28] = {4.2426405f, 4.08248281f, 5.0f, 4.04145193f, 4.42718887f, 5.71547604f, 4.02492237f, 4.2426405f, 4.81070232f, 6.36396122f, 4.01663208f, 4.15760899f, 4.49073124f, 5.1854496f, 6.95701075f, 4.01188707f, 4.11096096f, 4.33333349f, 4.74692869f, 5.54321861f, 7.50555372f, 4.00891876f, 4.08248281f, 4.2426405f, 4.52267027f, 5.0f, 5.88348389f, 8.01783752f};
+static const float sphbasis_makhotkin_d[28] = {2.82842708f, 2.1773243f, 3.0f, 2.07846093f, 2.40333104f, 3.26598644f, 2.04440498f, 2.22233558f, 2.59625196f, 3.53553391f, 2.02860212f, 2.14179873f, 2.35876799f, 2.7760489f, 3.79473329f, 2.01997113f, 2.09860253f, 2.24242425f, 2.4896481f, 2.94604635f, 4.04145193f, 2.01473856f, 2.07264519f, 2.17571306f, 2.34251118f, 2.61538458f, 3.10768652f, 4.27617979f};
+static const float sphbasis_makhotkin_c[28] = {0.0f, 0.962250471f, 0.0f, 0.989949465f, 0.885437727f, 0.0f, 0.995909989f, 0.958314836f, 0.841697574f, 0.0f, 0.997940242f, 0.979957879f, 0.933487654f, 0.814814806f, 0.0f, 0.998818636f, 0.988780022f, 0.964950502f, 0.915432453f, 0.796781659f, 0.0f, 0.999260068f, 0.993072629f, 0.979070902f, 0.95275712f, 0.90200305f, 0.783884108f, 0.0f};
+static const float sphbasis_makhotkin_start[8] = {0.564189613f, 0.977205038f, 1.09254849f, 1.18008721f, 1.25167143f, 1.31276417f, 1.36636817f, 1.41432548f};
+
+/// The Makhotkin basis (JQSRT 1996): bands^2 functions
+/// (1 <= bands <= 8) at the unit direction dir, ACN order, as
+/// sphbasis::makhotkin::eval_unit(bands, ...) in float (the row recurrence of
+/// basis/detail/jacobi.hpp, same operation order); 0 below the horizon. Entries from
+/// sh::count(bands) on are left unwritten.
+void sphbasis_makhotkin_eval(float3 dir, int bands, out float h[64])
+{
+    float x = dir.x; float y = dir.y; float z = dir.z;
+    float zc = max(z, 0.0f);
+    float g = 2.0f * sqrt(zc / (1.0f + zc));
+    float X = x * g; float Y = y * g;
+    float E = sqrt(zc);
+    float cm[8]; float sm[8]; float cur[8]; float prev[8];
+    cm[0] = 1.0f; sm[0] = 0.0f; cm[1] = X; sm[1] = Y;
+    for (int m = 2; m < bands; ++m) {
+        cm[m] = X * cm[m - 1] - Y * sm[m - 1];
+        sm[m] = X * sm[m - 1] + Y * cm[m - 1];
+    }
+    for (int l = 0; l < bands; ++l) {
+        int o = l * (l - 1) / 2;
+        for (int m = 0; m < l; ++m) {
+            float v = (sphbasis_makhotkin_pz[o + m] * zc - sphbasis_makhotkin_d[o + m]) * cur[m] - sphbasis_makhotkin_c[o + m] * prev[m];
+            prev[m] = cur[m]; cur[m] = v;
+        }
+        cur[l] = sphbasis_makhotkin_start[l] * E; prev[l] = 0.0f;
+        int k = l * (l + 1);
+        h[k] = cur[0];
+        for (int m = 1; m <= l; ++m) { h[k + m] = cur[m] * cm[m]; h[k - m] = cur[m] * sm[m]; }
+    }
+}
+
+/// Recurrence table of zernike: RowTable<float, 8> of basis/detail/jacobi.hpp (the
+/// normalised Jacobi steps p_k = (pz z - d) p_{k-1} - c p_{k-2} and the sectoral starts),
+/// each entry the float nearest to the exact value (generator: tools/gen/hemi_shader.py).
+static const float sphbasis_zernike_pz[12] = {-3.46410155f, -4.2426405f, -3.87298346f, -5.16397762f, -4.08248281f, -6.12372446f, -3.94405317f, -4.43705988f, -7.09929562f, -4.04145193f, -4.84974241f, -8.08290386f};
+static const float sphbasis_zernike_d[12] = {-1.73205078f, -1.41421354f, -1.93649173f, -1.29099441f, -1.90515864f, -1.22474492f, -1.97202659f, -1.84877491f, -1.18321598f, -1.96299088f, -1.80133283f, -1.15470052f};
+static const float sphbasis_zernike_c[12] = {0.0f, 0.0f, 1.11803401f, 0.0f, 0.962250471f, 0.0f, 1.01835012f, 0.859232962f, 0.0f, 0.989949465f, 0.791959584f, 0.0f};
+static const float sphbasis_zernike_start[8] = {0.398942292f, 0.797884583f, 0.977205038f, 1.12837923f, 1.26156628f, 1.3819766f, 1.49270535f, 1.59576917f};
+
+/// Koenderink's hemispherical Zernike basis (ECCV 1996): bands(bands+1)/2 functions
+/// (1 <= bands <= 8) at the unit direction dir, index n(n+1)/2 + (n+m)/2 order, as
+/// sphbasis::zernike::eval_unit(bands, ...) in float (the row recurrence of
+/// basis/detail/jacobi.hpp, same operation order); 0 below the horizon. Entries from
+/// zernike::count(bands) on are left unwritten.
+void sphbasis_zernike_eval(float3 dir, int bands, out float h[36])
+{
+    float x = dir.x; float y = dir.y; float z = dir.z;
+    float zc = max(z, 0.0f);
+    float g = 1.0f / sqrt(1.0f + zc);
+    float X = x * g; float Y = y * g;
+    float E = z >= 0.0f ? 1.0f : 0.0f;
+    float cm[8]; float sm[8]; float cur[8]; float prev[8];
+    cm[0] = 1.0f; sm[0] = 0.0f; cm[1] = X; sm[1] = Y;
+    for (int m = 2; m < bands; ++m) {
+        cm[m] = X * cm[m - 1] - Y * sm[m - 1];
+        sm[m] = X * sm[m - 1] + Y * cm[m - 1];
+    }
+    for (int l = 0; l < bands; ++l) {
+        int par = l % 2; int half_l = l / 2;
+        int o = half_l * (half_l - 1) + par * half_l;
+        for (int j = 0; j < half_l; ++j) {
+            int m = par + 2 * j;
+            float v = (sphbasis_zernike_pz[o + j] * zc - sphbasis_zernike_d[o + j]) * cur[m] - sphbasis_zernike_c[o + j] * prev[m];
+            prev[m] = cur[m]; cur[m] = v;
+        }
+        cur[l] = sphbasis_zernike_start[l] * E; prev[l] = 0.0f;
+        int base = l * (l + 1) / 2;
+        for (int i = 0; i < (l + 1) / 2; ++i) h[base + i] = cur[l - 2 * i] * sm[l - 2 * i];
+        if (par == 0) h[base + half_l] = cur[0];
+        for (int m = 2 - par; m <= l; m += 2) h[base + (l + m) / 2] = cur[m] * cm[m];
+    }
+}
+
 #endif  // SPHBASIS_HLSL

@@ -1,5 +1,6 @@
-// Calls every function of shaders/sphbasis.hlsl so glslang's HLSL front end compiles each one.
+// Calls every function of shaders/sphbasis.hlsl and sphbasis_render.hlsl so glslang's HLSL front end compiles each one.
 #include "sphbasis.hlsl"
+#include "sphbasis_render.hlsl"
 
 RWStructuredBuffer<float> out_buf : register(u0);
 
@@ -50,4 +51,29 @@ void main()
     float3 r = sphbasis_square_to_octahedral(q0) + sphbasis_square_to_cube(face, q0)
         + sphbasis_square_to_paraboloid(q0) + sphbasis_dual_paraboloid_uv_to_direction(1, q0, 16);
     out_buf[18] = q.x + q.y + r.x + r.y + r.z + float(face);
+    float hs[64]; sphbasis_hsh_eval(d, 8, hs);
+    float mk[64]; sphbasis_makhotkin_eval(d, 8, mk);
+    float zk[36]; sphbasis_zernike_eval(d, 8, zk);
+    out_buf[19] = hs[63] + mk[63] + zk[35];
+    int idx[4]; float wt[4]; sphbasis_cube_footprint(d, 16, idx, wt);
+    int seam = sphbasis_cube_seam_texel(0, -1, 3, 16);
+    float vis[36]; float3 t36[36];
+    for (int i = 0; i < 36; ++i) { vis[i] = zk[i]; t36[i] = float3(hs[i], mk[i], 1.0f); }
+    float3 g = sphbasis_lxh_shade(vis, t36, 16, float3(0.5f, 0.5f, 0.5f));
+    float3 ev[SPHBASIS_MAX_VECTORS]; float ew[SPHBASIS_MAX_VECTORS];
+    for (int i = 0; i < SPHBASIS_MAX_VECTORS; ++i) { ev[i] = float3(hs[i], 0.5f, 1.0f); ew[i] = mk[i]; }
+    g += sphbasis_pca_exit(float3(1.0f, 1.0f, 1.0f), ev, ew, 8) * float(sphbasis_cpca_cluster(2.5f, 4));
+    float3 u = sphbasis_normal_basis_tangent(d, float3(1.0f, 0.0f, 0.0f), float3(0.0f, 1.0f, 0.0f),
+        float3(0.0f, 0.0f, 1.0f));
+    float v54[54]; for (int i = 0; i < 54; ++i) v54[i] = hs[i];
+    float p6[6]; sphbasis_normal_basis_weights(u, v54, 6, p6);
+    float3 gl6[6]; for (int i = 0; i < 6; ++i) gl6[i] = c6[i];
+    g += sphbasis_prt_normalmap_svd(p6, gl6, 4, float3(0.8f, 0.8f, 0.8f));
+    g += sphbasis_prt_ratio(float3(0.5f, 0.5f, 0.5f), L, d, u, float3(0.7f, 0.7f, 0.7f));
+    int pi8[8]; float pw[8]; bool ins[8];
+    sphbasis_probe_weights(d, float3(-1.0f, -1.0f, -1.0f), float3(1.0f, 1.0f, 1.0f), int3(4, 3, 1), pi8, pw);
+    for (int i = 0; i < 8; ++i) ins[i] = pi8[i] == 2;
+    bool valid = sphbasis_probe_weights_valid(pw, ins);
+    g += sphbasis_volume_shade(L, d, float3(pw[0], pw[7], valid ? 1.0f : 0.0f));
+    out_buf[20] = g.x + g.y + g.z + wt[0] + float(idx[3] + seam);
 }

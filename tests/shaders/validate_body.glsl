@@ -1,4 +1,4 @@
-// Calls every function of shaders/sphbasis.glsl so glslang compiles each one; included after
+// Calls every function of shaders/sphbasis.glsl and sphbasis_render.glsl so glslang compiles each one; included after
 // "#version" and "#include <sphbasis.glsl>" by validate_glsl450.comp and validate_es310.comp.
 layout(local_size_x = 1) in;
 layout(std430, binding = 0) buffer Out { float v[]; } out_buf;
@@ -49,4 +49,29 @@ void main()
     vec3 r = sphbasis_square_to_octahedral(q0) + sphbasis_square_to_cube(face, q0)
         + sphbasis_square_to_paraboloid(q0) + sphbasis_dual_paraboloid_uv_to_direction(1, q0, 16);
     out_buf.v[18] = q.x + q.y + r.x + r.y + r.z + float(face);
+    float hs[64]; sphbasis_hsh_eval(d, 8, hs);
+    float mk[64]; sphbasis_makhotkin_eval(d, 8, mk);
+    float zk[36]; sphbasis_zernike_eval(d, 8, zk);
+    out_buf.v[19] = hs[63] + mk[63] + zk[35];
+    int idx[4]; float wt[4]; sphbasis_cube_footprint(d, 16, idx, wt);
+    int seam = sphbasis_cube_seam_texel(0, -1, 3, 16);
+    float vis[36]; vec3 t36[36];
+    for (int i = 0; i < 36; ++i) { vis[i] = zk[i]; t36[i] = vec3(hs[i], mk[i], 1.0); }
+    vec3 g = sphbasis_lxh_shade(vis, t36, 16, vec3(0.5));
+    vec3 ev[SPHBASIS_MAX_VECTORS]; float ew[SPHBASIS_MAX_VECTORS];
+    for (int i = 0; i < SPHBASIS_MAX_VECTORS; ++i) { ev[i] = vec3(hs[i], 0.5, 1.0); ew[i] = mk[i]; }
+    g += sphbasis_pca_exit(vec3(1.0), ev, ew, 8) * float(sphbasis_cpca_cluster(2.5, 4));
+    vec3 u = sphbasis_normal_basis_tangent(d, vec3(1.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0),
+        vec3(0.0, 0.0, 1.0));
+    float v54[54]; for (int i = 0; i < 54; ++i) v54[i] = hs[i];
+    float p6[6]; sphbasis_normal_basis_weights(u, v54, 6, p6);
+    vec3 gl6[6]; for (int i = 0; i < 6; ++i) gl6[i] = c6[i];
+    g += sphbasis_prt_normalmap_svd(p6, gl6, 4, vec3(0.8));
+    g += sphbasis_prt_ratio(vec3(0.5), L, d, u, vec3(0.7));
+    int pi8[8]; float pw[8]; bool ins[8];
+    sphbasis_probe_weights(d, vec3(-1.0), vec3(1.0), ivec3(4, 3, 1), pi8, pw);
+    for (int i = 0; i < 8; ++i) ins[i] = pi8[i] == 2;
+    bool valid = sphbasis_probe_weights_valid(pw, ins);
+    g += sphbasis_volume_shade(L, d, vec3(pw[0], pw[7], valid ? 1.0 : 0.0));
+    out_buf.v[20] = g.x + g.y + g.z + wt[0] + float(idx[3] + seam);
 }
