@@ -303,7 +303,7 @@ inline double bakinglab_sharpness(int count, Distribution d = Distribution::hemi
     double h = 1;
     for (std::size_t i = 1; i < axes.size(); ++i) {
         double m[3], len = 0;
-        for (int j = 0; j < 3; ++j) {
+        for (std::size_t j = 0; j < 3; ++j) {
             m[j] = axes[i][j] + axes[0][j];
             len += m[j] * m[j];
         }

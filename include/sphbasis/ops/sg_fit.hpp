@@ -186,6 +186,8 @@ class RunningAverage {
         const Eigen::Index k = static_cast<Eigen::Index>(lobes_.size());
         amp_ = Eigen::MatrixXd::Zero(k, channels);
         sq_ = Eigen::VectorXd::Zero(k);
+        g_.resize(k);
+        estimate_.resize(channels);
         floor_.resize(k);
         for (Eigen::Index j = 0; j < k; ++j)
             floor_(j) = squared_mean(lobes_[static_cast<std::size_t>(j)], domain);
@@ -194,22 +196,22 @@ class RunningAverage {
     void add(double x, double y, double z, const double* value) {
         const Eigen::Index k = amp_.rows();
         const double scale = 1.0 / static_cast<double>(++count_);
-        Eigen::VectorXd g(k);
         for (Eigen::Index j = 0; j < k; ++j) {
             Lobe<double> l = lobes_[static_cast<std::size_t>(j)];
             l.amplitude = 1;
-            g(j) = eval(l, x, y, z);
+            g_(j) = eval(l, x, y, z);
         }
         const Eigen::Map<const Eigen::RowVectorXd> f(value, channels_);
-        Eigen::RowVectorXd estimate = g.transpose() * amp_;
+        // As BakingLab: the estimate of the sample stays the one from before its updates.
+        estimate_.noalias() = g_.transpose() * amp_;
         for (Eigen::Index j = 0; j < k; ++j) {
-            if (g(j) == 0) continue;
-            sq_(j) += (g(j) * g(j) - sq_(j)) * scale;
+            const double gj = g_(j);
+            if (gj == 0) continue;
+            sq_(j) += (gj * gj - sq_(j)) * scale;
             const double integral = std::max(sq_(j), floor_(j));
-            const Eigen::RowVectorXd others = estimate - g(j) * amp_.row(j);
-            const Eigen::RowVectorXd target = (f - others) * (g(j) / integral);
-            amp_.row(j) += (target - amp_.row(j)) * scale;
-            // As BakingLab: `estimate` stays the one from before this sample's updates.
+            // target = (f - (estimate - g_j a_j)) g_j / integral; a_j += (target - a_j) / n.
+            amp_.row(j) +=
+                ((f - (estimate_ - gj * amp_.row(j))) * (gj / integral) - amp_.row(j)) * scale;
             if (non_negative_) amp_.row(j) = amp_.row(j).cwiseMax(0.0);
         }
     }
@@ -222,7 +224,8 @@ class RunningAverage {
     bool non_negative_;
     long long count_ = 0;
     Eigen::MatrixXd amp_;
-    Eigen::VectorXd sq_, floor_;
+    Eigen::VectorXd sq_, floor_, g_;
+    Eigen::RowVectorXd estimate_;
 };
 
 /// The solvers by name, for tools: least squares, non-negative least squares, running average.
