@@ -42,7 +42,8 @@
 //   lambda = count ln(0.65) / (h - 1.0001),
 // i.e. at the midpoint between lobe 0 and its nearest neighbour a lobe has fallen to
 // 0.65^count exp(0.0001 lambda) (the 1.0001 keeps lambda finite). BakingLab evaluates this in
-// float; here it is double (axes differ from BakingLab's by < 1e-6). Hemisphere sets:
+// float; here it is double (the axes differ from BakingLab's by float rounding, ~1e-5). Hemisphere
+// sets:
 //   count 5: lambda = 3.6272, count 6: 4.2595, count 9: 5.5135, count 12: 6.6914.
 //
 // SphericalGaussian is the basis (basis/basis.hpp) of the unit-amplitude lobes of the
@@ -224,10 +225,10 @@ SPHBASIS_FORCEINLINE V irradiance_fitted(const Lobe<T>& g, const V& nx, const V&
 /// precision quadrature of E = int_0^{pi/2} sin t cos^power t exp(lambda (c cos t - 1))
 /// 2 pi I0(lambda s sin t) dt: the azimuth by the trapezoidal rule (geometric convergence,
 /// M >= lambda s + 12 sqrt(lambda s) + 32 points), t by composite Gauss-Legendre (20 nodes per
-/// panel, panels no wider than 1 / sqrt(lambda)). Relative error ~1e-14 against
-/// tools/gen/gen_sg_reference.py. Cost ~ (lambda + 30) sqrt(lambda) 40 exp; a reference, not a
-/// shading function. Throws std::invalid_argument for c outside [-1, 1], lambda < 0 or
-/// lambda > 1e4, power not 0 or 1.
+/// panel, panels no wider than 1 / sqrt(lambda)). Within 1e-12 (relative) of
+/// tools/gen/gen_sg_reference.py. Cost: about 30 sqrt(lambda) (lambda + 12 sqrt(lambda) + 32) exp
+/// calls; a reference, not a shading function. Throws std::invalid_argument for c outside [-1, 1],
+/// lambda < 0 or lambda > 1e4, power not 0 or 1.
 inline double hemisphere_integral(double lambda, double c, int power = 1) {
     if (!(c >= -1 && c <= 1))
         sphbasis::detail::throw_invalid("sg::hemisphere_integral",
