@@ -60,6 +60,7 @@ sphbasis_bake_bad(target_texels_zero "--target: expected texels:RES with 1 <= RE
 sphbasis_bake_bad(quantity_unknown "--quantities: unknown quantity 'bnet' \\(did you mean 'bent'\\?\\)" bake ${_scenes}/lone_sphere.json --quantities ao,bnet)
 sphbasis_bake_bad(basis_unknown "--basis: " bake ${_scenes}/lone_sphere.json --basis nope)
 sphbasis_bake_bad(coeffs_invalid "--coeffs: basis 'hbasis' expects" bake ${_scenes}/lone_sphere.json --basis hbasis --coeffs 5)
+sphbasis_bake_bad(coeffs_invalid_sg "--coeffs: basis 'sg' expects 5, 6, 9 or 12 functions, got 7" bake ${_scenes}/lone_sphere.json --basis sg --coeffs 7)
 sphbasis_bake_bad(target_and_points "give either --target or --points" bake ${_scenes}/lone_sphere.json --target vertices --points -)
 sphbasis_bake_bad(max_distance "--max-distance: expected a positive distance" bake ${_scenes}/lone_sphere.json --max-distance 0)
 add_test(NAME cli_bake_bad_points_line
@@ -81,6 +82,9 @@ sphbasis_bake_test(points_format "\\{\"p\":\\[0.5,0,0\\],\"n\":\\[0,0,2\\],\"ao\
 # and the inside flag.
 sphbasis_bake_test(points_free "\\{\"p\":\\[0,0,5\\],\"radiance\":\\[\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\]\\],\"radiance_stderr\":\\[[-0-9.e]+,[-0-9.e]+,[-0-9.e]+,[-0-9.e]+\\],\"inside\":false\\}"
   "printf '0 0 5\\n' | \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --points - --quantities radiance --bands 2 --rays 64")
+# Spherical Gaussians (BakingLab's 9 lobes): the irradiance fitted in their span, 9 numbers a channel.
+sphbasis_bake_test(points_sg9 "\"irradiance\":\\[\\[[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+\\]"
+  "printf '0.5 0 0 0 0 1\\n' | \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --points - --quantities irradiance --basis sg --coeffs 9 --rays 64")
 # Irradiance and radiance with their standard errors at a surface point: "irradiance" (three
 # lists of --coeffs), "irradiance_stderr" (one list), "radiance", "radiance_stderr", "inside".
 sphbasis_bake_test(points_stderr_keys "\\{\"p\":\\[0.5,0,0\\],\"n\":\\[0,0,1\\],\"irradiance\":\\[\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\]\\],\"irradiance_stderr\":\\[[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+\\],\"radiance\":\\[\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\]\\],\"radiance_stderr\":\\[[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+\\],\"inside\":false\\}"

@@ -24,6 +24,11 @@
 //   irradiance left out above kSignalBands bands; "trunc_half" is the measured change from
 //   truncating at kSignalBands / 2 instead (the tail falls like L^-3, so the error at
 //   kSignalBands is ~8x smaller than that); "quad_err" compares ShFits on two rules.
+// SG pipeline rows (paper protocol only; imse::sg_pipeline_imse): sg-ls, sg-nnls, sg-ra, sg-ra-nn
+//   with 9 and 12 lobes score BakingLab's SG lightmap pipeline (Pettineo, "SG Series" part 5,
+//   2016): radiance sampled at 625 stratified hemisphere directions, the amplitudes of BakingLab's
+//   lobe set by one solver, the irradiance by Hill's fitted approximation. The registry's "sg"
+//   rows instead fit the irradiance itself in the span of the same lobes.
 // Timings (same run, float, this machine): eval_ns = one registry eval_f call at a time over
 //   4096 hemisphere normals; eval_batch_ns = eval_batch_f over 1M normals in chunks of 4096
 //   (output kept in cache); project_ns = one least-squares fit from the signal's values at the
@@ -47,6 +52,7 @@
 #include <sphbasis/basis/registry.hpp>
 #include <sphbasis/core/sampling.hpp>
 #include <sphbasis/ops/imse.hpp>
+#include <sphbasis/ops/sg_fit.hpp>
 #include <sphbasis/ops/sh_convolution.hpp>
 #include <sphbasis/ops/sh_latlong.hpp>
 #include <sphbasis/ops/sh_rotation.hpp>
@@ -266,6 +272,153 @@ std::vector<Timing> measure_all(const std::vector<Row>& rows) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// BakingLab's SG pipeline (imse::sg_pipeline_imse): rows after the registry's, paper protocol only
+
+struct SgPipelineRow {
+    const char* name;
+    sg::Solver solver;
+};
+const SgPipelineRow kSgPipeline[] = {{"sg-ls", sg::Solver::least_squares},
+                                     {"sg-nnls", sg::Solver::nnls},
+                                     {"sg-ra", sg::Solver::running_average},
+                                     {"sg-ra-nn", sg::Solver::running_average_nn}};
+constexpr int kSgPipelineCounts[] = {9, 12};
+
+/// eval: the irradiance sum_k a_k irradiance_fitted(G_k, n) at one normal (float); batch: the
+/// same over SIMD batches of normals; project: one texel's amplitudes from its 625 samples.
+Timing measure_sg_pipeline(int count, sg::Solver solver, const Normals& small, const Normals& big,
+                           const Eigen::Matrix3Xd& dirs) {
+    Timing t;
+    const auto lobes = sg::bakinglab_lobes<float>(count);
+    std::vector<float> amp(lobes.size());
+    for (std::size_t k = 0; k < amp.size(); ++k) amp[k] = 0.5f + 0.1f * static_cast<float>(k);
+    {
+        double best = 1e300;
+        const std::size_t ns = small.x.size();
+        for (int rep = 0; rep < 5; ++rep) {
+            float acc = 0;
+            const auto t0 = Clock::now();
+            const int calls = 1 << 16;
+            for (int i = 0; i < calls; ++i) {
+                const std::size_t j = static_cast<std::size_t>(i) & (ns - 1);
+                for (std::size_t k = 0; k < lobes.size(); ++k)
+                    acc += amp[k] *
+                           sg::irradiance_fitted(lobes[k], small.x[j], small.y[j], small.z[j]);
+            }
+            best = std::min(best, seconds_since(t0) * 1e9 / calls);
+            g_sink = g_sink + acc;
+        }
+        t.eval_ns = best;
+    }
+    {
+        using B = batch<float>;
+        double best = 1e300;
+        const std::size_t total = big.x.size() / B::size * B::size;
+        for (int rep = 0; rep < 3; ++rep) {
+            B acc(0.0f);
+            const auto t0 = Clock::now();
+            for (std::size_t i = 0; i < total; i += B::size) {
+                const B x = B::load(big.x.data() + i), y = B::load(big.y.data() + i),
+                        z = B::load(big.z.data() + i);
+                B e(0.0f);
+                for (std::size_t k = 0; k < lobes.size(); ++k)
+                    e += B(amp[k]) * sg::irradiance_fitted(lobes[k], x, y, z);
+                acc += e;
+            }
+            best = std::min(best, seconds_since(t0) * 1e9 / static_cast<double>(total));
+            g_sink = g_sink + acc[0];
+        }
+        t.eval_batch_ns = best;
+    }
+    {
+        const auto dl = sg::bakinglab_lobes(count);
+        const Eigen::MatrixXd c = imse::random_radiance(7, 1);
+        Eigen::MatrixXd ys(dirs.cols(), imse::signal_coeffs);
+        for (Eigen::Index i = 0; i < dirs.cols(); ++i) {
+            double y[imse::signal_coeffs];
+            sh::eval_unit(3, dirs(0, i), dirs(1, i), dirs(2, i), y);
+            for (int k = 0; k < imse::signal_coeffs; ++k) ys(i, k) = y[k];
+        }
+        const Eigen::MatrixXd v = ys * c;
+        // The running average's per-lobe integrals are computed once per lobe set, as a bake
+        // would; each texel starts from a copy.
+        const sg::RunningAverage fresh(dl, 1, sg::Distribution::hemisphere,
+                                       solver == sg::Solver::running_average_nn);
+        double best = 1e300;
+        const int signals = 16;
+        for (int rep = 0; rep < 3; ++rep) {
+            double acc = 0;
+            const auto t0 = Clock::now();
+            for (int s = 0; s < signals; ++s) {
+                if (solver == sg::Solver::least_squares) {
+                    acc += sg::fit_least_squares(dl, dirs, v)(0, 0);
+                } else if (solver == sg::Solver::nnls) {
+                    acc += sg::fit_nnls(dl, dirs, v)(0, 0);
+                } else {
+                    sg::RunningAverage ra = fresh;
+                    for (Eigen::Index i = 0; i < dirs.cols(); ++i)
+                        ra.add(dirs(0, i), dirs(1, i), dirs(2, i), &v(i, 0));
+                    acc += ra.amplitudes()(0, 0);
+                }
+            }
+            best = std::min(best, seconds_since(t0) * 1e9 / signals);
+            g_sink = g_sink + static_cast<float>(acc);
+        }
+        t.project_ns = best;
+    }
+    return t;
+}
+
+/// The pipeline rows of the paper protocol for `radiance` (9 x S).
+void add_sg_pipeline_rows(ProtocolResult& res, const Eigen::MatrixXd& radiance,
+                          const DirectionalRule& rule, const DirectionalRule& fine) {
+    const Eigen::Matrix3Xd dirs = imse::sg_sample_directions();
+    const Normals small = random_normals(4096, 11), big = random_normals(1 << 20, 12);
+    const Eigen::Index signals = radiance.cols();
+    Progress bar("sg pipeline",
+                 static_cast<long long>(sizeof kSgPipeline / sizeof kSgPipeline[0] * 2));
+    for (int count : kSgPipelineCounts) {
+        for (const SgPipelineRow& p : kSgPipeline) {
+            Eigen::VectorXd values(signals);
+            const Eigen::Index chunk = 1000;
+            for (Eigen::Index s0 = 0; s0 < signals; s0 += chunk) {
+                const Eigen::Index len = std::min<Eigen::Index>(chunk, signals - s0);
+                values.segment(s0, len) = imse::sg_pipeline_imse(
+                    count, p.solver, radiance.middleCols(s0, len), dirs, rule);
+            }
+            const imse::Summary sum = imse::summarize(values);
+            RowResult row;
+            row.basis = p.name;
+            row.coeffs = count;
+            row.imse = reported_imse(sum.mean);
+            row.stderr_imse = sum.standard_error;
+            // quad_err: the first 100 signals on the finer rule.
+            const Eigen::Index nq = std::min<Eigen::Index>(100, signals);
+            row.quad_err = std::fabs(
+                imse::sg_pipeline_imse(count, p.solver, radiance.leftCols(nq), dirs, fine).mean() -
+                values.head(nq).mean());
+            if (p.solver == sg::Solver::least_squares || p.solver == sg::Solver::running_average) {
+                const Eigen::MatrixXd q =
+                    imse::sg_pipeline_residual_form(count, p.solver, dirs, rule);
+                row.expected = reported_imse(imse::expected(q));
+                row.expected_stderr =
+                    imse::stddev_uniform(q) / std::sqrt(static_cast<double>(signals));
+            }
+            row.t = measure_sg_pipeline(count, p.solver, small, big, dirs);
+            res.rows.push_back(row);
+            bar.update();
+        }
+    }
+    bar.done();
+    res.notes.push_back(
+        "sg-ls, sg-nnls, sg-ra, sg-ra-nn: BakingLab's SG pipeline (radiance sampled at 625 "
+        "stratified hemisphere directions, lobe amplitudes by least squares, non-negative least "
+        "squares, running average, non-negative running average; irradiance by Hill's fitted "
+        "approximation); eval ns = that irradiance at one normal, proj ns = one texel's solve; "
+        "quad_err on the first 100 signals");
+}
+
+// ---------------------------------------------------------------------------------------------
 // Protocol paper
 
 ProtocolResult run_paper(const std::vector<Row>& rows, long long signals, std::uint64_t seed) {
@@ -310,6 +463,7 @@ ProtocolResult run_paper(const std::vector<Row>& rows, long long signals, std::u
     res.notes.push_back(
         "fit and IMSE by quadrature in u = sqrt(z): " + std::to_string(rule.size()) +
         " points (32 x 32); quad_err against " + std::to_string(fine.size()) + " points (64 x 48)");
+    add_sg_pipeline_rows(res, radiance, rule, fine);
     res.seconds = seconds_since(t0);
     return res;
 }
@@ -671,7 +825,8 @@ int run_imse(const ImseOptions& o) {
     if (o.protocol == "hdri" || o.protocol == "all")
         results.push_back(run_hdri(rows, signals, seed));
     for (auto& p : results)
-        for (std::size_t r = 0; r < p.rows.size(); ++r) p.rows[r].t = timing[r];
+        for (std::size_t r = 0; r < p.rows.size() && r < timing.size(); ++r)
+            p.rows[r].t = timing[r];  // the SG pipeline rows carry their own
     for (const auto& p : results) {
         print_table(std::cout, p);
         std::cout << "\n";

@@ -81,7 +81,9 @@ def groups(rows):
 
 
 def panel(ax, p):
-    rows = p["rows"]
+    # The SG pipeline rows (sg-ls, sg-nnls, sg-ra, sg-ra-nn: BakingLab's radiance fit shaded by
+    # Hill's approximation) are tabulated, not plotted: they are no basis fit of the irradiance.
+    rows = [r for r in p["rows"] if not r["basis"].startswith("sg-")]
     hdri = p["protocol"] == "hdri"
     values = [r["imse"] for r in rows if r["imse"] is not None and r["imse"] > FLOOR]
     if not values:

@@ -16,6 +16,7 @@
 #include "hsh.hpp"
 #include "makhotkin.hpp"
 #include "sh.hpp"
+#include "spherical_gaussian.hpp"
 #include "zernike.hpp"
 
 namespace sphbasis {
@@ -105,12 +106,13 @@ const std::vector<BasisInfo>& all_bases() {
         detail::make_info<HBasis>(detail::no_lm),
         detail::make_info<HBasisMod>(detail::no_lm),
         detail::make_info<HL2>(detail::no_lm),
+        detail::make_info<SphericalGaussian>(detail::no_lm),
     };
     return v;
 }
 
 /// The basis called `name` ("sh", "hsh", "makhotkin", "zernike", "hbasis", "hbasis-mod",
-/// "hl2"). Throws std::invalid_argument naming the known bases otherwise.
+/// "hl2", "sg"). Throws std::invalid_argument naming the known bases otherwise.
 template <class = void>
 const BasisInfo& find_basis(std::string_view name) {
     for (const auto& b : all_bases())

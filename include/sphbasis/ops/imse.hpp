@@ -62,6 +62,7 @@
 #include "../core/legendre.hpp"
 #include "../core/quadrature.hpp"
 #include "projection.hpp"
+#include "sg_fit.hpp"
 
 namespace sphbasis::imse {
 
@@ -88,13 +89,16 @@ struct Row {
 };
 
 /// The rows of the paper protocol, in table order: SH 4, 9, 16, 25; HSH 4, 9, 16; Makhotkin 4,
-/// 9, 16; Zernike 3, 6, 10, 15; H-basis 4, 6; modified H-basis 4, 6; HL2 3.
+/// 9, 16; Zernike 3, 6, 10, 15; H-basis 4, 6; modified H-basis 4, 6; HL2 3; SG 9, 12 (the
+/// irradiance fitted in the span of BakingLab's lobes; sg_pipeline_imse() scores BakingLab's own
+/// pipeline, radiance fitted and irradiance by Hill's approximation).
 inline std::vector<Row> paper_rows() {
     return {{"sh", 4},         {"sh", 9},         {"sh", 16},     {"sh", 25},
             {"hsh", 4},        {"hsh", 9},        {"hsh", 16},    {"makhotkin", 4},
             {"makhotkin", 9},  {"makhotkin", 16}, {"zernike", 3}, {"zernike", 6},
             {"zernike", 10},   {"zernike", 15},   {"hbasis", 4},  {"hbasis", 6},
-            {"hbasis-mod", 4}, {"hbasis-mod", 6}, {"hl2", 3}};
+            {"hbasis-mod", 4}, {"hbasis-mod", 6}, {"hl2", 3},     {"sg", 9},
+            {"sg", 12}};
 }
 
 /// The rows of the HDRI protocol, in table order: the same rows as paper_rows().
@@ -434,5 +438,112 @@ class ShFits {
 /// 2 (bands - 1) + 9 in u, plus 16 nodes for the analytic factors, whose Gauss-Legendre error
 /// falls like 4.6^(-2 nu)), nphi = bands + 8 (trigonometric degree <= bands - 1 + 4).
 inline std::pair<int, int> hdri_rule_size(int bands) { return {bands + 20, bands + 8}; }
+
+// ---------------------------------------------------------------------------------------------
+// Spherical Gaussians as BakingLab bakes them (Pettineo, "SG Series" part 5, 2016): radiance
+// sampled over the upper hemisphere, the amplitudes of a lobe set fitted to it by one of the
+// solvers (ops/sg_fit.hpp), the irradiance at a normal reconstructed by Hill's approximation
+// (sg::irradiance_fitted). Unlike the rows of paper_rows(), which fit the irradiance itself, this
+// scores the pipeline a lightmap ships: the radiance below the horizon is never seen (the bake
+// samples the texel's hemisphere), the fit is of radiance, and the irradiance is approximate.
+
+/// The radiance samples of the SG pipeline: sqrt_count^2 directions on the upper hemisphere, one
+/// per cell of a sqrt_count x sqrt_count grid on the square, jittered (mt19937_64, `seed`), mapped
+/// by square_to_uniform_hemisphere (BakingLab's default is 25 x 25 samples per texel), 3 x N.
+inline Eigen::Matrix3Xd sg_sample_directions(int sqrt_count = 25, std::uint64_t seed = 1) {
+    sphbasis::detail::check_range("imse::sg_sample_directions", "sqrt_count", sqrt_count, 1, 4096);
+    std::mt19937_64 gen(seed);
+    auto u01 = [&] { return static_cast<double>(gen() >> 11) * 0x1.0p-53; };
+    Eigen::Matrix3Xd d(3, sqrt_count * sqrt_count);
+    for (int i = 0; i < sqrt_count; ++i)
+        for (int j = 0; j < sqrt_count; ++j) {
+            const double u = (i + u01()) / sqrt_count, v = (j + u01()) / sqrt_count;
+            const double z = u, r = std::sqrt(std::max(0.0, 1 - z * z));
+            const double phi = constants::two_pi * v;
+            d.col(i * sqrt_count + j) << r * std::cos(phi), r * std::sin(phi), z;
+        }
+    return d;
+}
+
+/// The residual of BakingLab's SG pipeline for paper-protocol radiance (9 x S SH coefficients):
+/// the radiance at `dirs` (3 x N, the hemisphere), the amplitudes of sg::bakinglab_lobes(count) by
+/// `solver` (least squares and NNLS with equal weights, the running average in the columns'
+/// order), the irradiance at the rule's points sum_k a_k sg::irradiance_fitted(G_k, n) / pi,
+/// minus the exact irradiance there (rule.size() x S). Linear in the radiance for least squares
+/// and the plain running average: then IMSE(c) = c^T Q c with Q = R^T W R, R the residuals of
+/// the 9 unit signals.
+inline Eigen::MatrixXd sg_pipeline_residuals(int count, sg::Solver solver,
+                                             const Eigen::MatrixXd& radiance,
+                                             const Eigen::Matrix3Xd& dirs,
+                                             const DirectionalRule& rule = paper_rule()) {
+    const auto lobes = sg::bakinglab_lobes(count);
+    const Eigen::Index k = static_cast<Eigen::Index>(lobes.size());
+    const Eigen::Index npts = static_cast<Eigen::Index>(rule.size());
+    // Radiance at the sample directions: N x S.
+    Eigen::MatrixXd ys(dirs.cols(), signal_coeffs);
+    for (Eigen::Index i = 0; i < dirs.cols(); ++i) {
+        double y[signal_coeffs];
+        sh::eval_unit(3, dirs(0, i), dirs(1, i), dirs(2, i), y);
+        for (int c = 0; c < signal_coeffs; ++c) ys(i, c) = y[c];
+    }
+    const Eigen::MatrixXd values = ys * radiance;
+    Eigen::MatrixXd amp(k, radiance.cols());
+    if (solver == sg::Solver::least_squares) {
+        amp = sg::fit_least_squares(lobes, dirs, values);
+    } else if (solver == sg::Solver::nnls) {
+        amp = sg::fit_nnls(lobes, dirs, values);
+    } else {
+        // One estimator copied per signal: its construction integrates each lobe's square.
+        const sg::RunningAverage fresh(lobes, 1, sg::Distribution::hemisphere,
+                                       solver == sg::Solver::running_average_nn);
+        for (Eigen::Index s = 0; s < radiance.cols(); ++s) {
+            sg::RunningAverage ra = fresh;
+            for (Eigen::Index i = 0; i < dirs.cols(); ++i) {
+                const double v = values(i, s);
+                ra.add(dirs(0, i), dirs(1, i), dirs(2, i), &v);
+            }
+            amp.col(s) = ra.amplitudes().col(0);
+        }
+    }
+    // Hill's irradiance of each unit lobe at the rule's points over pi (the protocol's E is the
+    // exitant radiance of a white Lambertian surface): npts x K.
+    Eigen::MatrixXd hill(npts, k);
+    for (Eigen::Index i = 0; i < npts; ++i) {
+        const std::size_t u = static_cast<std::size_t>(i);
+        for (Eigen::Index j = 0; j < k; ++j)
+            hill(i, j) =
+                constants::inv_pi * sg::irradiance_fitted(lobes[static_cast<std::size_t>(j)],
+                                                          rule.x[u], rule.y[u], rule.z[u]);
+    }
+    return hill * amp - irradiance_samples(radiance, rule);
+}
+
+/// The IMSE of each signal (S values): the residuals of sg_pipeline_residuals() squared and
+/// integrated by the rule.
+inline Eigen::VectorXd sg_pipeline_imse(int count, sg::Solver solver,
+                                        const Eigen::MatrixXd& radiance,
+                                        const Eigen::Matrix3Xd& dirs,
+                                        const DirectionalRule& rule = paper_rule()) {
+    const Eigen::MatrixXd err = sg_pipeline_residuals(count, solver, radiance, dirs, rule);
+    const Eigen::Map<const Eigen::VectorXd> w(rule.w.data(),
+                                              static_cast<Eigen::Index>(rule.size()));
+    return (w.asDiagonal() * err.cwiseAbs2()).colwise().sum().transpose();
+}
+
+/// The residual form Q (9 x 9) of a linear SG pipeline (least squares, plain running average):
+/// IMSE(c) = c^T Q c.
+inline Eigen::MatrixXd sg_pipeline_residual_form(int count, sg::Solver solver,
+                                                 const Eigen::Matrix3Xd& dirs,
+                                                 const DirectionalRule& rule = paper_rule()) {
+    if (solver != sg::Solver::least_squares && solver != sg::Solver::running_average)
+        sphbasis::detail::throw_invalid("imse::sg_pipeline_residual_form",
+                                        "a linear solver (least squares, running average)");
+    const Eigen::MatrixXd r = sg_pipeline_residuals(
+        count, solver, Eigen::MatrixXd::Identity(signal_coeffs, signal_coeffs), dirs, rule);
+    const Eigen::Map<const Eigen::VectorXd> w(rule.w.data(),
+                                              static_cast<Eigen::Index>(rule.size()));
+    const Eigen::MatrixXd q = r.transpose() * w.asDiagonal() * r;
+    return 0.5 * (q + q.transpose());
+}
 
 }  // namespace sphbasis::imse
