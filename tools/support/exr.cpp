@@ -133,7 +133,7 @@ class MemoryStream : public Imf::OStream {
 #endif
 
 std::string encode_exr(int width, int height, const std::vector<std::string>& names,
-                       const std::vector<float>& values) {
+                       const std::vector<float>& values, bool half) {
     const std::size_t nc = names.size();
     if (width < 1 || height < 1 || nc == 0 ||
         values.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * nc)
@@ -147,7 +147,8 @@ std::string encode_exr(int width, int height, const std::vector<std::string>& na
     const std::size_t xs = nc * sizeof(float), ys = xs * static_cast<std::size_t>(width);
     char* base = reinterpret_cast<char*>(const_cast<float*>(values.data()));
     for (std::size_t k = 0; k < nc; ++k) {
-        header.channels().insert(names[k], Imf::Channel(Imf::FLOAT));
+        // A HALF channel from a FLOAT slice: OpenEXR rounds each value to the nearest half.
+        header.channels().insert(names[k], Imf::Channel(half ? Imf::HALF : Imf::FLOAT));
         fb.insert(names[k], Imf::Slice(Imf::FLOAT, base + k * sizeof(float), xs, ys));
     }
     MemoryStream stream;
@@ -158,6 +159,7 @@ std::string encode_exr(int width, int height, const std::vector<std::string>& na
     }
     return stream.take();
 #else
+    (void)half;
     throw std::runtime_error("writing an EXR image needs OpenEXR, and this build has none");
 #endif
 }
