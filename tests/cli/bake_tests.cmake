@@ -149,3 +149,8 @@ sphbasis_bake_test(gltf_probes "gltf-probes-ok"
 sphbasis_bake_bad(format_unknown "--format: expected native or gltf, got 'fbx'" bake ${_scenes}/lone_sphere.json --format fbx)
 sphbasis_bake_bad(encoding_unknown "--encoding: expected png8, png16, half or float, got 'jpg'" bake ${_scenes}/lone_sphere.json --format gltf --encoding jpg)
 sphbasis_bake_bad(format_gltf_shard "--format gltf: not with --points or --shard" bake ${_scenes}/lone_sphere.json --format gltf --shard 0/2)
+sphbasis_bake_test(gltf_cpca "gltf-cpca-ok"
+  "rm -rf bake_gc && \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --quantities transfer --bands 3 --rays 16 --out bake_gc --format gltf --export cpca:4:3 && grep -q '\"clusters\":4,\"vectors\":3,\"coefficients\":9' bake_gc/cpca.json && test -s bake_gc/cpca.bin && grep -q '\"kind\":\"cpca\"' bake_gc/bake.json && echo gltf-cpca-ok")
+sphbasis_bake_bad(export_malformed "--export: expected pca:M or cpca:C:M" bake ${_scenes}/lone_sphere.json --format gltf --export cpca:2)
+sphbasis_bake_bad(export_without_transfer "--export: compresses transfer vectors; give --quantities transfer" bake ${_scenes}/lone_sphere.json --format gltf --export pca:2)
+sphbasis_bake_bad(export_without_gltf "--export: needs --format gltf" bake ${_scenes}/lone_sphere.json --export pca:2)

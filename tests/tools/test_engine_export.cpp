@@ -17,10 +17,13 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <sphbasis/ops/compression.hpp>
 #include <sphbasis/render/bake_points.hpp>
 #include <sphbasis/render/lightmap.hpp>
 #include <sstream>
@@ -458,4 +461,101 @@ TEST_CASE("engine export: a probe grid as slices of a 3D texture", "[tool]") {
                     }
         }
     }
+}
+
+TEST_CASE("engine export: CPCA of the transfer vectors, decoded from cpca.bin", "[tool]") {
+    // 3 meshes' worth of points: 240 transfer vectors of 9 coefficients near two planes.
+    const std::size_t P = 240, n = 9, stride = n + 1;
+    std::vector<std::pair<std::string, std::size_t>> cols;
+    for (std::size_t k = 0; k < n; ++k) cols.emplace_back("transfer_" + std::to_string(k), k);
+    cols.emplace_back("ao", n);
+    std::vector<double> rec(P * stride);
+    std::mt19937_64 rng(3);
+    std::normal_distribution<double> g(0, 1);
+    for (std::size_t p = 0; p < P; ++p) {
+        const double a = g(rng), b = g(rng), side = p % 2 == 0 ? 1.0 : -2.0;
+        for (std::size_t k = 0; k < n; ++k)
+            rec[p * stride + k] = side * (1 + 0.1 * double(k)) + a * std::cos(double(k)) +
+                                  0.5 * b * std::sin(double(k) * side) + 0.01 * g(rng);
+        rec[p * stride + n] = 0.5;
+    }
+    // Meshes only lend their names and counts here: one mesh of P vertices.
+    std::vector<SceneMesh> meshes(1);
+    meshes[0].name = "m";
+    meshes[0].mesh.positions.assign(3 * P, 0.0f);
+    meshes[0].mesh.normals.assign(3 * P, 0.0f);
+    for (std::size_t v = 0; v < P; ++v) meshes[0].mesh.normals[3 * v + 2] = 1;
+    for (std::uint32_t v = 0; v + 2 < P; v += 3)
+        meshes[0].mesh.indices.insert(meshes[0].mesh.indices.end(), {v, v + 1, v + 2});
+    const std::vector<std::size_t> begin{0, P};
+    EngineInput in;
+    in.target = EngineTarget::vertices;
+    in.meshes = &meshes;
+    in.mesh_begin = &begin;
+    in.columns = cols;
+    in.records = &rec;
+    in.stride = stride;
+    in.compression = parse_compression_export("cpca:2:2");
+    in.seed = 11;
+    Json outputs = Json::array();
+    const std::vector<EngineFile> files = export_engine(in, outputs);
+    const auto find = [&](const std::string& name) {
+        for (const EngineFile& f : files)
+            if (f.name == name) return f.bytes;
+        FAIL("no " << name);
+        return std::string();
+    };
+    const nlohmann::json doc = nlohmann::json::parse(find("cpca.json"));
+    const std::string bin = find("cpca.bin");
+    REQUIRE(doc.at("bytes").get<std::size_t>() == bin.size());
+    const std::size_t C = doc.at("clusters"), M = doc.at("vectors");
+    REQUIRE(C == 2);
+    REQUIRE(M == 2);
+    REQUIRE(doc.at("coefficients").get<std::size_t>() == n);
+    std::map<std::string, std::size_t> at;
+    for (const nlohmann::json& s : doc.at("sections")) at[s.at("name")] = s.at("offset");
+    auto f32 = [&](std::size_t off) {
+        float v;
+        std::memcpy(&v, bin.data() + off, 4);
+        return double(v);
+    };
+    const double levels = doc.at("levels");
+    // Decoded by the documented layout, against the library's model fitted the same way.
+    compress::MatrixX<double> x(static_cast<Eigen::Index>(P), static_cast<Eigen::Index>(n));
+    for (std::size_t p = 0; p < P; ++p)
+        for (std::size_t k = 0; k < n; ++k)
+            x(Eigen::Index(p), Eigen::Index(k)) = rec[p * stride + k];
+    compress::CpcaSettings cs;
+    cs.clusters = 2;
+    cs.vectors = 2;
+    cs.seed = 11;
+    const compress::Cpca<double> model = compress::cpca_iterative(x, cs);
+    const compress::MatrixX<double> want =
+        compress::with_weights(model, compress::quantize(model, 8)).reconstruct();
+    double sq = 0;
+    for (std::size_t p = 0; p < P; ++p) {
+        std::uint16_t c = 0;
+        std::memcpy(&c, bin.data() + at["cluster"] + 2 * p, 2);
+        REQUIRE(c == model.cluster[p]);
+        for (std::size_t k = 0; k < n; ++k) {
+            double v = f32(at["means"] + 4 * (c * n + k));
+            for (std::size_t j = 0; j < M; ++j) {
+                const auto code = static_cast<std::int8_t>(bin[at["codes"] + p * M + j]);
+                v += double(code) / levels * f32(at["scales"] + 4 * (c * M + j)) *
+                     f32(at["basis"] + 4 * ((c * M + j) * n + k));
+            }
+            REQUIRE(std::fabs(v - want(Eigen::Index(p), Eigen::Index(k))) <= 1e-5);
+            sq += (v - x(Eigen::Index(p), Eigen::Index(k))) *
+                  (v - x(Eigen::Index(p), Eigen::Index(k)));
+        }
+    }
+    CHECK(sq == Approx(doc.at("squared_error").at("quantized").get<double>()).epsilon(1e-3));
+    // Bad values: one line each.
+    CHECK_THROWS_WITH(parse_compression_export("cpca:0:2"),
+                      Catch::StartsWith("--export: expected pca:M or cpca:C:M"));
+    CHECK_THROWS_WITH(parse_compression_export("pca"), Catch::StartsWith("--export: expected"));
+    CHECK(parse_compression_export("pca:3").clusters == 1);
+    in.columns = {{"ao", n}};
+    CHECK_THROWS_WITH(engine_file_names(in),
+                      "--export: compresses transfer vectors; give --quantities transfer");
 }

@@ -571,7 +571,8 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
 /// What support/engine_export.hpp reads of a complete bake (`--format gltf`); rec may be null
 /// before the bake (the file names only).
 EngineInput engine_input(const SceneFile& scene, const Work& w, const render::BakeSettings& s,
-                         const std::vector<double>* rec, ImageEncoding encoding) {
+                         const std::vector<double>* rec, ImageEncoding encoding,
+                         const CompressionExport& compression) {
     const Layout L(s);
     EngineInput in;
     in.target = w.target.kind == TargetKind::texels   ? EngineTarget::texels
@@ -587,6 +588,8 @@ EngineInput engine_input(const SceneFile& scene, const Work& w, const render::Ba
     in.stride = L.stride;
     in.basis = s.basis;
     in.encoding = encoding;
+    in.compression = compression;
+    in.seed = s.seed + 1;  // k-means++ seeding: any fixed stream of the bake's seed
     return in;
 }
 
@@ -753,7 +756,7 @@ ShardData read_shard(const std::string& file) {
 
 struct BakeOptions {
     std::string scene, quantities = "ao", basis = "sh", target = "vertices", points, out = ".",
-                       shard, max_distance, format = "native", encoding = "png8";
+                       shard, max_distance, format = "native", encoding = "png8", exports;
     long long bands = 3, coeffs = 9, rays = 256, bounces = 0, seed = 0;
     CLI::Option *target_opt = nullptr, *points_opt = nullptr, *out_opt = nullptr,
                 *maxd_opt = nullptr;
@@ -815,6 +818,8 @@ int run_bake(const BakeOptions& o) {
     const bool write_files = !points_mode || o.out_opt->count() > 0;
     const bool gltf = o.format == "gltf";
     const ImageEncoding encoding = parse_image_encoding(o.encoding);
+    const CompressionExport compression = parse_compression_export(o.exports);
+    if (compression.clusters > 0 && !gltf) throw UsageError("--export: needs --format gltf");
     if (o.format != "native" && !gltf)
         throw UsageError("--format: expected native or gltf, got '" + quote_input(o.format) + "'");
     if (gltf && (points_mode || shard.count > 1))
@@ -870,7 +875,7 @@ int run_bake(const BakeOptions& o) {
             out.declare_in(o.out, shard_file);
         } else if (gltf) {
             for (const std::string& f :
-                 engine_file_names(engine_input(scene, w, s, nullptr, encoding)))
+                 engine_file_names(engine_input(scene, w, s, nullptr, encoding, compression)))
                 out.declare_in(o.out, f);
             out.declare_in(o.out, "bake.json");
         } else {
@@ -944,7 +949,8 @@ int run_bake(const BakeOptions& o) {
             if (gltf) {
                 summary["outputs"] = Json::array();
                 for (EngineFile& f :
-                     export_engine(engine_input(scene, w, s, &rec, encoding), summary["outputs"]))
+                     export_engine(engine_input(scene, w, s, &rec, encoding, compression),
+                                   summary["outputs"]))
                     out.add(join_path(o.out, f.name), f.bytes);
             } else if (!points_mode) {
                 summary["outputs"] = write_outputs(scene, w, s, rec, o.out, out);
@@ -1132,6 +1138,9 @@ Run setup_bake(CLI::App& app) {
     app.add_option("--encoding", o->encoding, "--format gltf: lightmap and probe images")
         ->type_name("png8|png16|half|float")
         ->capture_default_str();
+    app.add_option("--export", o->exports,
+                   "--format gltf: transfer compressed by PCA or CPCA (cpca.json, cpca.bin)")
+        ->type_name("pca:M|cpca:C:M");
     return [o] { return run_bake(*o); };
 }
 

@@ -8,10 +8,13 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <map>
+#include <sphbasis/ops/compression.hpp>
 #include <sphbasis/render/bake_file.hpp>
 #include <sphbasis/render/bake_points.hpp>
 #include <stdexcept>
+#include <type_traits>
 
 #include "args.hpp"
 #include "exr.hpp"
@@ -184,6 +187,116 @@ void check_input(const EngineInput& in, bool need_records) {
                                         "' outside the record");
 }
 
+template <class T>
+void append_le(std::string& out, T v) {
+    static_assert(std::is_arithmetic_v<T>, "append_le: a number");
+    unsigned char b[sizeof(T)];
+    std::memcpy(b, &v, sizeof(T));
+    out.append(reinterpret_cast<const char*>(b), sizeof(T));  // x86-64 and ARM: little-endian
+}
+
+/// cpca.json and cpca.bin (see docs/export-format.md).
+void export_cpca(const EngineInput& in, const std::vector<EngineAttribute>& attrs,
+                 std::vector<EngineFile>& files, Json& outputs) {
+    std::vector<const EngineAttribute*> prt;
+    for (const EngineAttribute& a : attrs)
+        if (a.name.rfind("_PRT", 0) == 0) prt.push_back(&a);
+    if (prt.empty())
+        throw UsageError("--export: compresses transfer vectors; give --quantities transfer");
+    const std::size_t comps = prt[0]->offsets.size(), n = prt.size() * comps;
+    const std::size_t points = in.records->size() / in.stride;
+    Json columns = Json::array();
+    for (const EngineAttribute* a : prt)
+        for (const std::string& c : a->channels) columns.push_back(c);
+    compress::MatrixX<double> x(static_cast<Eigen::Index>(points), static_cast<Eigen::Index>(n));
+    for (std::size_t p = 0; p < points; ++p)
+        for (std::size_t i = 0; i < prt.size(); ++i)
+            for (std::size_t c = 0; c < comps; ++c)
+                x(Eigen::Index(p), Eigen::Index(i * comps + c)) =
+                    (*in.records)[p * in.stride + prt[i]->offsets[c]];
+    compress::CpcaSettings cs;
+    cs.clusters = in.compression.clusters;
+    cs.vectors = in.compression.vectors;
+    cs.seed = in.seed;
+    compress::Cpca<double> model;
+    try {
+        model = compress::cpca_iterative(x, cs);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--export: ") + e.what());
+    }
+    const compress::QuantizedWeights<double> q = compress::quantize(model, in.compression.bits);
+    const std::size_t C = std::size_t(model.clusters()), M = std::size_t(model.vectors());
+    std::string bin;
+    for (std::size_t c = 0; c < C; ++c)
+        for (std::size_t k = 0; k < n; ++k)
+            append_le(bin, static_cast<float>(model.means(Eigen::Index(c), Eigen::Index(k))));
+    for (std::size_t c = 0; c < C; ++c)
+        for (std::size_t j = 0; j < M; ++j)
+            for (std::size_t k = 0; k < n; ++k)
+                append_le(bin,
+                          static_cast<float>(model.bases[c](Eigen::Index(k), Eigen::Index(j))));
+    for (std::size_t c = 0; c < C; ++c)
+        for (std::size_t j = 0; j < M; ++j)
+            append_le(bin, static_cast<float>(q.scales(Eigen::Index(c), Eigen::Index(j))));
+    for (int c : model.cluster) append_le(bin, static_cast<std::uint16_t>(c));
+    for (std::int16_t code : q.codes) append_le(bin, static_cast<std::int8_t>(code));
+    Json texels = nullptr;
+    if (in.target == EngineTarget::texels) {
+        // Where each point lies: (mesh, x, y) of its texel, u16 each.
+        for (std::size_t k = 0; k < in.layouts->size(); ++k)
+            for (const render::LightmapSample& s : (*in.layouts)[k].samples) {
+                append_le(bin, static_cast<std::uint16_t>(k));
+                append_le(bin, static_cast<std::uint16_t>(s.x));
+                append_le(bin, static_cast<std::uint16_t>(s.y));
+            }
+        texels = {{"type", "uint16"}, {"shape", {points, 3}}};
+    }
+    const double err = compress::squared_error(x, model.reconstruct());
+    const double qerr = compress::squared_error(x, compress::with_weights(model, q).reconstruct());
+    std::size_t off = 0;
+    auto section = [&](const char* name, const char* type, std::size_t bytes, Json shape) {
+        Json s = {{"name", name}, {"type", type}, {"offset", off}, {"shape", shape}};
+        off += bytes;
+        return s;
+    };
+    Json sections = Json::array();
+    sections.push_back(section("means", "float32", 4 * C * n, {C, n}));
+    sections.push_back(section("basis", "float32", 4 * C * M * n, {C, M, n}));
+    sections.push_back(section("scales", "float32", 4 * C * M, {C, M}));
+    sections.push_back(section("cluster", "uint16", 2 * points, {points}));
+    sections.push_back(section("codes", "int8", points * M, {points, M}));
+    if (!texels.is_null()) sections.push_back(section("texel", "uint16", 6 * points, {points, 3}));
+    const std::string hash = hex64(render::InputHash().str(bin).value());
+    const Json doc = {
+        {"format", "sphbasis cpca"},
+        {"version", 1},
+        {"clusters", C},
+        {"vectors", M},
+        {"coefficients", n},
+        {"points", points},
+        {"bits", in.compression.bits},
+        {"levels", q.levels()},
+        {"columns", columns},
+        {"points_order", in.target == EngineTarget::vertices
+                             ? "global vertex index (meshes in scene order)"
+                             : "texel samples, meshes in scene order (section texel)"},
+        {"decode",
+         "x[p] = means[c] + sum_j codes[p][j] / levels * scales[c][j] * basis[c][j], c = "
+         "cluster[p]; shading with light L: x[p] . L"},
+        {"squared_error", {{"model", err}, {"quantized", qerr}}},
+        {"file", "cpca.bin"},
+        {"bytes", bin.size()},
+        {"xxh3", hash},
+        {"sections", sections}};
+    files.push_back({"cpca.json", dump_json(doc, {{"sections", 2}}) + "\n"});
+    files.push_back({"cpca.bin", std::move(bin)});
+    outputs.push_back({{"file", "cpca.json"},
+                       {"kind", "cpca"},
+                       {"clusters", C},
+                       {"vectors", M},
+                       {"squared_error", qerr}});
+}
+
 }  // namespace
 
 std::string encode_png16(const std::vector<std::uint16_t>& samples, int width, int height,
@@ -262,6 +375,30 @@ std::string encode_compressed(const std::vector<float>& values, int width, int h
     return {};
 }
 
+CompressionExport parse_compression_export(const std::string& s) {
+    CompressionExport e;
+    if (s.empty()) return e;
+    const std::string what =
+        "--export: expected pca:M or cpca:C:M (1 <= C <= 65535 clusters, 1 <= M <= 64 "
+        "vectors), got '" +
+        quote_input(s) + "'";
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    for (std::size_t k = 0; k <= s.size(); ++k)
+        if (k == s.size() || s[k] == ':') {
+            parts.push_back(s.substr(start, k - start));
+            start = k + 1;
+        }
+    long long c = 1, m = 0;
+    const bool ok = (parts.size() == 2 && parts[0] == "pca" && parse_integer(parts[1], m)) ||
+                    (parts.size() == 3 && parts[0] == "cpca" && parse_integer(parts[1], c) &&
+                     parse_integer(parts[2], m));
+    if (!ok || c < 1 || c > 65535 || m < 1 || m > 64) throw UsageError(what);
+    e.clusters = static_cast<int>(c);
+    e.vectors = static_cast<int>(m);
+    return e;
+}
+
 std::vector<EngineAttribute> engine_attributes(
     const std::vector<std::pair<std::string, std::size_t>>& columns, const std::string& basis) {
     std::map<std::string, std::size_t> at(columns.begin(), columns.end());
@@ -328,6 +465,15 @@ std::vector<std::string> engine_file_names(const EngineInput& in) {
     const std::vector<EngineAttribute> attrs = engine_attributes(in.columns, in.basis);
     const char* ext = extension(in.encoding);
     std::vector<std::string> f;
+    if (in.compression.clusters > 0) {
+        if (in.target == EngineTarget::probes)
+            throw UsageError("--export: for --target vertices or texels (probes have no transfer)");
+        if (std::none_of(attrs.begin(), attrs.end(),
+                         [](const EngineAttribute& a) { return a.name.rfind("_PRT", 0) == 0; }))
+            throw UsageError("--export: compresses transfer vectors; give --quantities transfer");
+        f.push_back("cpca.json");
+        f.push_back("cpca.bin");
+    }
     if (in.target == EngineTarget::probes) {
         for (const EngineAttribute& a : attrs)
             for (int k = 0; k < in.probes->counts[2]; ++k)
@@ -467,6 +613,7 @@ std::vector<EngineFile> export_engine(const EngineInput& in, Json& outputs) {
                        {"meshes", meshes.size()},
                        {"attributes", attr_names},
                        {"xxh3", glb["xxh3"]}});
+    if (in.compression.clusters > 0) export_cpca(in, attrs, files, outputs);
     if (in.target == EngineTarget::texels) {
         const Json doc = {{"format", "sphbasis lightmaps"},
                           {"version", 1},

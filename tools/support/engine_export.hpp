@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <sphbasis/render/lightmap.hpp>
 #include <sphbasis/render/probe_grid.hpp>
 #include <string>
@@ -83,6 +84,20 @@ std::vector<EngineAttribute> engine_attributes(
 
 enum class EngineTarget { vertices, texels, probes };
 
+/// `--export cpca:C:M` (or `pca:M` = cpca:1:M): the baked transfer vectors compressed by CPCA
+/// (ops/compression.hpp: k-means, per-cluster PCA, reclassification; Sloan, Lehtinen and Kautz,
+/// "Precomputed Radiance Transfer: Theory and Practice", SIGGRAPH 2005 course) with 8-bit
+/// weights, written as cpca.json (the layout) and cpca.bin (docs/export-format.md).
+struct CompressionExport {
+    int clusters = 0;  // 0: none
+    int vectors = 0;
+    int bits = 8;
+};
+
+/// "" (none), "pca:M" or "cpca:C:M" with 1 <= C <= 65535, 1 <= M <= 64; UsageError "--export:
+/// expected pca:M or cpca:C:M ..." otherwise.
+CompressionExport parse_compression_export(const std::string& s);
+
 /// Everything an engine export reads. Pointers are borrowed for the call.
 struct EngineInput {
     EngineTarget target = EngineTarget::vertices;
@@ -95,6 +110,8 @@ struct EngineInput {
     std::size_t stride = 0;  // doubles per record
     std::string basis = "sh";
     ImageEncoding encoding = ImageEncoding::png8;
+    CompressionExport compression;
+    std::uint64_t seed = 1;  // k-means++ seeding of the CPCA
 };
 
 struct EngineFile {
@@ -105,7 +122,8 @@ struct EngineFile {
 /// The file names export_engine() writes for `in` (records not needed): declared before the
 /// bake. vertices: scene.glb; texels: scene.glb, <mesh>.<attr>.<png|exr> per mesh and
 /// attribute, lightmaps.json; probes: probes.<attr>.z<k>.<png|exr> per attribute and slice,
-/// probes.grid.json.
+/// probes.grid.json; with a compression export also cpca.json and cpca.bin (UsageError when the
+/// bake has no transfer or the target is probes).
 std::vector<std::string> engine_file_names(const EngineInput& in);
 
 /// The files and the "outputs" entries of bake.json. Throws std::invalid_argument when the
