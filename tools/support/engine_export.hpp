@@ -45,8 +45,8 @@ struct ChannelRange {
     double scale = 1, bias = 0;
 };
 
-/// The range of channel c of `values` (interleaved, `channels` per element): [min, max], or
-/// `fixed` when given (lo, hi). Non-finite values are an error (std::invalid_argument).
+/// The range of channel c of `values` (interleaved, `channels` per element): bias = min,
+/// scale = max - min. Non-finite values are an error (std::invalid_argument).
 ChannelRange fit_range(const std::vector<float>& values, std::size_t channels, std::size_t c);
 /// t = (v - bias) / scale clamped to [0, 1] (0 when scale is 0).
 double compress(double v, const ChannelRange& r) noexcept;
