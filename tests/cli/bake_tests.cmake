@@ -154,3 +154,5 @@ sphbasis_bake_test(gltf_cpca "gltf-cpca-ok"
 sphbasis_bake_bad(export_malformed "--export: expected pca:M or cpca:C:M" bake ${_scenes}/lone_sphere.json --format gltf --export cpca:2)
 sphbasis_bake_bad(export_without_transfer "--export: compresses transfer vectors; give --quantities transfer" bake ${_scenes}/lone_sphere.json --format gltf --export pca:2)
 sphbasis_bake_bad(export_without_gltf "--export: needs --format gltf" bake ${_scenes}/lone_sphere.json --export pca:2)
+sphbasis_bake_test(gltf_toksvig "gltf-toksvig-ok"
+  "rm -rf bake_gk && \"${_bake}\" bake ${_scenes}/lone_sphere.json --rays 8 --out bake_gk --format gltf --export toksvig:32 && test -s bake_gk/toksvig.png && grep -q '\"shininess\":32' bake_gk/toksvig.json && echo gltf-toksvig-ok")

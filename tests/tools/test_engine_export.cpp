@@ -558,4 +558,23 @@ TEST_CASE("engine export: CPCA of the transfer vectors, decoded from cpca.bin", 
     in.columns = {{"ao", n}};
     CHECK_THROWS_WITH(engine_file_names(in),
                       "--export: compresses transfer vectors; give --quantities transfer");
+    // The Toksvig table: its row Na.Na = 1 is the plain power (Na.H)^s (the brief's property).
+    in.compression = parse_compression_export("toksvig:32");
+    in.encoding = ImageEncoding::png16;
+    Json out2 = Json::array();
+    const std::vector<EngineFile> tf = export_engine(in, out2);
+    std::string png;
+    for (const EngineFile& f : tf)
+        if (f.name == "toksvig.png") png = f.bytes;
+    TempDir tmp;
+    int w = 0, h = 0;
+    const std::vector<double> t = decode_t(png, ImageEncoding::png16, 1, w, h, tmp.path);
+    REQUIRE(w == 256);
+    REQUIRE(h == 256);
+    for (int col : {0, 17, 128, 200, 255})
+        CHECK(std::fabs(t[std::size_t(255 * 256 + col)] - std::pow(col / 255.0, 32.0)) <=
+              1.0 / 131070 + 1e-7);
+    CHECK(std::fabs(t[0] - 1.0 / 33) <= 1.0 / 131070 + 1e-7);  // Na.Na = 0: 1 / (1 + s)
+    CHECK_THROWS_WITH(parse_compression_export("toksvig:0"),
+                      "--export: expected toksvig:S with 0 < S <= 1e6, got 'toksvig:0'");
 }

@@ -13,6 +13,7 @@
 #include <sphbasis/ops/compression.hpp>
 #include <sphbasis/render/bake_file.hpp>
 #include <sphbasis/render/bake_points.hpp>
+#include <sphbasis/shading/toksvig.hpp>
 #include <stdexcept>
 #include <type_traits>
 
@@ -375,12 +376,13 @@ std::string encode_compressed(const std::vector<float>& values, int width, int h
     return {};
 }
 
-CompressionExport parse_compression_export(const std::string& s) {
+namespace {
+/// One "pca:M" or "cpca:C:M" item of --export.
+CompressionExport parse_cpca_item(const std::string& s) {
     CompressionExport e;
-    if (s.empty()) return e;
     const std::string what =
         "--export: expected pca:M or cpca:C:M (1 <= C <= 65535 clusters, 1 <= M <= 64 "
-        "vectors), got '" +
+        "vectors) or toksvig:S, got '" +
         quote_input(s) + "'";
     std::vector<std::string> parts;
     std::size_t start = 0;
@@ -396,6 +398,30 @@ CompressionExport parse_compression_export(const std::string& s) {
     if (!ok || c < 1 || c > 65535 || m < 1 || m > 64) throw UsageError(what);
     e.clusters = static_cast<int>(c);
     e.vectors = static_cast<int>(m);
+    return e;
+}
+}  // namespace
+
+CompressionExport parse_compression_export(const std::string& list) {
+    CompressionExport e;
+    std::size_t from = 0;
+    while (from < list.size()) {
+        std::size_t comma = list.find(',', from);
+        if (comma == std::string::npos) comma = list.size();
+        const std::string s = list.substr(from, comma - from);
+        from = comma + 1;
+        if (s.rfind("toksvig:", 0) == 0) {
+            const double v = to_real(s.substr(8), "--export: toksvig:S");
+            if (!(v > 0 && v <= 1e6))
+                throw UsageError("--export: expected toksvig:S with 0 < S <= 1e6, got '" +
+                                 quote_input(s) + "'");
+            e.toksvig_shininess = v;
+            continue;
+        }
+        const CompressionExport c = parse_cpca_item(s);
+        e.clusters = c.clusters;
+        e.vectors = c.vectors;
+    }
     return e;
 }
 
@@ -474,6 +500,10 @@ std::vector<std::string> engine_file_names(const EngineInput& in) {
         f.push_back("cpca.json");
         f.push_back("cpca.bin");
     }
+    if (in.compression.toksvig_shininess > 0) {
+        f.push_back("toksvig.json");
+        f.push_back(std::string("toksvig") + ext);
+    }
     if (in.target == EngineTarget::probes) {
         for (const EngineAttribute& a : attrs)
             for (int k = 0; k < in.probes->counts[2]; ++k)
@@ -504,6 +534,34 @@ std::vector<EngineFile> export_engine(const EngineInput& in, Json& outputs) {
     };
     Json attr_names = Json::array();
     for (const EngineAttribute& a : attrs) attr_names.push_back(a.name);
+    if (in.compression.toksvig_shininess > 0) {
+        // Toksvig, "Mipmapping Normal Maps" (2004), eq. 9 (with the power outside the
+        // numerator, as shading/toksvig.hpp corrects it): values in [0, 1], stored as is.
+        toksvig::SpecularTableOptions o;
+        o.shininess = in.compression.toksvig_shininess;
+        const toksvig::SpecularTable t = toksvig::make_specular_table(o);
+        const EngineAttribute a{"_TOKSVIG", {0}, {"specular"}, true, {1, 0}};
+        const std::vector<ChannelRange> r{a.range};
+        const std::string file = std::string("toksvig") + ext;
+        Json doc = {
+            {"format", "sphbasis toksvig table"},
+            {"version", 1},
+            {"shininess", o.shininess},
+            {"width", t.width},
+            {"height", t.height},
+            {"layout",
+             "column c (from the left): Na.H = c / (width - 1); row r (from the top): Na.Na = r / "
+             "(height - 1); value = (1 + f s) / (1 + s) * (Na.H / |Na|)^(f s), f = |Na| / (|Na| + "
+             "s (1 - |Na|)); cells with Na.H > |Na| (no normal reaches them) hold the value at "
+             "Na.H = |Na|"},
+            {"lookup", "uv = ((Na.H, Na.Na) * (size - 1) + 0.5) / size, bilinear"},
+            {"encoding", image_encoding_name(in.encoding)},
+            {"decode", "v = bias + scale * t"}};
+        doc.update(range_json(a, r, in.encoding));
+        doc.update(add(file, encode_compressed(t.value, t.width, t.height, 1, r, in.encoding)));
+        files.push_back({"toksvig.json", dump_json(doc) + "\n"});
+        outputs.push_back({{"file", "toksvig.json"}, {"kind", "toksvig"}, {"image", file}});
+    }
 
     if (in.target == EngineTarget::probes) {
         const render::ProbeGrid& g = *in.probes;

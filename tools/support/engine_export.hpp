@@ -88,14 +88,17 @@ enum class EngineTarget { vertices, texels, probes };
 /// (ops/compression.hpp: k-means, per-cluster PCA, reclassification; Sloan, Lehtinen and Kautz,
 /// "Precomputed Radiance Transfer: Theory and Practice", SIGGRAPH 2005 course) with 8-bit
 /// weights, written as cpca.json (the layout) and cpca.bin (docs/export-format.md).
+/// `--export toksvig:S`: Toksvig's 2D specular table for shininess S (shading/toksvig.hpp:
+/// eq. 9, 256 x 256, Na.H along columns, Na.Na along rows) as toksvig.json and an image.
 struct CompressionExport {
     int clusters = 0;  // 0: none
     int vectors = 0;
     int bits = 8;
+    double toksvig_shininess = 0;  // 0: none
 };
 
-/// "" (none), "pca:M" or "cpca:C:M" with 1 <= C <= 65535, 1 <= M <= 64; UsageError "--export:
-/// expected pca:M or cpca:C:M ..." otherwise.
+/// A comma-separated list of "pca:M" or "cpca:C:M" (1 <= C <= 65535, 1 <= M <= 64) and
+/// "toksvig:S" (0 < S <= 1e6), or "" (none); UsageError "--export: expected ..." otherwise.
 CompressionExport parse_compression_export(const std::string& s);
 
 /// Everything an engine export reads. Pointers are borrowed for the call.
