@@ -1139,8 +1139,9 @@ Run setup_bake(CLI::App& app) {
         ->type_name("png8|png16|half|float")
         ->capture_default_str();
     app.add_option("--export", o->exports,
-                   "--format gltf: transfer compressed by PCA or CPCA (cpca.json, cpca.bin)")
-        ->type_name("pca:M|cpca:C:M");
+                   "--format gltf: transfer by PCA or CPCA (pca:M, cpca:C:M), Toksvig's table "
+                   "(toksvig:S)")
+        ->type_name("LIST");
     return [o] { return run_bake(*o); };
 }
 
