@@ -138,3 +138,25 @@ foreach(_v flat nonormals smooth mixed mixed_nonormals)
   sphbasis_bake_test(furnace_obj_${_v} "furnace-ok"
     "rm -rf bake_furnace_${_v} && \"${_bake}\" bake ${_scenes}/furnace/open_box_${_v}.json --quantities transfer --bands 1 --bounces 24 --rays 64 --out bake_furnace_${_v} >/dev/null && python3 ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_furnace_ply.py bake_furnace_${_v}/mesh0.ply")
 endforeach()
+
+# Engine exports (--format gltf, docs/export-format.md). The glTF's attributes equal the native
+# PLY's values (the same bake: results depend only on seed, point and settings), read by a GLB
+# reader written from the specification (check_gltf_bake.py); lightmaps and probe slices are
+# written, and listed in bake.json. tests/tools/test_engine_export.cpp reads them back with
+# tinygltf, Assimp, stb_image and OpenEXR within the stated quantisation bound.
+sphbasis_bake_test(gltf_vertices "gltf-bake-ok 2 [0-9]+"
+  "rm -rf bake_gn bake_gg && \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --quantities ao,bent,irradiance --rays 32 --seed 4 --out bake_gn && \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --quantities ao,bent,irradiance --rays 32 --seed 4 --out bake_gg --format gltf && python3 ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_gltf_bake.py bake_gg bake_gn _AO=ao _BENT=bent_x,bent_y,bent_z _SH0=irr_r_0,irr_g_0,irr_b_0 _SH8=irr_r_8,irr_g_8,irr_b_8")
+sphbasis_bake_test(gltf_texels "gltf-texels-ok"
+  "rm -rf bake_gt && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:16 --quantities ao,irradiance --rays 16 --out bake_gt --format gltf --encoding png16 && test -s bake_gt/scene.glb && test -s bake_gt/mesh0.ao.png && test -s bake_gt/floor.sh8.png && grep -q '\"encoding\":\"png16\"' bake_gt/lightmaps.json && grep -q '\"lightmaps.json\"' bake_gt/bake.json && ! test -e bake_gt/mesh0.exr && echo gltf-texels-ok")
+sphbasis_bake_test(gltf_probes "gltf-probes-ok"
+  "rm -rf bake_gp && \"${_bake}\" bake ${_scenes}/lone_sphere.json --target probes --quantities radiance --bands 2 --rays 16 --out bake_gp --format gltf --encoding half && test -s bake_gp/probes.rad3.z2.exr && test -s bake_gp/probes.inside.z0.exr && grep -q '\"counts\":\\[3,3,3\\]' bake_gp/probes.grid.json && echo gltf-probes-ok")
+sphbasis_bake_bad(format_unknown "--format: expected native or gltf, got 'fbx'" bake ${_scenes}/lone_sphere.json --format fbx)
+sphbasis_bake_bad(encoding_unknown "--encoding: expected png8, png16, half or float, got 'jpg'" bake ${_scenes}/lone_sphere.json --format gltf --encoding jpg)
+sphbasis_bake_bad(format_gltf_shard "--format gltf: not with --points or --shard" bake ${_scenes}/lone_sphere.json --format gltf --shard 0/2)
+sphbasis_bake_test(gltf_cpca "gltf-cpca-ok"
+  "rm -rf bake_gc && \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --quantities transfer --bands 3 --rays 16 --out bake_gc --format gltf --export cpca:4:3 && grep -q '\"clusters\":4,\"vectors\":3,\"coefficients\":9' bake_gc/cpca.json && test -s bake_gc/cpca.bin && grep -q '\"kind\":\"cpca\"' bake_gc/bake.json && echo gltf-cpca-ok")
+sphbasis_bake_bad(export_malformed "--export: expected pca:M or cpca:C:M" bake ${_scenes}/lone_sphere.json --format gltf --export cpca:2)
+sphbasis_bake_bad(export_without_transfer "--export: compresses transfer vectors; give --quantities transfer" bake ${_scenes}/lone_sphere.json --format gltf --export pca:2)
+sphbasis_bake_bad(export_without_gltf "--export: needs --format gltf" bake ${_scenes}/lone_sphere.json --export pca:2)
+sphbasis_bake_test(gltf_toksvig "gltf-toksvig-ok"
+  "rm -rf bake_gk && \"${_bake}\" bake ${_scenes}/lone_sphere.json --rays 8 --out bake_gk --format gltf --export toksvig:32 && test -s bake_gk/toksvig.png && grep -q '\"shininess\":32' bake_gk/toksvig.json && echo gltf-toksvig-ok")

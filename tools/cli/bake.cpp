@@ -71,6 +71,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/engine_export.hpp"
 #include "../support/exr.hpp"
 #include "../support/json.hpp"
 #include "../support/memory.hpp"
@@ -567,6 +568,31 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
     return outputs;
 }
 
+/// What support/engine_export.hpp reads of a complete bake (`--format gltf`); rec may be null
+/// before the bake (the file names only).
+EngineInput engine_input(const SceneFile& scene, const Work& w, const render::BakeSettings& s,
+                         const std::vector<double>* rec, ImageEncoding encoding,
+                         const CompressionExport& compression) {
+    const Layout L(s);
+    EngineInput in;
+    in.target = w.target.kind == TargetKind::texels   ? EngineTarget::texels
+                : w.target.kind == TargetKind::probes ? EngineTarget::probes
+                                                      : EngineTarget::vertices;
+    in.meshes = &scene.meshes;
+    in.probes = &scene.probes;
+    in.mesh_begin = &w.mesh_begin;
+    in.layouts = &w.layouts;
+    for (const Column& c : columns(s, L, rec != nullptr && any_rgb_transfer(L, *rec)))
+        in.columns.emplace_back(c.name, c.offset);
+    in.records = rec;
+    in.stride = L.stride;
+    in.basis = s.basis;
+    in.encoding = encoding;
+    in.compression = compression;
+    in.seed = s.seed + 1;  // k-means++ seeding: any fixed stream of the bake's seed
+    return in;
+}
+
 void print_points(const Work& w, const render::BakeSettings& s, const std::vector<double>& rec,
                   std::size_t begin) {
     const Layout L(s);
@@ -730,7 +756,7 @@ ShardData read_shard(const std::string& file) {
 
 struct BakeOptions {
     std::string scene, quantities = "ao", basis = "sh", target = "vertices", points, out = ".",
-                       shard, max_distance;
+                       shard, max_distance, format = "native", encoding = "png8", exports;
     long long bands = 3, coeffs = 9, rays = 256, bounces = 0, seed = 0;
     CLI::Option *target_opt = nullptr, *points_opt = nullptr, *out_opt = nullptr,
                 *maxd_opt = nullptr;
@@ -790,6 +816,15 @@ int run_bake(const BakeOptions& o) {
             "--quantities radiance");
     const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
     const bool write_files = !points_mode || o.out_opt->count() > 0;
+    const bool gltf = o.format == "gltf";
+    const ImageEncoding encoding = parse_image_encoding(o.encoding);
+    const CompressionExport compression = parse_compression_export(o.exports);
+    if (compression.clusters > 0 && !gltf) throw UsageError("--export: needs --format gltf");
+    if (o.format != "native" && !gltf)
+        throw UsageError("--format: expected native or gltf, got '" + quote_input(o.format) + "'");
+    if (gltf && (points_mode || shard.count > 1))
+        throw UsageError(
+            "--format gltf: not with --points or --shard (bake-merge writes native files)");
 
     const SceneFile scene = load_scene(o.scene);
     for (std::size_t k = 0; k < scene.meshes.size(); ++k)
@@ -838,6 +873,11 @@ int run_bake(const BakeOptions& o) {
     if (write_files) {
         if (sharded) {
             out.declare_in(o.out, shard_file);
+        } else if (gltf) {
+            for (const std::string& f :
+                 engine_file_names(engine_input(scene, w, s, nullptr, encoding, compression)))
+                out.declare_in(o.out, f);
+            out.declare_in(o.out, "bake.json");
         } else {
             declare_outputs(out, o.out, scene, w.target,
                             points_mode ? "bake-points.json" : "bake.json");
@@ -906,7 +946,15 @@ int run_bake(const BakeOptions& o) {
                             rec, L.stride);
             out.add(join_path(o.out, shard_file), std::string(bytes.begin(), bytes.end()));
         } else {
-            if (!points_mode) summary["outputs"] = write_outputs(scene, w, s, rec, o.out, out);
+            if (gltf) {
+                summary["outputs"] = Json::array();
+                for (EngineFile& f :
+                     export_engine(engine_input(scene, w, s, &rec, encoding, compression),
+                                   summary["outputs"]))
+                    out.add(join_path(o.out, f.name), f.bytes);
+            } else if (!points_mode) {
+                summary["outputs"] = write_outputs(scene, w, s, rec, o.out, out);
+            }
             summary["seconds"] = {{"load", t_load},
                                   {"layout", t_layout},
                                   {"bake", t_bake},
@@ -1084,6 +1132,17 @@ Run setup_bake(CLI::App& app) {
     o->out_opt = add_path(app, "--out", o->out, "output directory (created if missing)");
     o->out_opt->type_name("DIR")->capture_default_str();
     app.add_option("--shard", o->shard, "bake shard I of N (0 <= I < N)")->type_name("I/N");
+    app.add_option("--format", o->format,
+                   "native (PLY, EXR, JSON) or gltf (engine files: docs/export-format.md)")
+        ->type_name("native|gltf")
+        ->capture_default_str();
+    app.add_option("--encoding", o->encoding, "--format gltf: lightmap and probe images")
+        ->type_name("png8|png16|half|float")
+        ->capture_default_str();
+    app.add_option("--export", o->exports,
+                   "--format gltf: transfer by PCA or CPCA (pca:M, cpca:C:M), Toksvig's table "
+                   "(toksvig:S)")
+        ->type_name("LIST");
     return [o] { return run_bake(*o); };
 }
 

@@ -19,6 +19,7 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfRgbaFile.h>
+#include <half.h>
 #endif
 
 namespace sphbasis::cli {
@@ -133,7 +134,7 @@ class MemoryStream : public Imf::OStream {
 #endif
 
 std::string encode_exr(int width, int height, const std::vector<std::string>& names,
-                       const std::vector<float>& values) {
+                       const std::vector<float>& values, bool half) {
     const std::size_t nc = names.size();
     if (width < 1 || height < 1 || nc == 0 ||
         values.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * nc)
@@ -144,11 +145,16 @@ std::string encode_exr(int width, int height, const std::vector<std::string>& na
     Imf::Header header(width, height);
     header.compression() = Imf::ZIP_COMPRESSION;
     Imf::FrameBuffer fb;
-    const std::size_t xs = nc * sizeof(float), ys = xs * static_cast<std::size_t>(width);
-    char* base = reinterpret_cast<char*>(const_cast<float*>(values.data()));
+    const Imf::PixelType type = half ? Imf::HALF : Imf::FLOAT;
+    const std::size_t size = half ? sizeof(Imath::half) : sizeof(float);
+    std::vector<Imath::half> halves;  // each value rounded to the nearest half
+    if (half) halves.assign(values.begin(), values.end());
+    const std::size_t xs = nc * size, ys = xs * static_cast<std::size_t>(width);
+    char* base = half ? reinterpret_cast<char*>(halves.data())
+                      : reinterpret_cast<char*>(const_cast<float*>(values.data()));
     for (std::size_t k = 0; k < nc; ++k) {
-        header.channels().insert(names[k], Imf::Channel(Imf::FLOAT));
-        fb.insert(names[k], Imf::Slice(Imf::FLOAT, base + k * sizeof(float), xs, ys));
+        header.channels().insert(names[k], Imf::Channel(type));
+        fb.insert(names[k], Imf::Slice(type, base + k * size, xs, ys));
     }
     MemoryStream stream;
     {
@@ -158,6 +164,7 @@ std::string encode_exr(int width, int height, const std::vector<std::string>& na
     }
     return stream.take();
 #else
+    (void)half;
     throw std::runtime_error("writing an EXR image needs OpenEXR, and this build has none");
 #endif
 }

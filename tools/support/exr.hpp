@@ -44,9 +44,10 @@ RgbImage read_exr_rgb_as_stored(const std::string& path);
 /// names.size() + k]. The bytes depend only on the arguments (no time stamp in the header), so
 /// equal images give equal files. Note that OpenEXR stores channels sorted by name. Throws
 /// std::invalid_argument on a size mismatch and std::runtime_error if the encoding fails or
-/// this build has no OpenEXR.
+/// this build has no OpenEXR. `half`: 16-bit half channels (each value rounded to the nearest
+/// half) instead of float.
 std::string encode_exr(int width, int height, const std::vector<std::string>& names,
-                       const std::vector<float>& values);
+                       const std::vector<float>& values, bool half = false);
 
 /// encode_exr() written to `path` by write_file_atomic (support/output_file.hpp). Throws
 /// std::runtime_error on failure.
