@@ -3,7 +3,7 @@
 // attributes, lightmaps as 8- or 16-bit PNG or half or float EXR on the mesh's lightmap UV set,
 // probe grids as a 3D texture (one image per slice and a JSON of the grid).
 //
-// Range compression (Ishmukhametov, "Irradiance Normal Mapping", thesis, c. 2010, section 2.2.3
+// Range compression (Ishmukhametov, "Irradiance Normal Mapping", thesis, undated, section 2.2.3
 // and Listing 2.1: coefficients stored as v / (2 r) + 1/2 with a global r = 0.75, decoded as
 // 2 r t - r in the shader): generalised here to one scale and bias per channel,
 //   stored t = (v - bias) / scale in [0, 1],   decoded v' = bias + scale * t,
