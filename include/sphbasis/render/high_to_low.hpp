@@ -8,7 +8,7 @@
 // maximum ray distance).
 //
 // Projection. Every bake point of the target (render/bake_points.hpp: vertices, or texel samples
-// on the surface, before the lightmap's normal offset) casts one ray to the source:
+// on the surface, before the lightmap's normal offset) looks for the source along a ray:
 //   * without a cage: along the line p + t n of its interpolated unit normal n, |t| <=
 //     max_ray_distance (infinite: unbounded), both ways; the hit nearest to p wins (the outward
 //     one on a tie). A source that lies partly above and partly below the target (bumps and
