@@ -160,3 +160,30 @@ sphbasis_bake_bad(export_without_transfer "--export: compresses transfer vectors
 sphbasis_bake_bad(export_without_gltf "--export: needs --format gltf" bake ${_scenes}/lone_sphere.json --export pca:2)
 sphbasis_bake_test(gltf_toksvig "gltf-toksvig-ok"
   "rm -rf bake_gk && \"${_bake}\" bake ${_scenes}/lone_sphere.json --rays 8 --out bake_gk --format gltf --export toksvig:32 && test -s bake_gk/toksvig.png && grep -q '\"shininess\":32' bake_gk/toksvig.json && echo gltf-toksvig-ok")
+# High to low (render/high_to_low.hpp; scenes/high_to_low.json: a quad over a disk with a
+# hemispherical pit): ambient occlusion 1/2 in the pit and 1 on the disk, the pit's normals in
+# the normal map, misses off the disk (check_high_to_low.py); the texel bake's channels and the
+# projection pass in bake.json; a sharded bake merged equals one run; the scene keys' errors.
+set(_h2l ${PROJECT_SOURCE_DIR}/scenes/high_to_low.json)
+sphbasis_bake_test(high_to_low_vertices "high-to-low-ok"
+  "rm -rf bake_h2l && \"${_bake}\" bake ${_h2l} --quantities ao,normal_map --rays 512 --out bake_h2l >/dev/null 2>&1 && python3 ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_high_to_low.py bake_h2l/panel.ply")
+sphbasis_bake_test(high_to_low_texels "h2l-texels-ok"
+  "rm -rf bake_h2lt && \"${_bake}\" bake ${_h2l} --quantities normal-map,bent --rays 16 --target texels:16 --out bake_h2lt >/dev/null 2>&1 && python3 -c \"import json,sys; j=json.load(open('bake_h2lt/bake.json')); o=[x for x in j['outputs'] if x['mesh']=='panel'][0]; assert {'normal_x','normal_y','normal_z','bent_x','coverage'} <= set(o['channels']), o; p=j['plan'][0]; assert p['name']=='project' and p['rays']>=2*256, p; print('h2l-texels-ok')\"")
+sphbasis_bake_test(high_to_low_normal_map_only "h2l-only-ok"
+  "rm -rf bake_h2lo && \"${_bake}\" bake ${_h2l} --quantities normal_map --out bake_h2lo >/dev/null 2>&1 && python3 -c \"import json; j=json.load(open('bake_h2lo/bake.json')); assert [p['name'] for p in j['plan']]==['project'], j['plan']; assert j['rays']==j['plan'][0]['rays']; print('h2l-only-ok')\"")
+sphbasis_bake_test(high_to_low_shards "h2l-shards-ok"
+  "rm -rf bake_h2ls && \"${_bake}\" bake ${_h2l} --quantities ao,normal_map --rays 32 --out bake_h2ls/one >/dev/null 2>&1 && \"${_bake}\" bake ${_h2l} --quantities ao,normal_map --rays 32 --out bake_h2ls --shard 0/2 2>/dev/null && \"${_bake}\" bake ${_h2l} --quantities ao,normal_map --rays 32 --out bake_h2ls --shard 1/2 2>/dev/null && \"${_bake}\" bake-merge bake_h2ls/bake.shard-0-of-2.bin bake_h2ls/bake.shard-1-of-2.bin --out bake_h2ls/merged 2>/dev/null && cmp bake_h2ls/one/panel.ply bake_h2ls/merged/panel.ply && echo h2l-shards-ok")
+sphbasis_bake_bad(h2l_unknown_source "[^ ]*h2l_unknown_source.json: meshes\\[1\\].source: no mesh named 'detial' \\(did you mean 'detail'\\?\\)"
+                  bake ${_scenes}/bad/h2l_unknown_source.json)
+sphbasis_bake_bad(h2l_cage_mismatch "[^ ]*h2l_cage_mismatch.json: meshes\\[1\\].cage: expected a mesh of the same 9 vertices and 8 triangles as the mesh, got 16 vertices and 18 triangles"
+                  bake ${_scenes}/bad/h2l_cage_mismatch.json)
+sphbasis_bake_bad(h2l_distance_without_source "[^ ]*h2l_distance_without_source.json: meshes\\[0\\].max_ray_distance: needs a \"source\" mesh"
+                  bake ${_scenes}/bad/h2l_distance_without_source.json)
+sphbasis_bake_bad(h2l_chain "[^ ]*h2l_chain.json: meshes\\[0\\].source: the source 'b' has a source itself"
+                  bake ${_scenes}/bad/h2l_chain.json)
+sphbasis_bake_bad(h2l_normal_map_points "--quantities normal_map: the tangent-space normal map is baked per vertex or texel"
+                  bake ${_h2l} --quantities normal_map --points -)
+# A cage (data/scenes/high_to_low_cage.json: a coarse sphere with a larger copy as its cage
+# inside a fine one): every ray from the cage hits the source.
+sphbasis_bake_test(high_to_low_cage "h2l-cage-ok"
+  "rm -rf bake_h2lc && \"${_bake}\" bake ${_scenes}/high_to_low_cage.json --quantities ao,normal_map --rays 8 --target texels:16 --out bake_h2lc >/dev/null 2>&1 && python3 -c \"import json,re; p=json.load(open('bake_h2lc/bake.json'))['plan'][0]; m=re.search(r'rays from ([0-9]+) points .*, ([0-9]+) hit', p['reason']); assert p['name']=='project' and m and m.group(1)==m.group(2) and int(m.group(1)) <= p['rays'] <= 3*int(m.group(1)), p; print('h2l-cage-ok')\"")

@@ -30,6 +30,10 @@
 //                (one number, radians), "visibility_stderr", "transfer_stderr",
 //                "irradiance_stderr", "radiance_stderr" (one list each, the max over R, G, B);
 //                "inside" comes with "radiance". Numbers with 17 significant digits.
+// High to low: the points of a mesh with a "source" (docs/scene-format.md) are moved to the
+// source by render/high_to_low.hpp before the bake (the plan's "project" pass), every such mesh
+// is left out of the occlusion scene, `normal_map` adds the source's tangent-space normal
+// (normal_x/y/z) and `coverage` marks the points whose ray missed (EXR channel; PLY property).
 // Every file bake also writes OUT/bake.json: scene, target, settings, seed, the pass plan (each
 // pass's name, reason, rays and seconds), timings and the output files with their channels.
 // The files of a run are written all or none (support/output_file.hpp): every name is checked
@@ -65,6 +69,7 @@
 #include <sphbasis/render/bake.hpp>
 #include <sphbasis/render/bake_file.hpp>
 #include <sphbasis/render/bake_points.hpp>
+#include <sphbasis/render/high_to_low.hpp>
 #include <sphbasis/render/lightmap.hpp>
 #include <sphbasis/render/probe_grid.hpp>
 #include <sstream>
@@ -87,8 +92,19 @@ namespace {
 
 // The layout of a result record (struct Layout), recorded in each shard's header as
 // "record_format", part of its input hash and checked by bake-merge. 2: irr_stderr and
-// rad_stderr added. 3: bent_stderr added after bent.
-constexpr int kRecordFormat = 3;
+// rad_stderr added. 3: bent_stderr added after bent. 4: the high-to-low normal and hit.
+constexpr int kRecordFormat = 4;
+
+// The tangent-space normal map of high-to-low bakes (render/high_to_low.hpp): a quantity of the
+// command, not of render::Baker, so a flag of its own beside the library's in
+// BakeSettings::quantities (baker_settings() takes it out before the Baker sees it).
+constexpr render::Quantity kNormalMap = static_cast<render::Quantity>(1u << 30);
+constexpr const char* kNormalMapName = "normal_map";
+
+render::BakeSettings baker_settings(render::BakeSettings s) {
+    s.quantities = s.quantities & ~kNormalMap;
+    return s;
+}
 
 // The quantities the command bakes (names: render::quantity_name()).
 constexpr render::Quantity kQuantities[] = {
@@ -101,15 +117,18 @@ render::Quantity parse_quantities(const std::string& s) {
     for (render::Quantity b : kQuantities) names.push_back(render::quantity_name(b));
     std::stringstream in(s);
     std::string item;
+    names.push_back(kNormalMapName);
     while (std::getline(in, item, ',')) {
         render::Quantity bit{};
+        if (item == kNormalMapName || item == "normal-map") bit = kNormalMap;
         for (render::Quantity b : kQuantities)
             if (item == render::quantity_name(b)) bit = b;
         if (!any(bit)) {
             const std::string near = item.size() <= 64 ? closest_key(item, names) : "";
             throw UsageError("--quantities: unknown quantity '" + quote_input(item) + "'" +
                              (near.empty() ? std::string(" (expected ao, bent, visibility, "
-                                                         "transfer, irradiance or radiance)")
+                                                         "transfer, irradiance, radiance or "
+                                                         "normal_map)")
                                            : " (did you mean '" + near + "'?)"));
         }
         q |= bit;
@@ -183,6 +202,9 @@ struct Work {
     std::vector<render::LightmapLayout> layouts;  // texels
     std::vector<bool> surface;                    // points: has a normal
     std::vector<std::array<double, 3>> given_n;   // points: the normal as given
+    // High to low (project_sources()): per point the source normal in the tangent frame and
+    // whether the ray hit the source (x, y, z, hit); (0, 0, 1, 1) for meshes without a source.
+    std::vector<std::array<double, 4>> h2l;
 };
 
 // Vertices, texels and probes: the library's bake points (render/bake_points.hpp: the id scheme,
@@ -290,7 +312,62 @@ Work make_work(const SceneFile& scene, const Target& t, const std::string& point
             break;
     }
     w.target = t;
+    w.h2l.assign(w.points.size(), {0.0, 0.0, 1.0, 1.0});
     return w;
+}
+
+// ---------------------------------------------------------------------------------------------
+// High to low (render/high_to_low.hpp; the scene's "source", "cage" and "max_ray_distance").
+
+/// The meshes with a "source" (low-poly targets).
+std::vector<std::size_t> high_to_low_targets(const SceneFile& scene) {
+    std::vector<std::size_t> t;
+    for (std::size_t k = 0; k < scene.meshes.size(); ++k)
+        if (scene.meshes[k].bake_source >= 0) t.push_back(k);
+    return t;
+}
+
+/// Moves the vertex and texel points of every target to its source (w.points, w.h2l); the
+/// "project" pass of the plan (rays 0 and no pass when no mesh has a source).
+render::Pass project_sources(const SceneFile& scene, Work& w) {
+    render::Pass pass;
+    pass.name = "project";
+    const std::vector<std::size_t> targets = high_to_low_targets(scene);
+    if (targets.empty() ||
+        (w.target.kind != TargetKind::vertices && w.target.kind != TargetKind::texels))
+        return pass;
+    const render::SceneDesc desc = scene.scene_desc();
+    std::size_t points = 0, hits = 0;
+    for (std::size_t k : targets) {
+        const SceneMesh& m = scene.meshes[k];
+        render::HighToLowSettings hs;
+        hs.target = k;
+        hs.source = static_cast<std::size_t>(m.bake_source);
+        hs.max_ray_distance = m.max_ray_distance;
+        hs.cage_positions = m.cage ? m.cage->data() : nullptr;
+        render::SourceProjector proj(desc.meshes, hs);
+        const std::vector<render::ProjectedPoint> pp =
+            proj.project(w.target.kind == TargetKind::vertices
+                             ? render::low_poly_vertex_points(desc.meshes, hs)
+                             : render::low_poly_texel_points(desc.meshes, hs, w.layouts[k]));
+        if (pp.size() != w.mesh_begin[k + 1] - w.mesh_begin[k])
+            throw std::runtime_error("high to low: the projection of mesh '" + m.name + "' gave " +
+                                     std::to_string(pp.size()) + " points for " +
+                                     std::to_string(w.mesh_begin[k + 1] - w.mesh_begin[k]));
+        for (std::size_t i = 0; i < pp.size(); ++i) {
+            const render::ProjectedPoint& p = pp[i];
+            w.points[w.mesh_begin[k] + i] = p.point;
+            w.h2l[w.mesh_begin[k] + i] = {p.normal.x, p.normal.y, p.normal.z, p.hit ? 1.0 : 0.0};
+            hits += p.hit ? 1 : 0;
+        }
+        points += pp.size();
+        pass.rays += proj.rays();
+        pass.seconds += proj.seconds();
+    }
+    pass.reason = "high to low: rays from " + std::to_string(points) + " points of " +
+                  std::to_string(targets.size()) + " low-poly meshes to their sources, " +
+                  std::to_string(hits) + " hit";
+    return pass;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -300,7 +377,7 @@ Work make_work(const SceneFile& scene, const Target& t, const std::string& point
 struct Layout {
     std::size_t b2 = 0, nc = 0;  // bands^2, irradiance coefficients
     std::size_t ao = 0, bent = 2, bent_se = 5, vis = 6, vis_se = 0, tr = 0, tr_se = 0, tr_rgb = 0,
-                irr = 0, irr_se = 0, rad = 0, rad_se = 0, inside = 0, stride = 0;
+                irr = 0, irr_se = 0, rad = 0, rad_se = 0, inside = 0, h2l = 0, stride = 0;
     explicit Layout(const render::BakeSettings& s)
         : b2(std::size_t(s.bands) * std::size_t(s.bands)), nc(std::size_t(s.coeffs)) {
         vis_se = vis + b2;
@@ -312,7 +389,8 @@ struct Layout {
         rad = irr_se + nc;
         rad_se = rad + 3 * b2;
         inside = rad_se + b2;
-        stride = inside + 1;
+        h2l = inside + 1;
+        stride = h2l + 4;
     }
 };
 
@@ -400,6 +478,8 @@ std::vector<Column> columns(const render::BakeSettings& s, const Layout& L, bool
         list("rad_stderr_", L.rad_se, L.b2);
         c.push_back({"inside", L.inside});
     }
+    if (has(q, kNormalMap))
+        c.insert(c.end(), {{"normal_x", L.h2l}, {"normal_y", L.h2l + 1}, {"normal_z", L.h2l + 2}});
     return c;
 }
 
@@ -410,6 +490,7 @@ Json settings_json(const render::BakeSettings& s) {
     Json q = Json::array();
     for (render::Quantity b : kQuantities)
         if (has(s.quantities, b)) q.push_back(render::quantity_name(b));
+    if (has(s.quantities, kNormalMap)) q.push_back(kNormalMapName);
     Json j = {{"quantities", q},    {"bands", s.bands},        {"basis", s.basis},
               {"coeffs", s.coeffs}, {"rays", s.rays},          {"bounces", s.bounces},
               {"seed", s.seed},     {"max_distance", nullptr}, {"target_error", s.target_error}};
@@ -476,12 +557,15 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
     Json outputs = Json::array();
     const std::size_t nc = cols.size();
     if (w.target.kind == TargetKind::vertices) {
+        // High to low: whether each vertex's ray hit its source (1 on meshes without one).
+        std::vector<Column> vcols = cols;
+        if (!high_to_low_targets(scene).empty()) vcols.push_back({"coverage", L.h2l + 3});
         for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
             const render::Mesh& m = scene.meshes[k].mesh;
             const std::vector<double> nd = render::vertex_normals(m.view());
             const std::vector<float> n(nd.begin(), nd.end());
             std::vector<std::string> names = {"x", "y", "z", "nx", "ny", "nz"};
-            for (const Column& c : cols) names.push_back(c.name);
+            for (const Column& c : vcols) names.push_back(c.name);
             std::vector<float> vals;
             vals.reserve(m.vertex_count() * names.size());
             for (std::size_t v = 0; v < m.vertex_count(); ++v) {
@@ -490,7 +574,7 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
                 vals.insert(vals.end(), n.begin() + std::ptrdiff_t(3 * v),
                             n.begin() + std::ptrdiff_t(3 * v + 3));
                 const double* r = rec.data() + (w.mesh_begin[k] + v) * L.stride;
-                for (const Column& c : cols) vals.push_back(static_cast<float>(r[c.offset]));
+                for (const Column& c : vcols) vals.push_back(static_cast<float>(r[c.offset]));
             }
             const std::string file = scene.meshes[k].name + ".ply";
             out.add(join_path(out_dir, file),
@@ -500,7 +584,7 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
                                {"mesh", scene.meshes[k].name},
                                {"kind", "ply"},
                                {"vertices", m.vertex_count()},
-                               {"channels", column_names(cols)}});
+                               {"channels", column_names(vcols)}});
         }
     } else if (w.target.kind == TargetKind::texels) {
         for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
@@ -514,6 +598,13 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
                         px[c] = static_cast<float>(r[cols[c].offset]);
                 });
             for (std::size_t p = 0; p < npx; ++p) img[p * nch + nc] = lay.covered[p] ? 1.0f : 0.0f;
+            // High to low: texels whose ray missed the source are not covered.
+            for (std::size_t i = 0; i < lay.samples.size(); ++i)
+                if (rec[(w.mesh_begin[k] + i) * L.stride + L.h2l + 3] == 0)
+                    img[(std::size_t(lay.samples[i].y) * std::size_t(lay.width) +
+                         std::size_t(lay.samples[i].x)) *
+                            nch +
+                        nc] = 0.0f;
             std::vector<std::string> names;
             for (const Column& c : cols) names.push_back(c.name);
             names.push_back("coverage");
@@ -814,6 +905,11 @@ int run_bake(const BakeOptions& o) {
             "--target probes: probes bake only radiance (they have no surface "
             "normal for ao, bent, visibility, transfer or irradiance); give "
             "--quantities radiance");
+    if (has(s.quantities, kNormalMap) && target.kind != TargetKind::vertices &&
+        target.kind != TargetKind::texels)
+        throw UsageError(
+            "--quantities normal_map: the tangent-space normal map is baked per vertex or texel "
+            "(--target vertices or texels:RES) of meshes with a \"source\"");
     const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
     const bool write_files = !points_mode || o.out_opt->count() > 0;
     const bool gltf = o.format == "gltf";
@@ -856,7 +952,8 @@ int run_bake(const BakeOptions& o) {
                          " at " + format_bytes(bytes_per_point(s)) + " each");
 
     const auto t_layout0 = Clock::now();
-    const Work w = make_work(scene, target, o.points);
+    Work w = make_work(scene, target, o.points);
+    const render::Pass projection = project_sources(scene, w);
     const double t_layout = seconds_since(t_layout0);
     if (points_mode && any(s.quantities & ~render::Quantity::radiance))
         for (std::size_t i = 0; i < w.points.size(); ++i)
@@ -892,15 +989,20 @@ int run_bake(const BakeOptions& o) {
     const std::vector<render::BakePoint> mine(w.points.begin() + std::ptrdiff_t(begin),
                                               w.points.begin() + std::ptrdiff_t(end));
 
-    const render::SceneDesc desc = scene.scene_desc();
+    // Low-poly meshes with a source never occlude (render/high_to_low.hpp).
+    const render::SceneDesc desc =
+        render::high_to_low_occluders(scene.scene_desc(), high_to_low_targets(scene));
     const auto t_bake0 = Clock::now();
-    render::Baker baker(desc, s);
+    // Without a quantity of the Baker (normal_map alone) nothing is traced beyond projection.
+    std::unique_ptr<render::Baker> baker;
+    if (any(baker_settings(s).quantities))
+        baker = std::make_unique<render::Baker>(desc, baker_settings(s));
     if (write_files) out.prepare();
-    std::vector<render::PointResult> results;
-    {
+    std::vector<render::PointResult> results(baker ? 0 : mine.size());
+    if (baker) {
         Progress bar("bake", static_cast<long long>(mine.size()));
         results =
-            baker.bake(mine, [&bar](std::size_t k) { bar.update(static_cast<long long>(k)); });
+            baker->bake(mine, [&bar](std::size_t k) { bar.update(static_cast<long long>(k)); });
         bar.done();
     }
     const double t_bake = seconds_since(t_bake0);
@@ -908,7 +1010,10 @@ int run_bake(const BakeOptions& o) {
         throw std::runtime_error("the baker returned " + std::to_string(results.size()) +
                                  " results for " + std::to_string(mine.size()) + " points");
     const Layout L(s);
-    const std::vector<double> rec = pack(L, results);
+    std::vector<double> rec = pack(L, results);
+    for (std::size_t k = 0; k < mine.size(); ++k)
+        std::copy(w.h2l[begin + k].begin(), w.h2l[begin + k].end(),
+                  rec.begin() + std::ptrdiff_t(k * L.stride + L.h2l));
     // The scene's limits (docs/scene-format.md) keep every result finite; should one not be,
     // no file is written with it (a PLY or EXR of inf or NaN at exit 0 would pass for a bake).
     for (std::size_t i = 0; i < rec.size(); ++i)
@@ -917,7 +1022,9 @@ int run_bake(const BakeOptions& o) {
                                      std::to_string(begin + i / L.stride) + " (value " +
                                      std::to_string(i % L.stride) +
                                      " of its record); nothing was written");
-    const std::uint64_t rays = baker.rays_traced();
+    std::vector<render::Pass> plan = baker ? baker->plan() : std::vector<render::Pass>{};
+    if (projection.rays > 0) plan.insert(plan.begin(), projection);
+    const std::uint64_t rays = (baker ? baker->rays_traced() : 0) + projection.rays;
 
     Json summary = {{"tool", "sphbasis bake"},
                     {"scene", scene.path},
@@ -925,7 +1032,7 @@ int run_bake(const BakeOptions& o) {
                     {"points", total},
                     {"seed", s.seed},
                     {"settings", settings_json(s)},
-                    {"plan", plan_json(baker.plan())},
+                    {"plan", plan_json(plan)},
                     {"rays", rays},
                     {"rays_per_second", t_bake > 0 ? static_cast<double>(rays) / t_bake : 0.0}};
     if (shard.count > 1)
@@ -1010,7 +1117,9 @@ int run_merge(const MergeOptions& o) {
     const Json& js = h0.at("settings");
     s.quantities = render::Quantity{};
     for (const Json& q : js.at("quantities"))
-        s.quantities |= render::quantity_of_name(q.get<std::string>());
+        s.quantities |= q.get<std::string>() == kNormalMapName
+                            ? kNormalMap
+                            : render::quantity_of_name(q.get<std::string>());
     s.bands = js.at("bands").get<int>();
     s.basis = js.at("basis").get<std::string>();
     s.coeffs = js.at("coeffs").get<int>();
@@ -1100,10 +1209,12 @@ Run setup_bake(CLI::App& app) {
         "radiance of a scene (docs/scene-format.md) per vertex (PLY), per texel (EXR), on the\n"
         "scene's probe grid (JSON) or at points (JSON lines on stdout). Writes OUT/bake.json\n"
         "with the pass plan, timings and settings. --shard I/N bakes 1/N of the points for\n"
-        "`sphbasis bake-merge`.");
+        "`sphbasis bake-merge`. A mesh with a \"source\" is baked from its high-poly source\n"
+        "(docs/baking.md, \"High to low\").");
     add_scene(app, o->scene);
     app.add_option("--quantities", o->quantities,
-                   "comma-separated: ao, bent, visibility, transfer, irradiance, radiance")
+                   "comma-separated: ao, bent, visibility, transfer, irradiance, radiance, "
+                   "normal_map (meshes with a \"source\")")
         ->type_name("LIST")
         ->capture_default_str();
     // render::Baker's range (BakeSettings::bands).

@@ -655,12 +655,76 @@ void check_mesh_header(const Ctx& c, const std::string& where, const std::string
                      number_text(faces) + " faces");
 }
 
-SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::size_t index) {
+SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::size_t index,
+                    bool is_cage);
+
+/// The high- to low-poly keys of a mesh (docs/scene-format.md): "source" (a mesh name, resolved
+/// by resolve_sources()), "cage" (a mesh of the same vertices and triangles) and
+/// "max_ray_distance".
+void load_high_to_low(const Ctx& c, const json& j, const std::string& where, std::size_t index,
+                      SceneMesh& sm) {
+    if (!j.contains("source")) {
+        for (const char* k : {"cage", "max_ray_distance"})
+            if (j.contains(k)) c.fail(sub(where, k), "needs a \"source\" mesh");
+        return;
+    }
+    sm.source_mesh = string(c, j["source"], sub(where, "source"));
+    if (sm.source_mesh.empty()) c.fail(sub(where, "source"), "expected a mesh name, got ''");
+    if (j.contains("max_ray_distance")) {
+        const double d = number(c, j["max_ray_distance"], sub(where, "max_ray_distance"));
+        if (!(d > 0 && d <= render::coordinate_limit))
+            c.fail(sub(where, "max_ray_distance"),
+                   "expected a distance in (0, 1e15], got " + number_text(d));
+        sm.max_ray_distance = d;
+    }
+    if (j.contains("cage")) {
+        SceneMesh cage = load_mesh(c, j["cage"], sub(where, "cage"), index, true);
+        const render::Mesh& t = sm.mesh;
+        if (cage.mesh.vertex_count() != t.vertex_count() || cage.mesh.indices != t.indices)
+            c.fail(sub(where, "cage"),
+                   "expected a mesh of the same " + std::to_string(t.vertex_count()) +
+                       " vertices and " + std::to_string(t.triangle_count()) +
+                       " triangles as the mesh, got " + std::to_string(cage.mesh.vertex_count()) +
+                       " vertices and " + std::to_string(cage.mesh.triangle_count()) +
+                       (cage.mesh.vertex_count() == t.vertex_count() &&
+                                cage.mesh.triangle_count() == t.triangle_count()
+                            ? " triangles (other triangles)"
+                            : " triangles"));
+        sm.cage = std::make_shared<const std::vector<float>>(std::move(cage.mesh.positions));
+    }
+}
+
+/// Each mesh's "source" name as a mesh index: another mesh of the scene, itself no target.
+void resolve_sources(const Ctx& c, SceneFile& s) {
+    std::vector<std::string> names;
+    for (const SceneMesh& m : s.meshes) names.push_back(m.name);
+    for (std::size_t i = 0; i < s.meshes.size(); ++i) {
+        SceneMesh& m = s.meshes[i];
+        if (m.source_mesh.empty()) continue;
+        const std::string where = sub(at("meshes", i), "source");
+        const auto it = std::find(names.begin(), names.end(), m.source_mesh);
+        if (it == names.end()) {
+            const std::string near = closest_key(m.source_mesh, names);
+            c.fail(where, "no mesh named '" + shown(m.source_mesh) + "'" +
+                              (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+        }
+        const std::size_t k = std::size_t(it - names.begin());
+        if (k == i) c.fail(where, "a mesh cannot be its own source");
+        if (!s.meshes[k].source_mesh.empty())
+            c.fail(where, "the source '" + shown(m.source_mesh) +
+                              "' has a source itself (a low-poly mesh cannot be a source)");
+        m.bake_source = static_cast<long>(k);
+    }
+}
+
+SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::size_t index,
+                    bool is_cage = false) {
     if (!j.is_object()) c.fail(where, "expected an object, got " + type_name(j));
     const bool has_file = j.contains("file"), has_shape = j.contains("shape");
     if (has_file == has_shape) c.fail(where, "expected exactly one of \"file\" or \"shape\"");
     std::vector<std::string> keys = {"name",       "transform", "albedo",  "albedo_map",
                                      "normal_map", "shininess", "specular"};
+    if (!is_cage) keys.insert(keys.end(), {"source", "cage", "max_ray_distance"});
     std::string kind;
     if (has_file) {
         keys.insert(keys.end(), {"file", "smoothing_angle_deg"});
@@ -758,6 +822,7 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
         const render::RGB k = color(c, j["specular"], sub(where, "specular"), 1.0);
         sm.mesh.specular = {float(k[0]), float(k[1]), float(k[2])};
     }
+    load_high_to_low(c, j, where, index, sm);
     return sm;
 }
 
@@ -1025,6 +1090,7 @@ SceneFile load_scene(const std::string& path) {
             path + ": meshes: ", vertices * bytes_per_vertex + triangles * bytes_per_triangle,
             "the meshes up to meshes[" + std::to_string(i) + "]");
     }
+    resolve_sources(c, s);
     if (j.contains("environment")) load_environment(c, j["environment"], s);
     if (j.contains("lights")) {
         const json& ls = j["lights"];

@@ -14,6 +14,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <sphbasis/render/bake.hpp>
 #include <sphbasis/render/bake_file.hpp>
@@ -40,6 +41,13 @@ struct SceneMesh {
     render::Mesh mesh;
     SceneTexture normal_map;  // tangent-space normal map, [0, 1] per channel (also in mesh)
     std::size_t dropped_triangles = 0;  // zero-area or non-finite triangles removed on load
+    /// High to low (render/high_to_low.hpp): the "source" mesh's name and index (-1: none), the
+    /// "cage" positions (null: none; same vertices and triangles as `mesh`) and
+    /// "max_ray_distance" (infinite: none).
+    std::string source_mesh;
+    long bake_source = -1;
+    std::shared_ptr<const std::vector<float>> cage;
+    double max_ray_distance = std::numeric_limits<double>::infinity();
 };
 
 /// "camera": kept for the renderer (the bake does not use it).
