@@ -95,7 +95,9 @@ TEST_CASE("bake record: every number in its place, short lists padded, equal cha
 
     // One transfer list (equal channels) stands for all three; a short list is padded with 0;
     // a quantity not baked is a block of zeros.
-    r.transfer = {{1, 2}, {}, {}};
+    r.transfer[0] = {1, 2};
+    r.transfer[1].clear();
+    r.transfer[2].clear();
     r.transfer_rgb = false;
     r.radiance = {};
     r.radiance_stderr = {};
