@@ -84,6 +84,21 @@ sphbasis_render_test(cache_corrupt "warning: [^\n]*unreadable cache file.*render
 # its checksum (docs/bake-format.md): warned about and re-baked, never used.
 sphbasis_render_test(cache_bit_flip "warning: [^\n]*unreadable cache file \\(sphbasis::render::read_bake_file\\(\\): expected the checksum to match, got a corrupt file\\); baking again.*render-report-ok"
   "rm -rf render_flip && \"${_render}\" render ${_rscenes}/tiny_sun.json --representations ao --rays 16 --out render_flip 2>/dev/null && for f in render_flip/cache/*.bin; do python3 -c \"import sys; p=sys.argv[1]; b=bytearray(open(p,'rb').read()); b[len(b)-30]^=1; open(p,'wb').write(b)\" $f; done && \"${_render}\" render ${_rscenes}/tiny_sun.json --representations ao --rays 16 --out render_flip 2>&1 >/dev/null | grep warning; python3 ${_check_report} render_flip bakes_loaded=0")
+# A render reuses what `sphbasis bake` stored for the same settings (docs/bake-format.md, "Reuse
+# by render"): with --bake it runs no bake, every bake it reads comes from the bake's directory
+# (the plan says so), the values are byte for byte those of the same render baking itself, and
+# so are its images (check_bake_reuse.py). Vertex PRT transfer with a bounce and texel ao + bent.
+set(_check_reuse ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_bake_reuse.py)
+sphbasis_render_test(bake_reuse "plan-ok\nbake-reuse-ok: 4 bakes, [0-9]+ points, 2 images identical\nrender-report-ok"
+  "rm -rf reuse_b reuse_r reuse_f && \"${_render}\" bake ${_rscenes}/tiny_sun.json --quantities transfer --bands 3 --bounces 1 --rays 16 --out reuse_b 2>/dev/null && \"${_render}\" bake ${_rscenes}/tiny_sun.json --quantities ao,bent --target texels:8 --rays 16 --out reuse_b 2>/dev/null && \"${_render}\" render ${_rscenes}/tiny_sun.json --representations prt-vertex,ao --lightmap-size 8 --rays 16 --bake reuse_b --out reuse_r 2>reuse_r.err && grep -q 'reuse: 4 of 4 bakes from reuse_b' reuse_r.err && grep -q '4 from --bake reuse_b' reuse_r.err && echo plan-ok && \"${_render}\" render ${_rscenes}/tiny_sun.json --representations prt-vertex,ao --lightmap-size 8 --rays 16 --out reuse_f 2>/dev/null && python3 ${_check_reuse} reuse_b reuse_r reuse_f && python3 ${_check_report} reuse_r bakes_run=0 bakes_loaded=4")
+# A bake of other settings, of another scene, or none at all is refused before any work, with
+# one line saying why; no output directory is created.
+sphbasis_render_test(bake_reuse_settings "render: --bake reuse_s: none of its bakes has this render's settings \\(it holds vertex transfer: bands 3, rays 16, bounces 1, seed 1; this render needs vertex transfer: bands 3, rays 16, bounces 1, seed 0\\); bake with these or drop --bake\nrefused-ok"
+  "rm -rf reuse_s reuse_so && \"${_render}\" bake ${_rscenes}/tiny_sun.json --quantities transfer --bands 3 --bounces 1 --rays 16 --seed 1 --out reuse_s 2>/dev/null && ! \"${_render}\" render ${_rscenes}/tiny_sun.json --representations prt-vertex --rays 16 --bake reuse_s --out reuse_so 2>&1 >/dev/null && ! test -e reuse_so && echo refused-ok")
+sphbasis_render_test(bake_reuse_scene "render: --bake reuse_o: its bakes are of another scene \\(other geometry, albedos or lighting\\); bake this scene or drop --bake\nrefused-ok"
+  "rm -rf reuse_o reuse_oo && \"${_render}\" bake ${_rscenes}/tiny_sun.json --quantities transfer --bands 3 --bounces 1 --rays 16 --out reuse_o 2>/dev/null && ! \"${_render}\" render ${_rscenes}/tiny_sphere.json --representations prt-vertex --rays 16 --bake reuse_o --out reuse_oo 2>&1 >/dev/null && ! test -e reuse_oo && echo refused-ok")
+sphbasis_render_test(bake_reuse_empty "render: --bake reuse_e: no bakes there \\(expected reuse_e/cache/<key>.bin, written by `sphbasis bake --out reuse_e`\\)\nrefused-ok"
+  "rm -rf reuse_e reuse_eo && mkdir reuse_e && ! \"${_render}\" render ${_rscenes}/tiny_sun.json --representations prt-vertex --rays 16 --bake reuse_e --out reuse_eo 2>&1 >/dev/null && ! test -e reuse_eo && echo refused-ok")
 # --no-cache keeps no cache directory.
 sphbasis_render_test(no_cache "no-cache-ok"
   "rm -rf render_nocache && \"${_render}\" render ${_rscenes}/tiny_sun.json --representations ao --rays 16 --no-cache --out render_nocache 2>/dev/null && ! test -e render_nocache/cache && echo no-cache-ok")

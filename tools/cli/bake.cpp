@@ -36,6 +36,9 @@
 // (normal_x/y/z) and `coverage` marks the points whose ray missed (EXR channel; PLY property).
 // Every file bake also writes OUT/bake.json: scene, target, settings, seed, the pass plan (each
 // pass's name, reason, rays and seconds), timings and the output files with their channels.
+// A complete bake of vertices, texels or probes also stores its results for `sphbasis render`:
+// OUT/cache/<key>.bin, the entries render's bake cache reads for the same settings (bit for bit
+// what render would bake; docs/bake-format.md, "Reuse by render"); --no-cache skips them.
 // The files of a run are written all or none (support/output_file.hpp): every name is checked
 // (and OUT created) after the scene and options are valid and before the bake; the files are
 // staged in OUT and moved into place together at the end, so a failure or a signal leaves OUT
@@ -70,6 +73,7 @@
 #include <sphbasis/render/bake_file.hpp>
 #include <sphbasis/render/bake_points.hpp>
 #include <sphbasis/render/high_to_low.hpp>
+#include <sphbasis/render/bake_record.hpp>
 #include <sphbasis/render/lightmap.hpp>
 #include <sphbasis/render/probe_grid.hpp>
 #include <sstream>
@@ -77,6 +81,7 @@
 #include <vector>
 
 #include "../support/engine_export.hpp"
+#include "../support/bake_cache.hpp"
 #include "../support/exr.hpp"
 #include "../support/json.hpp"
 #include "../support/memory.hpp"
@@ -374,58 +379,9 @@ render::Pass project_sources(const SceneFile& scene, Work& w) {
 // Results as fixed-size records of doubles: the one form that is printed, written, sharded and
 // merged, so that every path gives the same bits.
 
-struct Layout {
-    std::size_t b2 = 0, nc = 0;  // bands^2, irradiance coefficients
-    std::size_t ao = 0, bent = 2, bent_se = 5, vis = 6, vis_se = 0, tr = 0, tr_se = 0, tr_rgb = 0,
-                irr = 0, irr_se = 0, rad = 0, rad_se = 0, inside = 0, h2l = 0, stride = 0;
-    explicit Layout(const render::BakeSettings& s)
-        : b2(std::size_t(s.bands) * std::size_t(s.bands)), nc(std::size_t(s.coeffs)) {
-        vis_se = vis + b2;
-        tr = vis_se + b2;
-        tr_se = tr + 3 * b2;
-        tr_rgb = tr_se + b2;
-        irr = tr_rgb + 1;
-        irr_se = irr + 3 * nc;
-        rad = irr_se + nc;
-        rad_se = rad + 3 * b2;
-        inside = rad_se + b2;
-        h2l = inside + 1;
-        stride = h2l + 4;
-    }
-};
-
-void copy_n(const std::vector<double>& v, std::size_t n, double* out) {
-    for (std::size_t i = 0; i < n; ++i) out[i] = i < v.size() ? v[i] : 0.0;
-}
-
-std::vector<double> pack(const Layout& L, const std::vector<render::PointResult>& rs) {
-    std::vector<double> out(L.stride * rs.size(), 0.0);
-    for (std::size_t k = 0; k < rs.size(); ++k) {
-        const render::PointResult& r = rs[k];
-        double* o = out.data() + k * L.stride;
-        o[L.ao] = r.ao;
-        o[L.ao + 1] = r.ao_stderr;
-        o[L.bent] = r.bent.x;
-        o[L.bent + 1] = r.bent.y;
-        o[L.bent + 2] = r.bent.z;
-        o[L.bent_se] = r.bent_stderr;
-        copy_n(r.visibility, L.b2, o + L.vis);
-        copy_n(r.visibility_stderr, L.b2, o + L.vis_se);
-        for (std::size_t c = 0; c < 3; ++c) {
-            // Equal channels may come as one list: R stands for all three.
-            const std::vector<double>& t = r.transfer[c].empty() ? r.transfer[0] : r.transfer[c];
-            copy_n(t, L.b2, o + L.tr + c * L.b2);
-            copy_n(r.irradiance[c], L.nc, o + L.irr + c * L.nc);
-            copy_n(r.radiance[c], L.b2, o + L.rad + c * L.b2);
-        }
-        copy_n(r.transfer_stderr, L.b2, o + L.tr_se);
-        copy_n(r.irradiance_stderr, L.nc, o + L.irr_se);
-        copy_n(r.radiance_stderr, L.b2, o + L.rad_se);
-        o[L.tr_rgb] = r.transfer_rgb ? 1.0 : 0.0;
-        o[L.inside] = r.inside ? 1.0 : 0.0;
-    }
-    return out;
-}
+// The layout of a record and the packing: render/bake_record.hpp (shared with the
+// representations' fields).
+using Layout = render::RecordLayout;
 
 /// The channels written for the requested quantities: name and offset in the record.
 struct Column {
@@ -844,10 +800,60 @@ ShardData read_shard(const std::string& file) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Reuse by `sphbasis render` (docs/bake-format.md): a complete bake of vertices, texels or probes
+// also stores its results as the bake-cache entries render reads, OUT/cache/<key>.bin (one per
+// mesh with triangles; probes: one), each under render::bake_key() of the request render makes
+// for the same settings, so `sphbasis render --out OUT` or `--bake OUT` loads them instead of
+// baking. The entries are whole files (support/bake_cache.hpp), written before the outputs are
+// committed; like render's cache they are kept whatever happens after.
+
+/// Stores the parts of a complete bake (results of every point, in id order) in OUT/cache and
+/// returns bake.json's "render_cache" entry. Times and rays are shared out by point count.
+Json store_for_render(const render::SceneDesc& desc, const SceneFile& scene, const Work& w,
+                      const render::BakeSettings& s,
+                      const std::vector<render::PointResult>& results,
+                      const std::vector<render::Pass>& plan, double seconds, std::uint64_t rays,
+                      const std::string& out_dir) {
+    DiskBakeCache cache(join_path(out_dir, "cache"));
+    Json entries = Json::array();
+    const bool probes = w.target.kind == TargetKind::probes;
+    const std::size_t parts = probes ? 1 : desc.meshes.size();
+    for (std::size_t k = 0; k < parts; ++k) {
+        if (!probes && desc.meshes[k].triangle_count == 0) continue;  // render bakes none
+        render::BakeData d;
+        d.request.mesh = probes ? 0 : k;
+        d.request.settings = s;
+        d.request.lighting_dependent = render::depends_on_lighting(s.quantities);
+        if (probes) {
+            d.request.where = render::BakeRequest::Where::probes;
+            d.request.probes = scene.probes;
+        } else if (w.target.kind == TargetKind::texels) {
+            d.request.where = render::BakeRequest::Where::texel;
+            d.request.lightmap_size = w.target.res;
+            d.layout = w.layouts[k];
+        }
+        const std::size_t b = probes ? 0 : w.mesh_begin[k];
+        const std::size_t e = probes ? results.size() : w.mesh_begin[k + 1];
+        d.results.assign(results.begin() + std::ptrdiff_t(b), results.begin() + std::ptrdiff_t(e));
+        const double share = results.empty() ? 0.0 : double(e - b) / double(results.size());
+        d.plan = plan;
+        d.seconds = seconds * share;
+        d.rays = static_cast<std::uint64_t>(double(rays) * share);
+        const std::uint64_t key = render::bake_key(desc, d.request);
+        cache.store(key, d);
+        Json entry = {{"file", "cache/" + hex_key(key) + ".bin"}, {"key", hex_key(key)}};
+        if (!probes) entry["mesh"] = scene.meshes[k].name;
+        entries.push_back(entry);
+    }
+    return entries;
+}
+
+// ---------------------------------------------------------------------------------------------
 
 struct BakeOptions {
     std::string scene, quantities = "ao", basis = "sh", target = "vertices", points, out = ".",
                        shard, max_distance, format = "native", encoding = "png8", exports;
+    bool no_cache = false;
     long long bands = 3, coeffs = 9, rays = 256, bounces = 0, seed = 0;
     CLI::Option *target_opt = nullptr, *points_opt = nullptr, *out_opt = nullptr,
                 *maxd_opt = nullptr;
@@ -1010,7 +1016,7 @@ int run_bake(const BakeOptions& o) {
         throw std::runtime_error("the baker returned " + std::to_string(results.size()) +
                                  " results for " + std::to_string(mine.size()) + " points");
     const Layout L(s);
-    std::vector<double> rec = pack(L, results);
+    std::vector<double> rec = render::pack_records(L, results);
     for (std::size_t k = 0; k < mine.size(); ++k)
         std::copy(w.h2l[begin + k].begin(), w.h2l[begin + k].end(),
                   rec.begin() + std::ptrdiff_t(k * L.stride + L.h2l));
@@ -1062,13 +1068,17 @@ int run_bake(const BakeOptions& o) {
             } else if (!points_mode) {
                 summary["outputs"] = write_outputs(scene, w, s, rec, o.out, out);
             }
+            // A high-to-low bake's points are not the render's: nothing for render to reuse.
+            if (!points_mode && !o.no_cache && baker && high_to_low_targets(scene).empty())
+                summary["render_cache"] = store_for_render(desc, scene, w, baker_settings(s),
+                                                           results, plan, t_bake, rays, o.out);
             summary["seconds"] = {{"load", t_load},
                                   {"layout", t_layout},
                                   {"bake", t_bake},
                                   {"write", seconds_since(t_write0)},
                                   {"total", seconds_since(t_start)}};
             out.add(join_path(o.out, points_mode ? "bake-points.json" : "bake.json"),
-                    dump_json(summary, {{"plan", 2}, {"outputs", 2}}) + "\n");
+                    dump_json(summary, {{"plan", 2}, {"outputs", 2}, {"render_cache", 2}}) + "\n");
         }
         out.commit();
     }
@@ -1254,6 +1264,8 @@ Run setup_bake(CLI::App& app) {
                    "--format gltf: transfer by PCA or CPCA (pca:M, cpca:C:M), Toksvig's table "
                    "(toksvig:S)")
         ->type_name("LIST");
+    app.add_flag("--no-cache", o->no_cache,
+                 "do not also store the results in OUT/cache for `sphbasis render` to reuse");
     return [o] { return run_bake(*o); };
 }
 

@@ -15,7 +15,10 @@
 //   written all or none (support/output_file.hpp): every name is checked before any work, the
 //   files are staged in DIR/.sphbasis-staging-<pid>-<n> and moved into place together at the
 //   end, so a failed or interrupted run (SIGINT, SIGTERM) leaves the directory as it was.
-// Bakes are kept in DIR/cache/<key>.bin (support/bake_cache.hpp) unless --no-cache.
+// Bakes are kept in DIR/cache/<key>.bin (support/bake_cache.hpp) unless --no-cache. With
+// --bake BDIR the bakes `sphbasis bake --out BDIR` stored for the same settings (BDIR/cache, in
+// the same format and keys) are read first; a BDIR holding none of this render's bakes is one
+// line saying why (no bakes, another scene, other settings) before any work.
 //
 // Sampling: every image comes from render::ImageLoop (render/image_loop.hpp). The
 // representations compared with the path tracer are rendered with its seed and its final
@@ -76,6 +79,7 @@ struct RenderOptions {
               lightmap_size = 128, prt_bands = 3, specular_ss = 4, lxh_lighting_bands = 0,
               lxh_table_size = 32;
     std::string noise_limit_text;
+    std::string bake_dir;  // --bake
     bool no_cache = false, aovs = false;
     CLI::Option *spp_opt = nullptr, *noise_opt = nullptr, *width_opt = nullptr,
                 *height_opt = nullptr, *exposure_opt = nullptr, *tonemap_opt = nullptr,
@@ -166,6 +170,74 @@ std::string request_details(const render::BakeRequest& r) {
         d +=
             ", lightmap " + std::to_string(r.lightmap_size) + "x" + std::to_string(r.lightmap_size);
     return d;
+}
+
+/// The bakes `sphbasis render` reads: first those of `sphbasis bake --out DIR` (--bake DIR: its
+/// DIR/cache, read only), then its own cache (--out DIR/cache, null with --no-cache), where fresh
+/// bakes are stored.
+class ReuseCache : public render::BakeCache {
+  public:
+    ReuseCache(DiskBakeCache* from_bake, DiskBakeCache* own) : from_bake_(from_bake), own_(own) {}
+    bool load(std::uint64_t key, render::BakeData& out) override {
+        if (from_bake_ && from_bake_->load(key, out)) {
+            from_bake_keys_.insert(key);
+            return true;
+        }
+        return own_ && own_->load(key, out);
+    }
+    void store(std::uint64_t key, const render::BakeData& data) override {
+        if (own_) own_->store(key, data);
+    }
+    /// Whether the bake of `key` was loaded from --bake DIR.
+    bool from_bake(std::uint64_t key) const { return from_bake_keys_.count(key) > 0; }
+
+  private:
+    DiskBakeCache *from_bake_, *own_;
+    std::set<std::uint64_t> from_bake_keys_;
+};
+
+/// The one line saying why none of a render's bakes is in `sphbasis bake`'s DIR/cache: no
+/// entries, entries of another scene (their key, recomputed from this scene, differs), or of
+/// other settings (the first one held and the first one needed are named).
+std::string bake_mismatch(const std::string& dir, const render::SceneDesc& desc,
+                          const std::vector<std::string>& needed) {
+    const std::string cache_dir = join_path(dir, "cache");
+    std::size_t entries = 0, other_scene = 0;
+    std::string held;
+    std::error_code ec;
+    for (std::filesystem::directory_iterator it(cache_dir, ec), end; !ec && it != end;
+         it.increment(ec)) {
+        if (entries >= 256) break;
+        const std::filesystem::path& p = it->path();
+        if (p.extension() != ".bin" || !it->is_regular_file(ec)) continue;
+        try {
+            std::ifstream in(p, std::ios::binary);
+            const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                                                  std::istreambuf_iterator<char>());
+            const render::BakeFileView v =
+                render::read_bake_file(bytes, render::BakeFileKind::cache);
+            const render::BakeData d = render::deserialize(v.payload, v.payload_size);
+            ++entries;
+            if (render::bake_key(desc, d.request) != v.input_hash) {
+                ++other_scene;
+            } else if (held.empty()) {
+                held = where_text(d.request.where) + " " +
+                       render::quantity_names(d.request.settings.quantities) + ": " +
+                       request_details(d.request);
+            }
+        } catch (const std::exception&) {
+            // An unreadable entry fits nothing; the reasons are render's cache warnings.
+        }
+    }
+    const std::string pre = "--bake " + dir + ": ";
+    if (entries == 0)
+        return pre + "no bakes there (expected " + cache_dir +
+               "/<key>.bin, written by `sphbasis bake --out " + dir + "`)";
+    if (held.empty())
+        return pre + "its bakes are of another scene (other geometry, albedos or lighting); " +
+               "bake this scene or drop --bake";
+    return pre + "none of its bakes has this render's settings (it holds " + held +
+           "; this render needs " + needed.front() + "); bake with these or drop --bake";
 }
 
 /// A progress bar fed with (done, total) pairs from any thread (the library's callbacks), in
@@ -510,6 +582,25 @@ int run_render(const RenderOptions& o) {
         b.lighting_dependent = r.lighting_dependent;
         rep.bakes.push_back(b);
     }
+    // --bake DIR: the bakes `sphbasis bake --out DIR` stored for the same settings are read
+    // instead of baked; a DIR with none of them is refused before any work.
+    if (!o.bake_dir.empty() && !keys.empty()) {
+        const DiskBakeCache probe(join_path(o.bake_dir, "cache"));
+        std::size_t found = 0;
+        for (std::uint64_t k : keys) {
+            std::error_code ec;
+            found += std::filesystem::is_regular_file(probe.path_of(k), ec) ? 1 : 0;
+        }
+        if (found == 0) {
+            std::vector<std::string> needed;
+            for (const PlannedBake& b : rep.bakes)
+                needed.push_back(b.where + " " + b.quantities + ": " + b.details);
+            throw std::runtime_error(bake_mismatch(o.bake_dir, desc, needed));
+        }
+        rep.plan.push_back({"reuse", std::to_string(found) + " of " + std::to_string(keys.size()) +
+                                         " bakes from " + o.bake_dir +
+                                         " (sphbasis bake), the others baked"});
+    }
     // Which representation reads which bake.
     for (std::size_t n = 0; n < names.size(); ++n)
         for (std::size_t i : reps.reads(n)) rep.bakes[i].read_by.push_back(names[n]);
@@ -526,8 +617,11 @@ int run_render(const RenderOptions& o) {
 
     // --- Bakes.
     files.prepare();
-    std::unique_ptr<DiskBakeCache> cache;
+    std::unique_ptr<DiskBakeCache> cache, from_bake;
     if (!o.no_cache) cache = std::make_unique<DiskBakeCache>(join_path(o.out, "cache"));
+    if (!o.bake_dir.empty())
+        from_bake = std::make_unique<DiskBakeCache>(join_path(o.bake_dir, "cache"));
+    ReuseCache reuse(from_bake.get(), cache.get());
     std::vector<bool> cached_before(keys.size(), false);
     for (std::size_t i = 0; i < keys.size() && cache; ++i) {
         std::error_code ec;
@@ -535,17 +629,26 @@ int run_render(const RenderOptions& o) {
     }
     {
         FractionBar bar("bake");
-        reps.prepare(cache.get(), [&bar](std::uint64_t d, std::uint64_t t) { bar(d, t); });
+        reps.prepare(cache || from_bake ? &reuse : nullptr,
+                     [&bar](std::uint64_t d, std::uint64_t t) { bar(d, t); });
         bar.done();
     }
     rep.bakes_run = reps.bakes_run();
     rep.bakes_loaded = reps.bakes_loaded();
-    if (cache) rep.warnings = cache->warnings();
+    if (from_bake) rep.warnings = from_bake->warnings();
+    if (cache)
+        rep.warnings.insert(rep.warnings.end(), cache->warnings().begin(), cache->warnings().end());
+    std::size_t reused = 0;
     for (std::size_t i = 0; i < rep.bakes.size(); ++i) {
         bool corrupt = false;
         for (const std::string& w : rep.warnings)
-            corrupt = corrupt || w.rfind(cache->path_of(keys[i]), 0) == 0;
-        rep.bakes[i].status = cached_before[i] && !corrupt ? "from cache" : "baked";
+            corrupt = corrupt || (cache && w.rfind(cache->path_of(keys[i]), 0) == 0);
+        if (reuse.from_bake(keys[i]) && reps.bake_data(i).from_cache) {
+            rep.bakes[i].status = "from bake " + o.bake_dir;
+            ++reused;
+        } else {
+            rep.bakes[i].status = cached_before[i] && !corrupt ? "from cache" : "baked";
+        }
     }
 
     // --- The reference.
@@ -712,9 +815,13 @@ int run_render(const RenderOptions& o) {
     files.commit();
     std::fprintf(stderr,
                  "sphbasis render: %zu representations, reference %d spp (noise %.3g) in %.3g s, "
-                 "%zu bakes run, %zu from the cache; wrote %s\n",
+                 "%zu bakes run, %zu from the cache%s; wrote %s\n",
                  names.size(), rep.spp, rep.relative_noise, rep.reference_seconds, rep.bakes_run,
-                 rep.bakes_loaded, join_path(o.out, "report.html").c_str());
+                 rep.bakes_loaded,
+                 o.bake_dir.empty()
+                     ? ""
+                     : (" (" + std::to_string(reused) + " from --bake " + o.bake_dir + ")").c_str(),
+                 join_path(o.out, "report.html").c_str());
     return 0;
 }
 
@@ -776,6 +883,10 @@ Run setup_render(CLI::App& app) {
                    "(default 0.05)")
         ->type_name("X");
     app.add_flag("--no-cache", o->no_cache, "bake everything again; keep no bake cache");
+    add_path(app, "--bake", o->bake_dir,
+             "read the bakes `sphbasis bake --out DIR` stored for the same settings (DIR/cache) "
+             "instead of baking them")
+        ->type_name("DIR");
     app.add_flag("--aovs", o->aovs,
                  "also write the reference's first-hit normal, albedo and position "
                  "(aov_normal.exr, aov_albedo.exr, aov_position.exr)");

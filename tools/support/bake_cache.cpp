@@ -39,8 +39,7 @@ bool DiskBakeCache::load(std::uint64_t key, render::BakeData& out) {
         const render::BakeFileView v = render::read_bake_file(bytes, render::BakeFileKind::cache);
         if (v.input_hash != key)
             throw std::runtime_error("a bake of another key (" + hex_key(v.input_hash) + ")");
-        render::BakeData d =
-            render::deserialize(std::vector<std::uint8_t>(v.payload, v.payload + v.payload_size));
+        render::BakeData d = render::deserialize(v.payload, v.payload_size);
         d.from_cache = true;
         out = std::move(d);
         ++hits_;

@@ -12,7 +12,8 @@
 //                     with a rotated environment therefore re-bakes nothing for PRT and only
 //                     lightmaps and probes for a changed light.
 //   serialize(), deserialize()
-//                     the versioned bytes of a BakeData and back.
+//                     the versioned bytes of a BakeData and back (render/bake_file.hpp's
+//                     ByteWriter and bounds-checked ByteReader).
 //   BakeCache         where bakes are kept (the tool keeps files: tools/support/bake_cache.hpp);
 //                     MemoryBakeCache keeps them in memory (tests).
 #pragma once
@@ -27,6 +28,7 @@
 
 #include "../core/error.hpp"
 #include "bake.hpp"
+#include "bake_file.hpp"
 #include "detail/rt_math.hpp"
 #include "lighting.hpp"
 #include "lightmap.hpp"
@@ -34,6 +36,13 @@
 #include "probe_grid.hpp"
 
 namespace sphbasis::render {
+
+/// Whether a bake of `quantities` depends on the lighting (BakeRequest::lighting_dependent, as
+/// the representations and `sphbasis bake` set it): irradiance and radiance do; ao, bent,
+/// visibility, transfer and transfer_matrix do not.
+constexpr bool depends_on_lighting(Quantity quantities) noexcept {
+    return has(quantities, Quantity::irradiance | Quantity::radiance);
+}
 
 /// One bake a representation reads.
 struct BakeRequest {
@@ -100,135 +109,57 @@ inline void hash_texture(Hasher& h, const TextureView& t) {
     h.array(t.texels, n);
 }
 
-/// Little-endian writer.
-struct Writer {
-    std::vector<std::uint8_t> out;
-    void u64(std::uint64_t v) {
-        for (int k = 0; k < 8; ++k) out.push_back(std::uint8_t(v >> (8 * k)));
-    }
-    void u32(std::uint32_t v) {
-        for (int k = 0; k < 4; ++k) out.push_back(std::uint8_t(v >> (8 * k)));
-    }
-    void i32(int v) { u32(static_cast<std::uint32_t>(v)); }
-    void u8(std::uint8_t v) { out.push_back(v); }
-    void f64(double x) {
-        std::uint64_t w;
-        std::memcpy(&w, &x, 8);
-        u64(w);
-    }
-    void v3(const vec3<double>& v) {
-        f64(v.x);
-        f64(v.y);
-        f64(v.z);
-    }
-    void str(const std::string& s) {
-        u64(s.size());
-        out.insert(out.end(), s.begin(), s.end());
-    }
-    void vec(const std::vector<double>& v) {
-        u64(v.size());
-        for (double x : v) f64(x);
-    }
-};
+// Payloads are written and read with render/bake_file.hpp's ByteWriter and ByteReader (every
+// read bounds-checked); a signed int is its two's-complement u32, a vec3 three f64.
+inline void put_i32(ByteWriter& w, int v) { w.u32(static_cast<std::uint32_t>(v)); }
+inline int get_i32(ByteReader& r) { return static_cast<int>(r.u32()); }
+inline void put_v3(ByteWriter& w, const vec3<double>& v) {
+    w.f64(v.x);
+    w.f64(v.y);
+    w.f64(v.z);
+}
+inline vec3<double> get_v3(ByteReader& r) {
+    const double x = r.f64(), y = r.f64();
+    return {x, y, r.f64()};
+}
 
-/// Little-endian reader; every read checks the remaining bytes.
-struct Reader {
-    const std::vector<std::uint8_t>& in;
-    std::size_t pos = 0;
-    [[noreturn]] void truncated() const {
-        sphbasis::detail::throw_runtime("render::deserialize",
-                                        "a complete bake record, got " + std::to_string(in.size()) +
-                                            " bytes, truncated at byte " + std::to_string(pos));
-    }
-    void need(std::size_t n) const {
-        if (n > in.size() - pos) truncated();
-    }
-    std::uint64_t u64() {
-        need(8);
-        std::uint64_t v = 0;
-        for (int k = 0; k < 8; ++k) v |= std::uint64_t(in[pos + std::size_t(k)]) << (8 * k);
-        pos += 8;
-        return v;
-    }
-    std::uint32_t u32() {
-        need(4);
-        std::uint32_t v = 0;
-        for (int k = 0; k < 4; ++k) v |= std::uint32_t(in[pos + std::size_t(k)]) << (8 * k);
-        pos += 4;
-        return v;
-    }
-    int i32() { return static_cast<int>(u32()); }
-    std::uint8_t u8() {
-        need(1);
-        return in[pos++];
-    }
-    double f64() {
-        const std::uint64_t w = u64();
-        double x;
-        std::memcpy(&x, &w, 8);
-        return x;
-    }
-    vec3<double> v3() {
-        const double x = f64(), y = f64();
-        return {x, y, f64()};
-    }
-    /// A count of items of at least `min_bytes` each that must fit in the rest.
-    std::size_t count(std::size_t min_bytes) {
-        const std::uint64_t n = u64();
-        if (min_bytes > 0 && n > (in.size() - pos) / min_bytes) truncated();
-        return static_cast<std::size_t>(n);
-    }
-    std::string str() {
-        const std::size_t n = count(1);
-        std::string s(in.begin() + std::ptrdiff_t(pos), in.begin() + std::ptrdiff_t(pos + n));
-        pos += n;
-        return s;
-    }
-    std::vector<double> vec() {
-        const std::size_t n = count(8);
-        std::vector<double> v(n);
-        for (double& x : v) x = f64();
-        return v;
-    }
-};
-
-inline void write_settings(Writer& w, const BakeSettings& s) {
+inline void write_settings(ByteWriter& w, const BakeSettings& s) {
     w.u32(static_cast<std::uint32_t>(s.quantities));
-    w.i32(s.bands);
+    put_i32(w, s.bands);
     w.str(s.basis);
-    w.i32(s.coeffs);
-    w.i32(s.rays);
-    w.i32(s.bounces);
+    put_i32(w, s.coeffs);
+    put_i32(w, s.rays);
+    put_i32(w, s.bounces);
     w.u64(s.seed);
     w.f64(s.max_distance);
     w.f64(s.target_error);
     w.u8(s.force_all_passes ? 1 : 0);
 }
-inline BakeSettings read_settings(Reader& r) {
+inline BakeSettings read_settings(ByteReader& r) {
     BakeSettings s;
     s.quantities = static_cast<Quantity>(r.u32());  // checked by the Baker and the key
-    s.bands = r.i32();
+    s.bands = get_i32(r);
     s.basis = r.str();
-    s.coeffs = r.i32();
-    s.rays = r.i32();
-    s.bounces = r.i32();
+    s.coeffs = get_i32(r);
+    s.rays = get_i32(r);
+    s.bounces = get_i32(r);
     s.seed = r.u64();
     s.max_distance = r.f64();
     s.target_error = r.f64();
     s.force_all_passes = r.u8() != 0;
     return s;
 }
-inline void write_request(Writer& w, const BakeRequest& q) {
+inline void write_request(ByteWriter& w, const BakeRequest& q) {
     w.u8(static_cast<std::uint8_t>(q.where));
     w.u64(q.mesh);
     write_settings(w, q.settings);
-    w.i32(q.lightmap_size);
+    put_i32(w, q.lightmap_size);
     w.u8(q.lighting_dependent ? 1 : 0);
-    w.v3(q.probes.lo);
-    w.v3(q.probes.hi);
-    for (int c : q.probes.counts) w.i32(c);
+    put_v3(w, q.probes.lo);
+    put_v3(w, q.probes.hi);
+    for (int c : q.probes.counts) put_i32(w, c);
 }
-inline BakeRequest read_request(Reader& r) {
+inline BakeRequest read_request(ByteReader& r) {
     BakeRequest q;
     const std::uint8_t where = r.u8();
     if (where > 2)
@@ -237,23 +168,23 @@ inline BakeRequest read_request(Reader& r) {
     q.where = static_cast<BakeRequest::Where>(where);
     q.mesh = static_cast<std::size_t>(r.u64());
     q.settings = read_settings(r);
-    q.lightmap_size = r.i32();
+    q.lightmap_size = get_i32(r);
     q.lighting_dependent = r.u8() != 0;
-    q.probes.lo = r.v3();
-    q.probes.hi = r.v3();
-    for (int& c : q.probes.counts) c = r.i32();
+    q.probes.lo = get_v3(r);
+    q.probes.hi = get_v3(r);
+    for (int& c : q.probes.counts) c = get_i32(r);
     return q;
 }
 /// The identity of a request (its bytes), for finding distinct requests.
 inline std::vector<std::uint8_t> request_bytes(const BakeRequest& q) {
-    Writer w;
+    ByteWriter w;
     write_request(w, q);
-    return std::move(w.out);
+    return w.take();
 }
 inline std::vector<std::uint8_t> settings_bytes(const BakeSettings& s) {
-    Writer w;
+    ByteWriter w;
     write_settings(w, s);
-    return std::move(w.out);
+    return w.take();
 }
 
 constexpr char magic[8] = {'S', 'P', 'H', 'B', 'B', 'A', 'K', 'E'};
@@ -321,51 +252,50 @@ inline std::uint64_t bake_key(const SceneDesc& scene, const BakeRequest& request
 /// and rays; integers little-endian, doubles as their IEEE-754 bits, vectors and strings
 /// length-prefixed (64-bit). from_cache is not stored (deserialize sets it).
 inline std::vector<std::uint8_t> serialize(const BakeData& data) {
-    repr_detail::Writer w;
+    ByteWriter w;
     for (char c : repr_detail::magic) w.u8(static_cast<std::uint8_t>(c));
     w.u32(repr_detail::format_version);
     repr_detail::write_request(w, data.request);
     const LightmapLayout& L = data.layout;
-    w.i32(L.width);
-    w.i32(L.height);
+    repr_detail::put_i32(w, L.width);
+    repr_detail::put_i32(w, L.height);
     w.u64(L.samples.size());
     for (const LightmapSample& s : L.samples) {
-        w.i32(s.x);
-        w.i32(s.y);
-        w.v3(s.point.p);
-        w.v3(s.point.n);
-        w.v3(s.point.tangent);
+        repr_detail::put_i32(w, s.x);
+        repr_detail::put_i32(w, s.y);
+        repr_detail::put_v3(w, s.point.p);
+        repr_detail::put_v3(w, s.point.n);
+        repr_detail::put_v3(w, s.point.tangent);
         w.f64(s.point.bitangent_sign);
         w.u64(s.point.id);
         w.u32(s.triangle);
         for (double b : s.barycentric) w.f64(b);
-        w.v3(s.surface);
+        repr_detail::put_v3(w, s.surface);
         w.f64(s.u);
         w.f64(s.v);
         w.f64(s.bitangent_sign);
         w.f64(s.offset);
     }
-    w.u64(L.covered.size());
-    w.out.insert(w.out.end(), L.covered.begin(), L.covered.end());
+    w.u8s(L.covered);
     w.u64(L.skipped_triangles);
     w.u64(L.degenerate_triangles);
     w.u64(data.results.size());
     for (const PointResult& r : data.results) {
         w.f64(r.ao);
         w.f64(r.ao_stderr);
-        w.v3(r.bent);
+        repr_detail::put_v3(w, r.bent);
         w.f64(r.bent_stderr);
-        w.vec(r.visibility);
-        w.vec(r.visibility_stderr);
-        for (const auto& v : r.transfer) w.vec(v);
-        w.vec(r.transfer_stderr);
+        w.f64s(r.visibility);
+        w.f64s(r.visibility_stderr);
+        for (const auto& v : r.transfer) w.f64s(v);
+        w.f64s(r.transfer_stderr);
         w.u8(r.transfer_rgb ? 1 : 0);
-        for (const auto& v : r.irradiance) w.vec(v);
-        w.vec(r.irradiance_stderr);
-        for (const auto& v : r.radiance) w.vec(v);
-        w.vec(r.radiance_stderr);
-        for (const auto& v : r.transfer_matrix) w.vec(v);
-        w.vec(r.transfer_matrix_stderr);
+        for (const auto& v : r.irradiance) w.f64s(v);
+        w.f64s(r.irradiance_stderr);
+        for (const auto& v : r.radiance) w.f64s(v);
+        w.f64s(r.radiance_stderr);
+        for (const auto& v : r.transfer_matrix) w.f64s(v);
+        w.f64s(r.transfer_matrix_stderr);
         w.u8(r.inside ? 1 : 0);
     }
     w.u64(data.plan.size());
@@ -377,15 +307,14 @@ inline std::vector<std::uint8_t> serialize(const BakeData& data) {
     }
     w.f64(data.seconds);
     w.u64(data.rays);
-    return std::move(w.out);
+    return w.take();
 }
-inline BakeData deserialize(const std::vector<std::uint8_t>& bytes) {
+inline BakeData deserialize(const std::uint8_t* bytes, std::size_t size) {
     constexpr const char* fn = "render::deserialize";
-    repr_detail::Reader r{bytes};
-    if (bytes.size() < 12 || std::memcmp(bytes.data(), repr_detail::magic, 8) != 0)
+    if (size < 12 || std::memcmp(bytes, repr_detail::magic, 8) != 0)
         sphbasis::detail::throw_runtime(fn, "bytes starting with the magic \"SPHBBAKE\", got " +
-                                                std::to_string(bytes.size()) + " bytes without it");
-    r.pos = 8;
+                                                std::to_string(size) + " bytes without it");
+    ByteReader r(bytes + 8, size - 8, fn);
     const std::uint32_t version = r.u32();
     if (version != repr_detail::format_version)
         sphbasis::detail::throw_runtime(fn, "format version " +
@@ -394,48 +323,45 @@ inline BakeData deserialize(const std::vector<std::uint8_t>& bytes) {
     BakeData d;
     d.request = repr_detail::read_request(r);
     LightmapLayout& L = d.layout;
-    L.width = r.i32();
-    L.height = r.i32();
+    L.width = repr_detail::get_i32(r);
+    L.height = repr_detail::get_i32(r);
     L.samples.resize(r.count(8 * 27));
     for (LightmapSample& s : L.samples) {
-        s.x = r.i32();
-        s.y = r.i32();
-        s.point.p = r.v3();
-        s.point.n = r.v3();
-        s.point.tangent = r.v3();
+        s.x = repr_detail::get_i32(r);
+        s.y = repr_detail::get_i32(r);
+        s.point.p = repr_detail::get_v3(r);
+        s.point.n = repr_detail::get_v3(r);
+        s.point.tangent = repr_detail::get_v3(r);
         s.point.bitangent_sign = r.f64();
         s.point.id = r.u64();
         s.triangle = r.u32();
         for (double& b : s.barycentric) b = r.f64();
-        s.surface = r.v3();
+        s.surface = repr_detail::get_v3(r);
         s.u = r.f64();
         s.v = r.f64();
         s.bitangent_sign = r.f64();
         s.offset = r.f64();
     }
-    const std::size_t nc = r.count(1);
-    L.covered.assign(bytes.begin() + std::ptrdiff_t(r.pos),
-                     bytes.begin() + std::ptrdiff_t(r.pos + nc));
-    r.pos += nc;
+    L.covered = r.u8s();
     L.skipped_triangles = static_cast<std::size_t>(r.u64());
     L.degenerate_triangles = static_cast<std::size_t>(r.u64());
     d.results.resize(r.count(8 * 6 + 8 * 18 + 2));
     for (PointResult& p : d.results) {
         p.ao = r.f64();
         p.ao_stderr = r.f64();
-        p.bent = r.v3();
+        p.bent = repr_detail::get_v3(r);
         p.bent_stderr = r.f64();
-        p.visibility = r.vec();
-        p.visibility_stderr = r.vec();
-        for (auto& v : p.transfer) v = r.vec();
-        p.transfer_stderr = r.vec();
+        p.visibility = r.f64s();
+        p.visibility_stderr = r.f64s();
+        for (auto& v : p.transfer) v = r.f64s();
+        p.transfer_stderr = r.f64s();
         p.transfer_rgb = r.u8() != 0;
-        for (auto& v : p.irradiance) v = r.vec();
-        p.irradiance_stderr = r.vec();
-        for (auto& v : p.radiance) v = r.vec();
-        p.radiance_stderr = r.vec();
-        for (auto& v : p.transfer_matrix) v = r.vec();
-        p.transfer_matrix_stderr = r.vec();
+        for (auto& v : p.irradiance) v = r.f64s();
+        p.irradiance_stderr = r.f64s();
+        for (auto& v : p.radiance) v = r.f64s();
+        p.radiance_stderr = r.f64s();
+        for (auto& v : p.transfer_matrix) v = r.f64s();
+        p.transfer_matrix_stderr = r.f64s();
         p.inside = r.u8() != 0;
     }
     d.plan.resize(r.count(32));
@@ -447,12 +373,12 @@ inline BakeData deserialize(const std::vector<std::uint8_t>& bytes) {
     }
     d.seconds = r.f64();
     d.rays = r.u64();
-    if (r.pos != bytes.size())
-        sphbasis::detail::throw_runtime(
-            fn, "a bake record of " + std::to_string(r.pos) + " bytes, got " +
-                    std::to_string(bytes.size() - r.pos) + " trailing bytes");
+    r.finish();  // "... trailing bytes" for bytes after the record
     d.from_cache = true;
     return d;
+}
+inline BakeData deserialize(const std::vector<std::uint8_t>& bytes) {
+    return deserialize(bytes.data(), bytes.size());
 }
 
 /// Where bakes are kept between runs (the tool keeps files; tests keep memory).

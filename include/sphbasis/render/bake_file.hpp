@@ -80,6 +80,7 @@ class InputHash {
 /// Little-endian writer of a payload.
 class ByteWriter {
   public:
+    void u8(std::uint8_t v) { out_.push_back(v); }
     void u32(std::uint32_t v) {
         for (int i = 0; i < 4; ++i) out_.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
     }
@@ -101,6 +102,11 @@ class ByteWriter {
         u64(v.size());
         for (double d : v) f64(d);
     }
+    /// u64 count, then the bytes.
+    void u8s(const std::vector<std::uint8_t>& v) {
+        u64(v.size());
+        out_.insert(out_.end(), v.begin(), v.end());
+    }
     const std::vector<std::uint8_t>& bytes() const noexcept { return out_; }
     std::vector<std::uint8_t> take() noexcept { return std::move(out_); }
 
@@ -114,6 +120,10 @@ class ByteReader {
   public:
     ByteReader(const std::uint8_t* data, std::size_t size, const char* fn)
         : p_(data), n_(size), fn_(fn) {}
+    std::uint8_t u8() {
+        need(1);
+        return p_[pos_++];
+    }
     std::uint32_t u32() {
         need(4);
         std::uint32_t v = 0;
@@ -152,6 +162,12 @@ class ByteReader {
     std::vector<double> f64s() {
         std::vector<double> v(count(8));
         for (double& d : v) d = f64();
+        return v;
+    }
+    std::vector<std::uint8_t> u8s() {
+        const std::size_t c = count(1);
+        std::vector<std::uint8_t> v(p_ + pos_, p_ + pos_ + c);
+        pos_ += c;
         return v;
     }
     std::size_t remaining() const noexcept { return n_ - pos_; }

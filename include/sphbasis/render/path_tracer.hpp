@@ -645,6 +645,24 @@ class PathTracer {
             });
     }
 
+    /// A path's random numbers: rnd(dim) = unit(hash of (its key, dim)).
+    struct PathRandom {
+        std::uint64_t key;
+        double operator()(std::uint64_t dim) const noexcept {
+            return detail::rt::unit(detail::pt::hash_mixed(key, dim));
+        }
+    };
+    /// The per-path preamble of the stages sample_emitters and sample_bsdf: f(P, hit, path
+    /// index, random numbers) for every live path of the batch, in path order.
+    template <class F>
+    static void for_live_paths(std::size_t n, Scratch& sc, F&& f) {
+        for (std::size_t k = 0; k < n; ++k) {
+            PathState& P = sc.paths[k];
+            if (!P.alive) continue;
+            f(P, P.h, static_cast<std::uint32_t>(k), PathRandom{P.key});
+        }
+    }
+
     /// Stage 2, per live path: the shading normal (normal map), next-event estimation (the
     /// environment's and each analytic light's sample: a shadow ray and a pending contribution
     /// each), and whether a BRDF sample follows (its key and normal into the lobe arrays).
@@ -653,13 +671,9 @@ class PathTracer {
         using namespace detail::rt;
         constexpr double inf = std::numeric_limits<double>::infinity();
         Bsdf bsdf;
-        for (std::size_t k = 0; k < n; ++k) {
-            PathState& P = sc.paths[k];
-            if (!P.alive) continue;
-            const Hit& h = P.h;
-            const auto path = static_cast<std::uint32_t>(k);
-            const std::uint64_t key = P.key;
-            auto rnd = [key](std::uint64_t dim) { return unit(detail::pt::hash_mixed(key, dim)); };
+        const auto per_path = [&](PathState& P, const Hit& h, std::uint32_t path,
+                                  const PathRandom& rnd) {
+            const std::size_t k = path;
             V3 ns = h.shading_normal;
             if (h.normal_map) {
                 ++c.normal_map_lookups;
@@ -668,7 +682,7 @@ class PathTracer {
             if (first && d.depth == 0) first[k].normal = ns;
             if (!emitters_) {
                 sc.kill(P);
-                continue;
+                return;
             }
             const V3 ng = h.geometric_normal, x = h.position;
             P.x = x;
@@ -727,13 +741,14 @@ class PathTracer {
             // path at once (cosine_lobe, then sample_bsdf).
             if (!d.more && !env_any_ && !nondelta_) {
                 sc.kill(P);
-                continue;
+                return;
             }
-            sc.key[k] = key;
+            sc.key[k] = P.key;
             sc.nx[k] = ns.x;
             sc.ny[k] = ns.y;
             sc.nz[k] = ns.z;
-        }
+        };
+        for_live_paths(n, sc, per_path);
     }
 
     /// A shadow ray from x (offset along ng) toward w, built in place in the stream (a record
@@ -753,11 +768,9 @@ class PathTracer {
     void sample_bsdf(const Depth& d, std::size_t n, TraceCounters& c, Scratch& sc) const {
         using namespace detail::rt;
         Bsdf bsdf;
-        for (std::size_t k = 0; k < n; ++k) {
-            PathState& P = sc.paths[k];
-            if (!P.alive) continue;
-            const Hit& h = P.h;
-            const auto path = static_cast<std::uint32_t>(k);
+        const auto per_path = [&](PathState& P, const Hit& h, std::uint32_t path,
+                                  const PathRandom& rnd) {
+            const std::size_t k = path;
             const V3 ng = h.geometric_normal, x = P.x;
             V3 wi;
             double pb;
@@ -770,28 +783,24 @@ class PathTracer {
                 const double cf = folded_cosine({sc.nx[k], sc.ny[k], sc.nz[k]}, ng, wi);
                 if (!(cf > 0)) {
                     sc.kill(P);
-                    continue;
+                    return;
                 }
                 pb = cf * constants::inv_pi;
                 w = detail::pt::mul(P.beta, h.albedo);
             } else {
                 const V3 ns{sc.nx[k], sc.ny[k], sc.nz[k]};
                 bsdf.init(h, ns);
-                const std::uint64_t key = P.key;
-                auto rnd = [key](std::uint64_t dim) {
-                    return unit(detail::pt::hash_mixed(key, dim));
-                };
                 wi = bsdf.sample(P.wo, rnd(d.d0 + 2), rnd(d.d0 + 3), rnd(d.d0 + 4));
                 // A specular direction below the geometric surface ends the path.
                 const double cf = folded_cosine(ns, ng, wi);
                 if (!(cf > 0)) {
                     sc.kill(P);
-                    continue;
+                    return;
                 }
                 pb = bsdf.pdf(P.wo, wi, c.specular_evaluations);
                 if (!(pb > 0)) {
                     sc.kill(P);
-                    continue;
+                    return;
                 }
                 const RGB f = bsdf.eval_cos(P.wo, wi, cf, c.specular_evaluations);
                 w = {f[0] / pb, f[1] / pb, f[2] / pb};
@@ -806,7 +815,8 @@ class PathTracer {
                 ++c.bounce_rays;
             else
                 ++c.shadow_rays;
-        }
+        };
+        for_live_paths(n, sc, per_path);
     }
 
     /// Stage 4: the shadow stream, then the BRDF stream (closest hits, or occlusion queries

@@ -17,6 +17,7 @@
 
 #include "../bake.hpp"
 #include "../bake_cache.hpp"
+#include "../bake_record.hpp"
 #include "../lightmap.hpp"
 #include "../probe_grid.hpp"
 #include "../scene.hpp"
@@ -33,41 +34,48 @@ struct Field {
     ProbeGrid grid;
 };
 
-/// Channels of a result: ao + bent (4), transfer (3 bands^2) or irradiance (3 coeffs).
-inline int channels_of(const BakeSettings& s) noexcept {
-    if (has(s.quantities, Quantity::transfer_matrix)) return 27 * s.bands * s.bands;
-    if (has(s.quantities, Quantity::transfer)) return 3 * s.bands * s.bands;
-    if (has(s.quantities, Quantity::irradiance)) return 3 * s.coeffs;
-    if (has(s.quantities, Quantity::visibility)) return s.bands * s.bands;
-    return 4;
+/// The quantity a field of a bake holds: the first of transfer_matrix, transfer, irradiance and
+/// visibility the bake has; else ao and bent (ao | bent).
+inline Quantity field_quantity(const BakeSettings& s) noexcept {
+    for (Quantity q : {Quantity::transfer_matrix, Quantity::transfer, Quantity::irradiance,
+                       Quantity::visibility})
+        if (has(s.quantities, q)) return q;
+    return Quantity::ao | Quantity::bent;
 }
-inline void pack(const BakeSettings& s, const PointResult& r, float* out) noexcept {
-    if (has(s.quantities, Quantity::transfer_matrix)) {
-        const std::size_t n = 9 * std::size_t(s.bands * s.bands);
-        for (std::size_t c = 0; c < 3; ++c)
-            for (std::size_t k = 0; k < n; ++k)
-                out[c * n + k] =
-                    k < r.transfer_matrix[c].size() ? float(r.transfer_matrix[c][k]) : 0.f;
-    } else if (has(s.quantities, Quantity::transfer)) {
-        const std::size_t n = std::size_t(s.bands * s.bands);
-        for (std::size_t c = 0; c < 3; ++c)
-            for (std::size_t k = 0; k < n; ++k)
-                out[c * n + k] = k < r.transfer[c].size() ? float(r.transfer[c][k]) : 0.f;
-    } else if (has(s.quantities, Quantity::irradiance)) {
-        const std::size_t n = std::size_t(s.coeffs);
-        for (std::size_t c = 0; c < 3; ++c)
-            for (std::size_t k = 0; k < n; ++k)
-                out[c * n + k] = k < r.irradiance[c].size() ? float(r.irradiance[c][k]) : 0.f;
-    } else if (has(s.quantities, Quantity::visibility)) {
-        const std::size_t n = std::size_t(s.bands * s.bands);
-        for (std::size_t k = 0; k < n; ++k)
-            out[k] = k < r.visibility.size() ? float(r.visibility[k]) : 0.f;
-    } else {
-        out[0] = float(r.ao);
-        out[1] = float(r.bent.x);
-        out[2] = float(r.bent.y);
-        out[3] = float(r.bent.z);
+/// Channels of a result: the values of field_quantity()'s block (render/bake_record.hpp)
+/// without its standard errors and flags: transfer_matrix 27 bands^2, transfer 3 bands^2,
+/// irradiance 3 coeffs, visibility bands^2; ao + bent 4 (ao, bent x, y, z).
+inline int channels_of(const BakeSettings& s) noexcept {
+    const int b2 = s.bands * s.bands;
+    switch (field_quantity(s)) {
+        case Quantity::transfer_matrix:
+            return 27 * b2;
+        case Quantity::transfer:
+            return 3 * b2;
+        case Quantity::irradiance:
+            return 3 * s.coeffs;
+        case Quantity::visibility:
+            return b2;
+        default:
+            return 4;
     }
+}
+/// Point r's channels_of(s) values at float precision: the leading values of its
+/// render::pack_quantity() block (ao + bent: ao, then bent x, y, z).
+inline void pack(const BakeSettings& s, const PointResult& r, float* out) {
+    const Quantity q = field_quantity(s);
+    if (q == (Quantity::ao | Quantity::bent)) {
+        float ao[2], bent[4];
+        pack_quantity(Quantity::ao, s, r, ao);
+        pack_quantity(Quantity::bent, s, r, bent);
+        out[0] = ao[0];
+        std::copy(bent, bent + 3, out + 1);
+        return;
+    }
+    const std::size_t b2 = std::size_t(s.bands) * std::size_t(s.bands);
+    std::vector<float> block(quantity_block_size(q, b2, std::size_t(s.coeffs)));
+    pack_quantity(q, b2, std::size_t(s.coeffs), r, block.data());
+    std::copy(block.begin(), block.begin() + channels_of(s), out);
 }
 
 /// A vertex or texel field of `channels` values per point of bake d, point i's written by
