@@ -75,11 +75,12 @@ TEST_CASE("render::stitch_seams: the sphere's seam and the box's edges agree aft
         CHECK(st.max_jump_before == Approx(before));
         CHECK(st.max_jump_after == Approx(seam_jump(img.data(), c.res, c.res, 1, 1, seams)));
         // After: the jump is a small fraction of what it was, the texels moved by at most
-        // about the jump, and only texels next to the seams moved.
-        CHECK(st.max_jump_after < 0.02 * before);
+        // about the jump (corner texels of the box, read by two seams, somewhat more), and
+        // only texels next to the seams moved.
+        CHECK(st.max_jump_after < 0.03 * before);
         std::size_t moved = 0;
         for (std::size_t i = 0; i < img.size(); ++i) {
-            CHECK(std::fabs(img[i] - baked[i]) <= before);
+            CHECK(std::fabs(img[i] - baked[i]) <= 1.5 * before);
             moved += img[i] != baked[i] ? 1 : 0;
         }
         CHECK(moved <= st.texels);
