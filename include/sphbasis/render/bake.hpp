@@ -99,6 +99,10 @@
 // hash (seed, id, path, bounce). A result depends only on (seed, id, settings, scene), never on
 // threads or order. Rays leave surfaces from x + epsilon n (render::Scene::epsilon(); hits:
 // offset_origin()).
+// Adaptive sampling (BakeSettings::adaptive, off by default): a point traces batches of `rays`
+// rays, batch b shifted by (seed, id, b), pooled, until each targeted quantity's standard error
+// (point_error()) meets its target or max_rays is reached; AdaptiveSummary estimates the rays a
+// fixed count with the same worst-case error would trace.
 //
 // The pass plan (plan()): "build" (the Embree scene);
 // "analytic" (points that nothing can occlude, render::Scene::can_occlude(): ao = 1, bent = n,
