@@ -17,7 +17,8 @@
 //                id = mesh index * RES^2 + y * RES + x), gutters dilated by render::lightmap_gutter
 //                texels (render::assemble_lightmap). Writes OUT/<mesh>.exr (float channels named as
 //                the PLY properties, plus "coverage": 1 where a texel was baked, 0 in gutters and
-//                empty space).
+//                empty space); seams stitched (render::stitch_seams, on the non-crease seams of
+//                render::find_seams; bake.json's output entry reports the jumps before/after).
 //   probes       the scene's "probes" grid (point id = probe index). Writes OUT/probes.json.
 //   --points F   points read from F or standard input ('-'): `x y z nx ny nz` (surface) or
 //                `x y z` (free point) per line, '#' comments and blank lines skipped; point
@@ -54,6 +55,13 @@
 // so the merged data files are bit-identical to an unsharded bake's; bake.json differs only in
 // its timings and its "shards" entry. With --points, a shard prints its own lines (merging is
 // concatenation in shard order).
+//
+// Adaptive sampling (--target-error X or NAME:X,..., --max-rays N; render::AdaptiveSampling):
+// each point traces batches of --rays rays until its standard error of each named quantity is
+// at most X or N rays per pass are reached; bake.json's "adaptive" reports the batches, the
+// worst errors reached, the rays traced and the rays of a fixed count with the same worst-case
+// error (render::AdaptiveSummary, an estimate by the 1/sqrt(N) law). Deterministic per
+// (seed, point id) like every bake, so shards merge bit for bit.
 #include <sys/stat.h>
 
 #include <CLI/CLI.hpp>
@@ -76,6 +84,7 @@
 #include <sphbasis/render/bake_record.hpp>
 #include <sphbasis/render/lightmap.hpp>
 #include <sphbasis/render/probe_grid.hpp>
+#include <sphbasis/render/seams.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -451,7 +460,83 @@ Json settings_json(const render::BakeSettings& s) {
               {"coeffs", s.coeffs}, {"rays", s.rays},          {"bounces", s.bounces},
               {"seed", s.seed},     {"max_distance", nullptr}, {"target_error", s.target_error}};
     if (std::isfinite(s.max_distance)) j["max_distance"] = s.max_distance;
+    if (s.adaptive.enabled()) {  // absent otherwise: fixed bakes hash as before
+        Json t = Json::object();
+        for (render::Quantity b : kQuantities)
+            if (s.adaptive[b] > 0) t[render::quantity_name(b)] = s.adaptive[b];
+        j["adaptive"] = {{"target_error", t}, {"max_rays", s.adaptive.max_rays}};
+    }
     return j;
+}
+
+/// --target-error: one error for every requested quantity ("0.01") or NAME:ERROR pairs
+/// ("ao:0.01,irradiance:0.02"); --max-rays (default 16 --rays).
+void parse_adaptive(const std::string& spec, long long max_rays, render::BakeSettings& s) {
+    if (spec.empty()) {
+        if (max_rays > 0) throw UsageError("--max-rays needs --target-error");
+        return;
+    }
+    std::stringstream in(spec);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        const std::size_t colon = item.find(':');
+        const std::string name = colon == std::string::npos ? "" : item.substr(0, colon);
+        const double x =
+            to_real(item.substr(colon == std::string::npos ? 0 : colon + 1), "--target-error");
+        if (!(x > 0) || !std::isfinite(x))
+            throw UsageError("--target-error: expected errors > 0, got '" + quote_input(item) +
+                             "'");
+        const render::Quantity q = render::quantity_of_name(name);
+        if (!name.empty() && !has(s.quantities, q))
+            throw UsageError("--target-error: '" + quote_input(name) +
+                             "' is not one of the --quantities (" +
+                             render::quantity_names(s.quantities) + ")");
+        for (render::Quantity b : kQuantities)
+            if (name.empty() ? has(s.quantities, b) : b == q) s.adaptive[b] = x;
+    }
+    s.adaptive.max_rays = static_cast<int>(max_rays > 0 ? max_rays : 16LL * s.rays);
+    if (s.adaptive.max_rays < s.rays)
+        throw UsageError("--max-rays: expected at least --rays (" + std::to_string(s.rays) +
+                         "), got " + std::to_string(s.adaptive.max_rays));
+}
+
+/// bake.json's "adaptive": the settings, what the points did, and the rays of a fixed count
+/// with the same worst-case error (render::AdaptiveSummary; the raw sums let bake-merge join
+/// the shards' summaries).
+Json adaptive_json(const render::BakeSettings& s, const render::AdaptiveSummary& a) {
+    Json worst = Json::object(), ne2 = Json::object();
+    for (render::Quantity b : kQuantities)
+        if (s.adaptive[b] > 0) {
+            worst[render::quantity_name(b)] = a.worst[render::quantity_index(b)];
+            ne2[render::quantity_name(b)] = a.worst_ne2[render::quantity_index(b)];
+        }
+    const double fixed = a.fixed_total(s);
+    return {{"points", a.points},
+            {"batches", a.batches},
+            {"unconverged_points", a.unconverged},
+            {"mean_rays_per_pass", a.points ? double(a.batches) * s.rays / double(a.points) : 0.0},
+            {"worst_error", worst},
+            {"worst_n_error2", ne2},
+            {"rays_per_batch_sum", a.rays_per_batch},
+            {"rays_traced", a.rays},
+            {"fixed_rays_per_pass", a.fixed_rays(s)},
+            {"fixed_rays_estimate", fixed},
+            {"rays_saved", fixed - double(a.rays)},
+            {"saved_fraction", fixed > 0 ? 1 - double(a.rays) / fixed : 0.0}};
+}
+
+render::AdaptiveSummary adaptive_summary_of(const Json& j) {
+    render::AdaptiveSummary a;
+    a.points = j.at("points").get<std::uint64_t>();
+    a.batches = j.at("batches").get<std::uint64_t>();
+    a.unconverged = j.at("unconverged_points").get<std::uint64_t>();
+    a.rays = j.at("rays_traced").get<std::uint64_t>();
+    a.rays_per_batch = j.at("rays_per_batch_sum").get<double>();
+    for (const auto& [k, v] : j.at("worst_error").items())
+        a.worst[render::quantity_index(render::quantity_of_name(k))] = v.get<double>();
+    for (const auto& [k, v] : j.at("worst_n_error2").items())
+        a.worst_ne2[render::quantity_index(render::quantity_of_name(k))] = v.get<double>();
+    return a;
 }
 
 Json plan_json(const std::vector<render::Pass>& plan) {
@@ -553,6 +638,10 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
                     for (std::size_t c = 0; c < nc; ++c)
                         px[c] = static_cast<float>(r[cols[c].offset]);
                 });
+            // Seamless charts (render/seams.hpp): the baked channels, not the coverage.
+            const render::SeamStats seams = render::stitch_seams(
+                img.data(), lay.width, lay.height, static_cast<int>(nch), static_cast<int>(nc),
+                render::find_seams(scene.meshes[k].mesh.view()));
             for (std::size_t p = 0; p < npx; ++p) img[p * nch + nc] = lay.covered[p] ? 1.0f : 0.0f;
             // High to low: texels whose ray missed the source are not covered.
             for (std::size_t i = 0; i < lay.samples.size(); ++i)
@@ -576,6 +665,11 @@ Json write_outputs(const SceneFile& scene, const Work& w, const render::BakeSett
                                {"texels_baked", lay.samples.size()},
                                {"skipped_triangles", lay.skipped_triangles},
                                {"gutter", render::lightmap_gutter},
+                               {"seams",
+                                {{"edges", seams.edges},
+                                 {"texels", seams.texels},
+                                 {"max_jump_before", seams.max_jump_before},
+                                 {"max_jump_after", seams.max_jump_after}}},
                                {"channels", cn}});
         }
     } else if (w.target.kind == TargetKind::probes) {
@@ -852,9 +946,10 @@ Json store_for_render(const render::SceneDesc& desc, const SceneFile& scene, con
 
 struct BakeOptions {
     std::string scene, quantities = "ao", basis = "sh", target = "vertices", points, out = ".",
-                       shard, max_distance, format = "native", encoding = "png8", exports;
+                       shard, max_distance, format = "native", encoding = "png8", exports,
+                       target_error;
     bool no_cache = false;
-    long long bands = 3, coeffs = 9, rays = 256, bounces = 0, seed = 0;
+    long long bands = 3, coeffs = 9, rays = 256, bounces = 0, seed = 0, max_rays = 0;
     CLI::Option *target_opt = nullptr, *points_opt = nullptr, *out_opt = nullptr,
                 *maxd_opt = nullptr;
 };
@@ -888,6 +983,7 @@ render::BakeSettings settings_of(const BakeOptions& o) {
         s.max_distance = to_real(o.max_distance, "--max-distance");
         if (!(s.max_distance > 0)) throw UsageError("--max-distance: expected a positive distance");
     }
+    parse_adaptive(o.target_error, o.max_rays, s);
     return s;
 }
 
@@ -1044,6 +1140,11 @@ int run_bake(const BakeOptions& o) {
     if (shard.count > 1)
         summary["shard"] = {
             {"index", shard.index}, {"count", shard.count}, {"begin", begin}, {"end", end}};
+    if (s.adaptive.enabled()) {
+        render::AdaptiveSummary a;
+        for (const render::PointResult& r : results) a.add(s, r);
+        summary["adaptive"] = adaptive_json(s, a);
+    }
 
     if (points_mode) print_points(w, s, rec, begin);
     const auto t_write0 = Clock::now();
@@ -1068,8 +1169,10 @@ int run_bake(const BakeOptions& o) {
             } else if (!points_mode) {
                 summary["outputs"] = write_outputs(scene, w, s, rec, o.out, out);
             }
-            // A high-to-low bake's points are not the render's: nothing for render to reuse.
-            if (!points_mode && !o.no_cache && baker && high_to_low_targets(scene).empty())
+            // A high-to-low bake's points and an adaptive bake's sample counts are not the
+            // render's (it bakes a fixed count on the scene's own surfaces): nothing to reuse.
+            if (!points_mode && !o.no_cache && baker && high_to_low_targets(scene).empty() &&
+                !s.adaptive.enabled())
                 summary["render_cache"] = store_for_render(desc, scene, w, baker_settings(s),
                                                            results, plan, t_bake, rays, o.out);
             summary["seconds"] = {{"load", t_load},
@@ -1138,6 +1241,11 @@ int run_merge(const MergeOptions& o) {
     s.seed = js.at("seed").get<std::uint64_t>();
     if (!js.at("max_distance").is_null()) s.max_distance = js.at("max_distance").get<double>();
     s.target_error = js.at("target_error").get<double>();
+    if (js.contains("adaptive")) {
+        for (const auto& [k, v] : js.at("adaptive").at("target_error").items())
+            s.adaptive[render::quantity_of_name(k)] = v.get<double>();
+        s.adaptive.max_rays = js.at("adaptive").at("max_rays").get<int>();
+    }
 
     // Everything the records depend on, recomputed from the files as they are now: a scene, mesh
     // or image edited since the bake (or settings edited in a header) is refused here.
@@ -1157,8 +1265,10 @@ int run_merge(const MergeOptions& o) {
     std::vector<render::Pass> plan;
     std::uint64_t rays = 0;
     double bake_seconds = 0;
+    render::AdaptiveSummary adaptive;
     for (std::size_t i = 0; i < by_index.size(); ++i) {
         const ShardData& d = *by_index[i];
+        if (s.adaptive.enabled()) adaptive.merge(adaptive_summary_of(d.header.at("adaptive")));
         const Json& sh = d.header.at("shard");
         if (d.stride != L.stride)
             throw std::runtime_error("shard " + std::to_string(i) + ": records of " +
@@ -1201,6 +1311,7 @@ int run_merge(const MergeOptions& o) {
         {"rays", rays},
         {"rays_per_second", bake_seconds > 0 ? static_cast<double>(rays) / bake_seconds : 0.0},
         {"shards", count}};
+    if (s.adaptive.enabled()) summary["adaptive"] = adaptive_json(s, adaptive);
     summary["outputs"] = write_outputs(scene, w, s, rec, o.out, out);
     summary["seconds"] = {{"bake_sum_over_shards", bake_seconds}, {"merge", seconds_since(t0)}};
     out.add(join_path(o.out, "bake.json"),
@@ -1266,6 +1377,12 @@ Run setup_bake(CLI::App& app) {
         ->type_name("LIST");
     app.add_flag("--no-cache", o->no_cache,
                  "do not also store the results in OUT/cache for `sphbasis render` to reuse");
+    app.add_option("--target-error", o->target_error,
+                   "adaptive sampling: batches of --rays rays per point until each standard "
+                   "error is at most X (one X for all, or ao:X,irradiance:Y,...)")
+        ->type_name("X|NAME:X,...");
+    add_integer(app, "--max-rays", o->max_rays, 1, 1 << 30,
+                "adaptive sampling: rays per point and pass at most (default 16 --rays)");
     return [o] { return run_bake(*o); };
 }
 

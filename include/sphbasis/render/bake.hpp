@@ -99,6 +99,10 @@
 // hash (seed, id, path, bounce). A result depends only on (seed, id, settings, scene), never on
 // threads or order. Rays leave surfaces from x + epsilon n (render::Scene::epsilon(); hits:
 // offset_origin()).
+// Adaptive sampling (BakeSettings::adaptive, off by default): a point traces batches of `rays`
+// rays, batch b shifted by (seed, id, b), pooled, until each targeted quantity's standard error
+// (point_error()) meets its target or max_rays is reached; AdaptiveSummary estimates the rays a
+// fixed count with the same worst-case error would trace.
 //
 // The pass plan (plan()): "build" (the Embree scene);
 // "analytic" (points that nothing can occlude, render::Scene::can_occlude(): ao = 1, bent = n,
@@ -189,6 +193,13 @@ inline constexpr Quantity all_quantities[] = {
     Quantity::ao,         Quantity::bent,     Quantity::visibility,     Quantity::transfer,
     Quantity::irradiance, Quantity::radiance, Quantity::transfer_matrix};
 
+/// The position of a one-flag quantity in all_quantities (its bit), 0..6.
+constexpr std::size_t quantity_index(Quantity q) noexcept {
+    std::size_t i = 0;
+    for (unsigned b = static_cast<unsigned>(q); b > 1u; b >>= 1) ++i;
+    return i;
+}
+
 /// The name of a quantity, as the enumerator is spelled ("ao", "transfer_matrix"): the names
 /// of the CLI's --quantities and of the files' settings. "" for a value that is not one flag.
 inline const char* quantity_name(Quantity q) noexcept {
@@ -226,6 +237,21 @@ inline std::string quantity_names(Quantity set) {
     return s;
 }
 
+/// Adaptive sampling: each point traces batches of BakeSettings::rays rays (every pass), each
+/// batch with its own Cranley-Patterson shift hashed from (seed, id, batch), until the standard
+/// error of every quantity with a target is at most that target (point_error()) or
+/// max_rays rays per pass are reached. Batch 0 is the fixed bake's sample set, so one batch
+/// reproduces it bit for bit. The batches are pooled as one sample of batches x rays: means
+/// averaged, the standard error from the pooled sum of squares (within-batch variances plus
+/// the spread of the batch means); bent from the pooled mean vector.
+struct AdaptiveSampling {
+    std::array<double, 7> target{};  // by quantity_index(); 0: no target for that quantity
+    int max_rays = 0;                // rays per point and pass at most; 0: adaptive sampling off
+    bool enabled() const noexcept { return max_rays > 0; }
+    double& operator[](Quantity q) noexcept { return target[quantity_index(q)]; }
+    double operator[](Quantity q) const noexcept { return target[quantity_index(q)]; }
+};
+
 struct BakeSettings {
     Quantity quantities = Quantity::ao;  // a set (|)
     int bands = 3;  // SH bands of visibility, transfer, radiance; transfer_matrix: of the lighting
@@ -238,6 +264,7 @@ struct BakeSettings {
         std::numeric_limits<double>::infinity();  // ao: farther hits don't occlude
     double target_error = 1e-3;     // a bounce runs only while its bound is above this
     bool force_all_passes = false;  // run every pass the plan would skip (for tests)
+    AdaptiveSampling adaptive;      // off by default: every point traces `rays`
 };
 
 /// A point to bake. A surface point has a normal (need not be unit; it is normalised), a free
@@ -269,8 +296,221 @@ struct PointResult {
     /// R, G, B: 9 x bands^2, row-major (row i: incident coefficient i, column j: lighting j).
     std::array<std::vector<double>, 3> transfer_matrix;
     std::vector<double> transfer_matrix_stderr;  // 9 x bands^2 (max over channels)
-    bool inside = false;  // the point is inside closed geometry (probes leak)
+    bool inside = false;     // the point is inside closed geometry (probes leak)
+    int batches = 1;         // batches of BakeSettings::rays traced (adaptive sampling)
+    std::uint64_t rays = 0;  // rays the point traced, all passes and batches
 };
+
+/// The standard error of quantity q (one flag) at a point: ao_stderr, bent_stderr (radians),
+/// or the largest coefficient's standard error of the other quantities (0 when not baked).
+inline double point_error(const PointResult& r, Quantity q) noexcept {
+    auto mx = [](const std::vector<double>& v) {
+        double m = 0;
+        for (double x : v) m = std::max(m, x);
+        return m;
+    };
+    switch (q) {
+        case Quantity::ao:
+            return r.ao_stderr;
+        case Quantity::bent:
+            return r.bent_stderr;
+        case Quantity::visibility:
+            return mx(r.visibility_stderr);
+        case Quantity::transfer:
+            return mx(r.transfer_stderr);
+        case Quantity::irradiance:
+            return mx(r.irradiance_stderr);
+        case Quantity::radiance:
+            return mx(r.radiance_stderr);
+        case Quantity::transfer_matrix:
+            return mx(r.transfer_matrix_stderr);
+    }
+    return 0;
+}
+
+/// True when every quantity with an adaptive target has point_error() <= its target.
+inline bool meets_targets(const BakeSettings& s, const PointResult& r) noexcept {
+    for (Quantity q : all_quantities)
+        if (s.adaptive[q] > 0 && !(point_error(r, q) <= s.adaptive[q])) return false;
+    return true;
+}
+
+/// What adaptive sampling did over a set of points, and what a fixed ray count reaching the
+/// same worst-case error would cost. Sums and maxima, so the summaries of shards merge().
+/// The fixed count per pass is estimated by the 1/sqrt(N) law of the standard error: a point
+/// with error e at n rays has e sqrt(n / R) at R rays, so R = max over the targeted
+/// quantities and the points of n e^2 / E^2 reaches the worst-case error E of the adaptive
+/// bake at every point; its cost is R / rays times the rays of one batch of every point.
+struct AdaptiveSummary {
+    std::uint64_t points = 0, batches = 0, unconverged = 0;  // unconverged: stopped at max_rays
+    std::uint64_t rays = 0;             // rays traced (sum of PointResult::rays)
+    double rays_per_batch = 0;          // sum over the points of rays / batches
+    std::array<double, 7> worst{};      // by quantity_index(): max over points of the error
+    std::array<double, 7> worst_ne2{};  // max over points of (batches rays) error^2
+
+    void add(const BakeSettings& s, const PointResult& r) {
+        ++points;
+        batches += std::uint64_t(r.batches);
+        rays += r.rays;
+        rays_per_batch += double(r.rays) / double(std::max(r.batches, 1));
+        if (!meets_targets(s, r)) ++unconverged;
+        const double n = double(r.batches) * double(s.rays);
+        for (Quantity q : all_quantities) {
+            if (!(s.adaptive[q] > 0)) continue;
+            const double e = point_error(r, q);
+            const std::size_t i = quantity_index(q);
+            worst[i] = std::max(worst[i], e);
+            worst_ne2[i] = std::max(worst_ne2[i], n * e * e);
+        }
+    }
+    void merge(const AdaptiveSummary& o) {
+        points += o.points;
+        batches += o.batches;
+        unconverged += o.unconverged;
+        rays += o.rays;
+        rays_per_batch += o.rays_per_batch;
+        for (std::size_t i = 0; i < worst.size(); ++i) {
+            worst[i] = std::max(worst[i], o.worst[i]);
+            worst_ne2[i] = std::max(worst_ne2[i], o.worst_ne2[i]);
+        }
+    }
+    /// R: rays per point and pass of a fixed bake with the same worst-case error (at least
+    /// `rays`, the batch).
+    double fixed_rays(const BakeSettings& s) const noexcept {
+        double r = double(s.rays);
+        for (std::size_t i = 0; i < worst.size(); ++i)
+            if (worst[i] > 0) r = std::max(r, worst_ne2[i] / (worst[i] * worst[i]));
+        return r;
+    }
+    /// The rays of that fixed bake (estimate).
+    double fixed_total(const BakeSettings& s) const noexcept {
+        return fixed_rays(s) / double(s.rays) * rays_per_batch;
+    }
+};
+
+}  // namespace sphbasis::render
+
+namespace sphbasis::render::detail {
+
+/// Pools the batches of one point (AdaptiveSampling): sums of the batch means and of their
+/// squares, and of the squared batch standard errors, per quantity, coefficient and channel.
+class AdaptivePool {
+  public:
+    AdaptivePool(Quantity q, std::size_t rays) : q_(q), n_(double(rays)) {}
+
+    void add(const PointResult& r, const rt::V3& bent_m) {
+        using namespace rt;
+        ++b_;
+        add1(0, std::vector<double>{r.ao}, std::vector<double>{r.ao_stderr});
+        add1(1, r.visibility, r.visibility_stderr);
+        add1(2, r.transfer, r.transfer_stderr);
+        add1(3, r.irradiance, r.irradiance_stderr);
+        add1(4, r.radiance, r.radiance_stderr);
+        add1(5, r.transfer_matrix, r.transfer_matrix_stderr);
+        m_ = m_ + bent_m;
+        bent_var_ += r.bent_stderr * r.bent_stderr * dot(bent_m, bent_m);
+        rgb_ = rgb_ || r.transfer_rgb;
+        inside_ += r.inside ? 1 : 0;
+    }
+
+    /// The pooled result of the batches so far (n: the point's unit normal, bent's fallback).
+    void result(PointResult& out, const rt::V3& n) const {
+        std::vector<double> se;
+        std::array<std::vector<double>, 3> mean;
+        if (has(q_, Quantity::ao)) {
+            finish(0, mean, se);
+            out.ao = mean[0][0];
+            out.ao_stderr = se[0];
+        }
+        if (has(q_, Quantity::bent)) {
+            const double lm = rt::length(m_) / double(b_);
+            out.bent = rt::normalized(m_, n);
+            out.bent_stderr =
+                lm > 0 ? std::min(constants::pi, std::sqrt(bent_var_) / (double(b_) * lm))
+                       : constants::pi;
+        }
+        if (has(q_, Quantity::visibility)) {
+            finish(1, mean, out.visibility_stderr);
+            out.visibility = mean[0];
+        }
+        if (has(q_, Quantity::transfer)) {
+            finish(2, out.transfer, out.transfer_stderr);
+            out.transfer_rgb = rgb_;
+        }
+        if (has(q_, Quantity::irradiance)) finish(3, out.irradiance, out.irradiance_stderr);
+        if (has(q_, Quantity::radiance)) finish(4, out.radiance, out.radiance_stderr);
+        if (has(q_, Quantity::transfer_matrix))
+            finish(5, out.transfer_matrix, out.transfer_matrix_stderr);
+        out.inside = 2 * inside_ > b_;
+    }
+
+  private:
+    struct Sums {
+        std::size_t channels = 0;
+        std::array<std::vector<double>, 3> mean, mean2;
+        std::vector<double> se2;
+    };
+
+    void add1(std::size_t k, const std::array<std::vector<double>, 3>& mean,
+              const std::vector<double>& se) {
+        Sums& s = sums_[k];
+        if (b_ == 1) {
+            s.channels = 0;
+            for (std::size_t c = 0; c < 3 && !mean[c].empty(); ++c) {
+                s.mean[c].assign(mean[c].size(), 0.0);
+                s.mean2[c].assign(mean[c].size(), 0.0);
+                s.channels = c + 1;
+            }
+            s.se2.assign(se.size(), 0.0);
+        }
+        for (std::size_t c = 0; c < s.channels; ++c)
+            for (std::size_t i = 0; i < mean[c].size() && i < s.mean[c].size(); ++i) {
+                s.mean[c][i] += mean[c][i];
+                s.mean2[c][i] += mean[c][i] * mean[c][i];
+            }
+        for (std::size_t i = 0; i < se.size() && i < s.se2.size(); ++i) s.se2[i] += se[i] * se[i];
+    }
+    void add1(std::size_t k, const std::vector<double>& mean, const std::vector<double>& se) {
+        add1(k, std::array<std::vector<double>, 3>{mean, {}, {}}, se);
+    }
+
+    /// Means over the B batches and the pooled standard error of B N samples: the sum of
+    /// squares about the pooled mean is N (N - 1) sum_b se_b^2 + N sum_b (mean_b - mean)^2
+    /// (within the batches plus between them), the error sqrt(SS / (BN - 1) / (BN)), the largest
+    /// over the channels (se_b is already the largest channel's, so this is an upper bound).
+    void finish(std::size_t k, std::array<std::vector<double>, 3>& mean,
+                std::vector<double>& se) const {
+        const Sums& s = sums_[k];
+        const double B = double(b_), N = n_, total = B * N;
+        for (std::size_t c = 0; c < 3; ++c) {
+            mean[c].assign(s.mean[c].size(), 0.0);
+            for (std::size_t i = 0; i < s.mean[c].size(); ++i) mean[c][i] = s.mean[c][i] / B;
+        }
+        se.assign(s.se2.size(), 0.0);
+        if (total < 2) return;
+        for (std::size_t i = 0; i < se.size(); ++i) {
+            double worst = 0;
+            for (std::size_t c = 0; c < s.channels; ++c) {
+                if (i >= mean[c].size()) continue;
+                const double between = std::max(0.0, s.mean2[c][i] - B * mean[c][i] * mean[c][i]);
+                worst = std::max(worst, N * (N - 1) * s.se2[i] + N * between);
+            }
+            se[i] = std::sqrt(worst / (total - 1) / total);
+        }
+    }
+
+    Quantity q_;
+    double n_;
+    int b_ = 0, inside_ = 0;
+    std::array<Sums, 6> sums_;
+    rt::V3 m_{0, 0, 0};
+    double bent_var_ = 0;
+    bool rgb_ = false;
+};
+
+}  // namespace sphbasis::render::detail
+
+namespace sphbasis::render {
 
 /// One pass of the plan: what runs, why, and what it cost.
 struct Pass {
@@ -430,6 +670,7 @@ class Baker {
         // s_j, the occluded samples' slots
         std::vector<double> mat_y, mat_r, mat_ss;
         std::vector<std::uint32_t> mat_slot, mat_samples;
+        detail::rt::V3 bent_m{0, 0, 0};  // the last cosine pass's mean V w (adaptive pooling)
     };
     /// Exclusive pass timing: a Timer started inside another pauses the outer one, so nested
     /// work (the shadow rays of a bounce) counts for the inner pass only and the passes'
@@ -487,6 +728,23 @@ class Baker {
         if (!(s.target_error >= 0) || !std::isfinite(s.target_error))
             sphbasis::detail::throw_invalid(
                 fn, "a finite target_error >= 0, got " + std::to_string(s.target_error));
+        if (s.adaptive.enabled() || s.adaptive.target != decltype(s.adaptive.target){}) {
+            sphbasis::detail::check_range(fn, "adaptive.max_rays", s.adaptive.max_rays, s.rays,
+                                          1 << 30);
+            bool some = false;
+            for (Quantity q : all_quantities) {
+                const double t = s.adaptive[q];
+                if (!(t >= 0) || !std::isfinite(t) || (t > 0 && !has(s.quantities, q)))
+                    sphbasis::detail::throw_invalid(
+                        fn, std::string("adaptive targets: finite, >= 0 and only for requested "
+                                        "quantities, got ") +
+                                std::to_string(t) + " for " + quantity_name(q));
+                some = some || t > 0;
+            }
+            if (!some)
+                sphbasis::detail::throw_invalid(
+                    fn, "adaptive sampling: a target > 0 for at least one requested quantity");
+        }
         if (has(s.quantities, Quantity::irradiance)) {
             const BasisInfo& b = find_basis(s.basis);
             if (!b.valid_count(s.coeffs))
@@ -710,11 +968,41 @@ class Baker {
     }
 
     // ---- per point ------------------------------------------------------------------------
+    std::uint64_t local_rays(const Local& L) const noexcept {
+        return std::accumulate(L.rays.begin(), L.rays.end(), std::uint64_t(0));
+    }
+
+    /// One point: one batch, or adaptive batches (AdaptiveSampling) pooled until the targets
+    /// are met or max_rays is reached.
     void bake_point(const BakePoint& bp, PointResult& res, Local& L) const {
+        using namespace detail::rt;
+        const std::uint64_t key = hash(settings_.seed, bp.id), r0 = local_rays(L);
+        if (!settings_.adaptive.enabled()) {
+            bake_batch(bp, key, res, L);
+        } else {
+            const V3 n = normalized(bp.n, {0, 0, 0});
+            detail::AdaptivePool pool(settings_.quantities, std::size_t(settings_.rays));
+            const int max_batches = std::max(1, settings_.adaptive.max_rays / settings_.rays);
+            for (int b = 0; b < max_batches; ++b) {
+                PointResult rb;
+                L.bent_m = n * (2.0 / 3.0);  // points nothing occludes skip the cosine pass
+                bake_batch(bp, b == 0 ? key : hash(key, 0x6261746368ull, std::uint64_t(b)), rb, L);
+                pool.add(rb, L.bent_m);
+                if (b == 0)
+                    res = std::move(rb);  // one batch: the fixed bake's result, bit for bit
+                else
+                    pool.result(res, n);
+                res.batches = b + 1;
+                if (meets_targets(settings_, res)) break;
+            }
+        }
+        res.rays = local_rays(L) - r0;
+    }
+
+    void bake_batch(const BakePoint& bp, std::uint64_t key, PointResult& res, Local& L) const {
         using namespace detail::rt;
         const V3 n = normalized(bp.n, {0, 0, 0});
         const bool surface = length(n) > 0;
-        const std::uint64_t key = hash(settings_.seed, bp.id);
         const double cu = unit(hash(key, 1)), cv = unit(hash(key, 2));
         Frame<double> f;
         if (surface) f = frame_of(n, bp.tangent, bp.bitangent_sign);
@@ -1227,8 +1515,8 @@ class Baker {
         transfer_part(N, L, use_hits && run ? vis_tr : vis_ao, paths, key, res);
     }
 
-    void ao_bent(std::size_t N, const Local& L, const std::vector<char>& vis_ao,
-                 const detail::rt::V3& n, PointResult& res) const {
+    void ao_bent(std::size_t N, Local& L, const std::vector<char>& vis_ao, const detail::rt::V3& n,
+                 PointResult& res) const {
         using namespace detail::rt;
         const double *dx = L.dx.data(), *dy = L.dy.data(), *dz = L.dz.data();
         const char* va = vis_ao.data();
@@ -1254,6 +1542,7 @@ class Baker {
                 syz += y * dz[j];
             }
             res.bent = normalized(V3{bx, by, bz}, n);
+            L.bent_m = V3{bx, by, bz} * (1 / double(N));
             res.bent_stderr = bent_error(N, s, V3{bx, by, bz}, {sxx, syy, szz, sxy, sxz, syz});
         }
         if (wants(Quantity::ao)) {
