@@ -225,11 +225,11 @@ TEST_CASE("fixed-seed runs are stable", "[imse]") {
 
 TEST_CASE("the benchmark's rows are the table's rows", "[imse]") {
     const std::vector<imse::Row> rows = imse::paper_rows();
-    REQUIRE(rows.size() == 19);
+    REQUIRE(rows.size() == 21);
     CHECK(rows.front().basis == "sh");
     CHECK(rows.front().n == 4);
-    CHECK(rows.back().basis == "hl2");
-    CHECK(rows.back().n == 3);
+    CHECK(rows.back().basis == "ambient-dice");
+    CHECK(rows.back().n == 12);
     const std::vector<imse::Row> hdri = imse::hdri_rows();
     REQUIRE(hdri.size() == rows.size());
     for (std::size_t i = 0; i < rows.size(); ++i) {
