@@ -1061,7 +1061,8 @@ Run setup_bake(CLI::App& app) {
     // render::Baker's range (BakeSettings::bands).
     add_integer(app, "--bands", o->bands, 1, 16, "SH bands of visibility, transfer and radiance");
     app.add_option("--basis", o->basis,
-                   "basis of irradiance: sh, hbasis, hbasis-mod, hl2, hsh, makhotkin, zernike")
+                   "basis of irradiance: sh, hbasis, hbasis-mod, hl2, hsh, makhotkin, zernike, "
+                   "ambient-cube (--coeffs 5), ambient-dice (--coeffs 12)")
         ->type_name("NAME")
         ->capture_default_str();
     add_integer(app, "--coeffs", o->coeffs, 1, 1024, "irradiance coefficients");
