@@ -103,7 +103,7 @@ TEST_CASE("representations: names, unknown and duplicate names, bad settings", "
     w.build();
     render::RepresentationSettings s;
     const auto& names = render::representation_names();
-    REQUIRE(names.size() == 32);
+    REQUIRE(names.size() == 39);
     // Every lightmap basis exists in the registry.
     for (const char* b : {"sh", "hbasis", "hbasis-mod", "hl2", "hsh"}) CHECK_NOTHROW(find_basis(b));
     CHECK_THROWS_WITH(render::Representations(w.desc, *w.rt, s, {"ao", "nonsense"}),
