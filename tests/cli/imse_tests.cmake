@@ -28,8 +28,8 @@ sphbasis_cli_fails(imse_twice imse --seed 1 --seed 2)
 sphbasis_cli_fails(imse_unwritable imse --signals 10 --json /nonexistent-dir/x.json)
 sphbasis_cli_test(imse_bad_protocol_message "expected paper, hdri or all" imse --protocol nope)
 
-# Limits said before any work: the hdri protocol keeps 644 bytes per signal (at most 1000000).
-sphbasis_cli_test(imse_hdri_signals_limit "^sphbasis imse: --signals: expected N <= 1000000 for --protocol hdri \\(the hdri protocol keeps 644 bytes per signal"
+# Limits said before any work: the hdri protocol keeps 804 bytes per signal (at most 1000000).
+sphbasis_cli_test(imse_hdri_signals_limit "^sphbasis imse: --signals: expected N <= 1000000 for --protocol hdri \\(the hdri protocol keeps 804 bytes per signal"
                   imse --protocol hdri --signals 10000000)
 sphbasis_cli_test(imse_signals_limit "--signals: expected 2 <= N <= 10000000 \\(80 bytes of memory per signal"
                   imse --signals 10000001)

@@ -69,8 +69,8 @@ constexpr int kMapBands = 256;    // radiance bands projected per map (for the t
 constexpr int kSignalBands = 64;  // irradiance bands of the hdri signals (degree 63)
 constexpr int kBatch = 128;       // hdri signals per batch
 // The hdri protocol keeps 4 numbers per row and signal (the relative IMSE on two rules, at half
-// the bands, and its bound) plus 36 bytes per signal (energy, angles, map): 644 bytes a signal
-// for the 19 rows, so its --signals stop at one million (0.64 GB). The paper protocol keeps
+// the bands, and its bound) plus 36 bytes per signal (energy, angles, map): 804 bytes a signal
+// for the 24 rows, so its --signals stop at one million (0.8 GB). The paper protocol keeps
 // 9 radiance coefficients and one IMSE per signal (80 bytes): up to ten million (0.8 GB).
 constexpr long long kMaxSignalsPaper = 10000000;
 constexpr long long kMaxSignalsHdri = 1000000;
@@ -792,7 +792,7 @@ int run_imse(const ImseOptions& o) {
     if (o.protocol != "paper" && signals > kMaxSignalsHdri)
         throw UsageError("--signals: expected N <= " + std::to_string(kMaxSignalsHdri) +
                          " for --protocol " + o.protocol +
-                         " (the hdri protocol keeps 644 bytes per signal, 0.64 GB at the "
+                         " (the hdri protocol keeps 804 bytes per signal, 0.8 GB at the "
                          "limit), got " +
                          std::to_string(signals));
     // Fail before the long run, not after it, changing nothing; the outputs are staged and
@@ -858,7 +858,7 @@ Run setup_imse(CLI::App& app) {
             "", ""));
     add_integer(app, "--signals", o->signals, 2, kMaxSignalsPaper,
                 "signals averaged per row (hdri: at most 1000000)", "N",
-                "80 bytes of memory per signal, 0.8 GB at the limit; hdri: 644 bytes, at most "
+                "80 bytes of memory per signal, 0.8 GB at the limit; hdri: 804 bytes, at most "
                 "1000000");
     add_integer(app, "--seed", o->seed, 0, std::numeric_limits<long long>::max(), "random seed",
                 "S");
