@@ -24,6 +24,11 @@
 //   irradiance left out above kSignalBands bands; "trunc_half" is the measured change from
 //   truncating at kSignalBands / 2 instead (the tail falls like L^-3, so the error at
 //   kSignalBands is ~8x smaller than that); "quad_err" compares ShFits on two rules.
+// Fitted rows (sh-l1-nonlinear, zh3-hallucinate, zh3; imse::fitted_rows()), after the linear
+//   ones in both protocols: each signal's representation is fitted from its own low-order SH over
+//   the sphere and scored over the hemisphere by imse::fitted_imse() (no closed form; quad_err
+//   compares twice the Funk-Hecke nodes; their timings: eval_f / eval_batch_f of the stored
+//   values, project_ns = the SH projection its fit reads plus the fit).
 // Timings (same run, float, this machine): eval_ns = one registry eval_f call at a time over
 //   4096 hemisphere normals; eval_batch_ns = eval_batch_f over 1M normals in chunks of 4096
 //   (output kept in cache); project_ns = one least-squares fit from the signal's values at the
