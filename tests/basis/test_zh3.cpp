@@ -37,8 +37,8 @@ TEST_CASE("zh3: constants, fits and values against the reference generator", "[z
             CHECK(c[std::size_t(k)] == Approx(r[std::size_t(5 + k)]).margin(1e-15));
         halluc.push_back(c);
     }
-    REQUIRE(full.size() == 5);
-    REQUIRE(halluc.size() == 5);
+    REQUIRE(full.size() == 6);
+    REQUIRE(halluc.size() == 6);
     int n = 0;
     for (const auto& r : test::engine_reference("eval-zh3")) {
         const auto& c = full[std::size_t(r[0])];
@@ -101,6 +101,11 @@ TEST_CASE("zh3: hallucination constants, homogeneity, zero L1, batch and float",
     std::array<double, 5> c;
     zh3::hallucinate(e.data(), c.data());
     CHECK(c[4] == Approx(0.25 * y0 * (0.08 * std::sqrt(3.0) + 1.8)).epsilon(1e-15));
+    // Beyond a delta's ratio (signed signals) r is clamped at sqrt(3): the same coefficient.
+    const std::array<double, 4> big = {y0, 0, 2 * y1, 0};
+    std::array<double, 5> cb;
+    zh3::hallucinate(big.data(), cb.data());
+    CHECK(cb[4] == Approx(c[4]).epsilon(1e-15));
     // Homogeneous of degree 1 for negative scales too.
     const std::array<double, 9> g = {0.2, -0.1, 0.4, 0.3, 0.25, -0.35, 0.15, 0.05, -0.2};
     std::array<double, 9> gn;

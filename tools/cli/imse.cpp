@@ -663,7 +663,7 @@ void print_table(std::ostream& os, const ProtocolResult& p) {
        << fmt("%.1f", p.seconds) << " s\n";
     for (const auto& n : p.notes) os << "  " << n << "\n";
     char line[512];
-    std::snprintf(line, sizeof line, "%-10s %6s  %-23s %-21s %-9s %8s %8s %8s %12s\n", "basis",
+    std::snprintf(line, sizeof line, "%-15s %6s  %-23s %-21s %-9s %8s %8s %8s %12s\n", "basis",
                   "coeffs", hdri ? "rel. IMSE +- stderr" : "IMSE +- stderr",
                   hdri ? "trunc.bound  d(32->64)" : "expected +- stderr", "quad.rel", "eval ns",
                   "batch ns", "proj ns", "B/texel 8/16/32");
@@ -687,7 +687,7 @@ void print_table(std::ostream& os, const ProtocolResult& p) {
         const std::string bytes = std::to_string(3 * r.coeffs) + "/" +
                                   std::to_string(6 * r.coeffs) + "/" +
                                   std::to_string(12 * r.coeffs);
-        std::snprintf(line, sizeof line, "%-10s %6d  %-23s %-21s %-9s %8.2f %8.2f %8.0f %12s\n",
+        std::snprintf(line, sizeof line, "%-15s %6d  %-23s %-21s %-9s %8.2f %8.2f %8.0f %12s\n",
                       r.basis.c_str(), r.coeffs, val.c_str(), second.c_str(), quad_rel(r).c_str(),
                       r.t.eval_ns, r.t.eval_batch_ns, r.t.project_ns, bytes.c_str());
         os << line;

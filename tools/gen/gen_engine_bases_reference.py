@@ -209,7 +209,7 @@ def halluc(e):
     l1 = mp.sqrt(sum(mp.mpf(c) ** 2 for c in e[1:4]))
     z = 0
     if e0 != 0:
-        r = mp.mpf(3) / 2 * l1 / abs(e0)
+        r = min(mp.mpf(3) / 2 * l1 / abs(e0), mp.sqrt(3))
         z = e0 / 4 * (mp.mpf("0.08") * r + mp.mpf("0.6") * r * r)
     l1v = [e[3], e[1], e[2]]
     a = [mp.mpf(c) / l1 for c in l1v] if l1 > 0 else [0, 0, 1]
@@ -238,6 +238,7 @@ coeff_sets = [
     [2.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0],
     [-0.7, 0.4, 0.1, -0.2, 0.3, 0.1, -0.2, 0.05, -0.1],
     [1.0, 0.0, 0.0, 0.0, 0.3, 0.0, 0.0, 0.0, 0.0],
+    [0.1, 0.5, -0.4, 0.3, 0.0, 0.2, 0.0, 0.0, 0.1],  # |L1| beyond a delta's: r clamped
 ]
 
 # Geomerics self-checks: mean and first moment by quadrature.

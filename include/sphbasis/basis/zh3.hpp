@@ -21,12 +21,14 @@
 // hallucinate() from 4 SH coefficients (storage 4): for the irradiance of a radiance,
 //   r = |radiance L1| / radiance L0 = (3/2) |e_1| / |e_0|   (irradiance e_1 = 2/3 radiance L1),
 //   radiance zonal coefficient = L0 (0.08 r + 0.6 r^2),  z = 1/4 of it (the clamped-cosine factor
-//   of band 2), z = 0 when e_0 = 0.
+//   of band 2), z = 0 when e_0 = 0; r is clamped to sqrt(3), its largest value for a
+//   non-negative radiance (signed signals such as the IMSE benchmark's random SH exceed it).
 // Both are homogeneous: f(lambda e) = lambda f(e) for every real lambda (the axis flips with the
 // sign and Y_20 is even). Domain: the sphere. Cost per direction: 2 dot products, 6 multiply-adds;
 // per coefficient set: one normalisation (the axis), done once in Expansion.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <string>
@@ -45,6 +47,9 @@ inline constexpr int stored_hallucinated = 4;
 /// The hallucination's polynomial in the radiance ratio r (Roughton et al. 2024).
 inline constexpr double hallucinate_c1 = 0.08;
 inline constexpr double hallucinate_c2 = 0.6;
+/// The largest radiance ratio |L1|/L0 of a non-negative radiance (a delta), where hallucinate()
+/// clamps r.
+inline constexpr double max_ratio = 1.7320508075688772;  // sqrt(3)
 
 namespace detail {
 inline constexpr double y00 = 0.28209479177387814;       // 1/(2 sqrt(pi))
@@ -95,7 +100,9 @@ void hallucinate(const T* sh, T* out) {
         std::sqrt(double(sh[1]) * sh[1] + double(sh[2]) * sh[2] + double(sh[3]) * sh[3]);
     double z = 0;
     if (e0 != 0 && std::isfinite(l1)) {
-        const double r = 1.5 * l1 / std::fabs(e0);
+        // r <= sqrt(3) for every non-negative radiance (a delta reaches it); larger ratios
+        // (signed signals) are clamped there rather than let 0.6 r^2 grow without bound.
+        const double r = std::min(1.5 * l1 / std::fabs(e0), max_ratio);
         z = 0.25 * e0 * (hallucinate_c1 * r + hallucinate_c2 * r * r);
     }
     for (int k = 0; k < 4; ++k) out[k] = sh[k];
