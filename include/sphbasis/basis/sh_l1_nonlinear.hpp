@@ -146,7 +146,7 @@ double sh_expansion(const T* c, int bands, double* out, int nodes = 128) {
         sphbasis::detail::throw_invalid(fn, "0 <= bands <= 1024, got " + std::to_string(bands));
     if (nodes < 1 || nodes > 100000)
         sphbasis::detail::throw_invalid(fn, "1 <= nodes <= 100000, got " + std::to_string(nodes));
-    sphbasis::detail::check_buffer(fn, "out", out, static_cast<std::size_t>(bands) * bands);
+    sphbasis::detail::check_buffer(fn, "out", out, static_cast<std::size_t>(bands * bands));
     const Expansion<double> e = [&] {
         double cd[stored];
         sphbasis::detail::check_buffer(fn, "coefficients", c, stored);
@@ -179,7 +179,7 @@ double sh_expansion(const T* c, int bands, double* out, int nodes = 128) {
     }
     double dx = e.dx, dy = e.dy, dz = e.dz;
     if (dx == 0 && dy == 0 && dz == 0) dz = 1;  // constant model: only l = 0 is non-zero
-    std::vector<double> y(static_cast<std::size_t>(bands) * bands);
+    std::vector<double> y(static_cast<std::size_t>(bands * bands));
     sh::eval(bands, dx, dy, dz, y.data());
     double kept = 0;
     for (int l = 0; l < bands; ++l) {

@@ -160,11 +160,11 @@ void eval_batch(const T* c, std::size_t directions, const T* xs, const T* ys, co
 template <class T>
 double sh_expansion(const T* c, int bands, double* out) {
     sphbasis::detail::check_buffer("zh3::sh_expansion", "coefficients", c, stored);
-    if (bands < 0)
+    if (bands < 0 || bands > 1024)
         sphbasis::detail::throw_invalid("zh3::sh_expansion",
-                                        "bands >= 0, got " + std::to_string(bands));
+                                        "0 <= bands <= 1024, got " + std::to_string(bands));
     sphbasis::detail::check_buffer("zh3::sh_expansion", "out", out,
-                                   static_cast<std::size_t>(bands) * bands);
+                                   static_cast<std::size_t>(bands * bands));
     for (int k = 0; k < bands * bands; ++k) out[k] = 0;
     for (int k = 0; k < 4 && k < bands * bands; ++k) out[k] = double(c[k]);
     if (bands < 3) return double(c[4]) * double(c[4]);

@@ -464,7 +464,7 @@ inline double fitted_imse(const FittedBasisInfo& f, const HemisphereShGram& gram
     if (b < 3)
         sphbasis::detail::throw_invalid("imse::fitted_imse",
                                         "a Gram matrix of >= 3 bands, got " + std::to_string(b));
-    sphbasis::detail::check_buffer("imse::fitted_imse", "signal", e, std::size_t(b) * b);
+    sphbasis::detail::check_buffer("imse::fitted_imse", "signal", e, std::size_t(b * b));
     double stored[16];
     f.fit(e, stored);
     std::vector<double> r(static_cast<std::size_t>(b * b));
