@@ -200,7 +200,11 @@ TEST_CASE("quadrature error of the paper protocol below 1e-9 of the value", "[im
         // Exact-span rows (SH 9, 16, 25: Q = 0 up to rounding) are measured against the signal.
         const double scale = std::max(qf.trace(), signal_energy);
         INFO("max |Q - Q_fine| = " << (q - qf).cwiseAbs().maxCoeff() << ", tr Q = " << qf.trace());
-        CHECK((q - qf).cwiseAbs().maxCoeff() <= 1e-9 * scale);
+        // The ambient cube and dice are piecewise polynomials with kinks (max(x, 0)^2, a lobe per
+        // hemisphere of each axis), which no product rule integrates exactly: their rows converge
+        // like the kinks allow (~1e-4 relative here, the quad.rel column of the table).
+        const bool kinked = row.basis.rfind("ambient-", 0) == 0;
+        CHECK((q - qf).cwiseAbs().maxCoeff() <= (kinked ? 1e-3 : 1e-9) * scale);
     }
 }
 
@@ -225,7 +229,7 @@ TEST_CASE("fixed-seed runs are stable", "[imse]") {
 
 TEST_CASE("the benchmark's rows are the table's rows", "[imse]") {
     const std::vector<imse::Row> rows = imse::paper_rows();
-    REQUIRE(rows.size() == 21);
+    REQUIRE(rows.size() == 23);
     CHECK(rows.front().basis == "sh");
     CHECK(rows.front().n == 4);
     CHECK(rows.back().basis == "sg");
@@ -288,7 +292,9 @@ TEST_CASE("hemispherical SH Gram, truncation bound and ShFits against direct qua
         const DirectionalRule fine = imse::hemisphere_rule_sqrt(nu + 10, nphi + 10);
         const Eigen::VectorXd samples = evaluation_matrix(evaluator<SH>(k), fine) * e;
         const double direct = fit.imse(samples)(0);
-        CHECK(energy - fitted(static_cast<Eigen::Index>(r), 0) == Approx(direct).epsilon(1e-9));
+        const bool kinked = std::string(infos[r]->name).rfind("ambient-", 0) == 0;  // see above
+        CHECK(energy - fitted(static_cast<Eigen::Index>(r), 0) ==
+              Approx(direct).epsilon(kinked ? 2e-3 : 1e-9));
     }
 
     // Truncation: dropping bands >= 4 of an irradiance changes the relative IMSE by no more

@@ -80,8 +80,8 @@
 #include <sphbasis/render/bake.hpp>
 #include <sphbasis/render/bake_file.hpp>
 #include <sphbasis/render/bake_points.hpp>
-#include <sphbasis/render/high_to_low.hpp>
 #include <sphbasis/render/bake_record.hpp>
+#include <sphbasis/render/high_to_low.hpp>
 #include <sphbasis/render/lightmap.hpp>
 #include <sphbasis/render/probe_grid.hpp>
 #include <sphbasis/render/seams.hpp>
@@ -89,8 +89,8 @@
 #include <string>
 #include <vector>
 
-#include "../support/engine_export.hpp"
 #include "../support/bake_cache.hpp"
+#include "../support/engine_export.hpp"
 #include "../support/exr.hpp"
 #include "../support/json.hpp"
 #include "../support/memory.hpp"
@@ -1342,7 +1342,10 @@ Run setup_bake(CLI::App& app) {
     add_integer(app, "--bands", o->bands, 1, 16, "SH bands of visibility, transfer and radiance");
     app.add_option("--basis", o->basis,
                    "basis of irradiance: sh, hbasis, hbasis-mod, hl2, hsh, makhotkin, zernike, "
-                   "sg (BakingLab's lobes: --coeffs 5, 6, 9 or 12)")
+                   "sg (BakingLab's lobes: --coeffs 5, 6, 9 or 12)",
+                   ambient - cube(--coeffs 5),
+                   "
+                   "ambient-dice (--coeffs 12)")
         ->type_name("NAME")
         ->capture_default_str();
     add_integer(app, "--coeffs", o->coeffs, 1, 1024, "irradiance coefficients");

@@ -29,6 +29,11 @@
 //   2016): radiance sampled at 625 stratified hemisphere directions, the amplitudes of BakingLab's
 //   lobe set by one solver, the irradiance by Hill's fitted approximation. The registry's "sg"
 //   rows instead fit the irradiance itself in the span of the same lobes.
+// Fitted rows (sh-l1-nonlinear, zh3-hallucinate, zh3; imse::fitted_rows()), after the linear
+//   ones in both protocols: each signal's representation is fitted from its own low-order SH over
+//   the sphere and scored over the hemisphere by imse::fitted_imse() (no closed form; quad_err
+//   compares twice the Funk-Hecke nodes; their timings: eval_f / eval_batch_f of the stored
+//   values, project_ns = the SH projection its fit reads plus the fit).
 // Timings (same run, float, this machine): eval_ns = one registry eval_f call at a time over
 //   4096 hemisphere normals; eval_batch_ns = eval_batch_f over 1M normals in chunks of 4096
 //   (output kept in cache); project_ns = one least-squares fit from the signal's values at the
@@ -75,8 +80,8 @@ constexpr int kMapBands = 256;    // radiance bands projected per map (for the t
 constexpr int kSignalBands = 64;  // irradiance bands of the hdri signals (degree 63)
 constexpr int kBatch = 128;       // hdri signals per batch
 // The hdri protocol keeps 4 numbers per row and signal (the relative IMSE on two rules, at half
-// the bands, and its bound) plus 36 bytes per signal (energy, angles, map): 644 bytes a signal
-// for the 19 rows, so its --signals stop at one million (0.64 GB). The paper protocol keeps
+// the bands, and its bound) plus 36 bytes per signal (energy, angles, map): 804 bytes a signal
+// for the 24 rows, so its --signals stop at one million (0.8 GB). The paper protocol keeps
 // 9 radiance coefficients and one IMSE per signal (80 bytes): up to ten million (0.8 GB).
 constexpr long long kMaxSignalsPaper = 10000000;
 constexpr long long kMaxSignalsHdri = 1000000;
@@ -138,15 +143,23 @@ ProtocolResult new_result(const char* protocol, long long signals, std::uint64_t
 // ---------------------------------------------------------------------------------------------
 // The benchmark's rows (imse::paper_rows(), the same for both protocols), resolved in the registry.
 
-/// One row of the table: a basis of the registry and its size.
+/// One row of the table: a basis of the registry and its size, or (info null) a fitted
+/// representation (imse::fitted_rows(), the fit protocol) and the values it stores.
 struct Row {
     const BasisInfo* info;
     int n;
+    const FittedBasisInfo* fitted = nullptr;
+    const char* name() const { return info != nullptr ? info->name : fitted->name; }
 };
 
+/// The linear rows (imse::paper_rows()), then the fitted ones.
 std::vector<Row> benchmark_rows() {
     std::vector<Row> rows;
     for (const imse::Row& r : imse::paper_rows()) rows.push_back({&find_basis(r.basis), r.n});
+    for (const std::string& name : imse::fitted_rows()) {
+        const FittedBasisInfo* f = find_fitted_basis(name);
+        rows.push_back({nullptr, f->stored, f});
+    }
     return rows;
 }
 
@@ -258,13 +271,101 @@ Timing measure(const BasisInfo& info, int n, const Normals& small, const Normals
     return t;
 }
 
+/// measure() for a fitted representation: eval_ns and eval_batch_ns as for a basis (the stored
+/// values of one random signal); project_ns = the SH projection of the values its fit reads from
+/// the signal at the rule's points (as a baker would) plus the fit.
+Timing measure_fitted(const FittedBasisInfo& f, const Normals& small, const Normals& big,
+                      const DirectionalRule& rule) {
+    Timing t;
+    const std::size_t ns = small.x.size();
+    std::vector<double> sh(9);
+    {
+        const Eigen::VectorXd a = imse::irradiance_factors();
+        const Eigen::MatrixXd c = imse::random_radiance(7, 1);
+        for (int k = 0; k < 9; ++k) sh[static_cast<std::size_t>(k)] = a(k) * c(k, 0);
+    }
+    std::vector<double> stored_d(static_cast<std::size_t>(f.stored));
+    f.fit(sh.data(), stored_d.data());
+    const std::vector<float> stored(stored_d.begin(), stored_d.end());
+    {
+        double best = 1e300;
+        for (int rep = 0; rep < 5; ++rep) {
+            float acc = 0;
+            const auto t0 = Clock::now();
+            const int calls = 1 << 16;
+            for (int i = 0; i < calls; ++i) {
+                const std::size_t k = static_cast<std::size_t>(i) & (ns - 1);
+                acc += f.eval_f(stored.data(), small.x[k], small.y[k], small.z[k]);
+            }
+            best = std::min(best, seconds_since(t0) * 1e9 / calls);
+            g_sink = g_sink + acc;
+        }
+        t.eval_ns = best;
+    }
+    {
+        const std::size_t chunk = 4096, total = big.x.size();
+        std::vector<float> buf(chunk);
+        double best = 1e300;
+        for (int rep = 0; rep < 3; ++rep) {
+            float acc = 0;
+            const auto t0 = Clock::now();
+            for (std::size_t i = 0; i < total; i += chunk) {
+                const std::size_t len = std::min(chunk, total - i);
+                f.eval_batch_f(stored.data(), len, big.x.data() + i, big.y.data() + i,
+                               big.z.data() + i, buf.data());
+                acc += buf[len - 1];
+            }
+            best = std::min(best, seconds_since(t0) * 1e9 / static_cast<double>(total));
+            g_sink = g_sink + acc;
+        }
+        t.eval_batch_ns = best;
+    }
+    {
+        const std::size_t m = rule.size();
+        const int n = f.sh_coeffs;
+        std::vector<float> xs(m), ys(m), zs(m), vals(m * static_cast<std::size_t>(n));
+        for (std::size_t i = 0; i < m; ++i) {
+            xs[i] = static_cast<float>(rule.x[i]);
+            ys[i] = static_cast<float>(rule.y[i]);
+            zs[i] = static_cast<float>(rule.z[i]);
+        }
+        const Eigen::MatrixXd e = imse::irradiance_samples(imse::random_radiance(7, 1), rule);
+        std::vector<double> we(m), proj(static_cast<std::size_t>(n)), out(16);
+        for (std::size_t i = 0; i < m; ++i) we[i] = rule.w[i] * e(static_cast<Eigen::Index>(i), 0);
+        const BasisInfo& shb = find_basis("sh");
+        const int signals = 64;
+        double best = 1e300;
+        for (int rep = 0; rep < 3; ++rep) {
+            double acc = 0;
+            const auto t0 = Clock::now();
+            for (int s = 0; s < signals; ++s) {
+                shb.eval_batch_f(n, m, xs.data(), ys.data(), zs.data(), vals.data(), m);
+                for (int k = 0; k < n; ++k) {
+                    const float* v = vals.data() + static_cast<std::size_t>(k) * m;
+                    double sum = 0;
+                    for (std::size_t i = 0; i < m; ++i) sum += we[i] * static_cast<double>(v[i]);
+                    proj[static_cast<std::size_t>(k)] = sum;
+                }
+                f.fit(proj.data(), out.data());
+                acc += out[0];
+            }
+            best = std::min(best, seconds_since(t0) * 1e9 / signals);
+            g_sink = g_sink + static_cast<float>(acc);
+        }
+        t.project_ns = best;
+    }
+    return t;
+}
+
 std::vector<Timing> measure_all(const std::vector<Row>& rows) {
     const Normals small = random_normals(4096, 11), big = random_normals(1 << 20, 12);
     const DirectionalRule rule = imse::paper_rule();
     std::vector<Timing> out;
     Progress bar("timing", static_cast<long long>(rows.size()));
     for (std::size_t r = 0; r < rows.size(); ++r) {
-        out.push_back(measure(*rows[r].info, rows[r].n, small, big, rule));
+        out.push_back(rows[r].fitted != nullptr
+                          ? measure_fitted(*rows[r].fitted, small, big, rule)
+                          : measure(*rows[r].info, rows[r].n, small, big, rule));
         bar.update();
     }
     bar.done();
@@ -428,6 +529,24 @@ ProtocolResult run_paper(const std::vector<Row>& rows, long long signals, std::u
     const Eigen::MatrixXd radiance = imse::random_radiance(seed, static_cast<int>(signals));
     Progress bar("paper", static_cast<long long>(rows.size()));
     for (std::size_t r = 0; r < rows.size(); ++r) {
+        if (rows[r].fitted != nullptr) {
+            // The fit protocol: no closed form (non-linear); quad_err against twice the
+            // Funk-Hecke nodes and 24 bands.
+            const FittedBasisInfo& f = *rows[r].fitted;
+            const Eigen::VectorXd values = imse::fitted_imse_paper(f, radiance);
+            const Eigen::VectorXd fine_values =
+                imse::fitted_imse_paper(f, radiance, 24, imse::fitted_check_nodes);
+            const imse::Summary sum = imse::summarize(values);
+            RowResult row;
+            row.basis = f.name;
+            row.coeffs = f.stored;
+            row.imse = reported_imse(sum.mean);
+            row.stderr_imse = sum.standard_error;
+            row.quad_err = std::fabs(fine_values.mean() - sum.mean);
+            res.rows.push_back(row);
+            bar.update();
+            continue;
+        }
         const BasisInfo& info = *rows[r].info;
         const int n = rows[r].n;
         const BasisFunctions b = info.functions(n);
@@ -464,6 +583,10 @@ ProtocolResult run_paper(const std::vector<Row>& rows, long long signals, std::u
         "fit and IMSE by quadrature in u = sqrt(z): " + std::to_string(rule.size()) +
         " points (32 x 32); quad_err against " + std::to_string(fine.size()) + " points (64 x 48)");
     add_sg_pipeline_rows(res, radiance, rule, fine);
+    res.notes.push_back(
+        "fitted rows (sh-l1-nonlinear, zh3-hallucinate, zh3): fit from the irradiance's own SH "
+        "over the sphere, error over the hemisphere through the SH Gram of 16 bands; quad_err "
+        "against 24 bands and twice the Funk-Hecke nodes; no closed form");
     res.seconds = seconds_since(t0);
     return res;
 }
@@ -520,7 +643,12 @@ ProtocolResult run_hdri(const std::vector<Row>& rows, long long signals, std::ui
     // Fits of all rows against SH of nb bands, on two rules (the second checks the first).
     std::vector<BasisFunctions> fns;
     std::vector<bool> ortho;
+    std::vector<const FittedBasisInfo*> fitted_bases;  // the fitted rows, after the linear ones
     for (const auto& r : rows) {
+        if (r.fitted != nullptr) {
+            fitted_bases.push_back(r.fitted);
+            continue;
+        }
         fns.push_back(r.info->functions(r.n));
         ortho.push_back(imse::orthonormal_on_hemisphere(*r.info));
     }
@@ -552,7 +680,8 @@ ProtocolResult run_hdri(const std::vector<Row>& rows, long long signals, std::ui
         }
     }
 
-    const int nrows = fits.rows();
+    const int nlin = fits.rows();
+    const int nrows = nlin + static_cast<int>(fitted_bases.size());
     Eigen::MatrixXd rel(nrows, signals), bound(nrows, signals), rel_half(nrows, signals),
         rel_fine(nrows, signals);
     Eigen::VectorXd energy(signals);
@@ -582,12 +711,29 @@ ProtocolResult run_hdri(const std::vector<Row>& rows, long long signals, std::ui
             const double en_half = gram_half.energy(hv.data());
             const double t = tail[static_cast<std::size_t>(map_of[static_cast<std::size_t>(s)])];
             energy(s) = en;
-            for (int r = 0; r < nrows; ++r) {
+            for (int r = 0; r < nlin; ++r) {
                 const double im = en - fitted(r, c);
                 rel(r, s) = imse::relative(im, en);
                 rel_fine(r, s) = imse::relative(en - fitted_fine(r, c), en);
                 rel_half(r, s) = imse::relative(en_half - fitted_half(r, c), en_half);
                 bound(r, s) = imse::relative_error_bound(im, en, t);
+            }
+            // Fitted rows: the fit protocol through the same Gram matrices; the bound adds the
+            // representation's own part above nb bands to the signal's.
+            for (std::size_t f = 0; f < fitted_bases.size(); ++f) {
+                const int r = nlin + static_cast<int>(f);
+                double tr = 0;
+                const double im = imse::fitted_imse(*fitted_bases[f], gram, e.col(c).data(),
+                                                    imse::fitted_nodes, &tr);
+                rel(r, s) = imse::relative(im, en);
+                rel_fine(r, s) =
+                    imse::relative(imse::fitted_imse(*fitted_bases[f], gram, e.col(c).data(),
+                                                     imse::fitted_check_nodes),
+                                   en);
+                rel_half(r, s) = imse::relative(
+                    imse::fitted_imse(*fitted_bases[f], gram_half, hv.data()), en_half);
+                const double st = std::sqrt(t) + std::sqrt(tr);
+                bound(r, s) = imse::relative_error_bound(im, en, st * st);
             }
         }
         bar.update(len);
@@ -611,7 +757,7 @@ ProtocolResult run_hdri(const std::vector<Row>& rows, long long signals, std::ui
     }
     for (int r = 0; r < nrows; ++r) {
         RowResult row;
-        row.basis = rows[static_cast<std::size_t>(r)].info->name;
+        row.basis = rows[static_cast<std::size_t>(r)].name();
         row.coeffs = rows[static_cast<std::size_t>(r)].n;
         const imse::Summary sum = imse::summarize(rel.row(r).transpose());
         row.imse = reported_imse(sum.mean);
@@ -671,7 +817,7 @@ void print_table(std::ostream& os, const ProtocolResult& p) {
        << fmt("%.1f", p.seconds) << " s\n";
     for (const auto& n : p.notes) os << "  " << n << "\n";
     char line[512];
-    std::snprintf(line, sizeof line, "%-10s %6s  %-23s %-21s %-9s %8s %8s %8s %12s\n", "basis",
+    std::snprintf(line, sizeof line, "%-15s %6s  %-23s %-21s %-9s %8s %8s %8s %12s\n", "basis",
                   "coeffs", hdri ? "rel. IMSE +- stderr" : "IMSE +- stderr",
                   hdri ? "trunc.bound  d(32->64)" : "expected +- stderr", "quad.rel", "eval ns",
                   "batch ns", "proj ns", "B/texel 8/16/32");
@@ -695,7 +841,7 @@ void print_table(std::ostream& os, const ProtocolResult& p) {
         const std::string bytes = std::to_string(3 * r.coeffs) + "/" +
                                   std::to_string(6 * r.coeffs) + "/" +
                                   std::to_string(12 * r.coeffs);
-        std::snprintf(line, sizeof line, "%-10s %6d  %-23s %-21s %-9s %8.2f %8.2f %8.0f %12s\n",
+        std::snprintf(line, sizeof line, "%-15s %6d  %-23s %-21s %-9s %8.2f %8.2f %8.0f %12s\n",
                       r.basis.c_str(), r.coeffs, val.c_str(), second.c_str(), quad_rel(r).c_str(),
                       r.t.eval_ns, r.t.eval_batch_ns, r.t.project_ns, bytes.c_str());
         os << line;
@@ -805,7 +951,7 @@ int run_imse(const ImseOptions& o) {
     if (o.protocol != "paper" && signals > kMaxSignalsHdri)
         throw UsageError("--signals: expected N <= " + std::to_string(kMaxSignalsHdri) +
                          " for --protocol " + o.protocol +
-                         " (the hdri protocol keeps 644 bytes per signal, 0.64 GB at the "
+                         " (the hdri protocol keeps 804 bytes per signal, 0.8 GB at the "
                          "limit), got " +
                          std::to_string(signals));
     // Fail before the long run, not after it, changing nothing; the outputs are staged and
@@ -872,7 +1018,7 @@ Run setup_imse(CLI::App& app) {
             "", ""));
     add_integer(app, "--signals", o->signals, 2, kMaxSignalsPaper,
                 "signals averaged per row (hdri: at most 1000000)", "N",
-                "80 bytes of memory per signal, 0.8 GB at the limit; hdri: 644 bytes, at most "
+                "80 bytes of memory per signal, 0.8 GB at the limit; hdri: 804 bytes, at most "
                 "1000000");
     add_integer(app, "--seed", o->seed, 0, std::numeric_limits<long long>::max(), "random seed",
                 "S");

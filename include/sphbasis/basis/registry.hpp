@@ -10,14 +10,18 @@
 #include <vector>
 
 #include "../core/error.hpp"
+#include "ambient_cube.hpp"
+#include "ambient_dice.hpp"
 #include "basis.hpp"
 #include "hbasis.hpp"
 #include "hl2.hpp"
 #include "hsh.hpp"
 #include "makhotkin.hpp"
 #include "sh.hpp"
+#include "sh_l1_nonlinear.hpp"
 #include "spherical_gaussian.hpp"
 #include "zernike.hpp"
+#include "zh3.hpp"
 
 namespace sphbasis {
 
@@ -107,12 +111,15 @@ const std::vector<BasisInfo>& all_bases() {
         detail::make_info<HBasisMod>(detail::no_lm),
         detail::make_info<HL2>(detail::no_lm),
         detail::make_info<SphericalGaussian>(detail::no_lm),
+        detail::make_info<AmbientCube>(detail::no_lm),
+        detail::make_info<AmbientDice>(detail::no_lm),
     };
     return v;
 }
 
 /// The basis called `name` ("sh", "hsh", "makhotkin", "zernike", "hbasis", "hbasis-mod",
-/// "hl2", "sg"). Throws std::invalid_argument naming the known bases otherwise.
+/// "hl2", "sg", "ambient-cube", "ambient-dice"). Throws std::invalid_argument naming the known
+/// bases otherwise.
 template <class = void>
 const BasisInfo& find_basis(std::string_view name) {
     for (const auto& b : all_bases())
@@ -121,6 +128,93 @@ const BasisInfo& find_basis(std::string_view name) {
     for (const auto& b : all_bases()) known += std::string(known.empty() ? "" : ", ") + b.name;
     detail::throw_invalid("find_basis",
                           "one of: " + known + "; got unknown basis '" + std::string(name) + "'");
+}
+
+// ---- Fitted (non-linear) representations ------------------------------------------------------
+// ZH3 and L1 SH with the Geomerics reconstruction are no linear span: their coefficients come
+// from a fit of the signal's low-order SH coefficients (over the whole sphere, as engines project
+// probes) and their evaluation is non-linear in them. They share this "fit protocol" instead of
+// BasisInfo: the IMSE benchmark (ops/imse.hpp) fits each signal with `fit` and integrates the
+// squared error of `eval` by quadrature.
+
+/// Type-erased access to one fitted representation of a scalar signal on the sphere.
+struct FittedBasisInfo {
+    const char* name;
+    int stored;     // values stored per channel (the storage of a texel or probe)
+    int sh_coeffs;  // SH coefficients of the signal (ACN, first ones) that the fit reads
+    /// The stored values from the signal's first sh_coeffs SH coefficients.
+    void (*fit)(const double* sh, double* stored_out);
+    /// The representation at a unit direction (normalised as by basis_eval), float and double,
+    /// and over `directions` SoA directions (SIMD across directions).
+    double (*eval_d)(const double* stored, double x, double y, double z);
+    float (*eval_f)(const float* stored, float x, float y, float z);
+    void (*eval_batch_f)(const float* stored, std::size_t directions, const float* xs,
+                         const float* ys, const float* zs, float* out);
+    /// The representation's SH coefficients to `bands` bands (bands^2 values to out; `nodes`: the
+    /// quadrature of a non-polynomial one); returns the squared sphere norm of the part above.
+    double (*sh_expansion)(const double* stored, int bands, int nodes, double* out);
+};
+
+/// All fitted representations: "sh-l1-nonlinear" (4 values), "zh3" (5), "zh3-hallucinate" (4).
+template <class = void>
+const std::vector<FittedBasisInfo>& all_fitted_bases() {
+    static const std::vector<FittedBasisInfo> v = {
+        {"sh-l1-nonlinear", sh_l1_nonlinear::stored, 4,
+         [](const double* sh, double* out) { sh_l1_nonlinear::fit(sh, out); },
+         [](const double* c, double x, double y, double z) {
+             return sh_l1_nonlinear::eval(c, x, y, z);
+         },
+         [](const float* c, float x, float y, float z) {
+             return sh_l1_nonlinear::eval(c, x, y, z);
+         },
+         [](const float* c, std::size_t n, const float* xs, const float* ys, const float* zs,
+            float* out) { sh_l1_nonlinear::eval_batch(c, n, xs, ys, zs, out); },
+         [](const double* c, int bands, int nodes, double* out) {
+             return sh_l1_nonlinear::sh_expansion(c, bands, out, nodes);
+         }},
+        {"zh3", zh3::stored, 9, [](const double* sh, double* out) { zh3::fit(sh, out); },
+         [](const double* c, double x, double y, double z) { return zh3::eval(c, x, y, z); },
+         [](const float* c, float x, float y, float z) { return zh3::eval(c, x, y, z); },
+         [](const float* c, std::size_t n, const float* xs, const float* ys, const float* zs,
+            float* out) { zh3::eval_batch(c, n, xs, ys, zs, out); },
+         [](const double* c, int bands, int, double* out) {
+             return zh3::sh_expansion(c, bands, out);
+         }},
+        {"zh3-hallucinate", zh3::stored_hallucinated, 4,
+         [](const double* sh, double* out) {
+             for (int k = 0; k < 4; ++k) out[k] = sh[k];
+         },
+         [](const double* c, double x, double y, double z) {
+             double full[zh3::stored];
+             zh3::hallucinate(c, full);
+             return zh3::eval(full, x, y, z);
+         },
+         [](const float* c, float x, float y, float z) {
+             float full[zh3::stored];
+             zh3::hallucinate(c, full);
+             return zh3::eval(full, x, y, z);
+         },
+         [](const float* c, std::size_t n, const float* xs, const float* ys, const float* zs,
+            float* out) {
+             float full[zh3::stored];
+             zh3::hallucinate(c, full);
+             zh3::eval_batch(full, n, xs, ys, zs, out);
+         },
+         [](const double* c, int bands, int, double* out) {
+             double full[zh3::stored];
+             zh3::hallucinate(c, full);
+             return zh3::sh_expansion(full, bands, out);
+         }},
+    };
+    return v;
+}
+
+/// The fitted representation called `name`, or nullptr.
+template <class = void>
+const FittedBasisInfo* find_fitted_basis(std::string_view name) noexcept {
+    for (const auto& b : all_fitted_bases())
+        if (name == b.name) return &b;
+    return nullptr;
 }
 
 }  // namespace sphbasis

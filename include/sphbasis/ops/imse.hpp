@@ -31,6 +31,14 @@
 //     2 s^4 sum_{i != j} Q_ij^2 (mu_4 = 1/5), which gives the standard error of a sample mean.
 //   * HDRI protocol: the relative IMSE, IMSE / mean_{Omega+}(E^2) with mean(E^2) =
 //     int_{Omega+} E^2 / (2 pi): the fraction of the signal's energy the fit misses, times 2 pi.
+//   * Fit protocol (the fitted, non-linear representations of basis/registry.hpp: ZH3, ZH3
+//     hallucinated, L1 SH with the Geomerics reconstruction): no least squares over the
+//     hemisphere; the representation is fitted the way engines fit probes, from the signal's own
+//     low-order SH coefficients over the whole sphere (FittedBasisInfo::fit), and its error is
+//     integrated over the hemisphere like every other row: the representation's SH expansion r
+//     (exact for ZH3, Funk-Hecke moments for the Geomerics model) minus the signal's e, through
+//     the hemispherical SH Gram, IMSE = (r - e)^T G (r - e) (fitted_imse()). No closed form
+//     ("expected") since the fit is non-linear.
 //
 // Quadrature. The products of HSH and Makhotkin functions with SH contain sqrt(z) (e.g.
 // M_00 = sqrt(z/pi), H_11 ~ x sqrt(z/(1+z))), so Gauss-Legendre in z (hemisphere_rule)
@@ -89,16 +97,20 @@ struct Row {
 };
 
 /// The rows of the paper protocol, in table order: SH 4, 9, 16, 25; HSH 4, 9, 16; Makhotkin 4,
-/// 9, 16; Zernike 3, 6, 10, 15; H-basis 4, 6; modified H-basis 4, 6; HL2 3; SG 9, 12 (the
+/// 9, 16; Zernike 3, 6, 10, 15; H-basis 4, 6; modified H-basis 4, 6; HL2 3; ambient cube 5 (its
+/// hemispherical restriction: the -z face is zero on z >= 0); ambient dice 12; SG 9, 12 (the
 /// irradiance fitted in the span of BakingLab's lobes; sg_pipeline_imse() scores BakingLab's own
-/// pipeline, radiance fitted and irradiance by Hill's approximation).
+/// pipeline, radiance fitted and irradiance by Hill's approximation). The fitted rows
+/// (fitted_rows()) follow them.
 inline std::vector<Row> paper_rows() {
-    return {{"sh", 4},         {"sh", 9},         {"sh", 16},     {"sh", 25},
-            {"hsh", 4},        {"hsh", 9},        {"hsh", 16},    {"makhotkin", 4},
-            {"makhotkin", 9},  {"makhotkin", 16}, {"zernike", 3}, {"zernike", 6},
-            {"zernike", 10},   {"zernike", 15},   {"hbasis", 4},  {"hbasis", 6},
-            {"hbasis-mod", 4}, {"hbasis-mod", 6}, {"hl2", 3},     {"sg", 9},
-            {"sg", 12}};
+    return {{"sh", 4},         {"sh", 9},           {"sh", 16},
+            {"sh", 25},        {"hsh", 4},          {"hsh", 9},
+            {"hsh", 16},       {"makhotkin", 4},    {"makhotkin", 9},
+            {"makhotkin", 16}, {"zernike", 3},      {"zernike", 6},
+            {"zernike", 10},   {"zernike", 15},     {"hbasis", 4},
+            {"hbasis", 6},     {"hbasis-mod", 4},   {"hbasis-mod", 6},
+            {"hl2", 3},        {"ambient-cube", 5}, {"ambient-dice", 12},
+            {"sg", 9},         {"sg", 12}};
 }
 
 /// The rows of the HDRI protocol, in table order: the same rows as paper_rows().
@@ -432,6 +444,61 @@ class ShFits {
     std::vector<int> offsets_;
     Eigen::MatrixXd d_;
 };
+
+// ---------------------------------------------------------------------------------------------
+// Fit protocol: fitted (non-linear) representations
+
+/// The fitted rows of both protocols, after the linear ones: registry names of
+/// all_fitted_bases() (L1 SH with the Geomerics reconstruction, ZH3 hallucinated, ZH3).
+inline std::vector<std::string> fitted_rows() {
+    return {"sh-l1-nonlinear", "zh3-hallucinate", "zh3"};
+}
+
+/// Funk-Hecke nodes of the fit protocol, and of its check (quad_err).
+inline constexpr int fitted_nodes = 128;
+inline constexpr int fitted_check_nodes = 256;
+
+/// IMSE over the upper hemisphere of fitted representation f for a signal given as SH
+/// coefficients e of gram.bands() bands (bands^2 values; bands >= 3): stored = f.fit(e),
+/// r = f.sh_expansion(stored) to gram.bands() bands, IMSE = gram.energy(r - e). `tail` (if not
+/// null) receives the squared sphere norm of r above gram.bands() bands, left out (for error
+/// bounds: sqrt(IMSE) moves by at most its square root). Cost: O(bands^3) plus the expansion's.
+inline double fitted_imse(const FittedBasisInfo& f, const HemisphereShGram& gram, const double* e,
+                          int nodes = fitted_nodes, double* tail = nullptr) {
+    const int b = gram.bands();
+    if (b < 3)
+        sphbasis::detail::throw_invalid("imse::fitted_imse",
+                                        "a Gram matrix of >= 3 bands, got " + std::to_string(b));
+    sphbasis::detail::check_buffer("imse::fitted_imse", "signal", e, std::size_t(b * b));
+    double stored[16];
+    f.fit(e, stored);
+    std::vector<double> r(static_cast<std::size_t>(b * b));
+    const double t = f.sh_expansion(stored, b, nodes, r.data());
+    if (tail != nullptr) *tail = t;
+    for (std::size_t k = 0; k < r.size(); ++k) r[k] -= e[k];
+    return gram.energy(r.data());
+}
+
+/// The fit protocol on paper-protocol signals (9 x S radiance coefficients): the IMSE of each,
+/// with the representation's expansion to `bands` bands (16: the Geomerics model's part above is
+/// below 1e-9 of its energy; ZH3 is exact from 3).
+inline Eigen::VectorXd fitted_imse_paper(const FittedBasisInfo& f, const Eigen::MatrixXd& radiance,
+                                         int bands = 16, int nodes = fitted_nodes) {
+    if (radiance.rows() != signal_coeffs)
+        sphbasis::detail::throw_invalid(
+            "imse::fitted_imse_paper",
+            "9 radiance coefficients per column, got " + std::to_string(radiance.rows()));
+    const HemisphereShGram gram(bands);
+    const Eigen::VectorXd a = irradiance_factors();
+    Eigen::VectorXd out(radiance.cols());
+    std::vector<double> e(static_cast<std::size_t>(bands * bands), 0.0);
+    for (Eigen::Index s = 0; s < radiance.cols(); ++s) {
+        for (int k = 0; k < signal_coeffs; ++k)
+            e[static_cast<std::size_t>(k)] = a(k) * radiance(k, s);
+        out(s) = fitted_imse(f, gram, e.data(), nodes);
+    }
+    return out;
+}
 
 /// Rule sizes (nu, nphi) for ShFits that integrate <B, y_lm> to rounding for SH of `bands`
 /// bands against bases of at most 25 functions: nu = bands + 20 (polynomial degree

@@ -8,8 +8,11 @@
 // render/representations/ (each header's comment says what its members show and read):
 //   irradiance.hpp     irradiance-sh9, irradiance-sh9-windowed, ao, bent
 //   prt.hpp            prt-vertex, prt-texel
-//   lightmap.hpp       lightmap-sh4, -sh9, -hbasis4, -hbasis6, -hbasis-mod6, -hl2, -hsh4, -hsh9
+//   lightmap.hpp       lightmap-sh4, -sh9, -hbasis4, -hbasis6, -hbasis-mod6, -hl2, -hsh4, -hsh9,
+//                      -ambient-cube5, -ambient-dice12
 //   volume.hpp         volume
+//   volume_engine.hpp  volume-ambient-cube, -ambient-dice, -sh-l1-nonlinear, -zh3-hallucinate,
+//                      -zh3
 //   specular.hpp       specular-toksvig, specular-aliased (compared with
 //                      render_specular_reference() of render/specular.hpp, not the path tracer)
 //   lxh.hpp            lxh-unc3, -unc4, -unc6, lxh-pcaM (M = 4, 8, 12, 16, 24 listed; 1..36)
@@ -67,16 +70,16 @@
 #include "representations/prt_normalmap.hpp"
 #include "representations/specular.hpp"
 #include "representations/volume.hpp"
+#include "representations/volume_engine.hpp"
 #include "scene.hpp"
 
 namespace sphbasis::render {
 
 /// The representation families, in report order (header comment: adding one).
-using RepresentationFamilies =
-    representations::FamilyList<representations::Irradiance, representations::Prt,
-                                representations::Lightmap, representations::Volume,
-                                representations::Specular, representations::Lxh,
-                                representations::PrtNormalMap, representations::PrtCpca>;
+using RepresentationFamilies = representations::FamilyList<
+    representations::Irradiance, representations::Prt, representations::Lightmap,
+    representations::Volume, representations::VolumeEngine, representations::Specular,
+    representations::Lxh, representations::PrtNormalMap, representations::PrtCpca>;
 
 /// Every representation name, in report order (header comment).
 inline const std::vector<std::string>& representation_names() {

@@ -1,6 +1,7 @@
 // sphbasis render tier: irradiance lightmaps in a directional basis (representations/
 // family.hpp):
-//   lightmap-sh4, -sh9, -hbasis4, -hbasis6, -hbasis-mod6, -hl2, -hsh4, -hsh9
+//   lightmap-sh4, -sh9, -hbasis4, -hbasis6, -hbasis-mod6, -hl2, -hsh4, -hsh9,
+//   lightmap-ambient-cube5, -ambient-dice12 (the hemispherical ambient cube: no -z face)
 //                             the bake's `irradiance` in that basis (basis/registry.hpp), per
 //                             texel, bilinear, evaluated at the normal-mapped normal in the
 //                             texel's tangent frame (Ishmukhametov, "Irradiance Normal
@@ -109,7 +110,9 @@ class Lightmap : public Representation {
             {"hbasis-mod6", {"hbasis-mod", 6}},
             {"hl2", {"hl2", 3}},
             {"hsh4", {"hsh", 4}},
-            {"hsh9", {"hsh", 9}}};
+            {"hsh9", {"hsh", 9}},
+            {"ambient-cube5", {"ambient-cube", 5}},
+            {"ambient-dice12", {"ambient-dice", 12}}};
         return t;
     }
     const BasisInfo* basis_ = nullptr;

@@ -1,0 +1,132 @@
+// sphbasis render tier: irradiance volumes stored in the engine bases (representations/
+// family.hpp):
+//   volume-ambient-cube, volume-ambient-dice
+//                             probes storing the irradiance in the ambient cube (6 values per
+//                             channel; McTaggart 2004) or Ambient Dice (12; Iwanicki and Sloan
+//                             2017), least-squares fits over the sphere (basis/registry.hpp);
+//   volume-sh-l1-nonlinear, volume-zh3-hallucinate, volume-zh3
+//                             probes storing a fitted representation (4, 4 and 5 values per
+//                             channel: L1 SH with the Geomerics reconstruction, ZH3 with its
+//                             zonal coefficient hallucinated, ZH3; basis/registry.hpp's
+//                             FittedBasisInfo), fitted from the irradiance's SH.
+// Each reads the probes of `volume` (SH radiance, 3 bands, bounces, lighting-dependent), converts
+// every probe's irradiance (the clamped-cosine convolution of its radiance) to the stored values
+// once (build), interpolates the STORED values trilinearly at the hit as an engine does, and
+// evaluates them at the normal-mapped normal.
+#pragma once
+
+#include <Eigen/Dense>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "../../basis/registry.hpp"
+#include "../../core/quadrature.hpp"
+#include "../../ops/projection.hpp"
+#include "family.hpp"
+#include "field.hpp"
+
+namespace sphbasis::render::representations {
+
+class VolumeEngine : public Representation {
+  public:
+    static void list(std::vector<std::string>& out) {
+        for (const char* n : names()) out.push_back(std::string("volume-") + n);
+    }
+    static bool accepts(const std::string& name) {
+        for (const char* n : names())
+            if (name == std::string("volume-") + n) return true;
+        return false;
+    }
+    VolumeEngine(const std::string& name, const Context& ctx) : Representation(name) {
+        const std::string b = name.substr(7);
+        fitted_ = find_fitted_basis(b);
+        if (fitted_ == nullptr) {
+            linear_ = &find_basis(b);  // throws for a name accepts() does not know
+            n_ = linear_->name == std::string("ambient-cube") ? 6 : 12;
+        } else {
+            n_ = fitted_->stored;
+        }
+        element = "probe";
+        bytes_per_element = 3 * std::size_t(n_) * sizeof(float);
+        cannot_show =
+            "static lighting (ignores the render-time rotation); shadows and occlusion "
+            "finer than the probe spacing; light leaks where probes straddle walls; "
+            "directional detail beyond " +
+            std::to_string(n_) + " " + b + " values" +
+            std::string(ctx.settings.bounces > 0 ? "" : "; no interreflection");
+    }
+    void plan(Context& ctx) override {
+        ctx.needs_sh = true;  // the clamped-cosine factors (ctx.sh.cosine9)
+        BakeRequest q;
+        q.where = BakeRequest::Where::probes;
+        q.lighting_dependent = true;
+        q.settings = ctx.base_settings(Quantity::radiance, ctx.settings.bounces);
+        q.settings.bands = 3;
+        if (ctx.settings.has_probes) {
+            q.probes = ctx.settings.probes;
+        } else {
+            q.probes.lo = ctx.rt.bounds_min();
+            q.probes.hi = ctx.rt.bounds_max();
+            q.probes.counts = {4, 4, 4};
+        }
+        probe_bake = ctx.add_request(q);
+    }
+    void build(Context& ctx) override {
+        const Field& f = ctx.fields[std::size_t(probe_bake)];
+        const std::size_t probes = f.probe_values.size() / 27, n = std::size_t(n_);
+        Eigen::MatrixXd t;  // linear: stored = T e (n x 9), the least squares over the sphere
+        if (linear_ != nullptr) {
+            const DirectionalRule rule = sphere_rule(40);
+            const BasicLeastSquares<> ls(linear_->functions(n_), false, rule);
+            t = ls.conversion(evaluation_matrix(evaluator<SH>(9), rule));
+        }
+        stored_.assign(probes * 3 * n, 0.0);
+        for (std::size_t p = 0; p < probes; ++p)
+            for (std::size_t c = 0; c < 3; ++c) {
+                Eigen::VectorXd e(9);
+                for (std::size_t k = 0; k < 9; ++k)
+                    e(Eigen::Index(k)) = ctx.sh.cosine9[k] * f.probe_values[27 * p + 9 * c + k];
+                double* out = stored_.data() + (p * 3 + c) * n;
+                if (linear_ != nullptr) {
+                    const Eigen::VectorXd s = t * e;
+                    for (std::size_t k = 0; k < n; ++k) out[k] = s(Eigen::Index(k));
+                } else {
+                    fitted_->fit(e.data(), out);
+                }
+            }
+    }
+    RGB shade(const Context& ctx, const Hit& hit, const vec3<double>&, double) const override {
+        const Field& f = ctx.fields[std::size_t(probe_bake)];
+        const std::size_t n = std::size_t(n_);
+        std::array<double, 3 * 12> v;
+        f.grid.interpolate_valid(stored_.data(), 3 * n, f.inside.data(), hit.position, v.data());
+        const vec3<double> nm = Scene::normal_mapped(hit);
+        std::array<double, 12> y;
+        if (linear_ != nullptr) linear_->eval_d(n_, nm.x, nm.y, nm.z, y.data());
+        RGB out{0, 0, 0};
+        for (std::size_t c = 0; c < 3; ++c) {
+            double s = 0;
+            if (linear_ != nullptr) {
+                for (std::size_t k = 0; k < n; ++k) s += v[c * n + k] * y[k];
+            } else {
+                s = fitted_->eval_d(v.data() + c * n, nm.x, nm.y, nm.z);
+            }
+            out[c] = hit.albedo[c] * s;
+        }
+        return out;
+    }
+
+  private:
+    static const std::vector<const char*>& names() {
+        static const std::vector<const char*> n{"ambient-cube", "ambient-dice", "sh-l1-nonlinear",
+                                                "zh3-hallucinate", "zh3"};
+        return n;
+    }
+    const BasisInfo* linear_ = nullptr;
+    const FittedBasisInfo* fitted_ = nullptr;
+    int n_ = 0;
+    std::vector<double> stored_;  // probes x 3 x n
+};
+
+}  // namespace sphbasis::render::representations
