@@ -114,9 +114,11 @@ void check_keys(const Ctx& c, const json& j, const std::string& where,
         if (!near.empty()) {
             msg += " (did you mean '" + near + "'?)";
         } else {
-            msg += " (expected one of:";
-            for (const auto& a : allowed) msg += " " + a;
-            msg += ")";
+            std::string list;
+            for (const auto& a : allowed) list += " " + a;
+            // A long list would make the line long (error lines stay near 200 characters).
+            msg += list.size() <= 100 ? " (expected one of:" + list + ")"
+                                      : std::string(" (docs/scene-format.md lists the keys)");
         }
         c.fail(where, msg);
     }
