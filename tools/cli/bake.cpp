@@ -1342,9 +1342,7 @@ Run setup_bake(CLI::App& app) {
     add_integer(app, "--bands", o->bands, 1, 16, "SH bands of visibility, transfer and radiance");
     app.add_option("--basis", o->basis,
                    "basis of irradiance: sh, hbasis, hbasis-mod, hl2, hsh, makhotkin, zernike, "
-                   "sg (BakingLab's lobes: --coeffs 5, 6, 9 or 12)",
-                   ambient - cube(--coeffs 5),
-                   "
+                   "sg (BakingLab's lobes: --coeffs 5, 6, 9 or 12), ambient-cube (--coeffs 5), "
                    "ambient-dice (--coeffs 12)")
         ->type_name("NAME")
         ->capture_default_str();
