@@ -292,9 +292,12 @@ TEST_CASE("hemispherical SH Gram, truncation bound and ShFits against direct qua
         const DirectionalRule fine = imse::hemisphere_rule_sqrt(nu + 10, nphi + 10);
         const Eigen::VectorXd samples = evaluation_matrix(evaluator<SH>(k), fine) * e;
         const double direct = fit.imse(samples)(0);
-        const bool kinked = std::string(infos[r]->name).rfind("ambient-", 0) == 0;  // see above
+        // Not polynomials, so neither rule integrates them exactly: the ambient bases' kinks
+        // (see above) and the SG lobes' exponentials (measured 7e-5 and 7e-4 for sg 9 and 12).
+        const std::string name = infos[r]->name;
+        const bool inexact = name.rfind("ambient-", 0) == 0 || name == "sg";
         CHECK(energy - fitted(static_cast<Eigen::Index>(r), 0) ==
-              Approx(direct).epsilon(kinked ? 2e-3 : 1e-9));
+              Approx(direct).epsilon(inexact ? 2e-3 : 1e-9));
     }
 
     // Truncation: dropping bands >= 4 of an irradiance changes the relative IMSE by no more
