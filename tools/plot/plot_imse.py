@@ -49,6 +49,12 @@ COLOURS = {
     "hbasis": "#9467bd",
     "hbasis-mod": "#8c564b",
     "hl2": "#e377c2",
+    "ambient-cube": "#7f7f7f",
+    "ambient-dice": "#bcbd22",
+    "sg": "#17becf",
+    "sh-l1-nonlinear": "#000000",
+    "zh3-hallucinate": "#aec7e8",
+    "zh3": "#393b79",
 }
 
 
@@ -142,16 +148,16 @@ def panel(ax, p):
                      "smallest IMSE above: a place, not a value" % (FLOOR, bottom))
         ax.axhline(bottom, color="grey", lw=0.6, ls=":", zorder=1)
     ax.legend(handles, names, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12),
-              ncol=4, frameon=False)
+              ncol=5, frameon=False)
     if any_exact:
         # The legend's long entry does not fit beside the colours: it takes a row of its own.
         leg = ax.get_legend()
         leg.remove()
         first = ax.legend(handles[:-1], names[:-1], fontsize=7, loc="upper center",
-                          bbox_to_anchor=(0.5, -0.12), ncol=4, frameon=False)
+                          bbox_to_anchor=(0.5, -0.12), ncol=5, frameon=False)
         ax.add_artist(first)
         ax.legend(handles[-1:], names[-1:], fontsize=7, loc="upper center",
-                  bbox_to_anchor=(0.5, -0.21), frameon=False)
+                  bbox_to_anchor=(0.5, -0.24), frameon=False)
     return labels, markers
 
 
@@ -256,7 +262,7 @@ def main(argv):
     with open(argv[1]) as f:
         doc = json.load(f)
     ps = protocols(doc)
-    fig, axes = plt.subplots(1, len(ps), figsize=(7.5 * len(ps), 6.4), squeeze=False, dpi=130)
+    fig, axes = plt.subplots(1, len(ps), figsize=(7.5 * len(ps), 6.8), squeeze=False, dpi=130)
     drawn = [(ax, panel(ax, p)) for ax, p in zip(axes[0], ps)]
     fig.suptitle("sphbasis IMSE basis comparison (seed %s): accuracy against evaluation cost"
                  % doc.get("seed"), fontsize=11)
