@@ -64,7 +64,9 @@ TEST_CASE("ambient-cube: batch equals scalar, float near double, registry", "[am
     const auto ind = test::scaled_inputs<double>(dirs, 2.5);
     std::vector<float> cf = {0.5f, -1, 2, 0.25f, 1, 3};
     std::vector<double> cd(cf.begin(), cf.end());
-    test::check_batch_equals_scalar<AmbientCube, float>(6, cf, inf, 2e-7f, 2e-7, 4e-6f);
+    // Values in [0, 1]: 4 float ulps of 1 for the batch (its normalisation rounds otherwise:
+    // 2.4e-7 measured in the sanitizer build), 2e-7 against double.
+    test::check_batch_equals_scalar<AmbientCube, float>(6, cf, inf, 4.8e-7f, 2e-7, 4e-6f);
     test::check_batch_equals_scalar<AmbientCube, double>(6, cd, ind, 1e-15, 1e-15, 1e-14);
     const BasisInfo& b = find_basis("ambient-cube");
     CHECK(b.domain == Domain::sphere);
