@@ -190,6 +190,35 @@ Normals random_normals(std::size_t count, std::uint64_t seed) {
 
 volatile float g_sink = 0;  // keeps timed results alive
 
+/// The projection a baker computes, timed by measure() and measure_fitted(): the rule's points
+/// in float and its weights times one fixed signal (the irradiance of random_radiance(7, 1));
+/// project() writes r_k = sum_i w_i E_i f_k(x_i) for n functions of `info`.
+struct ProjectionProbe {
+    std::size_t m;
+    std::vector<float> xs, ys, zs, vals;
+    std::vector<double> we;
+    explicit ProjectionProbe(const DirectionalRule& rule)
+        : m(rule.size()), xs(m), ys(m), zs(m), we(m) {
+        const Eigen::MatrixXd e = imse::irradiance_samples(imse::random_radiance(7, 1), rule);
+        for (std::size_t i = 0; i < m; ++i) {
+            xs[i] = static_cast<float>(rule.x[i]);
+            ys[i] = static_cast<float>(rule.y[i]);
+            zs[i] = static_cast<float>(rule.z[i]);
+            we[i] = rule.w[i] * e(static_cast<Eigen::Index>(i), 0);
+        }
+    }
+    void project(const BasisInfo& info, int n, double* r) {
+        vals.resize(m * static_cast<std::size_t>(n));
+        info.eval_batch_f(n, m, xs.data(), ys.data(), zs.data(), vals.data(), m);
+        for (int k = 0; k < n; ++k) {
+            const float* v = vals.data() + static_cast<std::size_t>(k) * m;
+            double sum = 0;
+            for (std::size_t i = 0; i < m; ++i) sum += we[i] * static_cast<double>(v[i]);
+            r[k] = sum;
+        }
+    }
+};
+
 Timing measure(const BasisInfo& info, int n, const Normals& small, const Normals& big,
                const DirectionalRule& rule) {
     Timing t;
@@ -234,19 +263,8 @@ Timing measure(const BasisInfo& info, int n, const Normals& small, const Normals
     }
     // Projection: fit one signal from its values at the rule's points.
     {
-        const std::size_t m = rule.size();
-        std::vector<float> xs(m), ys(m), zs(m);
-        for (std::size_t i = 0; i < m; ++i) {
-            xs[i] = static_cast<float>(rule.x[i]);
-            ys[i] = static_cast<float>(rule.y[i]);
-            zs[i] = static_cast<float>(rule.z[i]);
-        }
+        ProjectionProbe probe(rule);
         const imse::Fit fit(info.functions(n), imse::orthonormal_on_hemisphere(info), rule);
-        // A fixed signal: the irradiance of one random radiance.
-        const Eigen::MatrixXd e = imse::irradiance_samples(imse::random_radiance(7, 1), rule);
-        std::vector<double> we(m);
-        for (std::size_t i = 0; i < m; ++i) we[i] = rule.w[i] * e(static_cast<Eigen::Index>(i), 0);
-        std::vector<float> vals(m * static_cast<std::size_t>(n));
         Eigen::VectorXd r(n);
         const int signals = 64;
         double best = 1e300;
@@ -254,13 +272,7 @@ Timing measure(const BasisInfo& info, int n, const Normals& small, const Normals
             double acc = 0;
             const auto t0 = Clock::now();
             for (int s = 0; s < signals; ++s) {
-                info.eval_batch_f(n, m, xs.data(), ys.data(), zs.data(), vals.data(), m);
-                for (int k = 0; k < n; ++k) {
-                    const float* v = vals.data() + static_cast<std::size_t>(k) * m;
-                    double sum = 0;
-                    for (std::size_t i = 0; i < m; ++i) sum += we[i] * static_cast<double>(v[i]);
-                    r(k) = sum;
-                }
+                probe.project(info, n, r.data());
                 acc += fit.solve(r)(0);
             }
             best = std::min(best, seconds_since(t0) * 1e9 / signals);
@@ -321,17 +333,9 @@ Timing measure_fitted(const FittedBasisInfo& f, const Normals& small, const Norm
         t.eval_batch_ns = best;
     }
     {
-        const std::size_t m = rule.size();
         const int n = f.sh_coeffs;
-        std::vector<float> xs(m), ys(m), zs(m), vals(m * static_cast<std::size_t>(n));
-        for (std::size_t i = 0; i < m; ++i) {
-            xs[i] = static_cast<float>(rule.x[i]);
-            ys[i] = static_cast<float>(rule.y[i]);
-            zs[i] = static_cast<float>(rule.z[i]);
-        }
-        const Eigen::MatrixXd e = imse::irradiance_samples(imse::random_radiance(7, 1), rule);
-        std::vector<double> we(m), proj(static_cast<std::size_t>(n)), out(16);
-        for (std::size_t i = 0; i < m; ++i) we[i] = rule.w[i] * e(static_cast<Eigen::Index>(i), 0);
+        ProjectionProbe probe(rule);
+        std::vector<double> proj(static_cast<std::size_t>(n)), out(16);
         const BasisInfo& shb = find_basis("sh");
         const int signals = 64;
         double best = 1e300;
@@ -339,13 +343,7 @@ Timing measure_fitted(const FittedBasisInfo& f, const Normals& small, const Norm
             double acc = 0;
             const auto t0 = Clock::now();
             for (int s = 0; s < signals; ++s) {
-                shb.eval_batch_f(n, m, xs.data(), ys.data(), zs.data(), vals.data(), m);
-                for (int k = 0; k < n; ++k) {
-                    const float* v = vals.data() + static_cast<std::size_t>(k) * m;
-                    double sum = 0;
-                    for (std::size_t i = 0; i < m; ++i) sum += we[i] * static_cast<double>(v[i]);
-                    proj[static_cast<std::size_t>(k)] = sum;
-                }
+                probe.project(shb, n, proj.data());
                 f.fit(proj.data(), out.data());
                 acc += out[0];
             }
