@@ -984,4 +984,368 @@ void sphbasis_zernike_eval(float3 dir, int bands, out float h[36])
     }
 }
 
+/// The ambient cube (McTaggart, "Half-Life 2 / Valve Source Shading", GDC 2004)
+/// at the unit direction d: a[k] = max(+-d_i, 0)^2 in the order +x, -x, +y, -y, +z, -z, as
+/// sphbasis::basis_eval<AmbientCube>(6, ...) (d_i >= 0 selects the + face).
+void sphbasis_ambient_cube_eval(float3 d, out float a[6])
+{
+    float x2 = d.x * d.x; float y2 = d.y * d.y; float z2 = d.z * d.z;
+    a[0] = d.x >= 0.0f ? x2 : 0.0f; a[1] = d.x >= 0.0f ? 0.0f : x2;
+    a[2] = d.y >= 0.0f ? y2 : 0.0f; a[3] = d.y >= 0.0f ? 0.0f : y2;
+    a[4] = d.z >= 0.0f ? z2 : 0.0f; a[5] = d.z >= 0.0f ? 0.0f : z2;
+}
+
+/// The ambient cube (McTaggart, "Half-Life 2 / Valve Source Shading", GDC 2004),
+/// hemispherical (the -z face is 0 for z >= 0: tangent-space light maps store 5),
+/// at the unit direction d: a[k] = max(+-d_i, 0)^2 in the order +x, -x, +y, -y, +z, as
+/// sphbasis::basis_eval<AmbientCube>(5, ...) (d_i >= 0 selects the + face).
+void sphbasis_ambient_cube5_eval(float3 d, out float a[5])
+{
+    float x2 = d.x * d.x; float y2 = d.y * d.y; float z2 = d.z * d.z;
+    a[0] = d.x >= 0.0f ? x2 : 0.0f; a[1] = d.x >= 0.0f ? 0.0f : x2;
+    a[2] = d.y >= 0.0f ? y2 : 0.0f; a[3] = d.y >= 0.0f ? 0.0f : y2;
+    a[4] = d.z >= 0.0f ? z2 : 0.0f;
+}
+
+/// The expansion sum_k c[k] B_k(d) of RGB coefficients at the unit direction d, as
+/// sphbasis::basis_eval_sum<AmbientCube>(6, c, d) per channel (same order of the sum).
+float3 sphbasis_ambient_cube_eval_sum(float3 c[6], float3 d)
+{
+    float h[6];
+    sphbasis_ambient_cube_eval(d, h);
+    float3 e = c[0] * h[0];
+    for (int k = 1; k < 6; ++k) e = e + c[k] * h[k];
+    return e;
+}
+
+/// The expansion sum_k c[k] B_k(d) of RGB coefficients at the unit direction d, as
+/// sphbasis::basis_eval_sum<AmbientCube>(5, c, d) per channel (same order of the sum).
+float3 sphbasis_ambient_cube5_eval_sum(float3 c[5], float3 d)
+{
+    float h[5];
+    sphbasis_ambient_cube5_eval(d, h);
+    float3 e = c[0] * h[0];
+    for (int k = 1; k < 5; ++k) e = e + c[k] * h[k];
+    return e;
+}
+
+/// Ambient Dice (Iwanicki and Sloan, EGSR 2017), SRBF variant: the icosahedron's 6 axes
+/// a_0 = (A, B, 0), a_1 = (-A, B, 0), a_2 = (0, A, B), a_3 = (0, -A, B), a_4 = (B, 0, A),
+/// a_5 = (B, 0, -A) and the lobe w(c) = w2 c^2 + w4 c^4 (basis/ambient_dice.hpp).
+static const float sphbasis_ambient_dice_axis_a = 0.850650787f;  // A = 2/sqrt(10 - 2 sqrt(5))
+static const float sphbasis_ambient_dice_axis_b = 0.525731087f;  // B = (sqrt(5) - 1)/2 A
+static const float sphbasis_ambient_dice_w2 = 0.349999994f;  // 0.7/2
+static const float sphbasis_ambient_dice_w4 = 0.25f;  // 0.3 5/6
+
+/// The 12 Ambient Dice functions at the unit direction d, as
+/// sphbasis::basis_eval<AmbientDice>(12, ...): D[2i] = w(d . a_i) where d . a_i > 0, else 0
+/// (vertex +a_i); D[2i+1] = w(d . a_i) where d . a_i <= 0, else 0 (vertex -a_i).
+void sphbasis_ambient_dice_eval(float3 d, out float D[12])
+{
+    float a = sphbasis_ambient_dice_axis_a; float b = sphbasis_ambient_dice_axis_b;
+    float c[6];
+    c[0] = a * d.x + b * d.y; c[1] = b * d.y - a * d.x; c[2] = a * d.y + b * d.z;
+    c[3] = b * d.z - a * d.y; c[4] = b * d.x + a * d.z; c[5] = b * d.x - a * d.z;
+    for (int i = 0; i < 6; ++i) {
+        float c2 = c[i] * c[i];
+        float v = c2 * (sphbasis_ambient_dice_w2 + sphbasis_ambient_dice_w4 * c2);
+        D[2 * i] = c[i] > 0.0f ? v : 0.0f;
+        D[2 * i + 1] = c[i] > 0.0f ? 0.0f : v;
+    }
+}
+
+/// The expansion sum_k c[k] B_k(d) of RGB coefficients at the unit direction d, as
+/// sphbasis::basis_eval_sum<AmbientDice>(12, c, d) per channel (same order of the sum).
+float3 sphbasis_ambient_dice_eval_sum(float3 c[12], float3 d)
+{
+    float h[12];
+    sphbasis_ambient_dice_eval(d, h);
+    float3 e = c[0] * h[0];
+    for (int k = 1; k < 12; ++k) e = e + c[k] * h[k];
+    return e;
+}
+
+/// One spherical Gaussian lobe a exp(lambda (mu . v - 1)) at the unit direction v (unit axis mu,
+/// sharpness lambda >= 0, amplitude a), as sphbasis::sg::eval(Lobe<float>{mu, lambda, a}, v).
+float sphbasis_sg_eval(float3 axis, float sharpness, float amplitude, float3 v)
+{
+    float d = axis.x * v.x + axis.y * v.y + axis.z * v.z;
+    return amplitude * exp(sharpness * (d - 1.0f));
+}
+
+/// Hill's fitted approximation of the irradiance int G(v) max(0, n . v) dv of one lobe of
+/// radiance at the unit normal n (Pettineo, "SG Series" part 3, 2016), as
+/// sphbasis::sg::irradiance_fitted(Lobe<float>{mu, lambda, a}, n). lambda > 0 (the fit is
+/// meant for lambda >= 1). Divide by pi for the exit radiance of a white Lambertian surface.
+float sphbasis_sg_irradiance_fitted(float3 axis, float sharpness, float amplitude, float3 n)
+{
+    float mu_dot_n = axis.x * n.x + axis.y * n.y + axis.z * n.z;
+    float l = sharpness;
+    float eml = exp(-l); float em2l = eml * eml; float rl = 1.0f / l;
+    float scale = 1.0f + 2.0f * em2l - rl;
+    float bias = (eml - em2l) * rl - em2l;
+    float x = sqrt(1.0f - scale);
+    float x0 = 0.360000014f * mu_dot_n;  // 0.36
+    float x1 = 0.694444418f * x;  // 1/(4 0.36), the float the C++ computes
+    float s = x0 + x1;
+    float sat = min(max(mu_dot_n, 0.0f), 1.0f);
+    float y = abs(x0) <= x1 ? s * s / x : sat;
+    return (scale * y + bias) * (6.28318548f * amplitude / l);  // 2 pi a / lambda
+}
+
+/// BakingLab's hemisphere set of 5 lobes (Pettineo and Neubelt; sg::bakinglab_axes(5),
+/// sg::bakinglab_sharpness(5)): a Fibonacci spiral of 10 points, those with z >= 0, one
+/// sharpness. Each value the float nearest to the exact construction.
+static const float sphbasis_sg5_sharpness = 3.62719512f;
+static const float3 sphbasis_sg5_axis[5] = {
+    float3(0.839525938f, -0.53403765f, 0.100000001f),
+    float3(-0.247646719f, 0.921233475f, 0.300000012f),
+    float3(-0.399157196f, -0.768552899f, 0.5f),
+    float3(0.670809567f, 0.244978577f, 0.699999988f),
+    float3(-0.402912885f, 0.166316584f, 0.899999976f)};
+
+/// The 5 unit-amplitude lobes of the set at the unit direction d, as
+/// sphbasis::basis_eval<SphericalGaussian>(5, ...) (below the horizon as they are).
+void sphbasis_sg5_eval(float3 d, out float g[5])
+{
+    for (int k = 0; k < 5; ++k) {
+        float3 a = sphbasis_sg5_axis[k];
+        float c = a.x * d.x + a.y * d.y + a.z * d.z;
+        g[k] = exp(sphbasis_sg5_sharpness * (c - 1.0f));
+    }
+}
+
+/// The expansion sum_k c[k] B_k(d) of RGB coefficients at the unit direction d, as
+/// sphbasis::basis_eval_sum<SphericalGaussian>(5, c, d) per channel (same order of the sum).
+float3 sphbasis_sg5_eval_sum(float3 c[5], float3 d)
+{
+    float h[5];
+    sphbasis_sg5_eval(d, h);
+    float3 e = c[0] * h[0];
+    for (int k = 1; k < 5; ++k) e = e + c[k] * h[k];
+    return e;
+}
+
+/// The irradiance of 5 RGB radiance lobes of the set (amplitudes c[k]) at the unit
+/// normal n by Hill's fit, as BakingLab shades an SG light map: sum_k c[k]
+/// sphbasis_sg_irradiance_fitted(axis_k, sharpness, 1, n) (sg::irradiance_fitted per lobe).
+float3 sphbasis_sg5_irradiance(float3 c[5], float3 n)
+{
+    float3 e = float3(0.0f, 0.0f, 0.0f);
+    for (int k = 0; k < 5; ++k)
+        e = e + c[k] * sphbasis_sg_irradiance_fitted(sphbasis_sg5_axis[k], sphbasis_sg5_sharpness, 1.0f, n);
+    return e;
+}
+
+/// BakingLab's hemisphere set of 6 lobes (Pettineo and Neubelt; sg::bakinglab_axes(6),
+/// sg::bakinglab_sharpness(6)): a Fibonacci spiral of 12 points, those with z >= 0, one
+/// sharpness. Each value the float nearest to the exact construction.
+static const float sphbasis_sg6_sharpness = 4.25952101f;
+static const float3 sphbasis_sg6_axis[6] = {
+    float3(-0.258701324f, 0.962356031f, 0.0833333358f),
+    float3(-0.4462713f, -0.859268248f, 0.25f),
+    float3(0.853898823f, 0.311842471f, 0.416666657f),
+    float3(-0.750783861f, 0.309912652f, 0.583333313f),
+    float3(0.280347764f, -0.599086881f, 0.75f),
+    float3(0.119609579f, 0.381334186f, 0.916666687f)};
+
+/// The 6 unit-amplitude lobes of the set at the unit direction d, as
+/// sphbasis::basis_eval<SphericalGaussian>(6, ...) (below the horizon as they are).
+void sphbasis_sg6_eval(float3 d, out float g[6])
+{
+    for (int k = 0; k < 6; ++k) {
+        float3 a = sphbasis_sg6_axis[k];
+        float c = a.x * d.x + a.y * d.y + a.z * d.z;
+        g[k] = exp(sphbasis_sg6_sharpness * (c - 1.0f));
+    }
+}
+
+/// The expansion sum_k c[k] B_k(d) of RGB coefficients at the unit direction d, as
+/// sphbasis::basis_eval_sum<SphericalGaussian>(6, c, d) per channel (same order of the sum).
+float3 sphbasis_sg6_eval_sum(float3 c[6], float3 d)
+{
+    float h[6];
+    sphbasis_sg6_eval(d, h);
+    float3 e = c[0] * h[0];
+    for (int k = 1; k < 6; ++k) e = e + c[k] * h[k];
+    return e;
+}
+
+/// The irradiance of 6 RGB radiance lobes of the set (amplitudes c[k]) at the unit
+/// normal n by Hill's fit, as BakingLab shades an SG light map: sum_k c[k]
+/// sphbasis_sg_irradiance_fitted(axis_k, sharpness, 1, n) (sg::irradiance_fitted per lobe).
+float3 sphbasis_sg6_irradiance(float3 c[6], float3 n)
+{
+    float3 e = float3(0.0f, 0.0f, 0.0f);
+    for (int k = 0; k < 6; ++k)
+        e = e + c[k] * sphbasis_sg_irradiance_fitted(sphbasis_sg6_axis[k], sphbasis_sg6_sharpness, 1.0f, n);
+    return e;
+}
+
+/// BakingLab's hemisphere set of 9 lobes (Pettineo and Neubelt; sg::bakinglab_axes(9),
+/// sg::bakinglab_sharpness(9)): a Fibonacci spiral of 18 points, those with z >= 0, one
+/// sharpness. Each value the float nearest to the exact construction.
+static const float sphbasis_sg9_sharpness = 5.51349068f;
+static const float3 sphbasis_sg9_axis[9] = {
+    float3(-0.922918022f, 0.38096714f, 0.055555556f),
+    float3(0.417917788f, -0.893066049f, 0.166666672f),
+    float3(0.287505656f, 0.91661334f, 0.277777791f),
+    float3(-0.797105789f, -0.461939126f, 0.388888896f),
+    float3(0.84582603f, -0.185952485f, 0.5f),
+    float3(-0.455240726f, 0.647533059f, 0.611111104f),
+    float3(-0.0888858438f, -0.685925901f, 0.722222209f),
+    float3(0.422675639f, 0.356231481f, 0.833333313f),
+    float3(-0.328390419f, 0.0135799749f, 0.944444418f)};
+
+/// The 9 unit-amplitude lobes of the set at the unit direction d, as
+/// sphbasis::basis_eval<SphericalGaussian>(9, ...) (below the horizon as they are).
+void sphbasis_sg9_eval(float3 d, out float g[9])
+{
+    for (int k = 0; k < 9; ++k) {
+        float3 a = sphbasis_sg9_axis[k];
+        float c = a.x * d.x + a.y * d.y + a.z * d.z;
+        g[k] = exp(sphbasis_sg9_sharpness * (c - 1.0f));
+    }
+}
+
+/// The expansion sum_k c[k] B_k(d) of RGB coefficients at the unit direction d, as
+/// sphbasis::basis_eval_sum<SphericalGaussian>(9, c, d) per channel (same order of the sum).
+float3 sphbasis_sg9_eval_sum(float3 c[9], float3 d)
+{
+    float h[9];
+    sphbasis_sg9_eval(d, h);
+    float3 e = c[0] * h[0];
+    for (int k = 1; k < 9; ++k) e = e + c[k] * h[k];
+    return e;
+}
+
+/// The irradiance of 9 RGB radiance lobes of the set (amplitudes c[k]) at the unit
+/// normal n by Hill's fit, as BakingLab shades an SG light map: sum_k c[k]
+/// sphbasis_sg_irradiance_fitted(axis_k, sharpness, 1, n) (sg::irradiance_fitted per lobe).
+float3 sphbasis_sg9_irradiance(float3 c[9], float3 n)
+{
+    float3 e = float3(0.0f, 0.0f, 0.0f);
+    for (int k = 0; k < 9; ++k)
+        e = e + c[k] * sphbasis_sg_irradiance_fitted(sphbasis_sg9_axis[k], sphbasis_sg9_sharpness, 1.0f, n);
+    return e;
+}
+
+/// BakingLab's hemisphere set of 12 lobes (Pettineo and Neubelt; sg::bakinglab_axes(12),
+/// sg::bakinglab_sharpness(12)): a Fibonacci spiral of 24 points, those with z >= 0, one
+/// sharpness. Each value the float nearest to the exact construction.
+static const float sphbasis_sg12_sharpness = 6.69139671f;
+static const float3 sphbasis_sg12_axis[12] = {
+    float3(-0.864459813f, -0.500972152f, 0.0416666679f),
+    float3(0.969015479f, -0.21303533f, 0.125f),
+    float3(-0.562509894f, 0.800112426f, 0.208333328f),
+    float3(-0.122923046f, -0.948588669f, 0.291666657f),
+    float3(0.708848596f, 0.597418368f, 0.375f),
+    float3(-0.88802141f, 0.0367224738f, 0.458333343f),
+    float3(0.595837295f, -0.592937708f, 0.541666687f),
+    float3(-0.0360581875f, 0.779791534f, 0.625f),
+    float3(-0.452262551f, -0.54196167f, 0.708333313f),
+    float3(0.605497062f, 0.0814687759f, 0.791666687f),
+    float3(-0.397396326f, 0.27649802f, 0.875f),
+    float3(0.0626953542f, -0.278687119f, 0.958333313f)};
+
+/// The 12 unit-amplitude lobes of the set at the unit direction d, as
+/// sphbasis::basis_eval<SphericalGaussian>(12, ...) (below the horizon as they are).
+void sphbasis_sg12_eval(float3 d, out float g[12])
+{
+    for (int k = 0; k < 12; ++k) {
+        float3 a = sphbasis_sg12_axis[k];
+        float c = a.x * d.x + a.y * d.y + a.z * d.z;
+        g[k] = exp(sphbasis_sg12_sharpness * (c - 1.0f));
+    }
+}
+
+/// The expansion sum_k c[k] B_k(d) of RGB coefficients at the unit direction d, as
+/// sphbasis::basis_eval_sum<SphericalGaussian>(12, c, d) per channel (same order of the sum).
+float3 sphbasis_sg12_eval_sum(float3 c[12], float3 d)
+{
+    float h[12];
+    sphbasis_sg12_eval(d, h);
+    float3 e = c[0] * h[0];
+    for (int k = 1; k < 12; ++k) e = e + c[k] * h[k];
+    return e;
+}
+
+/// The irradiance of 12 RGB radiance lobes of the set (amplitudes c[k]) at the unit
+/// normal n by Hill's fit, as BakingLab shades an SG light map: sum_k c[k]
+/// sphbasis_sg_irradiance_fitted(axis_k, sharpness, 1, n) (sg::irradiance_fitted per lobe).
+float3 sphbasis_sg12_irradiance(float3 c[12], float3 n)
+{
+    float3 e = float3(0.0f, 0.0f, 0.0f);
+    for (int k = 0; k < 12; ++k)
+        e = e + c[k] * sphbasis_sg_irradiance_fitted(sphbasis_sg12_axis[k], sphbasis_sg12_sharpness, 1.0f, n);
+    return e;
+}
+
+/// ZH3 (Roughton, Sloan, Silvennoinen, Iwanicki and Shirley, "ZH3: Quadratic Zonal Harmonics",
+/// i3D 2024) at the unit direction n from its 5 values c = (e_0, e_1-1, e_10, e_11, z) of one
+/// channel (zh3::fit): e_0 y_00 + sum_m e_1m y_1m(n) + z Y_20(a . n) with the axis a the unit
+/// (e_11, e_1-1, e_10), +z where that is zero or not finite; as zh3::Expansion<float>(c)(n).
+float sphbasis_zh3_eval(float c[5], float3 n)
+{
+    float x = c[3]; float y = c[1]; float z = c[2];
+    float len = sqrt(x * x + y * y + z * z);
+    float3 a = float3(0.0f, 0.0f, 1.0f);
+    if (len > 0.0f && !isinf(len)) a = float3(x / len, y / len, z / len);
+    float t = a.x * n.x + a.y * n.y + a.z * n.z;
+    return 0.282094806f * c[0] + 0.488602519f * c[3] * n.x + 0.488602519f * c[1] * n.y + 0.488602519f * c[2] * n.z
+        + 0.31539157f * c[4] * (3.0f * t * t - 1.0f);  // y00, y1, y20: 1/(2 sqrt(pi)), sqrt(3/(4 pi)), sqrt(5/(16 pi))
+}
+
+/// The hallucinated zonal coefficient z of ZH3 from the 4 values sh = (e_0, e_1-1, e_10, e_11)
+/// of an irradiance (Roughton et al. 2024), as zh3::hallucinate's out[4] (which computes in
+/// double; here float): r = min(1.5 |e_1| / |e_0|, sqrt(3)), z = e_0 (0.08 r + 0.6 r^2) / 4,
+/// 0 when e_0 = 0 or |e_1| is not finite in float (|sh| > 1e19).
+float sphbasis_zh3_hallucinate(float sh[4])
+{
+    float e0 = sh[0];
+    float l1 = sqrt(sh[1] * sh[1] + sh[2] * sh[2] + sh[3] * sh[3]);
+    if (e0 == 0.0f || (isinf(l1) || isnan(l1))) return 0.0f;
+    float r = min(1.5f * l1 / abs(e0), 1.73205078f);  // sqrt(3)
+    return 0.25f * e0 * (0.0799999982f * r + 0.600000024f * r * r);
+}
+
+/// ZH3 hallucinated, from the 4 stored values sh of one channel at the unit direction n, as
+/// zh3::eval of zh3::hallucinate(sh) (the representation "zh3-hallucinate").
+float sphbasis_zh3_hallucinate_eval(float sh[4], float3 n)
+{
+    float c[5];
+    for (int k = 0; k < 4; ++k) c[k] = sh[k];
+    c[4] = sphbasis_zh3_hallucinate(sh);
+    return sphbasis_zh3_eval(c, n);
+}
+
+/// L1 SH with the non-linear reconstruction of Geomerics (Probulator's "Spherical Harmonics
+/// L1 [Geomerics]") at the unit direction n from the 4 values c = (e_0, e_1-1, e_10, e_11) of one
+/// channel (the signal's own L0/L1 SH coefficients): R0 = |e_0| y_00, R1 = sqrt(3/(4 pi))/2
+/// (e_11, e_1-1, e_10) (times sign(e_0)), r = |R1|/R0, p = 1 + 2r, a = (1 - r)/(1 + r),
+/// f = sign(e_0) R0 (a + (1 - a)(p + 1) q^p), q = max(0, (1 + n . R1/|R1|)/2); the linear L1
+/// expansion when e_0 = 0 or not finite. As sh_l1_nonlinear::Expansion<float>(c)(n), whose
+/// set-up is in double; here float (|c| < 1e18 keeps |R1|^2 finite in float).
+float sphbasis_sh_l1_nonlinear_eval(float c[4], float3 n)
+{
+    float e0 = c[0];
+    float hx = 0.24430126f * c[3]; float hy = 0.24430126f * c[1]; float hz = 0.24430126f * c[2];  // sqrt(3/(4 pi))/2
+    float len = sqrt(hx * hx + hy * hy + hz * hz);
+    if (e0 == 0.0f || (isinf(len) || isnan(len)) || (isinf(e0) || isnan(e0))) {
+        float tl = (2.0f * hx) * n.x + (2.0f * hy) * n.y + (2.0f * hz) * n.z;
+        return 0.282094806f * e0 + tl;  // 1/(2 sqrt(pi))
+    }
+    float s = e0 < 0.0f ? -1.0f : 1.0f;
+    float R0 = abs(0.282094806f * e0);
+    float3 d = float3(0.0f, 0.0f, 0.0f);
+    if (len > 0.0f) d = float3(s * hx / len, s * hy / len, s * hz / len);
+    float r = len / R0;
+    float a = (1.0f - r) / (1.0f + r);
+    float p = 1.0f + 2.0f * r;
+    float scale = R0 * (1.0f - a) * (p + 1.0f);
+    float t = d.x * n.x + d.y * n.y + d.z * n.z;
+    float q = max(0.0f, 0.5f * (1.0f + t));
+    return s * (R0 * a + scale * pow(q, p));
+}
+
 #endif  // SPHBASIS_HLSL

@@ -74,4 +74,27 @@ void main()
     bool valid = sphbasis_probe_weights_valid(pw, ins);
     g += sphbasis_volume_shade(L, d, vec3(pw[0], pw[7], valid ? 1.0 : 0.0));
     out_buf.v[20] = g.x + g.y + g.z + wt[0] + float(idx[3] + seam);
+    float ac[6]; sphbasis_ambient_cube_eval(d, ac);
+    float ac5[5]; sphbasis_ambient_cube5_eval(d, ac5);
+    float dc[12]; sphbasis_ambient_dice_eval(d, dc);
+    vec3 c12[12]; for (int i = 0; i < 12; ++i) c12[i] = vec3(dc[i], 0.5, s4[i]);
+    vec3 c9[9]; for (int i = 0; i < 9; ++i) c9[i] = c12[i];
+    vec3 c5[5]; for (int i = 0; i < 5; ++i) c5[i] = c12[i];
+    vec3 k = sphbasis_ambient_cube_eval_sum(c6, d) + sphbasis_ambient_cube5_eval_sum(c5, d)
+        + sphbasis_ambient_dice_eval_sum(c12, d);
+    float g5[5]; sphbasis_sg5_eval(d, g5);
+    float g6[6]; sphbasis_sg6_eval(d, g6);
+    float g9[9]; sphbasis_sg9_eval(d, g9);
+    float g12[12]; sphbasis_sg12_eval(d, g12);
+    k += sphbasis_sg5_eval_sum(c5, d) + sphbasis_sg6_eval_sum(c6, d) + sphbasis_sg9_eval_sum(c9, d)
+        + sphbasis_sg12_eval_sum(c12, d) + sphbasis_sg5_irradiance(c5, d)
+        + sphbasis_sg6_irradiance(c6, d) + sphbasis_sg9_irradiance(c9, d)
+        + sphbasis_sg12_irradiance(c12, d);
+    float z5[5]; for (int i = 0; i < 5; ++i) z5[i] = s4[i];
+    float z4[4]; for (int i = 0; i < 4; ++i) z4[i] = s4[i];
+    out_buf.v[21] = k.x + k.y + k.z + ac[5] + ac5[4] + g5[4] + g6[5] + g9[8] + g12[11]
+        + sphbasis_sg_eval(d, 5.5, 2.0, d.zxy) + sphbasis_sg_irradiance_fitted(d, 5.5, 2.0, d.zxy)
+        + sphbasis_zh3_eval(z5, d) + sphbasis_zh3_hallucinate(z4) + sphbasis_zh3_hallucinate_eval(z4, d)
+        + sphbasis_sh_l1_nonlinear_eval(z4, d) + sphbasis_ambient_dice_axis_a + sphbasis_sg9_sharpness
+        + sphbasis_sg12_axis[3].y;
 }

@@ -43,7 +43,10 @@ Ishmukhametov's Listings 2.1 and 2.2 (correctly rounded) and Toksvig's eqs. 6, 8
 (shading/toksvig.hpp), and the direction <-> texture mappings of param/ (octahedral, cube map with
 the D3D10/OpenGL face selection, concentric, paraboloid and the dual paraboloid texel layout),
 and the HSH, Makhotkin and Zernike evaluation of 1..8 bands (tools/gen/hemi_shader.py: the
-row-recurrence table of basis/detail/jacobi.hpp, built exactly and rounded to float).
+row-recurrence table of basis/detail/jacobi.hpp, built exactly and rounded to float), and the
+engine bases: ambient cube, Ambient Dice, spherical Gaussians with BakingLab's lobe sets and Hill's
+fitted irradiance, ZH3 (fitted and hallucinated), L1 SH with the Geomerics reconstruction
+(tools/gen/engine_shader.py).
 """
 import re
 import struct
@@ -973,6 +976,7 @@ def shader_param(lang):
 def main_shader(lang):
     sys.path.insert(0, __import__("os").path.dirname(__file__))
     import hemi_shader  # HSH, Makhotkin, Zernike: tools/gen/hemi_shader.py
+    import engine_shader  # ambient cube, Ambient Dice, SG, ZH3, L1 Geomerics: engine_shader.py
 
     guard = "SPHBASIS_GLSL" if lang == "glsl" else "SPHBASIS_HLSL"
     ext = lang
@@ -1007,6 +1011,8 @@ def main_shader(lang):
     print(shader_param(lang))
     print()
     print(hemi_shader.shader_hemi_all(lang))
+    print()
+    print(engine_shader.shader_engine_all(lang))
     print()
     print("#endif  // %s" % guard)
 
