@@ -31,10 +31,15 @@
 #include <vector>
 
 #include "gl_harness.hpp"
+#include "sphbasis/basis/ambient_cube.hpp"
+#include "sphbasis/basis/ambient_dice.hpp"
 #include "sphbasis/basis/hsh.hpp"
 #include "sphbasis/basis/makhotkin.hpp"
 #include "sphbasis/basis/sh.hpp"
+#include "sphbasis/basis/sh_l1_nonlinear.hpp"
+#include "sphbasis/basis/spherical_gaussian.hpp"
 #include "sphbasis/basis/zernike.hpp"
+#include "sphbasis/basis/zh3.hpp"
 #include "sphbasis/core/clamped_cosine.hpp"
 #include "sphbasis/ops/compression.hpp"
 #include "sphbasis/ops/normal_basis.hpp"
@@ -718,6 +723,415 @@ bool check_volume(const Gl& gl, const std::vector<float>& dirs) {
     return ok;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Engine bases (sphbasis.glsl): ambient cube, Ambient Dice, spherical Gaussians, ZH3, L1 SH with
+// the Geomerics reconstruction, against the float C++ kernels.
+
+// The harness's directions plus the engine bases' hard ones, each a fixed point of the float
+// normalisation: the ambient cube's face boundaries (a component exactly +0 or -0), the Ambient
+// Dice vertices +-a_i and directions on the planes d . a_i = 0 (where a vertex's function
+// switches sides), the SG sets' lobe axes and their antipodes.
+std::vector<float> engine_directions(const std::vector<float>& base) {
+    std::vector<float> d = base;
+    auto push = [&](double x, double y, double z) {
+        const double r = std::sqrt(x * x + y * y + z * z);
+        float fx = float(x / r), fy = float(y / r), fz = float(z / r);
+        if (x == 0) fx = std::signbit(x) ? -0.0f : 0.0f;
+        for (int it = 0; it < 8; ++it) {
+            float nx = fx, ny = fy, nz = fz;
+            sphbasis::normalize_or_pole(nx, ny, nz);
+            if (nx == fx && ny == fy && nz == fz) break;
+            fx = nx, fy = ny, fz = nz;
+        }
+        d.insert(d.end(), {fx, fy, fz, 0.0f});
+    };
+    for (int j = 0; j < 16; ++j) {
+        const double c = std::cos(2 * pi * j / 16), s = std::sin(2 * pi * j / 16);
+        push(0.0, c, s), push(-0.0, c, s), push(c, 0.0, s), push(c, -0.0, s), push(c, s, 0.0);
+        push(c, s, -0.0);
+    }
+    const double a = sphbasis::ambient_dice::axis_a, b = sphbasis::ambient_dice::axis_b;
+    const double ax[6][3] = {{a, b, 0}, {-a, b, 0}, {0, a, b}, {0, -a, b}, {b, 0, a}, {b, 0, -a}};
+    for (const auto& v : ax) {
+        push(v[0], v[1], v[2]), push(-v[0], -v[1], -v[2]);
+        // Two directions perpendicular to the axis: v x e_z and v x (v x e_z), or with e_x.
+        const double e[3] = {v[2] != 0 ? 1.0 : 0.0, 0.0, v[2] != 0 ? 0.0 : 1.0};
+        const double p[3] = {v[1] * e[2] - v[2] * e[1], v[2] * e[0] - v[0] * e[2],
+                             v[0] * e[1] - v[1] * e[0]};
+        const double q[3] = {v[1] * p[2] - v[2] * p[1], v[2] * p[0] - v[0] * p[2],
+                             v[0] * p[1] - v[1] * p[0]};
+        push(p[0], p[1], p[2]), push(q[0], q[1], q[2]), push(-p[0], -p[1], -p[2]);
+    }
+    for (int n : {5, 6, 9, 12})
+        for (const auto& v : sphbasis::sg::bakinglab_axes(n))
+            push(v[0], v[1], v[2]), push(-v[0], -v[1], -v[2]);
+    return d;
+}
+
+// Stated bounds (measured worst cases printed every run; Mesa 22.3.6 llvmpipe, g++ 12 -O3
+// -ffp-contract=off), error in float ulps of max(|ref|, scale):
+//  - ambient cube values: one correctly rounded square and a select on each side: bit-identical;
+//    bound 1 ulp of the value.
+constexpr double max_ulps_cube = 1.0;
+//  - Ambient Dice values: the dot products d . a_i (llvmpipe fuses them) move by an ulp of 1 and
+//    the lobe's multiply-adds by another; the functions are a partition of unity, so the scale
+//    is 1. Bound 4 ulps of 1.
+constexpr double max_ulps_dice = 4.0;
+//  - SG values exp(lambda (d - 1)): the dot product's rounding (an ulp of 1) becomes a relative
+//    error of lambda ulps, the argument's own rounding one of |lambda (d - 1)| <= 2 lambda ulps,
+//    and the driver's exp differs from std::exp by a few ulps: scale |value| (1 + 3 lambda),
+//    bound 4. llvmpipe flushes denormal results to zero: the scale is at least |amplitude|
+//    2^-102, whose float ulp is |amplitude| FLT_MIN.
+constexpr double max_ulps_sg = 4.0;
+//  - expansion sums (RGB coefficients), against the float sum of the C++ kernel's values in
+//    basis_eval_sum's order: the values' errors weighted by |c_k| plus the sum's fused
+//    multiply-adds: scale sum_k |c_k| scale_k, bound 4.
+constexpr double max_ulps_sum = 4.0;
+//  - Hill's fitted irradiance: exp(-lambda) by the driver and the float products of its fit,
+//    in ulps of the lobe's natural size 2 pi |a| / lambda (>= the irradiance for lambda >= 1);
+//    bound 8.
+constexpr double max_ulps_hill = 8.0;
+//  - ZH3 (float on both sides, same operations): the axis normalisation and the sum of five
+//    terms, ulps of the terms' magnitude sum; bound 4. The hallucinated z: float here, double
+//    rounded to float in the C++ (six roundings); bound 8 ulps of |z|, and 8 for its evaluation.
+constexpr double max_ulps_zh3 = 4.0;
+constexpr double max_ulps_zh3_hallucinate = 8.0;
+//  - L1 Geomerics: the set-up in float (the C++ in double, then rounded) and the driver's pow:
+//    first-order error scale R0 (|a| + 1) + S (q^p (1 + p |ln q|) + p q^(p - 1)) (a's
+//    cancellation near r = 1, pow's relative error p |log q| ulps, the exponent's rounding, and
+//    q's absolute rounding times the slope of q^p), bound 16.
+constexpr double max_ulps_l1nl = 16.0;
+
+// Values and RGB expansion sums of a linear engine basis B of n functions: sphbasis_<stem>_eval
+// and sphbasis_<stem>_eval_sum against B::with_kernel(n) and basis_eval_sum<B>(n) in float. The
+// error scale of value v: fixed + rel |v|.
+template <class B>
+bool check_engine_linear(const Gl& gl, const std::vector<float>& dirs, const std::string& stem,
+                         int n, double fixed, double rel, double bound) {
+    const unsigned count = unsigned(dirs.size() / 4);
+    const unsigned per = unsigned(n) + 3;
+    std::mt19937 rng(2017u + unsigned(n));
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    std::vector<float> coeffs(std::size_t(count) * std::size_t(3 * n));
+    for (float& c : coeffs) c = u(rng);
+    const std::string N = std::to_string(n);
+    const std::string body =
+        "    vec3 d = vec3(in0[4u * i], in0[4u * i + 1u], in0[4u * i + 2u]);\n"
+        "    float h[" +
+        N + "]; sphbasis_" + stem +
+        "_eval(d, h);\n"
+        "    vec3 c[" +
+        N +
+        "];\n"
+        "    for (int k = 0; k < " +
+        N +
+        "; ++k) {\n"
+        "        uint b = i * " +
+        std::to_string(3 * n) +
+        "u + 3u * uint(k);\n"
+        "        c[k] = vec3(in1[b], in1[b + 1u], in1[b + 2u]);\n"
+        "        outv[i * " +
+        std::to_string(per) +
+        "u + uint(k)] = h[k];\n"
+        "    }\n"
+        "    vec3 e = sphbasis_" +
+        stem +
+        "_eval_sum(c, d);\n"
+        "    uint o = i * " +
+        std::to_string(per) + "u + " + N +
+        "u;\n"
+        "    outv[o] = e.x; outv[o + 1u] = e.y; outv[o + 2u] = e.z;\n";
+    const std::vector<float> gpu = run(gl, body, {&dirs, &coeffs}, count, per);
+    Worst wv, ws;
+    std::vector<float> h(static_cast<std::size_t>(n));
+    for (unsigned i = 0; i < count; ++i) {
+        const float x = dirs[4 * i], y = dirs[4 * i + 1], z = dirs[4 * i + 2];
+        B::with_kernel(n, [&](auto kernel) {
+            kernel(x, y, z, [&](int k, float v) { h[std::size_t(k)] = v; });
+        });
+        const float* g = &gpu[std::size_t(i) * per];
+        for (int k = 0; k < n; ++k) {
+            const double v = h[std::size_t(k)];
+            wv.add(g[k], v, fixed + rel * std::abs(v));
+        }
+        for (int c = 0; c < 3; ++c) {
+            // basis_eval_sum's sum (acc + c_k v_k from 0, in float) of the kernel's values, without
+            // its normalisation of d (the shader takes d as unit).
+            float ref = 0;
+            double scale = 0;
+            for (int k = 0; k < n; ++k) {
+                const float ck =
+                    coeffs[std::size_t(i) * std::size_t(3 * n) + std::size_t(3 * k + c)];
+                ref = ref + ck * h[std::size_t(k)];
+                scale += std::abs(ck) * (fixed + rel * std::abs(double(h[std::size_t(k)])));
+            }
+            ws.add(g[n + c], ref, scale);
+        }
+    }
+    const bool ok = wv.report(("sphbasis_" + stem + "_eval, vs C++ float").c_str(), bound);
+    return ws.report(("sphbasis_" + stem + "_eval_sum (RGB), vs C++ float").c_str(),
+                     max_ulps_sum) &&
+           ok;
+}
+
+// The shader's constant tables of the SG sets and Ambient Dice equal the C++ floats bit for bit.
+bool check_engine_constants(const Gl& gl) {
+    std::string body = "    if (i != 0u) return;\n    uint o = 0u;\n";
+    std::vector<float> ref;
+    for (int n : {5, 6, 9, 12}) {
+        const std::string p = "sphbasis_sg" + std::to_string(n);
+        body += "    outv[o++] = " + p + "_sharpness;\n    for (int k = 0; k < " +
+                std::to_string(n) + "; ++k) { outv[o++] = " + p + "_axis[k].x; outv[o++] = " + p +
+                "_axis[k].y; outv[o++] = " + p + "_axis[k].z; }\n";
+        ref.push_back(float(sphbasis::sg::bakinglab_sharpness(n)));
+        for (const auto& a : sphbasis::sg::bakinglab_axes(n))
+            for (double c : a) ref.push_back(float(c));
+    }
+    body +=
+        "    outv[o++] = sphbasis_ambient_dice_axis_a; outv[o++] = sphbasis_ambient_dice_axis_b;\n"
+        "    outv[o++] = sphbasis_ambient_dice_w2; outv[o++] = sphbasis_ambient_dice_w4;\n";
+    namespace ad = sphbasis::ambient_dice;
+    for (double c : {ad::axis_a, ad::axis_b, ad::w2, ad::w4}) ref.push_back(float(c));
+    const std::vector<float> dummy(4, 0.0f);
+    const std::vector<float> gpu = run(gl, body, {&dummy}, 1, unsigned(ref.size()));
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < ref.size(); ++k) differ += gpu[k] != ref[k];
+    std::printf(
+        "  SG sets 5/6/9/12 (axes, sharpness) and Ambient Dice constants: %zu of %zu differ "
+        "from the C++ floats  %s\n",
+        differ, ref.size(), differ == 0 ? "ok" : "FAIL");
+    return differ == 0;
+}
+
+// sphbasis_sg_eval and sphbasis_sg_irradiance_fitted on random lobes (sharpness 0..64 for the
+// value, 0.25..64 for the irradiance, the sets' sharpness included), and the sets' irradiance sums.
+bool check_sg(const Gl& gl, const std::vector<float>& dirs) {
+    const unsigned count = unsigned(dirs.size() / 4);
+    std::mt19937 rng(2016u);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f), loglam(std::log(0.25f), std::log(64.0f));
+    std::normal_distribution<double> g;
+    const float sets[4] = {
+        float(sphbasis::sg::bakinglab_sharpness(5)), float(sphbasis::sg::bakinglab_sharpness(6)),
+        float(sphbasis::sg::bakinglab_sharpness(9)), float(sphbasis::sg::bakinglab_sharpness(12))};
+    // Per item: axis (3), sharpness, amplitude; the irradiance of the same lobe uses
+    // max(sharpness, 0.25).
+    std::vector<float> lobes(std::size_t(count) * 5);
+    for (unsigned i = 0; i < count; ++i) {
+        float* l = &lobes[std::size_t(i) * 5];
+        double a[3] = {g(rng), g(rng), g(rng)};
+        const double r = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+        for (int c = 0; c < 3; ++c) l[c] = float(a[c] / r);
+        l[3] = i % 7 == 0 ? sets[(i / 7) % 4] : i % 11 == 0 ? 0.0f : std::exp(loglam(rng));
+        l[4] = 2.0f * u(rng);
+    }
+    const std::string body =
+        "    vec3 d = vec3(in0[4u * i], in0[4u * i + 1u], in0[4u * i + 2u]);\n"
+        "    uint b = 5u * i;\n"
+        "    vec3 axis = vec3(in1[b], in1[b + 1u], in1[b + 2u]);\n"
+        "    outv[2u * i] = sphbasis_sg_eval(axis, in1[b + 3u], in1[b + 4u], d);\n"
+        "    outv[2u * i + 1u] = sphbasis_sg_irradiance_fitted(axis, max(in1[b + 3u], 0.25), "
+        "in1[b + 4u], d);\n";
+    const std::vector<float> gpu = run(gl, body, {&dirs, &lobes}, count, 2);
+    Worst we, wi;
+    for (unsigned i = 0; i < count; ++i) {
+        const float* l = &lobes[std::size_t(i) * 5];
+        const float x = dirs[4 * i], y = dirs[4 * i + 1], z = dirs[4 * i + 2];
+        sphbasis::sg::Lobe<float> lobe{l[0], l[1], l[2], l[3], l[4]};
+        const float v = sphbasis::sg::eval(lobe, x, y, z);
+        we.add(gpu[2 * i], v,
+               std::abs(double(v)) * (1 + 3 * double(l[3])) +
+                   std::ldexp(std::abs(double(l[4])), -102));
+        lobe.sharpness = std::max(l[3], 0.25f);
+        const float e = sphbasis::sg::irradiance_fitted(lobe, x, y, z);
+        wi.add(gpu[2 * i + 1], e, 2 * pi * std::abs(double(l[4])) / double(lobe.sharpness));
+    }
+    bool ok =
+        we.report("sphbasis_sg_eval, random lobes (sharpness 0..64), vs C++ float", max_ulps_sg);
+    ok = wi.report(
+             "sphbasis_sg_irradiance_fitted, sharpness 0.25..64, vs C++ float (ulps of 2 pi "
+             "|a| / lambda)",
+             max_ulps_hill) &&
+         ok;
+    for (int n : {5, 6, 9, 12}) {
+        std::vector<float> c(std::size_t(count) * std::size_t(3 * n));
+        for (float& v : c) v = u(rng);
+        const std::string N = std::to_string(n);
+        const std::string b2 =
+            "    vec3 d = vec3(in0[4u * i], in0[4u * i + 1u], in0[4u * i + 2u]);\n"
+            "    vec3 c[" +
+            N +
+            "];\n"
+            "    for (int k = 0; k < " +
+            N +
+            "; ++k) {\n"
+            "        uint b = i * " +
+            std::to_string(3 * n) +
+            "u + 3u * uint(k);\n"
+            "        c[k] = vec3(in1[b], in1[b + 1u], in1[b + 2u]);\n"
+            "    }\n"
+            "    vec3 e = sphbasis_sg" +
+            N +
+            "_irradiance(c, d);\n"
+            "    outv[3u * i] = e.x; outv[3u * i + 1u] = e.y; outv[3u * i + 2u] = e.z;\n";
+        const std::vector<float> g2 = run(gl, b2, {&dirs, &c}, count, 3);
+        const auto lobes_n = sphbasis::sg::bakinglab_lobes<float>(n);
+        Worst w;
+        for (unsigned i = 0; i < count; ++i) {
+            const float x = dirs[4 * i], y = dirs[4 * i + 1], z = dirs[4 * i + 2];
+            for (int ch = 0; ch < 3; ++ch) {
+                double e = 0, scale = 0;
+                for (int k = 0; k < n; ++k) {
+                    sphbasis::sg::Lobe<float> lobe = lobes_n[std::size_t(k)];
+                    lobe.amplitude =
+                        c[std::size_t(i) * std::size_t(3 * n) + std::size_t(3 * k + ch)];
+                    e += sphbasis::sg::irradiance_fitted(lobe, x, y, z);
+                    scale += 2 * pi * std::abs(double(lobe.amplitude)) / double(lobe.sharpness);
+                }
+                w.add(g2[3 * std::size_t(i) + std::size_t(ch)], e, scale);
+            }
+        }
+        ok = w.report(("sphbasis_sg" + N +
+                       "_irradiance (RGB), vs the C++ float lobes' sum (ulps "
+                       "of sum 2 pi |c_k| / lambda)")
+                          .c_str(),
+                      max_ulps_hill) &&
+             ok;
+    }
+    return ok;
+}
+
+// Coefficient sets of the fitted representations (5 values: e_0, e_1-1, e_10, e_11, z): random,
+// and the hard ones: L1 zero (ZH3's axis falls back to +z; Geomerics: r = 0), L1 along an axis
+// (the axis directions then give a . n = +-1 exactly), e_0 = 0 (hallucinated z = 0; Geomerics'
+// linear branch), e_0 < 0, |L1| far above e_0 (the hallucination's ratio clamp; Geomerics with
+// r ~ 1e3, a ~ -1), tiny L1.
+std::vector<float> fitted_sets() {
+    std::vector<float> s = {
+        1.0f,  0.0f,   0.0f,   0.0f,    0.3f,   // L1 = 0
+        1.0f,  0.0f,   0.0f,   0.0f,    0.0f,   // a constant
+        1.0f,  0.0f,   0.5f,   0.0f,    -0.2f,  // L1 along +z
+        1.0f,  0.0f,   -0.5f,  0.0f,    0.2f,   // L1 along -z
+        2.0f,  0.0f,   0.0f,   1.5f,    0.1f,   // L1 along +x
+        1.0f,  -0.7f,  0.0f,   0.0f,    0.4f,   // L1 along -y
+        0.0f,  0.3f,   -0.2f,  0.5f,    0.1f,   // e_0 = 0
+        -1.0f, 0.3f,   -0.2f,  0.5f,    -0.3f,  // e_0 < 0
+        -2.0f, 0.0f,   0.0f,   0.0f,    0.5f,   // e_0 < 0, L1 = 0
+        1e-3f, 0.8f,   0.3f,   -0.4f,   0.0f,   // |L1| >> e_0
+        1.0f,  1e-18f, 2e-18f, -3e-18f, 0.2f,   // tiny L1
+        1.0f,  2.05f,  0.0f,   0.0f,    0.0f,   // r close to 1 (Geomerics a ~ 0)
+    };
+    std::mt19937 rng(2024u);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f), pos(0.5f, 3.0f);
+    for (int k = 0; k < 12; ++k) {
+        s.push_back(k < 8 ? pos(rng) : u(rng));
+        for (int j = 0; j < 3; ++j) s.push_back(u(rng));
+        s.push_back(0.5f * u(rng));
+    }
+    return s;
+}
+
+bool check_fitted(const Gl& gl, const std::vector<float>& dirs) {
+    const unsigned count = unsigned(dirs.size() / 4);
+    const std::vector<float> sets = fitted_sets();
+    const unsigned ns = unsigned(sets.size() / 5), per = 4 * ns;
+    const std::string body =
+        "    vec3 d = vec3(in0[4u * i], in0[4u * i + 1u], in0[4u * i + 2u]);\n"
+        "    for (uint s = 0u; s < " +
+        std::to_string(ns) +
+        "u; ++s) {\n"
+        "        float c[5]; float h[4];\n"
+        "        for (int k = 0; k < 5; ++k) c[k] = in1[5u * s + uint(k)];\n"
+        "        for (int k = 0; k < 4; ++k) h[k] = c[k];\n"
+        "        uint o = i * " +
+        std::to_string(per) +
+        "u + 4u * s;\n"
+        "        outv[o] = sphbasis_zh3_eval(c, d);\n"
+        "        outv[o + 1u] = sphbasis_zh3_hallucinate(h);\n"
+        "        outv[o + 2u] = sphbasis_zh3_hallucinate_eval(h, d);\n"
+        "        outv[o + 3u] = sphbasis_sh_l1_nonlinear_eval(h, d);\n"
+        "    }\n";
+    const std::vector<float> gpu = run(gl, body, {&dirs, &sets}, count, per);
+    namespace z3 = sphbasis::zh3;
+    namespace gm = sphbasis::sh_l1_nonlinear;
+    Worst wz, wh, whe, wl;
+    // The terms' magnitude sum of a ZH3 evaluation.
+    auto zh3_scale = [](const z3::Expansion<float>& e, double x, double y, double z) {
+        const double t = double(e.ax) * x + double(e.ay) * y + double(e.az) * z;
+        return std::abs(double(e.c0)) + std::abs(e.lx * x) + std::abs(e.ly * y) +
+               std::abs(e.lz * z) + std::abs(double(e.k)) * (3 * t * t + 1);
+    };
+    for (unsigned s = 0; s < ns; ++s) {
+        const float* c = &sets[5 * s];
+        float full[z3::stored];
+        z3::hallucinate(c, full);
+        const z3::Expansion<float> ez(c), eh(full);
+        const gm::Expansion<float> eg(c);
+        wh.add(gpu[4 * s + 1], full[4], 0.0);
+        for (unsigned i = 0; i < count; ++i) {
+            const float x = dirs[4 * i], y = dirs[4 * i + 1], z = dirs[4 * i + 2];
+            const float* g = &gpu[std::size_t(i) * per + 4 * s];
+            if (i > 0) wh.add(g[1], full[4], 0.0);
+            wz.add(g[0], ez(x, y, z), zh3_scale(ez, x, y, z));
+            whe.add(g[2], eh(x, y, z), zh3_scale(eh, x, y, z));
+            // Geomerics' first-order error scale (see max_ulps_l1nl).
+            double scale;
+            if (eg.linear) {
+                scale = std::abs(double(eg.r0)) + std::abs(eg.dx * double(x)) +
+                        std::abs(eg.dy * double(y)) + std::abs(eg.dz * double(z));
+            } else {
+                const double t = double(eg.dx) * x + double(eg.dy) * y + double(eg.dz) * z;
+                const double q = std::max(0.0, 0.5 * (1 + t)), p = eg.p;
+                const double qp = std::pow(q, p);
+                const double slope = q > 0 ? p * qp / q : (p == 1 ? 1.0 : 0.0);
+                scale = double(eg.r0) * (std::abs(double(eg.a)) + 1) +
+                        std::abs(double(eg.scale)) *
+                            (qp * (1 + p * (q > 0 ? std::abs(std::log(q)) : 0.0)) + slope);
+            }
+            wl.add(g[3], eg(x, y, z), scale);
+        }
+    }
+    std::printf("  %u coefficient sets x %u directions:\n", ns, count);
+    bool ok = wz.report("sphbasis_zh3_eval, vs zh3::Expansion<float>", max_ulps_zh3);
+    ok = wh.report("sphbasis_zh3_hallucinate (z), vs zh3::hallucinate<float> (double inside)",
+                   max_ulps_zh3_hallucinate) &&
+         ok;
+    ok = whe.report("sphbasis_zh3_hallucinate_eval, vs zh3::eval of zh3::hallucinate<float>",
+                    max_ulps_zh3_hallucinate) &&
+         ok;
+    ok = wl.report(
+             "sphbasis_sh_l1_nonlinear_eval, vs sh_l1_nonlinear::Expansion<float> (first-order "
+             "scale)",
+             max_ulps_l1nl) &&
+         ok;
+    return ok;
+}
+
+bool check_engine(const Gl& gl, const std::vector<float>& base) {
+    const std::vector<float> dirs = engine_directions(base);
+    std::printf(
+        "  engine bases: %zu directions (the above, cube face boundaries +-0, dice "
+        "vertices and their planes, SG lobe axes)\n",
+        dirs.size() / 4);
+    bool ok = check_engine_constants(gl);
+    ok = check_engine_linear<sphbasis::AmbientCube>(gl, dirs, "ambient_cube", 6, 0.0, 1.0,
+                                                    max_ulps_cube) &&
+         ok;
+    ok = check_engine_linear<sphbasis::AmbientCube>(gl, dirs, "ambient_cube5", 5, 0.0, 1.0,
+                                                    max_ulps_cube) &&
+         ok;
+    ok = check_engine_linear<sphbasis::AmbientDice>(gl, dirs, "ambient_dice", 12, 1.0, 0.0,
+                                                    max_ulps_dice) &&
+         ok;
+    for (int n : {5, 6, 9, 12}) {
+        const double lam = sphbasis::sg::bakinglab_sharpness(n);
+        ok = check_engine_linear<sphbasis::SphericalGaussian>(gl, dirs, "sg" + std::to_string(n), n,
+                                                              0.0, 1 + 3 * lam, max_ulps_sg) &&
+             ok;
+    }
+    ok = check_sg(gl, dirs) && ok;
+    return check_fitted(gl, dirs) && ok;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -739,6 +1153,7 @@ int main(int argc, char** argv) {
     ok = check_svd(gl, dirs) && ok;
     ok = check_ratio(gl, dirs) && ok;
     ok = check_volume(gl, dirs) && ok;
+    ok = check_engine(gl, dirs) && ok;
     std::printf("sphbasis_shader_twins_test: %s\n", ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
 }
