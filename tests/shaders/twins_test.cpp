@@ -13,7 +13,12 @@
 //     normal_basis() (3 bands, unclamped, cosine-weighted);
 //   - the ratio method against PrtNormalMap::shade_ratio's arithmetic in double;
 //   - trilinear probe-volume interpolation (valid corners renormalised) and the volume's
-//     shading against render::ProbeGrid::interpolate_valid and Volume::shade's arithmetic.
+//     shading against render::ProbeGrid::interpolate_valid and Volume::shade's arithmetic;
+//   - the engine bases' twins (sphbasis.glsl, tools/gen/engine_shader.py) against the float C++:
+//     the ambient cube (6 and 5) and Ambient Dice values and RGB sums, the SG lobe and the
+//     BakingLab sets (their constant tables bit for bit), Hill's fitted irradiance, ZH3, ZH3
+//     hallucinated and L1 SH with the Geomerics reconstruction, on the directions above plus
+//     cube face boundaries (+-0 components), dice vertices and their planes, SG lobe axes.
 // Error measure: |gpu - ref| in float ulps of max(|ref|, scale), scale the sum of the terms'
 // magnitudes (a sum's rounding error is relative to it, not to a cancelling result). The C++
 // references of the shading are double: the bound covers the float arithmetic of the shader.
