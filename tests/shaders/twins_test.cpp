@@ -807,9 +807,21 @@ constexpr double max_ulps_zh3_hallucinate = 8.0;
 //    q's absolute rounding times the slope of q^p), bound 16.
 constexpr double max_ulps_l1nl = 16.0;
 
+// GLSL of item i's direction d (in0) and n RGB coefficients vec3 c[n] (in1: 3n floats an item,
+// channel ch of c[k] at 3k + ch).
+std::string engine_inputs(int n) {
+    const std::string N = std::to_string(n);
+    return "    vec3 d = vec3(in0[4u * i], in0[4u * i + 1u], in0[4u * i + 2u]);\n    vec3 c[" + N +
+           "];\n    for (int k = 0; k < " + N + "; ++k) {\n        uint b = i * " +
+           std::to_string(3 * n) +
+           "u + 3u * uint(k);\n        c[k] = vec3(in1[b], in1[b + 1u], in1[b + 2u]);\n    }\n";
+}
+
 // Values and RGB expansion sums of a linear engine basis B of n functions: sphbasis_<stem>_eval
-// and sphbasis_<stem>_eval_sum against B::with_kernel(n) and basis_eval_sum<B>(n) in float. The
-// error scale of value v: fixed + rel |v|.
+// and sphbasis_<stem>_eval_sum against B::with_kernel(n) in float and the float sum of its values
+// in basis_eval_sum<B>'s order (not basis_eval_sum itself: it renormalises d, and the float
+// normalisation is not idempotent on every harness direction, moving a component by up to 4
+// ulps). The error scale of value v: fixed + rel |v|.
 template <class B>
 bool check_engine_linear(const Gl& gl, const std::vector<float>& dirs, const std::string& stem,
                          int n, double fixed, double rel, double bound) {
@@ -819,33 +831,12 @@ bool check_engine_linear(const Gl& gl, const std::vector<float>& dirs, const std
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     std::vector<float> coeffs(std::size_t(count) * std::size_t(3 * n));
     for (float& c : coeffs) c = u(rng);
-    const std::string N = std::to_string(n);
-    const std::string body =
-        "    vec3 d = vec3(in0[4u * i], in0[4u * i + 1u], in0[4u * i + 2u]);\n"
-        "    float h[" +
-        N + "]; sphbasis_" + stem +
-        "_eval(d, h);\n"
-        "    vec3 c[" +
-        N +
-        "];\n"
-        "    for (int k = 0; k < " +
-        N +
-        "; ++k) {\n"
-        "        uint b = i * " +
-        std::to_string(3 * n) +
-        "u + 3u * uint(k);\n"
-        "        c[k] = vec3(in1[b], in1[b + 1u], in1[b + 2u]);\n"
-        "        outv[i * " +
-        std::to_string(per) +
-        "u + uint(k)] = h[k];\n"
-        "    }\n"
-        "    vec3 e = sphbasis_" +
-        stem +
-        "_eval_sum(c, d);\n"
-        "    uint o = i * " +
-        std::to_string(per) + "u + " + N +
-        "u;\n"
-        "    outv[o] = e.x; outv[o + 1u] = e.y; outv[o + 2u] = e.z;\n";
+    const std::string N = std::to_string(n), P = std::to_string(per);
+    const std::string body = engine_inputs(n) + "    float h[" + N + "]; sphbasis_" + stem +
+                             "_eval(d, h);\n    for (int k = 0; k < " + N + "; ++k) outv[i * " + P +
+                             "u + uint(k)] = h[k];\n    vec3 e = sphbasis_" + stem +
+                             "_eval_sum(c, d);\n    uint o = i * " + P + "u + " + N +
+                             "u;\n    outv[o] = e.x; outv[o + 1u] = e.y; outv[o + 2u] = e.z;\n";
     const std::vector<float> gpu = run(gl, body, {&dirs, &coeffs}, count, per);
     Worst wv, ws;
     std::vector<float> h(static_cast<std::size_t>(n));
@@ -961,23 +952,9 @@ bool check_sg(const Gl& gl, const std::vector<float>& dirs) {
         std::vector<float> c(std::size_t(count) * std::size_t(3 * n));
         for (float& v : c) v = u(rng);
         const std::string N = std::to_string(n);
-        const std::string b2 =
-            "    vec3 d = vec3(in0[4u * i], in0[4u * i + 1u], in0[4u * i + 2u]);\n"
-            "    vec3 c[" +
-            N +
-            "];\n"
-            "    for (int k = 0; k < " +
-            N +
-            "; ++k) {\n"
-            "        uint b = i * " +
-            std::to_string(3 * n) +
-            "u + 3u * uint(k);\n"
-            "        c[k] = vec3(in1[b], in1[b + 1u], in1[b + 2u]);\n"
-            "    }\n"
-            "    vec3 e = sphbasis_sg" +
-            N +
-            "_irradiance(c, d);\n"
-            "    outv[3u * i] = e.x; outv[3u * i + 1u] = e.y; outv[3u * i + 2u] = e.z;\n";
+        const std::string b2 = engine_inputs(n) + "    vec3 e = sphbasis_sg" + N +
+                               "_irradiance(c, d);\n    outv[3u * i] = e.x; outv[3u * i + 1u] = "
+                               "e.y; outv[3u * i + 2u] = e.z;\n";
         const std::vector<float> g2 = run(gl, b2, {&dirs, &c}, count, 3);
         const auto lobes_n = sphbasis::sg::bakinglab_lobes<float>(n);
         Worst w;
