@@ -170,7 +170,7 @@ def grad_linear(w=256, h=128):
 
 
 def write_jpeg(path, rgb8):
-    from PIL import Image  # Pillow; only the JPEG fixtures need it
+    from PIL import Image  # Pillow (Debian python3-pil, a dependency of python3-matplotlib)
     Image.fromarray(rgb8.astype(np.uint8), "RGB").save(path, quality=100, subsampling=0)
 
 
