@@ -6,8 +6,10 @@ The engine modes test each layout against values and formulas of the engine's ow
   three.js   src/math/SphericalHarmonics3.js (r160+): getAt() = 0.282095 c0 + 0.488603 (c1 y +
              c2 z + c3 x) + 1.092548 (c4 xy + c5 yz + c7 xz) + 0.315392 c6 (3z^2 - 1) +
              0.546274 c8 (x^2 - y^2) (radiance); getIrradianceAt() uses 0.886227 = pi 0.282095
-             for c0, so a constant radiance L gives coefficient 0 = sqrt(4 pi) L, getAt = L and
-             getIrradianceAt = pi L.
+             for c0 (getIrradianceAt = 0.886227 c0 + 2 0.511664 (c1 y + c2 z + c3 x) + 2 0.429043
+             (c4 xy + c5 yz + c7 xz) + c6 (0.743125 z^2 - 0.247708) + 0.429043 c8 (x^2 - y^2),
+             the irradiance E), so a constant radiance L gives coefficient 0 = sqrt(4 pi) L,
+             getAt = L and getIrradianceAt = pi L.
   Filament   libs/ibl/src/CubemapSH.cpp, computeIrradianceSH3Bands() and
              renderPreScaledSH3Bands(): sh.txt holds 9 RGB lines "(r, g, b); // Llm, irradiance,
              pre-scaled base" (tools/cmgen/src/cmgen.cpp outputSh, %18.15f) that a shader sums as
@@ -196,6 +198,10 @@ elif MODE == "threejs":
               1.092548 * (sh[4] * x * y + sh[5] * y * z + sh[7] * x * z) +
               0.315392 * sh[6] * (3 * z * z - 1) + 0.546274 * sh[8] * (x * x - y * y))
     near(get_at, truth(n, 3, False), 5e-5, "three.js getAt vs the known radiance (3 bands)")
+    irr = (0.886227 * sh[0] + 2 * 0.511664 * (sh[1] * y + sh[2] * z + sh[3] * x) +
+           2 * 0.429043 * (sh[4] * x * y + sh[5] * y * z + sh[7] * x * z) +
+           sh[6] * (0.743125 * z * z - 0.247708) + 0.429043 * sh[8] * (x * x - y * y))
+    near(irr, math.pi * truth(n, 3, True), 5e-5, "three.js getIrradianceAt vs the known E (3 bands)")
     old = np.array(json.loads(run(os.path.join(DIR, "sh_equirect_512.exr"), "--format", "threejs",
                                   "--frame", "sphbasis"))["sh"]).reshape(9, 3)
     near(old.T, coeffs(os.path.join(DIR, "sh_equirect_512.exr")), 0, "--frame sphbasis = json")
