@@ -77,8 +77,10 @@ namespace render = sphbasis::render;
 using Json = nlohmann::json;
 
 // The float arithmetic's allowance in float ulps of the shading's magnitude (header comment).
-// Measured on Mesa 22.3.6 llvmpipe against g++ 12 (printed every run): see the report lines.
-constexpr double kFloatUlps = 64.0;
+// Measured on Mesa 22.3.6 llvmpipe against g++ 12 (printed every run) with float encoding:
+// lightmap-sh9 10 ulps (the uv rounded to float moves the bilinear weights by about 2^-24 RES),
+// volume 3.1 ulps.
+constexpr double kFloatUlps = 32.0;
 constexpr double kUlp = 0x1p-24;
 
 Json read_json(const std::string& path) {
@@ -627,7 +629,7 @@ int main(int argc, char** argv) {
 
     // The comparison: each pixel the mean of its samples, the bound the mean of theirs.
     std::size_t over = 0;
-    double worst = 0, worst_abs = 0, worst_q = 0, lo = 1e30, hi = 0;
+    double worst = 0, worst_abs = 0, worst_q = 0, worst_ulps = 0, lo = 1e30, hi = 0;
     for (std::size_t i = 0; i < pixel.size(); ++i)
         for (std::size_t c = 0; c < 3; ++c) {
             double v = 0, bq = 0, bf = 0;
@@ -640,6 +642,7 @@ int main(int argc, char** argv) {
             worst = std::max(worst, e / (bq + bf));
             worst_abs = std::max(worst_abs, e);
             if (bq > 0) worst_q = std::max(worst_q, e / bq);
+            if (bf > 0) worst_ulps = std::max(worst_ulps, e / bf * kFloatUlps);
             over += e > bq + bf;
             lo = std::min(lo, ref), hi = std::max(hi, ref);
         }
@@ -655,9 +658,10 @@ int main(int argc, char** argv) {
         coverage_mismatch, aov_mismatch, worst_position, albedo_mismatch, gbuf_ok ? "ok" : "FAIL");
     std::printf(
         "  GPU pixels vs %s.exr: max |error| %.3g, max error / bound %.3f (bound: the encoding's "
-        "max_error carried through + %.0f float ulps), max error / quantisation part %.3f, %zu "
-        "over  %s\n",
-        kind.c_str(), worst_abs, worst, kFloatUlps, worst_q, over, over == 0 ? "ok" : "FAIL");
+        "max_error carried through + %.0f float ulps of the magnitude); max error / its "
+        "quantisation part %.3f, in ulps of the magnitude %.1f; %zu over  %s\n",
+        kind.c_str(), worst_abs, worst, kFloatUlps, worst_q, worst_ulps, over,
+        over == 0 ? "ok" : "FAIL");
     const bool ok = over == 0 && gbuf_ok && pixel.size() > 500;
     std::printf("sphbasis_shader_export_pixels_test: %s\n", ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
