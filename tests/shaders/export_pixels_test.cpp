@@ -69,6 +69,7 @@
 #include "sphbasis/render/scene.hpp"
 #include "support/exr.hpp"
 #include "support/gltf.hpp"
+#include "support/scene_file.hpp"
 
 namespace {
 
@@ -391,8 +392,35 @@ int main(int argc, char** argv) {
 
     // The .glb's geometry in an Embree scene.
     const std::vector<GlbMesh> glb = load_glb(glb_file);
+    // From the scene file (the export holds no material): each mesh's albedo, as the render's
+    // float, and its tangent-space normal map (loaded as the scene loader does).
+    const Json sj = read_json(scene_file);
+    const std::string scene_dir = [&] {
+        const std::size_t slash = scene_file.find_last_of('/');
+        return slash == std::string::npos ? std::string(".") : scene_file.substr(0, slash);
+    }();
+    std::vector<std::array<float, 3>> albedo;
+    std::vector<sphbasis::cli::SceneTexture> normal_maps;
     std::vector<render::MeshView> views;
     for (const GlbMesh& m : glb) {
+        const Json* mj = nullptr;
+        for (const Json& e : sj.at("meshes"))
+            if (e.value("name", "") == m.name) mj = &e;
+        if (!mj || !mj->contains("albedo")) fail("the scene file gives no albedo for " + m.name);
+        const Json& a = mj->at("albedo");
+        albedo.push_back({a[0].get<float>(), a[1].get<float>(), a[2].get<float>()});
+        normal_maps.emplace_back();
+        if (mj->contains("normal_map")) try {
+                normal_maps.back() = sphbasis::cli::load_texture(
+                    scene_dir + "/" + mj->at("normal_map").get<std::string>(), false);
+            } catch (const std::exception& e) {
+                fail(e.what());
+            }
+    }
+    // The .glb's geometry in an Embree scene (tangent frames from the UVs: the .glb has no
+    // TANGENT; the scene's shapes give the same frames up to rounding).
+    for (std::size_t i = 0; i < glb.size(); ++i) {
+        const GlbMesh& m = glb[i];
         render::MeshView v;
         v.positions = m.positions.data();
         v.vertex_count = m.positions.size() / 3;
@@ -400,6 +428,8 @@ int main(int argc, char** argv) {
         v.triangle_count = m.indices.size() / 3;
         v.normals = m.normals.data();
         if (!m.uvs_scene.empty()) v.uvs = m.uvs_scene.data();
+        const sphbasis::cli::SceneTexture& t = normal_maps[i];
+        if (t.texels) v.normal_map = {t.texels->data(), t.width, t.height, t.channels};
         views.push_back(v);
     }
     const render::Scene scene(views);
@@ -411,18 +441,7 @@ int main(int argc, char** argv) {
         sphbasis::cli::read_exr_rgb_as_stored(rdir + "/aov_albedo.exr");
     const sphbasis::cli::RgbImage aov_position =
         sphbasis::cli::read_exr_rgb_as_stored(rdir + "/aov_position.exr");
-    const Json sj = read_json(scene_file);
     const Json& cj = sj.at("camera");
-    // Each mesh's albedo (the export holds no material colour), as the render's float.
-    std::vector<std::array<float, 3>> albedo;
-    for (const GlbMesh& m : glb) {
-        const Json* mj = nullptr;
-        for (const Json& e : sj.at("meshes"))
-            if (e.value("name", "") == m.name) mj = &e;
-        if (!mj || !mj->contains("albedo")) fail("the scene file gives no albedo for " + m.name);
-        const Json& a = mj->at("albedo");
-        albedo.push_back({a[0].get<float>(), a[1].get<float>(), a[2].get<float>()});
-    }
     render::Camera cam;
     auto v3 = [](const Json& j) {
         return sphbasis::vec3<double>{j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
@@ -562,8 +581,16 @@ int main(int argc, char** argv) {
                 const double index = lightmap
                                          ? double(h.mesh)
                                          : double(grid.nearest_valid(inside.data(), h.position));
-                // The lightmap's evaluation direction: the tangent-space normal (no normal map).
-                const double tn[3] = {0, 0, 1};
+                // The lightmap's evaluation direction: the normal-mapped normal in the hit's
+                // tangent frame, clamped to the upper hemisphere, as Lightmap::shade.
+                double tn[3];
+                {
+                    using namespace render::detail::rt;
+                    const V3 nm = render::Scene::normal_mapped(h), t = h.tangent;
+                    const V3 bt = cross(n, t) * h.bitangent_sign;
+                    const V3 l = normalized({dot(nm, t), dot(nm, bt), std::max(dot(nm, n), 0.0)});
+                    tn[0] = l.x, tn[1] = l.y, tn[2] = l.z;
+                }
                 const std::array<float, 3>& a = albedo[h.mesh];
                 gbuf.insert(gbuf.end(),
                             {float(h.position.x), float(h.position.y), float(h.position.z),
