@@ -4,9 +4,10 @@
 //   sphbasis_shader_export_pixels_test KIND BAKE_DIR RENDER_DIR SCENE.json [GLB [SHADERS_DIR]]
 //
 // KIND is lightmap-sh9 (BAKE_DIR: `--target texels:RES --quantities irradiance --basis sh
-// --coeffs 9`) or volume (`--target probes --quantities radiance`); RENDER_DIR holds KIND.exr and
-// the first-hit AOVs of `sphbasis render --representations KIND --bake BAKE_DIR --spp 1 --aovs`
-// (one sample per pixel: the pixel centre). What the program reads, as an engine would:
+// --coeffs 9`) or volume (`--target probes --quantities radiance`); RENDER_DIR holds KIND.exr,
+// report.json and the first-hit AOVs of `sphbasis render --representations KIND --bake BAKE_DIR
+// --aovs` (tests/shaders/CMakeLists.txt gives the commands). What the program reads, as an
+// engine would:
 //   - scene.glb (tinygltf; GLB, default BAKE_DIR/scene.glb: a probe bake writes none, so the
 //     volume reads a texel bake's): the meshes' positions, normals, indices and TEXCOORD_0;
 //   - lightmaps.json / probes.grid.json (nlohmann-json): sizes, files, the per-channel scale and
@@ -14,27 +15,34 @@
 //   - the lightmap images or probe slices (stb_image for PNG, OpenEXR for half/float), uploaded
 //     to OpenGL textures as stored (GL_RGB8, GL_RGB16, GL_RGB16F, GL_RGB32F) and decoded in the
 //     shader, v = bias + scale t;
-//   - from the scene file only its camera (an engine has its own), to cast the camera rays with
-//     Embree on the .glb's triangles: the G-buffer (position, normal, glTF uv, mesh) of each
-//     pixel, checked against the render's aov_position.exr; the albedo is aov_albedo.exr (the
-//     export holds no material colour).
-// A compute shader on llvmpipe then shades every pixel that sees geometry with the twins of
-// shaders/sphbasis.glsl and shaders/sphbasis_render.glsl, and the result is compared with the
-// render's KIND.exr.
+//   - from the scene file what an engine's material and camera hold and the export does not:
+//     each mesh's albedo and normal map, and the camera.
+// The G-buffer: the render's camera rays (render::ImageLoop's sample positions for the seed and
+// sample count of report.json) cast with Embree on the .glb's triangles: per sample the
+// position, shading normal, glTF uv (TEXCOORD_0 at the hit's barycentrics) and mesh, checked
+// against the render's aov_position.exr and aov_albedo.exr. A compute shader on llvmpipe then
+// shades every sample of the pixels whose samples all see geometry with the twins of
+// shaders/sphbasis.glsl and shaders/sphbasis_render.glsl, and the mean of a pixel's samples (the
+// render's box filter) is compared with the render's KIND.exr.
 //
 // How the render shades, and so the shader (where an engine may differ):
 //   - lightmap-sh9 (representations/lightmap.hpp, field.hpp): bilinear at the glTF uv with texel
 //     centres at (x + 0.5, y + 0.5) / RES and clamp to edge, with the weights in full precision:
 //     the shader fetches the 4 texels (texelFetch) and weighs them itself, since hardware
-//     filtering rounds the weights (8 fractional bits on most GPUs); the SH are evaluated in the
-//     texel's tangent frame at the normal-mapped normal; the export holds no normal map, so on
-//     its meshes that normal is the frame's z axis, (0, 0, 1); E = albedo sum_k e_k y_k / pi.
+//     filtering rounds the weights (8 fractional bits on most GPUs). The SH are evaluated in the
+//     hit's tangent frame at the normal-mapped normal (bilinear, wrapping, render::Scene::
+//     normal_mapped), clamped to the upper hemisphere: this tangent-space normal is computed on
+//     the CPU into the G-buffer ((0, 0, 1) without a normal map). The .glb has no TANGENT: the
+//     frame here is the UVs' (tangent along increasing u, bitangent along the scene's v, glTF's
+//     1 - v), which on the normal-mapped quad of scenes/normal_wall.json equals the scene's
+//     tangents up to rounding, as an engine's MikkTSpace frame would on a planar chart.
+//     E = albedo sum_k e_k y_k / pi.
 //   - volume (representations/volume.hpp): trilinear over the probes of the point's cell,
 //     leaving out the probes inside geometry (_INSIDE) and renormalising (ProbeGrid::
 //     interpolate_valid), else the nearest valid probe (found here on the CPU, from the exported
 //     _INSIDE slices); weights from sphbasis_probe_weights, the 8 probes read with texelFetch:
 //     hardware trilinear filtering at uvw = ((p - origin) / spacing + 0.5) / counts would also
-//     blend the probes inside geometry.
+//     blend the probes inside geometry. E = albedo sum_k a_l L_k y_k(n) at the shading normal.
 //
 // Bound, per pixel and channel (B below): the range compression's |v' - v| <= max_error per
 // texel or probe channel (docs/export-format.md) carried through the shading, which is linear in
