@@ -29,14 +29,15 @@
 //   - lightmap-sh9 (representations/lightmap.hpp, field.hpp): bilinear at the glTF uv with texel
 //     centres at (x + 0.5, y + 0.5) / RES and clamp to edge, with the weights in full precision:
 //     the shader fetches the 4 texels (texelFetch) and weighs them itself, since hardware
-//     filtering rounds the weights (8 fractional bits on most GPUs). The SH are evaluated in the
-//     hit's tangent frame at the normal-mapped normal (bilinear, wrapping, render::Scene::
-//     normal_mapped), clamped to the upper hemisphere: this tangent-space normal is computed on
-//     the CPU into the G-buffer ((0, 0, 1) without a normal map). The .glb has no TANGENT: the
-//     frame here is the UVs' (tangent along increasing u, bitangent along the scene's v, glTF's
-//     1 - v), which on the normal-mapped quad of scenes/normal_wall.json equals the scene's
-//     tangents up to rounding, as an engine's MikkTSpace frame would on a planar chart.
-//     E = albedo sum_k e_k y_k / pi.
+//     filtering may round the weights (8 fractional bits on most GPUs, and on llvmpipe for
+//     8-bit textures: the hardware-filtered result is printed for comparison, not checked). The SH
+//     are evaluated in the hit's tangent frame at the normal-mapped normal (bilinear, wrapping,
+//     render::Scene:: normal_mapped), clamped to the upper hemisphere: this tangent-space normal is
+//     computed on the CPU into the G-buffer ((0, 0, 1) without a normal map). The .glb has no
+//     TANGENT: the frame here is the UVs' (tangent along increasing u, bitangent along the scene's
+//     v, glTF's 1 - v), which on the normal-mapped quad of scenes/normal_wall.json equals the
+//     scene's tangents up to rounding, as an engine's MikkTSpace frame would on a planar chart. E =
+//     albedo sum_k e_k y_k / pi.
 //   - volume (representations/volume.hpp): trilinear over the probes of the point's cell,
 //     leaving out the probes inside geometry (_INSIDE) and renormalising (ProbeGrid::
 //     interpolate_valid), else the nearest valid probe (found here on the CPU, from the exported
@@ -237,10 +238,10 @@ std::vector<GlbMesh> load_glb(const std::string& path) {
 using TexImage3D = void (*)(unsigned, int, int, int, int, int, int, unsigned, unsigned,
                             const void*);
 
-// Uploads images as the layers (or depth slices) of one texture of `target`, nearest filtering
-// (the shader fetches texels: header comment).
+// Uploads images as the layers (or depth slices) of one texture of `target`: nearest filtering
+// (the shader fetches texels: header comment), or linear (hardware filtering, for comparison).
 unsigned upload(const Gl& gl, TexImage3D tex_image_3d, unsigned target, unsigned unit,
-                unsigned format, const std::vector<Texels>& layers) {
+                unsigned format, const std::vector<Texels>& layers, unsigned filter = GL_NEAREST) {
     const int w = layers.at(0).width, h = layers.at(0).height;
     std::vector<unsigned char> all;
     for (const Texels& t : layers) {
@@ -255,8 +256,8 @@ unsigned upload(const Gl& gl, TexImage3D tex_image_3d, unsigned target, unsigned
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
     tex_image_3d(target, 0, int(format), w, h, int(layers.size()), 0, GL_RGB, layers[0].type,
                  all.data());
-    gl.TexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl.TexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl.TexParameteri(target, GL_TEXTURE_MIN_FILTER, int(filter));
+    gl.TexParameteri(target, GL_TEXTURE_MAG_FILTER, int(filter));
     for (unsigned wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
         gl.TexParameteri(target, wrap, GL_CLAMP_TO_EDGE);
     gl.TexParameteri(target, GL_TEXTURE_MAX_LEVEL, 0);
@@ -280,15 +281,20 @@ constexpr std::size_t kG = 16;
 const char* kLightmapShader = R"(
 layout(local_size_x = 64) in;
 layout(binding = 0) uniform sampler2DArray lightmap;  // layer = mesh * 9 + k
+layout(binding = 1) uniform sampler2DArray lightmap_linear;  // the same, GL_LINEAR
 layout(std430, binding = 0) readonly buffer G { float gbuf[]; };
 layout(std430, binding = 1) readonly buffer D { float dec[]; };  // per layer: scale, bias (RGB)
 layout(std430, binding = 3) writeonly buffer O { float outv[]; };
+layout(std430, binding = 4) writeonly buffer H { float outh[]; };  // hardware filtering
 uniform uint count;
 
-vec3 texel(int layer, int x, int y) {
-    vec3 t = texelFetch(lightmap, ivec3(x, y, layer), 0).rgb;
-    int d = 6 * layer;
+vec3 decode(int k, vec3 t) {
+    int d = 6 * k;
     return vec3(dec[d + 3], dec[d + 4], dec[d + 5]) + vec3(dec[d], dec[d + 1], dec[d + 2]) * t;
+}
+
+vec3 texel(int layer, int x, int y) {
+    return decode(layer, texelFetch(lightmap, ivec3(x, y, layer), 0).rgb);
 }
 
 void main() {
@@ -310,15 +316,18 @@ void main() {
     float w01 = (1.0 - ax) * ay, w11 = ax * ay;
     float yk[9];
     sphbasis_sh_eval3(tn, yk);
-    vec3 s = vec3(0.0);
+    vec3 s = vec3(0.0), sh = vec3(0.0);
     for (int k = 0; k < 9; ++k) {
         int l = mesh * 9 + k;
         vec3 e = w00 * texel(l, x0, y0) + w10 * texel(l, x1, y0) + w01 * texel(l, x0, y1) +
                  w11 * texel(l, x1, y1);
         s += e * yk[k];
+        sh += decode(l, textureLod(lightmap_linear, vec3(uv, float(l)), 0.0).rgb) * yk[k];
     }
     vec3 o = albedo * s * sphbasis_inv_pi;
     outv[3u * i] = o.x; outv[3u * i + 1u] = o.y; outv[3u * i + 2u] = o.z;
+    o = albedo * sh * sphbasis_inv_pi;
+    outh[3u * i] = o.x; outh[3u * i + 1u] = o.y; outh[3u * i + 2u] = o.z;
 }
 )";
 
@@ -326,10 +335,17 @@ const char* kVolumeShader = R"(
 layout(local_size_x = 64) in;
 layout(binding = 0) uniform sampler3D radiance;  // depth k * nz + slice: SH coefficient k
 layout(binding = 1) uniform sampler3D inside;    // _INSIDE, depth = slice
+layout(binding = 2) uniform sampler3D radiance_linear;  // radiance, GL_LINEAR
 layout(std430, binding = 0) readonly buffer G { float gbuf[]; };
 layout(std430, binding = 1) readonly buffer D { float dec[]; };  // per coefficient: scale, bias
 layout(std430, binding = 3) writeonly buffer O { float outv[]; };
+layout(std430, binding = 4) writeonly buffer H { float outh[]; };  // hardware filtering
 uniform uint count;
+
+vec3 decode(int k, vec3 t) {
+    int d = 6 * k;
+    return vec3(dec[d + 3], dec[d + 4], dec[d + 5]) + vec3(dec[d], dec[d + 1], dec[d + 2]) * t;
+}
 
 ivec3 probe(int index) {
     ivec3 n = PROBE_COUNTS;
@@ -338,9 +354,7 @@ ivec3 probe(int index) {
 
 vec3 rad(int k, int index) {
     ivec3 p = probe(index);
-    vec3 t = texelFetch(radiance, ivec3(p.xy, k * PROBE_COUNTS.z + p.z), 0).rgb;
-    int d = 6 * k;
-    return vec3(dec[d + 3], dec[d + 4], dec[d + 5]) + vec3(dec[d], dec[d + 1], dec[d + 2]) * t;
+    return decode(k, texelFetch(radiance, ivec3(p.xy, k * PROBE_COUNTS.z + p.z), 0).rgb);
 }
 
 void main() {
@@ -352,8 +366,11 @@ void main() {
     vec3 albedo = vec3(gbuf[g + 8u], gbuf[g + 9u], gbuf[g + 10u]);
     int idx[8]; float w[8]; bool ins[8];
     sphbasis_probe_weights(p, PROBE_LO, PROBE_HI, PROBE_COUNTS, idx, w);
-    for (int q = 0; q < 8; ++q)
+    bool any_inside = false;
+    for (int q = 0; q < 8; ++q) {
         ins[q] = PROBES_ALL_INSIDE ? false : texelFetch(inside, probe(idx[q]), 0).r > 0.5;
+        any_inside = any_inside || ins[q];
+    }
     if (!sphbasis_probe_weights_valid(w, ins)) {
         for (int q = 0; q < 8; ++q) { idx[q] = int(gbuf[g + 11u]); w[q] = q == 0 ? 1.0 : 0.0; }
     }
@@ -364,6 +381,17 @@ void main() {
     }
     vec3 o = sphbasis_volume_shade(L, n, albedo);
     outv[3u * i] = o.x; outv[3u * i + 1u] = o.y; outv[3u * i + 2u] = o.z;
+    // Hardware trilinear filtering at uvw = ((p - origin) / spacing + 0.5) / counts (probe
+    // k's block of slices at depth k nz): right only where no probe of the cell is inside.
+    vec3 c = vec3(PROBE_COUNTS);
+    vec3 sp = (PROBE_HI - PROBE_LO) / max(c - 1.0, vec3(1.0));
+    vec3 s = (clamp(p, PROBE_LO, PROBE_HI) - PROBE_LO) / max(sp, vec3(1e-30));
+    for (int k = 0; k < 9; ++k) {
+        vec3 uvw = vec3((s.xy + 0.5) / c.xy, (float(k) * c.z + s.z + 0.5) / (9.0 * c.z));
+        L[k] = decode(k, textureLod(radiance_linear, uvw, 0.0).rgb);
+    }
+    o = any_inside ? vec3(uintBitsToFloat(0x7fc00000u)) : sphbasis_volume_shade(L, n, albedo);
+    outh[3u * i] = o.x; outh[3u * i + 1u] = o.y; outh[3u * i + 2u] = o.z;
 }
 )";
 
@@ -492,6 +520,8 @@ int main(int argc, char** argv) {
             }
         }
         upload(gl, tex_image_3d, GL_TEXTURE_2D_ARRAY, 0, internal_format(encoding), layers);
+        upload(gl, tex_image_3d, GL_TEXTURE_2D_ARRAY, 1, internal_format(encoding), layers,
+               GL_LINEAR);
     } else {
         const Json j = read_json(bake + "/probes.grid.json");
         encoding = j.at("encoding").get<std::string>();
@@ -509,6 +539,7 @@ int main(int argc, char** argv) {
             inside_slices.push_back(load_texels(bake + "/" + s.at("file").get<std::string>()));
         upload(gl, tex_image_3d, GL_TEXTURE_3D, 0, internal_format(encoding), slices);
         upload(gl, tex_image_3d, GL_TEXTURE_3D, 1, internal_format(encoding), inside_slices);
+        upload(gl, tex_image_3d, GL_TEXTURE_3D, 2, internal_format(encoding), slices, GL_LINEAR);
         // The inside flags on the CPU too: the nearest valid probe where a cell has none.
         inside.assign(grid.size(), 0);
         for (std::size_t p = 0; p < grid.size(); ++p) {
@@ -646,31 +677,39 @@ int main(int argc, char** argv) {
     const unsigned prog = compile_program(gl, src);
     upload_buffer(gl, 0, gbuf);
     upload_buffer(gl, 1, decf);
-    std::vector<float> gpu(std::size_t(items) * 3, std::nanf(""));
-    unsigned out = 0;
-    gl.GenBuffers(1, &out);
-    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, out);
-    gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(gpu.size() * sizeof(float)), gpu.data(),
-                  GL_DYNAMIC_READ);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, out);
+    std::vector<float> gpu(std::size_t(items) * 3, std::nanf("")), gpu_hw(gpu);
+    unsigned out[2] = {0, 0};
+    gl.GenBuffers(2, out);
+    for (unsigned b = 0; b < 2; ++b) {
+        gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, out[b]);
+        gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(gpu.size() * sizeof(float)), gpu.data(),
+                      GL_DYNAMIC_READ);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3 + b, out[b]);
+    }
     gl.UseProgram(prog);
     gl.Uniform1ui(gl.GetUniformLocation(prog, "count"), items);
     gl.DispatchCompute((items + 63) / 64, 1, 1);
     gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(gpu.size() * sizeof(float)),
-                        gpu.data());
+    for (unsigned b = 0; b < 2; ++b) {
+        gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, out[b]);
+        gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(gpu.size() * sizeof(float)),
+                            (b == 0 ? gpu : gpu_hw).data());
+    }
     gl.Finish();
     if (gl.GetError() != GL_NO_ERROR) fail("OpenGL error");
 
     // The comparison: each pixel the mean of its samples, the bound the mean of theirs.
     std::size_t over = 0;
     double worst = 0, worst_abs = 0, worst_q = 0, worst_ulps = 0, lo = 1e30, hi = 0;
+    double hw_worst = 0, hw_abs = 0;  // hardware filtering (reported, not asserted)
+    std::size_t hw_pixels = 0;
     for (std::size_t i = 0; i < pixel.size(); ++i)
         for (std::size_t c = 0; c < 3; ++c) {
-            double v = 0, bq = 0, bf = 0;
+            double v = 0, vh = 0, bq = 0, bf = 0;
             for (std::size_t s = 0; s < std::size_t(spp); ++s) {
                 const std::size_t k = 3 * (i * std::size_t(spp) + s) + c;
                 v += double(gpu[k]) / spp, bq += bound_q[k] / spp, bf += bound_f[k] / spp;
+                vh += double(gpu_hw[k]) / spp;
             }
             const double ref = img.rgb[3 * std::size_t(pixel[i]) + c];
             const double e = std::isfinite(v) ? std::abs(v - ref) : 1e30;
@@ -679,6 +718,12 @@ int main(int argc, char** argv) {
             if (bq > 0) worst_q = std::max(worst_q, e / bq);
             if (bf > 0) worst_ulps = std::max(worst_ulps, e / bf * kFloatUlps);
             over += e > bq + bf;
+            if (std::isfinite(vh)) {
+                const double eh = std::abs(vh - ref);
+                hw_worst = std::max(hw_worst, eh / (bq + bf));
+                hw_abs = std::max(hw_abs, eh);
+                hw_pixels += c == 0;
+            }
             lo = std::min(lo, ref), hi = std::max(hi, ref);
         }
     std::printf(
@@ -697,6 +742,11 @@ int main(int argc, char** argv) {
         "quantisation part %.3f, in ulps of the magnitude %.1f; %zu over  %s\n",
         kind.c_str(), worst_abs, worst, kFloatUlps, worst_q, worst_ulps, over,
         over == 0 ? "ok" : "FAIL");
+    std::printf(
+        "  for comparison, hardware %s filtering (textureLod, GL_LINEAR) on %zu pixels%s: max "
+        "|error| %.3g, max error / bound %.3f (not checked)\n",
+        lightmap ? "bilinear" : "trilinear", hw_pixels,
+        lightmap ? "" : " (cells without probes inside geometry)", hw_abs, hw_worst);
     const bool ok = over == 0 && gbuf_ok && pixel.size() > 500;
     std::printf("sphbasis_shader_export_pixels_test: %s\n", ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
