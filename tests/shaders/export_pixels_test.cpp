@@ -143,8 +143,9 @@ Texels load_texels(const std::string& path) {
         unsigned short* p = stbi_load_16(path.c_str(), &t.width, &t.height, &n, 3);
         if (!p) fail("cannot read " + path);
         t.type = GL_UNSIGNED_SHORT;
-        t.bytes.assign(reinterpret_cast<unsigned char*>(p),
-                       reinterpret_cast<unsigned char*>(p) + std::size_t(t.width) * t.height * 6);
+        t.bytes.assign(
+            reinterpret_cast<unsigned char*>(p),
+            reinterpret_cast<unsigned char*>(p) + std::size_t(t.width) * std::size_t(t.height) * 6);
         stbi_image_free(p);
     } else {
         unsigned char* p = stbi_load(path.c_str(), &t.width, &t.height, &n, 3);
@@ -258,7 +259,7 @@ unsigned upload(const Gl& gl, TexImage3D tex_image_3d, unsigned target, unsigned
                  all.data());
     gl.TexParameteri(target, GL_TEXTURE_MIN_FILTER, int(filter));
     gl.TexParameteri(target, GL_TEXTURE_MAG_FILTER, int(filter));
-    for (unsigned wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    for (unsigned wrap : {0u + GL_TEXTURE_WRAP_S, 0u + GL_TEXTURE_WRAP_T, 0u + GL_TEXTURE_WRAP_R})
         gl.TexParameteri(target, wrap, GL_CLAMP_TO_EDGE);
     gl.TexParameteri(target, GL_TEXTURE_MAX_LEVEL, 0);
     if (gl.GetError() != GL_NO_ERROR) fail("OpenGL error uploading a texture");
@@ -543,7 +544,8 @@ int main(int argc, char** argv) {
         // The inside flags on the CPU too: the nearest valid probe where a cell has none.
         inside.assign(grid.size(), 0);
         for (std::size_t p = 0; p < grid.size(); ++p) {
-            const std::size_t slice_texels = std::size_t(grid.counts[0]) * grid.counts[1];
+            const std::size_t slice_texels =
+                std::size_t(grid.counts[0]) * std::size_t(grid.counts[1]);
             inside[p] = inside_slices.at(p / slice_texels).t(p % slice_texels, 0) > 0.5;
         }
         // Every probe inside: the renderer keeps them all (representations/field.hpp).
