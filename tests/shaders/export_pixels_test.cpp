@@ -126,13 +126,7 @@ Texels load_texels(const std::string& path) {
     Texels t;
     const bool exr = path.size() > 4 && path.compare(path.size() - 4, 4, ".exr") == 0;
     if (exr) {
-        const sphbasis::cli::RgbImage img = [&] {
-            try {
-                return sphbasis::cli::read_exr_rgb_as_stored(path);
-            } catch (const std::exception& e) {
-                fail(e.what());
-            }
-        }();
+        const sphbasis::cli::RgbImage img = sphbasis::cli::read_exr_rgb_as_stored(path);
         t.width = img.width, t.height = img.height, t.type = GL_FLOAT;
         t.bytes.resize(img.rgb.size() * sizeof(float));
         std::memcpy(t.bytes.data(), img.rgb.data(), t.bytes.size());
@@ -407,9 +401,7 @@ void skip_without_egl() {
     }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
     if (argc < 5 || (std::string(argv[1]) != "lightmap-sh9" && std::string(argv[1]) != "volume")) {
         std::fprintf(stderr,
                      "usage: %s lightmap-sh9|volume BAKE_DIR RENDER_DIR SCENE.json "
@@ -447,12 +439,9 @@ int main(int argc, char** argv) {
         const Json& a = mj->at("albedo");
         albedo.push_back({a[0].get<float>(), a[1].get<float>(), a[2].get<float>()});
         normal_maps.emplace_back();
-        if (mj->contains("normal_map")) try {
-                normal_maps.back() = sphbasis::cli::load_texture(
-                    scene_dir + "/" + mj->at("normal_map").get<std::string>(), false);
-            } catch (const std::exception& e) {
-                fail(e.what());
-            }
+        if (mj->contains("normal_map"))
+            normal_maps.back() = sphbasis::cli::load_texture(
+                scene_dir + "/" + mj->at("normal_map").get<std::string>(), false);
     }
     // The .glb's geometry in an Embree scene (tangent frames from the UVs: the .glb has no
     // TANGENT; the scene's shapes give the same frames up to rounding).
@@ -752,4 +741,14 @@ int main(int argc, char** argv) {
     const bool ok = over == 0 && gbuf_ok && pixel.size() > 500;
     std::printf("sphbasis_shader_export_pixels_test: %s\n", ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::exception& e) {  // a file the export or the render lacks, or malformed
+        fail(e.what());
+    }
 }
