@@ -419,7 +419,7 @@ int run(int argc, char** argv) {
     TexImage3D tex_image_3d = nullptr;
     load(tex_image_3d, "glTexImage3D");
 
-    // The .glb's geometry in an Embree scene.
+    // The .glb's meshes (node i = mesh i = the scene's mesh i).
     const std::vector<GlbMesh> glb = load_glb(glb_file);
     // From the scene file (the export holds no material): each mesh's albedo, as the render's
     // float, and its tangent-space normal map (loaded as the scene loader does).
@@ -722,6 +722,11 @@ int run(int argc, char** argv) {
         "pixels on geometry, values %.3g..%.3g\n",
         kind.c_str(), bake.c_str(), encoding.c_str(), cam.width, cam.height, spp, pixel.size(), lo,
         hi);
+    if (!lightmap)
+        std::printf("  %d x %d x %d probes, %zu inside geometry%s\n", grid.counts[0],
+                    grid.counts[1], grid.counts[2],
+                    std::size_t(std::count(inside.begin(), inside.end(), 1)),
+                    all_inside ? " (all: every probe used)" : "");
     const bool gbuf_ok = coverage_mismatch == 0 && aov_mismatch == 0 && albedo_mismatch == 0;
     std::printf(
         "  G-buffer (Embree on scene.glb) vs the render's AOVs: %zu coverage, %zu position "
