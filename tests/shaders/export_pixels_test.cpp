@@ -230,8 +230,7 @@ std::vector<GlbMesh> load_glb(const std::string& path) {
 }
 
 // The extra OpenGL entry point the harness does not load.
-using TexImage3D = void (*)(unsigned, int, int, int, int, int, int, unsigned, unsigned,
-                            const void*);
+using TexImage3D = PFNGLTEXIMAGE3DPROC;
 
 // Uploads images as the layers (or depth slices) of one texture of `target`: nearest filtering
 // (the shader fetches texels: header comment), or linear (hardware filtering, for comparison).
@@ -483,7 +482,6 @@ int run(int argc, char** argv) {
     // The exported files: decoding per layer (lightmap: mesh * 9 + k; volume: k) and textures.
     std::vector<Decode> dec;
     std::vector<float> decf;
-    std::vector<std::string> mesh_names;  // lightmap: the meshes in the texture's order
     render::ProbeGrid grid;
     std::vector<std::uint8_t> inside;
     bool all_inside = false;
@@ -502,7 +500,6 @@ int run(int argc, char** argv) {
             for (const Json& e : j.at("meshes"))
                 if (e.at("mesh") == m.name) mj = &e;
             if (!mj) fail("lightmaps.json has no mesh " + m.name);
-            mesh_names.push_back(m.name);
             for (int k = 0; k < 9; ++k) {
                 const Json& e = attr(mj->at("images"), "_SH" + std::to_string(k));
                 dec.push_back(decode_of(e));
