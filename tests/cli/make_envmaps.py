@@ -2,7 +2,12 @@
 """Test maps of `sphbasis project` (tests/cli/project_tests.cmake), written into OUTDIR:
 
   const_*.exr        constant RGB (1, 2, 3): lat-long 64x32, horizontal cross 64x48, six 16x16
-                     faces; const_srgb.png (sRGB 188 everywhere), const.hdr (RGBE 1.0).
+                     faces; const_srgb.png (sRGB 188 everywhere), const.hdr (RGBE 1.0),
+                     const_srgb16.png (16-bit sRGB (48000, 30000, 12000)), const.jpg (sRGB
+                     (188, 100, 40), JPEG quality 100, no chroma subsampling, by Pillow).
+  grad_*             one smooth linear RGB map in [0.02, 0.9], 256x128 lat-long: grad.exr (float),
+                     grad8.png and grad16.png (sRGB-encoded and rounded to 8 or 16 bits), grad.jpg
+                     (the 8-bit values, JPEG quality 100, 4:4:4, by Pillow).
   sh_*.exr           the radiance of known SH coefficients KNOWN (4 bands, RGB, this library's
                      convention), sampled at texel centres: lat-long 512x256 and 256x128,
                      horizontal cross 512x384, vertical cross 384x512, six 128x128 faces.
@@ -41,6 +46,24 @@ def sh16(x, y, z):
     c3d = 0.25 * math.sqrt(7 / pi)
     c3e = 0.25 * math.sqrt(105 / pi)
     return [np.full_like(x, c0), c1 * y, c1 * z, c1 * x,
+            c2a * x * y, c2a * y * z, c2b * (3 * z * z - 1), c2a * x * z, c2c * (x * x - y * y),
+            c3a * y * (3 * x * x - y * y), c3b * x * y * z, c3c * y * (5 * z * z - 1),
+            c3d * z * (5 * z * z - 3), c3c * x * (5 * z * z - 1), c3e * z * (x * x - y * y),
+            c3a * x * (x * x - 3 * y * y)]
+
+
+def sh16_mp(x, y, z):
+    """sh16 at one direction in mpmath arithmetic (the test's closed forms)."""
+    import mpmath
+    x, y, z = (mpmath.mpf(float(t)) for t in (x, y, z))
+    r = mpmath.sqrt(x * x + y * y + z * z)  # the polynomials below hold on the unit sphere
+    x, y, z = x / r, y / r, z / r
+    pi = mpmath.pi
+    c0, c1 = 1 / (2 * mpmath.sqrt(pi)), mpmath.sqrt(3 / (4 * pi))
+    c2a, c2b, c2c = mpmath.sqrt(15 / pi) / 2, mpmath.sqrt(5 / pi) / 4, mpmath.sqrt(15 / pi) / 4
+    c3a, c3b = mpmath.sqrt(35 / (2 * pi)) / 4, mpmath.sqrt(105 / pi) / 2
+    c3c, c3d, c3e = mpmath.sqrt(21 / (2 * pi)) / 4, mpmath.sqrt(7 / pi) / 4, mpmath.sqrt(105 / pi) / 4
+    return [c0, c1 * y, c1 * z, c1 * x,
             c2a * x * y, c2a * y * z, c2b * (3 * z * z - 1), c2a * x * z, c2c * (x * x - y * y),
             c3a * y * (3 * x * x - y * y), c3b * x * y * z, c3c * y * (5 * z * z - 1),
             c3d * z * (5 * z * z - 3), c3c * x * (5 * z * z - 1), c3e * z * (x * x - y * y),
@@ -120,6 +143,37 @@ def write_png(path, rgb8):
                 chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
 
 
+def write_png16(path, rgb16):
+    """A 16-bit RGB PNG (big-endian samples, ISO/IEC 15948), no colour-space chunks."""
+    h, w, _ = rgb16.shape
+    raw = b"".join(b"\0" + rgb16[y].astype(">u2").tobytes() for y in range(h))
+
+    def chunk(t, d):
+        return struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d) & 0xffffffff)
+
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 16, 2, 0, 0, 0)) +
+                chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+def srgb_encode(lin):
+    """IEC 61966-2-1: linear [0, 1] -> encoded [0, 1]."""
+    lin = np.asarray(lin, dtype=np.float64)
+    return np.where(lin <= 0.0031308, 12.92 * lin, 1.055 * lin ** (1 / 2.4) - 0.055)
+
+
+def grad_linear(w=256, h=128):
+    """The linear content of the grad_* maps: the known radiance squeezed into [0.02, 0.9]."""
+    r = radiance(*latlong_dirs(w, h))
+    lo, hi = r.min(), r.max()
+    return 0.02 + 0.88 * (r - lo) / (hi - lo)
+
+
+def write_jpeg(path, rgb8):
+    from PIL import Image  # Pillow (Debian python3-pil, a dependency of python3-matplotlib)
+    Image.fromarray(rgb8.astype(np.uint8), "RGB").save(path, quality=100, subsampling=0)
+
+
 def write_hdr_one(path, w, h):
     # RGBE (128, 128, 128, 129) = 1.0 exactly; flat (not run-length) scanlines.
     with open(path, "wb") as f:
@@ -137,6 +191,14 @@ def main():
         write_exr(os.path.join(out, "const_face_%s.exr" % name), np.tile(c, (16, 16, 1)))
     write_png(os.path.join(out, "const_srgb.png"), np.full((16, 32, 3), 188))
     write_hdr_one(os.path.join(out, "const.hdr"), 32, 16)
+    write_png16(os.path.join(out, "const_srgb16.png"),
+                np.tile(np.array([48000, 30000, 12000]), (16, 32, 1)))
+    write_jpeg(os.path.join(out, "const.jpg"), np.tile(np.array([188, 100, 40]), (16, 32, 1)))
+    g = grad_linear()
+    write_exr(os.path.join(out, "grad.exr"), g)
+    write_png(os.path.join(out, "grad8.png"), np.rint(255 * srgb_encode(g)))
+    write_png16(os.path.join(out, "grad16.png"), np.rint(65535 * srgb_encode(g)).astype(np.uint16))
+    write_jpeg(os.path.join(out, "grad.jpg"), np.rint(255 * srgb_encode(g)))
 
     for w, h in ((512, 256), (256, 128)):
         write_exr(os.path.join(out, "sh_equirect_%d.exr" % w), radiance(*latlong_dirs(w, h)))

@@ -7,7 +7,7 @@ set(_py /usr/bin/python3)
 add_test(NAME cli_project_maps
          COMMAND ${_py} ${CMAKE_CURRENT_SOURCE_DIR}/cli/make_envmaps.py ${_pm})
 set_tests_properties(cli_project_maps PROPERTIES FIXTURES_SETUP project_maps LABELS cli)
-foreach(mode constant known layouts irradiance rotate window threejs filament unity out)
+foreach(mode constant known layouts irradiance rotate window threejs filament unity frames inputs out)
   add_test(NAME cli_project_${mode}
            COMMAND ${_py} ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_project.py
                    $<TARGET_FILE:sphbasis_cli> ${_pm} ${mode})
@@ -32,6 +32,8 @@ project_bad(unknown_format "--format: expected json, cpp, glsl, hlsl, unity, thr
             ${_pm}/const_equirect.exr --format xml)
 project_bad(unknown_layout "--layout: expected equirect, cross or faces" ${_pm}/const_equirect.exr --layout octa)
 project_bad(bad_window "--window: expected none, auto or sloan:X" ${_pm}/const_equirect.exr --window hann)
+project_bad(unknown_frame "--frame: expected sphbasis, threejs, filament or unity, got 'unreal'"
+            ${_pm}/const_equirect.exr --frame unreal)
 project_bad(bad_sloan "--window sloan:X: expected a finite number" ${_pm}/const_equirect.exr --window sloan:x)
 project_bad(bad_quat "--rotate: expected four numbers" ${_pm}/const_equirect.exr --rotate 1,0,0)
 project_bad(zero_quat "--rotate: expected a non-zero quaternion" ${_pm}/const_equirect.exr --rotate 0,0,0,0)

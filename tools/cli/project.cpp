@@ -6,8 +6,8 @@
 // Pipeline: read (OpenEXR, Radiance HDR, PNG/JPEG sRGB -> linear) -> refuse non-finite texels ->
 // project (exact texel solid angles: sh::project_latlong for lat-long maps, exact for the
 // piecewise-constant map; sh::project_cubemap for crosses and faces; other bases: least squares
-// over the texels of their domain) -> --rotate -> --window -> --irradiance -> format -> write
-// all or none (support/output_file.hpp) or to standard output.
+// over the texels of their domain) -> --rotate -> --frame -> --window -> --irradiance -> format ->
+// write all or none (support/output_file.hpp) or to standard output.
 #include <CLI/CLI.hpp>
 #include <Eigen/Dense>
 #include <algorithm>
@@ -49,9 +49,11 @@ struct Rgb {
 struct ProjectOptions {
     std::vector<std::string> inputs;
     std::string layout = "equirect", basis = "sh", window = "none", rotate, format = "json", out;
+    std::string frame;  // empty: the engine's frame for an engine format, else sphbasis
     long long bands = 0, coeffs = 0;
     bool irradiance = false;
-    CLI::Option *bands_opt = nullptr, *coeffs_opt = nullptr, *basis_opt = nullptr;
+    CLI::Option *bands_opt = nullptr, *coeffs_opt = nullptr, *basis_opt = nullptr,
+                *frame_opt = nullptr;
     std::string command_line;
 };
 
@@ -84,6 +86,70 @@ struct EnvMap {
 };
 
 const char* const face_names[6] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
+
+/// An engine's world frame as a signed permutation: world axis i = sign[i] * map axis axis[i],
+/// one for lat-long maps and one for cube maps (crosses, faces), each read off the engine's
+/// own code that samples such an image (docs/project.md, "Frames"), so that the coefficients
+/// light the engine's world as its background shows the same image.
+struct EngineFrame {
+    const char* name;
+    const char* words;
+    int axis_equirect[3], sign_equirect[3], axis_cube[3], sign_cube[3];
+
+    /// The row-major matrix M with world = M map for the layout (det +-1).
+    Mat3<double> matrix(bool cube) const {
+        Mat3<double> m{};
+        for (int i = 0; i < 3; ++i)
+            m[std::size_t(3 * i + (cube ? axis_cube : axis_equirect)[i])] =
+                (cube ? sign_cube : sign_equirect)[i];
+        return m;
+    }
+};
+
+const EngineFrame frames[] = {
+    {"sphbasis",
+     "the map's own frame (lat-long: +z up; cube: the faces' axes)",
+     {0, 1, 2},
+     {1, 1, 1},
+     {0, 1, 2},
+     {1, 1, 1}},
+    // equirectUv(): u = atan(z, x)/2pi + 1/2, v = asin(y)/pi + 1/2; cube: flipEnvMap (x -> -x).
+    {"threejs", "three.js (y up, right-handed)", {0, 2, 1}, {-1, 1, -1}, {0, 1, 2}, {-1, 1, 1}},
+    // cmgen equirectangularToCubemap(): u = atan2(x, z)/2pi + 1/2, then mirrorCubemap (x -> -x).
+    {"filament", "Filament (y up, right-handed)", {1, 2, 0}, {1, 1, -1}, {0, 1, 2}, {-1, 1, 1}},
+    // Skybox-Panoramic ToRadialCoords(): u = 1/2 - atan2(z, x)/2pi, v = 1 - acos(y)/pi; cubes
+    // are sampled with the world direction (the D3D faces, left-handed).
+    {"unity", "Unity (y up, left-handed)", {0, 2, 1}, {-1, 1, 1}, {0, 1, 2}, {1, 1, 1}},
+};
+
+/// c <- D(M) c for a signed permutation M. When M keeps the z axis (every cube frame) it is
+/// Rz(k quarter turns) diag(sx, 1, sz), applied exactly by sh::reflect and sh::rotate_z90 (each
+/// coefficient kept, moved or negated); otherwise (the lat-long frames take +z to +y) by
+/// sh::rotate, whose bands 0 and 1 come out exact and bands >= 2 within an ulp of D c (their
+/// weights, such as -1/2 and sqrt(3)/2, are not representable).
+void apply_frame(int bands, const Mat3<double>& m, double* c) {
+    if (std::fabs(m[8]) == 1) {
+        const double cs[4] = {1, 0, -1, 0}, sn[4] = {0, 1, 0, -1};
+        for (int k = 0; k < 4; ++k)
+            for (int fx = 0; fx < 2; ++fx) {
+                const double sx = fx ? -1 : 1;
+                if (m[0] != cs[k] * sx || m[1] != -sn[k] || m[3] != sn[k] * sx || m[4] != cs[k])
+                    continue;
+                if (fx) sh::reflect(bands, 0, c, c);
+                if (m[8] < 0) sh::reflect(bands, 2, c, c);
+                sh::rotate_z90(bands, k, c, c);
+                return;
+            }
+    }
+    sh::rotate(bands, m, c, c);
+}
+
+const EngineFrame& find_frame(const std::string& name) {
+    for (const EngineFrame& f : frames)
+        if (name == f.name) return f;
+    throw UsageError("--frame: expected sphbasis, threejs, filament or unity, got '" +
+                     quote_input(name) + "'");
+}
 
 EnvMap read_map(const ProjectOptions& o) {
     EnvMap m;
@@ -304,6 +370,12 @@ int run_project(ProjectOptions& o) {
         throw UsageError(
             "--format threejs: SphericalHarmonics3 holds radiance (three.js applies the cosine "
             "in getIrradianceAt); drop --irradiance");
+    // An engine format defaults to its engine's frame; every other format to the map's own.
+    const EngineFrame& frame =
+        find_frame(!o.frame.empty() ? o.frame : (engine ? o.format : std::string("sphbasis")));
+    if (!is_sh && std::string(frame.name) != "sphbasis")
+        throw UsageError("--frame " + o.frame + ": frames work on SH (--basis sh); basis '" +
+                         std::string(basis->name) + "' stays in the map's frame");
     // Unity's and Filament's layouts hold the convolved light (irradiance / pi, pre-scaled).
     const bool convolve = o.irradiance || o.format == "unity" || o.format == "filament";
 
@@ -357,6 +429,11 @@ int run_project(ProjectOptions& o) {
         for (int j = 0; j < 3; ++j)
             sh::rotate_quaternion(bands, quat[0], quat[1], quat[2], quat[3],
                                   ch.data() + std::size_t(j) * n2, ch.data() + std::size_t(j) * n2);
+    // The engine's world: g(w) = f(M^T w) for the signed permutation M (det -1 included).
+    const bool framed = std::string(frame.name) != "sphbasis";
+    if (framed)
+        for (int j = 0; j < 3; ++j)
+            apply_frame(bands, frame.matrix(map.cube), ch.data() + std::size_t(j) * n2);
     const std::vector<double> kernel =
         is_sh ? sh::clamped_cosine_kernel(bands) : std::vector<double>{};
     Json window_json = {
@@ -412,6 +489,7 @@ int run_project(ProjectOptions& o) {
         j["quantity"] = quantity;
         j["order"] = order;
         j["rotate"] = quat.empty() ? Json(nullptr) : Json(quat);
+        if (framed) j["frame"] = frame.name;
         j["window"] = window_json;
         j["negative_texels"] = map.negative;
         j["seconds"] = {{"read", read_s}, {"project", project_s}};
@@ -424,8 +502,9 @@ int run_project(ProjectOptions& o) {
         const bool cpp = o.format == "cpp";
         const std::string cm = "// ";
         text = cm + "generated by: " + o.command_line + "\n" + cm + quantity + "\n" + cm + order +
-               "\n" + cm + "coefficient k of channel c: sphbasis_coeffs[k]" +
-               (cpp ? "[c]" : ".rgb[c]") + "; RGB linear\n";
+               "\n" + (framed ? cm + "frame: " + frame.words + "\n" : std::string()) + cm +
+               "coefficient k of channel c: sphbasis_coeffs[k]" + (cpp ? "[c]" : ".rgb[c]") +
+               "; RGB linear\n";
         const std::string nn = std::to_string(n2);
         if (cpp)
             text += "const float sphbasis_coeffs[" + nn + "][3] = {\n";
@@ -456,12 +535,16 @@ int run_project(ProjectOptions& o) {
                     {"convention",
                      "three.js SphericalHarmonics3 (radiance coefficients, ACN order, no "
                      "Condon-Shortley phase): new SphericalHarmonics3().fromArray(sh)"},
+                    {"frame", frame.words},
                     {"sh", sh}};
         text = dump_json(doc, {{"sh", 2}}) + "\n";
     } else if (o.format == "unity") {
         text = "// generated by: " + o.command_line +
                "\n// UnityEngine.Rendering.SphericalHarmonicsL2, sh[channel, k]: irradiance / pi "
                "pre-scaled by the basis constants (k: 1, y, z, x, xy, yz, 3z^2-1, xz, x^2-y^2)\n"
+               "// frame: " +
+               frame.words +
+               "\n"
                "var sh = new UnityEngine.Rendering.SphericalHarmonicsL2();\n";
         for (int j = 0; j < 3; ++j)
             for (std::size_t k = 0; k < 9; ++k)
@@ -519,6 +602,11 @@ Run setup_project(CLI::App& app) {
     app.add_option("--rotate", o->rotate,
                    "rotate the coefficients by a quaternion (as `rotate --quat`)")
         ->type_name("W,X,Y,Z");
+    o->frame_opt = app.add_option("--frame", o->frame,
+                                  "the world the coefficients are for: sphbasis (the map's "
+                                  "frame), threejs, filament or unity (default: the --format's "
+                                  "engine, else sphbasis)")
+                       ->type_name("sphbasis|threejs|filament|unity");
     app.add_option("--format", o->format, "json, cpp, glsl, hlsl, unity, threejs or filament")
         ->type_name("FORMAT")
         ->capture_default_str();
@@ -539,6 +627,7 @@ Run setup_project(CLI::App& app) {
         if (o->irradiance) c += " --irradiance";
         if (o->window != "none") c += " --window " + o->window;
         if (!o->rotate.empty()) c += " --rotate " + o->rotate;
+        if (o->frame_opt->count()) c += " --frame " + o->frame;
         c += " --format " + o->format;
         return run_project(*o);
     };

@@ -11,6 +11,7 @@
 #include <memory>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "exr.hpp"
 
@@ -51,9 +52,11 @@ LinearRgbImage load_stb(const std::string& path, bool hdr) {
                 std::unique_ptr<stbi_us, StbFree> px(stbi_load_16(path.c_str(), &w, &h, &n, 3));
                 if (!px) throw std::runtime_error(stbi_failure_reason());
                 const std::size_t k = std::size_t(w) * std::size_t(h) * 3;
+                std::vector<float> table(65536);  // one pow per code, not per sample
+                for (std::size_t v = 0; v < table.size(); ++v)
+                    table[v] = static_cast<float>(srgb_to_linear(double(v) / 65535.0));
                 img.rgb.resize(k);
-                for (std::size_t i = 0; i < k; ++i)
-                    img.rgb[i] = static_cast<float>(srgb_to_linear(px.get()[i] / 65535.0));
+                for (std::size_t i = 0; i < k; ++i) img.rgb[i] = table[px.get()[i]];
                 return k;
             }
             std::unique_ptr<stbi_uc, StbFree> px(stbi_load(path.c_str(), &w, &h, &n, 3));
