@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "../../tools/gl/egl_context.hpp"
 #include "sphbasis/core/vec.hpp"
 
 namespace shader_harness {
@@ -119,51 +120,13 @@ inline Gl load_gl() {
     return g;
 }
 
-inline bool has_extension(const char* list, const char* ext) {
-    if (!list) return false;
-    const std::size_t n = std::strlen(ext);
-    for (const char* p = list; (p = std::strstr(p, ext)) != nullptr; p += n)
-        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
-    return false;
-}
+using sphbasis::gl::has_extension;
 
-// A headless OpenGL 4.3 core context on EGL's surfaceless platform (EGL_MESA_platform_surfaceless).
+// A headless OpenGL 4.3 core context on EGL's surfaceless platform, on llvmpipe unless the caller
+// set LIBGL_ALWAYS_SOFTWARE (tools/gl/egl_context.hpp).
 inline void create_context() {
-    // Mesa's software rasterizer unless the caller chose otherwise.
-    setenv("LIBGL_ALWAYS_SOFTWARE", "1", 0);
-    const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    if (!has_extension(client, "EGL_MESA_platform_surfaceless"))
-        fail(std::string("EGL has no EGL_MESA_platform_surfaceless (client extensions: ") +
-             (client ? client : "none") + "): install Mesa's EGL (libegl-mesa0, libgl1-mesa-dri)");
-    auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-        eglGetProcAddress("eglGetPlatformDisplayEXT"));
-    if (!get_platform_display) fail("eglGetPlatformDisplayEXT is missing");
-    EGLDisplay dpy =
-        get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-    EGLint major = 0, minor = 0;
-    if (dpy == EGL_NO_DISPLAY || !eglInitialize(dpy, &major, &minor))
-        fail("eglInitialize on the surfaceless platform failed (EGL error 0x" + [] {
-            char b[16];
-            std::snprintf(b, sizeof b, "%x", static_cast<unsigned>(eglGetError()));
-            return std::string(b);
-        }() + ")");
-    if (!eglBindAPI(EGL_OPENGL_API)) fail("eglBindAPI(EGL_OPENGL_API) failed");
-    const EGLint cfg_attr[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
-    EGLConfig cfg = nullptr;
-    EGLint ncfg = 0;
-    if (!eglChooseConfig(dpy, cfg_attr, &cfg, 1, &ncfg) || ncfg < 1) cfg = nullptr;  // no-config
-    const EGLint ctx_attr[] = {EGL_CONTEXT_MAJOR_VERSION,
-                               4,
-                               EGL_CONTEXT_MINOR_VERSION,
-                               3,
-                               EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                               EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                               EGL_NONE};
-    EGLContext ctx = eglCreateContext(dpy, cfg, EGL_NO_CONTEXT, ctx_attr);
-    if (ctx == EGL_NO_CONTEXT)
-        fail("eglCreateContext(OpenGL 4.3 core) failed: the driver offers no OpenGL 4.3");
-    if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx))
-        fail("eglMakeCurrent without a surface failed (EGL_KHR_surfaceless_context missing?)");
+    const std::string why = sphbasis::gl::create_headless_context(true);
+    if (!why.empty()) fail(why);
 }
 
 inline std::string read_file(const std::string& path) {
