@@ -98,6 +98,7 @@
 #include "../support/ply.hpp"
 #include "../support/progress.hpp"
 #include "../support/scene_file.hpp"
+#include "bake_gl.hpp"
 #include "cli.hpp"
 
 namespace sphbasis::cli {
@@ -952,6 +953,7 @@ struct BakeOptions {
     long long bands = 3, coeffs = 9, rays = 256, bounces = 0, seed = 0, max_rays = 0;
     CLI::Option *target_opt = nullptr, *points_opt = nullptr, *out_opt = nullptr,
                 *maxd_opt = nullptr;
+    GlEngine gl;  // --engine gl (bake_gl.hpp)
 };
 
 /// Estimated bytes per baked point: its layout (BakePoint), its result (Baker::result_bytes),
@@ -1013,6 +1015,7 @@ int run_bake(const BakeOptions& o) {
             "--quantities normal_map: the tangent-space normal map is baked per vertex or texel "
             "(--target vertices or texels:RES) of meshes with a \"source\"");
     const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
+    check_gl_engine(o.gl, s, {shard.count > 1, o.maxd_opt->count() > 0, false, o.rays != 256});
     const bool write_files = !points_mode || o.out_opt->count() > 0;
     const bool gltf = o.format == "gltf";
     const ImageEncoding encoding = parse_image_encoding(o.encoding);
@@ -1025,6 +1028,7 @@ int run_bake(const BakeOptions& o) {
             "--format gltf: not with --points or --shard (bake-merge writes native files)");
 
     const SceneFile scene = load_scene(o.scene);
+    check_gl_engine(o.gl, s, {false, false, !high_to_low_targets(scene).empty(), false});
     for (std::size_t k = 0; k < scene.meshes.size(); ++k)
         if (scene.meshes[k].dropped_triangles > 0)
             std::fprintf(
@@ -1097,7 +1101,7 @@ int run_bake(const BakeOptions& o) {
     const auto t_bake0 = Clock::now();
     // Without a quantity of the Baker (normal_map alone) nothing is traced beyond projection.
     std::unique_ptr<render::Baker> baker;
-    if (any(baker_settings(s).quantities))
+    if (any(baker_settings(s).quantities) && !o.gl.gl())
         baker = std::make_unique<render::Baker>(desc, baker_settings(s));
     if (write_files) out.prepare();
     std::vector<render::PointResult> results(baker ? 0 : mine.size());
@@ -1107,6 +1111,9 @@ int run_bake(const BakeOptions& o) {
             baker->bake(mine, [&bar](std::size_t k) { bar.update(static_cast<long long>(k)); });
         bar.done();
     }
+    Json gl_record;
+    render::Pass gl_pass;
+    if (o.gl.gl()) results = gl_engine_bake(o.gl, desc, mine, s, gl_record, gl_pass);
     const double t_bake = seconds_since(t_bake0);
     if (results.size() != mine.size())
         throw std::runtime_error("the baker returned " + std::to_string(results.size()) +
@@ -1126,6 +1133,7 @@ int run_bake(const BakeOptions& o) {
                                      " of its record); nothing was written");
     std::vector<render::Pass> plan = baker ? baker->plan() : std::vector<render::Pass>{};
     if (projection.rays > 0) plan.insert(plan.begin(), projection);
+    if (o.gl.gl()) plan.push_back(gl_pass);
     const std::uint64_t rays = (baker ? baker->rays_traced() : 0) + projection.rays;
 
     Json summary = {{"tool", "sphbasis bake"},
@@ -1137,6 +1145,7 @@ int run_bake(const BakeOptions& o) {
                     {"plan", plan_json(plan)},
                     {"rays", rays},
                     {"rays_per_second", t_bake > 0 ? static_cast<double>(rays) / t_bake : 0.0}};
+    if (o.gl.gl()) summary["engine"] = gl_record;
     if (shard.count > 1)
         summary["shard"] = {
             {"index", shard.index}, {"count", shard.count}, {"begin", begin}, {"end", end}};
@@ -1384,6 +1393,7 @@ Run setup_bake(CLI::App& app) {
         ->type_name("X|NAME:X,...");
     add_integer(app, "--max-rays", o->max_rays, 1, 1 << 30,
                 "adaptive sampling: rays per point and pass at most (default 16 --rays)");
+    add_gl_engine_options(app, o->gl);
     return [o] { return run_bake(*o); };
 }
 
