@@ -1,6 +1,8 @@
 // sphbasis CLI: the gl engine of `sphbasis bake` (bake_gl.hpp).
 #include "bake_gl.hpp"
 
+#include <cstdio>
+
 #include "../support/args.hpp"
 #include "../support/progress.hpp"
 #include "cli.hpp"
@@ -95,6 +97,9 @@ std::vector<render::PointResult> gl_engine_bake(const GlEngine& e, const render:
                   std::to_string(o.resolution) + "^2 depth maps, one test per point and map";
     pass.rays = 0;
     pass.seconds = info.seconds;
+    std::fprintf(stderr,
+                 "sphbasis bake: gl: %zu points x %d directions (%d^2 maps) on %s in %.3f s\n",
+                 points.size(), o.directions, o.resolution, info.renderer.c_str(), info.seconds);
     return r;
 #else
     (void)e, (void)scene, (void)points, (void)s, (void)record, (void)pass;
