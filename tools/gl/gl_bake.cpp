@@ -318,7 +318,8 @@ std::vector<render::PointResult> gl_bake(const render::SceneDesc& scene,
     for (const render::MeshView& m : scene.meshes)
         for (std::size_t t = 0; t < 3 * m.triangle_count; ++t) {
             const std::uint32_t v = m.indices[t];
-            for (int k = 0; k < 3; ++k) tri.push_back(float(double(m.positions[3 * v + k]) - c[k]));
+            for (std::uint32_t k = 0; k < 3; ++k)
+                tri.push_back(float(double(m.positions[3 * v + k]) - c[k]));
         }
     std::vector<float> pn(8 * points.size(), 0.0f);
     for (std::size_t i = 0; i < points.size(); ++i) {
