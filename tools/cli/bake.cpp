@@ -1015,7 +1015,6 @@ int run_bake(const BakeOptions& o) {
             "--quantities normal_map: the tangent-space normal map is baked per vertex or texel "
             "(--target vertices or texels:RES) of meshes with a \"source\"");
     const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
-    check_gl_engine(o.gl, s, {shard.count > 1, o.maxd_opt->count() > 0, false, o.rays != 256});
     const bool write_files = !points_mode || o.out_opt->count() > 0;
     const bool gltf = o.format == "gltf";
     const ImageEncoding encoding = parse_image_encoding(o.encoding);
@@ -1028,7 +1027,9 @@ int run_bake(const BakeOptions& o) {
             "--format gltf: not with --points or --shard (bake-merge writes native files)");
 
     const SceneFile scene = load_scene(o.scene);
-    check_gl_engine(o.gl, s, {false, false, !high_to_low_targets(scene).empty(), false});
+    check_gl_engine(o.gl, s,
+                    {shard.count > 1, o.maxd_opt->count() > 0, !high_to_low_targets(scene).empty(),
+                     o.rays != 256});
     for (std::size_t k = 0; k < scene.meshes.size(); ++k)
         if (scene.meshes[k].dropped_triangles > 0)
             std::fprintf(

@@ -177,10 +177,10 @@ uniform sampler2D depth_map;
 uniform vec3 u_axis, v_axis, d_axis;
 uniform float inv_radius, weight, bias_world;
 uniform int res, nsh;
-uniform uint count, stride;
+uniform uint first, count, stride;
 uniform vec4 y4[64];  // y_i(d), i = 4 k + c in y4[k][c]
 void main() {
-    uint i = gl_GlobalInvocationID.x;
+    uint i = first + gl_GlobalInvocationID.x;
     if (i >= count) return;
     vec3 p = pn[2u * i].xyz, n = pn[2u * i + 1u].xyz;
     float c = dot(n, d_axis);
@@ -408,7 +408,9 @@ std::vector<render::PointResult> gl_bake(const render::SceneDesc& scene,
         const std::vector<vec3<double>> dirs = fibonacci_directions(o.directions);
         std::vector<double> yd(std::size_t(std::max(nsh, 1)));
         std::vector<float> yf(4 * ((yd.size() + 3) / 4), 0.0f);
-        const GLuint groups = GLuint((points.size() + 63) / 64);
+        // Dispatches of at most 65535 groups (the least GL_MAX_COMPUTE_WORK_GROUP_COUNT).
+        const std::size_t chunk = std::size_t(65535) * 64;
+        const GLint first = loc(test_prog, "first");
         for (std::size_t j = 0; j < dirs.size(); ++j) {
             const vec3<double> d = dirs[j];
             // (u, v, d) right-handed and orthonormal; any such frame serves.
@@ -434,7 +436,10 @@ std::vector<render::PointResult> gl_bake(const render::SceneDesc& scene,
                 for (int k = 0; k < nsh; ++k) yf[std::size_t(k)] = float(yd[std::size_t(k)]);
                 gl.Uniform4fv(ty, (nsh + 3) / 4, yf.data());
             }
-            gl.DispatchCompute(groups, 1, 1);
+            for (std::size_t b = 0; b < points.size(); b += chunk) {
+                gl.Uniform1ui(first, GLuint(b));
+                gl.DispatchCompute(GLuint((std::min(chunk, points.size() - b) + 63) / 64), 1, 1);
+            }
             gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
             if (progress) progress(j + 1);
         }
