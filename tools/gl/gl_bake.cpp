@@ -278,7 +278,10 @@ std::vector<render::PointResult> gl_bake(const render::SceneDesc& scene,
             const std::uint32_t v = m.indices[t];
             if (v >= m.vertex_count)
                 throw std::invalid_argument(std::string(fn) + "a vertex index out of range");
-            grow(m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]);
+            const float* q = m.positions + 3 * std::size_t(v);
+            if (!(std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2])))
+                throw std::invalid_argument(std::string(fn) + "a non-finite vertex position");
+            grow(q[0], q[1], q[2]);
         }
         triangles += m.triangle_count;
     }
