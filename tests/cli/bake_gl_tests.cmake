@@ -7,7 +7,7 @@ set(_check_gl ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_gl_bake.py)
 set(_gl_scene ${CMAKE_CURRENT_SOURCE_DIR}/data/scenes/sphere_over_small_quad.json)
 
 sphbasis_cli_test(bake_gl_help "--engine embree\\|gl.*--gl-directions N.*--gl-resolution R" bake --help)
-sphbasis_bake_bad(gl_irradiance "--engine gl: bakes the quantities ao and transfer only, got 'irradiance' \\(use --engine embree\\)"
+sphbasis_bake_bad(gl_irradiance "--engine gl: bakes the quantities ao, transfer and visibility only, got 'irradiance' \\(use --engine embree\\)"
                   bake ${_gl_scene} --engine gl --quantities ao,irradiance)
 sphbasis_bake_bad(gl_bounces "--engine gl: bakes transfer without bounces \\(--bounces 0\\), got --bounces 2"
                   bake ${_gl_scene} --engine gl --quantities transfer --bounces 2)
@@ -18,7 +18,7 @@ sphbasis_bake_bad(gl_rays "--engine gl: samples --gl-directions directions, not 
 sphbasis_bake_bad(gl_max_distance "--engine gl: a depth map holds the nearest surface to the sky only: no --max-distance"
                   bake ${_gl_scene} --engine gl --max-distance 1)
 sphbasis_bake_bad(gl_shard "--engine gl: bakes in one run: no --shard" bake ${_gl_scene} --engine gl --shard 0/2)
-sphbasis_bake_bad(gl_probes "--engine gl: bakes the quantities ao and transfer only, got 'radiance'"
+sphbasis_bake_bad(gl_probes "--engine gl: bakes the quantities ao, transfer and visibility only, got 'radiance'"
                   bake ${_gl_scene} --engine gl --target probes --quantities radiance)
 sphbasis_bake_bad(gl_high_to_low "--engine gl: does not bake high to low" bake ${PROJECT_SOURCE_DIR}/scenes/high_to_low.json --engine gl)
 sphbasis_bake_bad(gl_options_without_engine "--gl-directions, --gl-resolution: only with --engine gl"
@@ -36,6 +36,6 @@ sphbasis_bake_test(gl_points "gl-points-ok 5"
   "printf '${_gl_points}' | \"${_bake}\" bake ${_gl_scene} --points - --quantities ao,transfer --engine gl > bake_gl_points.txt && printf '${_gl_points}' | \"${_bake}\" bake ${_gl_scene} --points - --quantities ao,transfer --rays 4096 > bake_gl_points_embree.txt && python3 ${_check_gl} points bake_gl_points.txt bake_gl_points_embree.txt 2 1 0.02")
 # Vertex and texel bakes write the Embree bake's files and channels; bake.json records the engine.
 sphbasis_bake_test(gl_files "gl-layout-ok 2.*gl-layout-ok 2"
-  "rm -rf bake_gl_f && \"${_bake}\" bake ${_gl_scene} --engine gl --quantities ao,transfer --gl-directions 64 --gl-resolution 128 --out bake_gl_f/v && \"${_bake}\" bake ${_gl_scene} --quantities ao,transfer --rays 8 --out bake_gl_f/ve && python3 ${_check_gl} layout bake_gl_f/v/bake.json bake_gl_f/ve/bake.json && \"${_bake}\" bake ${_gl_scene} --engine gl --target texels:16 --quantities ao --gl-directions 64 --gl-resolution 128 --out bake_gl_f/t && \"${_bake}\" bake ${_gl_scene} --target texels:16 --quantities ao --rays 8 --out bake_gl_f/te && python3 ${_check_gl} layout bake_gl_f/t/bake.json bake_gl_f/te/bake.json")
+  "rm -rf bake_gl_f && \"${_bake}\" bake ${_gl_scene} --engine gl --quantities ao,transfer --gl-directions 64 --gl-resolution 128 --out bake_gl_f/v && \"${_bake}\" bake ${_gl_scene} --quantities ao,transfer --rays 8 --out bake_gl_f/ve && python3 ${_check_gl} layout bake_gl_f/v/bake.json bake_gl_f/ve/bake.json && \"${_bake}\" bake ${_gl_scene} --engine gl --target texels:16 --quantities ao,visibility --gl-directions 64 --gl-resolution 128 --out bake_gl_f/t && \"${_bake}\" bake ${_gl_scene} --target texels:16 --quantities ao,visibility --rays 8 --out bake_gl_f/te && python3 ${_check_gl} layout bake_gl_f/t/bake.json bake_gl_f/te/bake.json")
 set_tests_properties(bake_gl_points bake_gl_files PROPERTIES
                      SKIP_REGULAR_EXPRESSION "no OpenGL 4.3 context|built without EGL")

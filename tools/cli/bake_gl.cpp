@@ -15,7 +15,7 @@ namespace sphbasis::cli {
 void add_gl_engine_options(CLI::App& app, GlEngine& e) {
     app.add_option("--engine", e.engine,
                    "embree (ray tracing, every quantity) or gl (Hill's depth maps in OpenGL 4.3 "
-                   "through headless EGL: ao and transfer, 0 bounces)")
+                   "through headless EGL: ao, transfer with 0 bounces, visibility)")
         ->type_name("embree|gl")
         ->capture_default_str();
     e.directions_opt = add_integer(app, "--gl-directions", e.directions, 1, 1 << 20,
@@ -35,11 +35,11 @@ void check_gl_engine(const GlEngine& e, const render::BakeSettings& s, const GlR
     }
     const std::string pre = "--engine gl: ";
     using render::Quantity;
-    if (any(s.quantities & ~(Quantity::ao | Quantity::transfer)))
-        throw UsageError(
-            pre + "bakes the quantities ao and transfer only, got '" +
-            render::quantity_names(s.quantities & ~(Quantity::ao | Quantity::transfer)) +
-            "' (use --engine embree)");
+    const Quantity supported = Quantity::ao | Quantity::transfer | Quantity::visibility;
+    if (any(s.quantities & ~supported))
+        throw UsageError(pre + "bakes the quantities ao, transfer and visibility only, got '" +
+                         render::quantity_names(s.quantities & ~supported) +
+                         "' (use --engine embree)");
     if (s.bounces > 0)
         throw UsageError(pre + "bakes transfer without bounces (--bounces 0), got --bounces " +
                          std::to_string(s.bounces));

@@ -1,7 +1,7 @@
 // sphbasis CLI: `sphbasis bake --engine gl`, Hill's depth-map bake (tools/gl/gl_bake.hpp) behind
-// the bake command's options and files. It bakes ao and transfer (0 bounces) per vertex, per
-// texel and at --points; everything else is refused with one line. The results fill the same
-// records as render::Baker's, so every output file and reader is the Embree bake's; bake.json
+// the bake command's options and files. It bakes ao, transfer (0 bounces) and visibility per
+// vertex, per texel and at --points; everything else is refused with one line. The results fill the
+// same records as render::Baker's, so every output file and reader is the Embree bake's; bake.json
 // gains "engine" (name, directions, resolution, bias, the bounding sphere, the GL renderer).
 #pragma once
 

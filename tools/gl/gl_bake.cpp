@@ -108,6 +108,8 @@ Context& context(bool software) {
     return c;
 }
 
+constexpr double two_pi = 6.2831853071795865;  // 2 pi
+
 [[noreturn]] void fail(const std::string& what) {
     throw std::runtime_error("sphbasis::gl::gl_bake(): " + what);
 }
@@ -167,8 +169,10 @@ const char* kDepthFragment = R"(#version 430 core
 void main() {}
 )";
 
-// The test pass: one invocation per point; accumulates (sum w, sum w^2, sum w V, then per SH
-// coefficient sum w V y and sum w V y^2) into the point's record of `stride` floats.
+// The test pass: one invocation per point; accumulates into the point's record of `stride`
+// floats: sum w, sum w^2, sum w V, the count of directions above the tangent plane, then per SH
+// coefficient (transfer, nt of them) sum w V y and sum w V y^2, then (visibility, nv) sum V y
+// and sum V y^2.
 const char* kTestCompute = R"(#version 430 core
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Points { vec4 pn[]; };
@@ -176,7 +180,7 @@ layout(std430, binding = 1) buffer Acc { float acc[]; };
 uniform sampler2D depth_map;
 uniform vec3 u_axis, v_axis, d_axis;
 uniform float inv_radius, weight, bias_world;
-uniform int res, nsh;
+uniform int res, nt, nv;
 uniform uint first, count, stride;
 uniform vec4 y4[64];  // y_i(d), i = 4 k + c in y4[k][c]
 void main() {
@@ -197,12 +201,19 @@ void main() {
     uint b = i * stride;
     acc[b] += w;
     acc[b + 1u] += w * w;
+    acc[b + 3u] += 1.0;
     if (v == 0.0) return;
     acc[b + 2u] += w;
-    for (int k = 0; k < nsh; ++k) {
+    for (int k = 0; k < nt; ++k) {
         float y = y4[k >> 2][k & 3];
-        acc[b + 3u + uint(k)] += w * y;
-        acc[b + 3u + uint(nsh + k)] += w * y * y;
+        acc[b + 4u + uint(k)] += w * y;
+        acc[b + 4u + uint(nt + k)] += w * y * y;
+    }
+    uint bv = b + 4u + 2u * uint(nt);
+    for (int k = 0; k < nv; ++k) {
+        float y = y4[k >> 2][k & 3];
+        acc[bv + uint(k)] += y;
+        acc[bv + uint(nv + k)] += y * y;
     }
 }
 )";
@@ -224,7 +235,6 @@ std::vector<vec3<double>> fibonacci_directions(int n) {
     if (n < 1) return d;
     d.reserve(std::size_t(n));
     const double golden = 0.61803398874989485;  // (sqrt(5) - 1) / 2
-    const double two_pi = 6.2831853071795865;   // 2 pi
     for (int j = 0; j < n; ++j) {
         const double z = 1 - (2 * double(j) + 1) / double(n);
         const double r = std::sqrt(std::max(0.0, 1 - z * z));
@@ -244,9 +254,9 @@ std::vector<render::PointResult> gl_bake(const render::SceneDesc& scene,
                                          const std::function<void(std::size_t)>& progress) {
     using render::Quantity;
     const char* fn = "sphbasis::gl::gl_bake(): ";
-    if (!any(quantities) || any(quantities & ~(Quantity::ao | Quantity::transfer)))
+    if (!any(quantities) || any(quantities & ~gl_quantities))
         throw std::invalid_argument(std::string(fn) +
-                                    "expected the quantities ao and/or transfer, got '" +
+                                    "expected the quantities ao, transfer, visibility, got '" +
                                     render::quantity_names(quantities) + "'");
     if (bands < 1 || bands > 16)
         throw std::invalid_argument(std::string(fn) + "expected 1 <= bands <= 16, got " +
@@ -260,7 +270,9 @@ std::vector<render::PointResult> gl_bake(const render::SceneDesc& scene,
     if (!(o.bias_texels >= 0) || !std::isfinite(o.bias_texels))
         throw std::invalid_argument(std::string(fn) + "expected a finite bias >= 0 texels");
     const bool want_transfer = has(quantities, Quantity::transfer);
-    const int nsh = want_transfer ? bands * bands : 0;
+    const bool want_vis = has(quantities, Quantity::visibility);
+    const int nt = want_transfer ? bands * bands : 0, nv = want_vis ? bands * bands : 0;
+    const int nsh = std::max(nt, nv);
 
     // The bounding box of the triangles' vertices and the points: its centre and half diagonal
     // are the sphere every map covers.
@@ -303,6 +315,7 @@ std::vector<render::PointResult> gl_bake(const render::SceneDesc& scene,
     // A margin keeps the sphere's poles off the clip planes; a point scene gets a unit sphere.
     const double radius = half > 0 ? half * (1 + 1e-3) : 1.0;
     const double texel = 2 * radius / o.resolution;
+    const double solid_angle = 2 * two_pi / o.directions;
 
     Context& ctx = context(o.software);
     if (!ctx.why.empty()) fail("no OpenGL 4.3 context: " + ctx.why);
@@ -333,7 +346,7 @@ std::vector<render::PointResult> gl_bake(const render::SceneDesc& scene,
         pn[8 * i + 5] = float(normals[i].y);
         pn[8 * i + 6] = float(normals[i].z);
     }
-    const std::size_t stride = 3 + 2 * std::size_t(nsh);
+    const std::size_t stride = 4 + 2 * std::size_t(nt) + 2 * std::size_t(nv);
     const std::size_t acc_bytes = stride * points.size() * sizeof(float);
     if (points.size() > (std::size_t(1) << 31) / stride)
         throw std::invalid_argument(std::string(fn) + "too many points for one GL buffer");
@@ -393,10 +406,11 @@ std::vector<render::PointResult> gl_bake(const render::SceneDesc& scene,
         gl.UseProgram(test_prog);
         gl.Uniform1i(loc(test_prog, "depth_map"), 0);
         gl.Uniform1f(loc(test_prog, "inv_radius"), float(1 / radius));
-        gl.Uniform1f(loc(test_prog, "weight"), float(4 * 3.14159265358979324 / o.directions));
+        gl.Uniform1f(loc(test_prog, "weight"), float(solid_angle));
         gl.Uniform1f(loc(test_prog, "bias_world"), float(o.bias_texels * texel));
         gl.Uniform1i(loc(test_prog, "res"), o.resolution);
-        gl.Uniform1i(loc(test_prog, "nsh"), nsh);
+        gl.Uniform1i(loc(test_prog, "nt"), nt);
+        gl.Uniform1i(loc(test_prog, "nv"), nv);
         gl.Uniform1ui(loc(test_prog, "count"), GLuint(points.size()));
         gl.Uniform1ui(loc(test_prog, "stride"), GLuint(stride));
         gl.UseProgram(depth_prog);
@@ -470,13 +484,28 @@ std::vector<render::PointResult> gl_bake(const render::SceneDesc& scene,
             if (want_transfer) {
                 std::vector<double> t(static_cast<std::size_t>(nsh)), ts(t.size());
                 for (int k = 0; k < nsh; ++k) {
-                    const double m = double(a[3 + k]) * inv;
+                    const double m = double(a[4 + k]) * inv;
                     t[std::size_t(k)] = m;
-                    ts[std::size_t(k)] = se(double(a[3 + nsh + k]) * inv - m * m);
+                    ts[std::size_t(k)] = se(double(a[4 + nt + k]) * inv - m * m);
                 }
                 r.transfer = {t, t, t};
                 r.transfer_stderr = ts;
                 r.transfer_rgb = false;
+            }
+            if (want_vis) {
+                // v_i = (4 pi / N) sum V y_i; the error of nh uniform hemisphere samples
+                // 2 pi V y_i (render/bake.hpp's estimator), variance with nh - 1.
+                const double nh = a[3];
+                const float* av = a + 4 + 2 * nt;
+                r.visibility.assign(std::size_t(nv), 0.0);
+                r.visibility_stderr.assign(std::size_t(nv), 0.0);
+                for (int k = 0; k < nv; ++k) {
+                    const double s1 = av[k], s2 = av[nv + k];
+                    r.visibility[std::size_t(k)] = solid_angle * s1;
+                    if (nh > 1)
+                        r.visibility_stderr[std::size_t(k)] =
+                            two_pi * std::sqrt(std::max(s2 - s1 * s1 / nh, 0.0) / (nh - 1) / nh);
+                }
             }
         }
         gl.UseProgram(0);

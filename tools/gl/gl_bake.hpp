@@ -1,4 +1,5 @@
-// Hill's depth-map bake: ambient occlusion and diffuse SH transfer (no bounces) of bake points,
+// Hill's depth-map bake: ambient occlusion, diffuse SH transfer (no bounces) and SH visibility of
+// bake points,
 // from orthographic depth maps of the scene rendered from N directions over the sphere, in
 // OpenGL 4.3 (a vertex/fragment depth pass and a compute pass per direction) through headless
 // EGL (tools/gl/egl_context.hpp): `sphbasis bake --engine gl`.
@@ -16,6 +17,7 @@
 //   V_j   = 1 when depth(x) <= map_j(x) + bias_j (nothing between x and the sky along d_j)
 //   ao    = sum_j w_j V_j / sum_j w_j
 //   t_i   = sum_j w_j V_j y_i(d_j) / sum_j w_j           (render/bake.hpp's `transfer`, 0 bounces)
+//   v_i   = (4 pi / N) sum_{j: n.d_j > 0} V_j y_i(d_j)  (render/bake.hpp's `visibility`)
 // Dividing by sum_j w_j (Hill's weight sum) rather than pi makes a point nothing occludes get
 // ao = 1 and t_i = a_l y_i(n) up to the direction set's quadrature error of y_i cos.
 // The depth map of d_j: the scene (every triangle, both sides) rendered orthographically along
@@ -29,12 +31,13 @@
 // within about a texel of an occluder's silhouette in map_j the test is decided by the texel's
 // centre, so ao errs there by the weight of those directions.
 // Standard errors (ao_stderr, transfer_stderr): those of N_eff = (sum w)^2 / sum w^2 independent
-// samples with the same weighted variance: a scale for the sampling error of the direction set,
-// not a bound on the depth-map error.
+// samples with the same weighted variance; visibility_stderr: that of the n_h directions above
+// the tangent plane as uniform hemisphere samples 2 pi V y_i. A scale for the sampling error of
+// the direction set, not a bound on the depth-map error.
 //
 // Cost: N depth renders of all triangles at res^2 and N compute dispatches over the points
 // (O(N (T + res^2 + P bands^2)) work), one readback; memory: the triangles, one res^2 depth
-// texture, (3 + 2 bands^2) floats per point.
+// texture, 4 + 2 bands^2 floats per point and quantity with SH.
 #pragma once
 
 #include <cstddef>
@@ -47,6 +50,10 @@
 #include "sphbasis/render/scene.hpp"
 
 namespace sphbasis::gl {
+
+/// The quantities gl_bake() bakes.
+inline constexpr render::Quantity gl_quantities =
+    render::Quantity::ao | render::Quantity::transfer | render::Quantity::visibility;
 
 struct GlBakeOptions {
     int directions = 1024;     // N, over the sphere
@@ -69,7 +76,7 @@ std::vector<vec3<double>> fibonacci_directions(int n);
 /// "" when a headless OpenGL 4.3 context can be (or was) created on this thread, else why not.
 std::string gl_unavailable_reason(bool software = false);
 
-/// Bakes `quantities` (ao and/or transfer with `bands` SH bands: render::Quantity flags) at the
+/// Bakes `quantities` (of gl_quantities; SH ones with `bands` bands) at the
 /// points (surface points: non-zero normal) of the scene's triangles. Results fill the same
 /// PointResult fields as render::Baker (transfer's three channels equal, transfer_rgb false).
 /// `progress(j)` is called after direction j. Throws std::invalid_argument for other
