@@ -53,7 +53,6 @@ void check_gl_engine(const GlEngine& e, const render::BakeSettings& s, const GlR
     if (r.sharded) throw UsageError(pre + "bakes in one run: no --shard");
     if (r.high_to_low)
         throw UsageError(pre + "does not bake high to low (a mesh of the scene has a \"source\")");
-    if (s.bands > 16) throw UsageError(pre + "at most 16 --bands");
 #ifndef SPHBASIS_HAVE_GL_BAKE
     throw UsageError(pre +
                      "this sphbasis was built without EGL and GL/glcorearb.h (install "
