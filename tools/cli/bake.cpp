@@ -736,6 +736,20 @@ EngineInput engine_input(const SceneFile& scene, const Work& w, const render::Ba
     return in;
 }
 
+/// The engine files of `in` (and bake.json) declared in `out` before the bake.
+void declare_engine_files(OutputFiles& out, const std::string& dir, const EngineInput& in) {
+    for (const std::string& f : engine_file_names(in)) out.declare_in(dir, f);
+    out.declare_in(dir, "bake.json");
+}
+
+/// The engine files of a complete bake added to `out`, listed in summary["outputs"].
+void add_engine_files(OutputFiles& out, const std::string& dir, const EngineInput& in,
+                      Json& summary) {
+    summary["outputs"] = Json::array();
+    for (EngineFile& f : export_engine(in, summary["outputs"]))
+        out.add(join_path(dir, f.name), f.bytes);
+}
+
 void print_points(const Work& w, const render::BakeSettings& s, const std::vector<double>& rec,
                   std::size_t begin) {
     const Layout L(s);
@@ -1075,10 +1089,8 @@ int run_bake(const BakeOptions& o) {
         if (sharded) {
             out.declare_in(o.out, shard_file);
         } else if (gltf) {
-            for (const std::string& f :
-                 engine_file_names(engine_input(scene, w, s, nullptr, encoding, compression)))
-                out.declare_in(o.out, f);
-            out.declare_in(o.out, "bake.json");
+            declare_engine_files(out, o.out,
+                                 engine_input(scene, w, s, nullptr, encoding, compression));
         } else {
             declare_outputs(out, o.out, scene, w.target,
                             points_mode ? "bake-points.json" : "bake.json");
@@ -1163,11 +1175,8 @@ int run_bake(const BakeOptions& o) {
             out.add(join_path(o.out, shard_file), std::string(bytes.begin(), bytes.end()));
         } else {
             if (gltf) {
-                summary["outputs"] = Json::array();
-                for (EngineFile& f :
-                     export_engine(engine_input(scene, w, s, &rec, encoding, compression),
-                                   summary["outputs"]))
-                    out.add(join_path(o.out, f.name), f.bytes);
+                add_engine_files(out, o.out, engine_input(scene, w, s, &rec, encoding, compression),
+                                 summary);
             } else if (!points_mode) {
                 summary["outputs"] = write_outputs(scene, w, s, rec, o.out, out);
             }
@@ -1310,14 +1319,10 @@ int run_merge(const MergeOptions& o) {
         throw std::runtime_error("the shards hold " + std::to_string(rec.size() / L.stride) +
                                  " points, the scene has " + std::to_string(w.points.size()));
     OutputFiles out(o.out);
-    if (gltf) {
-        for (const std::string& f :
-             engine_file_names(engine_input(scene, w, s, nullptr, encoding, compression)))
-            out.declare_in(o.out, f);
-        out.declare_in(o.out, "bake.json");
-    } else {
+    if (gltf)
+        declare_engine_files(out, o.out, engine_input(scene, w, s, nullptr, encoding, compression));
+    else
         declare_outputs(out, o.out, scene, w.target, "bake.json");
-    }
     out.prepare();
     Json summary = {
         {"tool", "sphbasis bake"},
@@ -1331,14 +1336,11 @@ int run_merge(const MergeOptions& o) {
         {"rays_per_second", bake_seconds > 0 ? static_cast<double>(rays) / bake_seconds : 0.0},
         {"shards", count}};
     if (s.adaptive.enabled()) summary["adaptive"] = adaptive_json(s, adaptive);
-    if (gltf) {
-        summary["outputs"] = Json::array();
-        for (EngineFile& f : export_engine(engine_input(scene, w, s, &rec, encoding, compression),
-                                           summary["outputs"]))
-            out.add(join_path(o.out, f.name), f.bytes);
-    } else {
+    if (gltf)
+        add_engine_files(out, o.out, engine_input(scene, w, s, &rec, encoding, compression),
+                         summary);
+    else
         summary["outputs"] = write_outputs(scene, w, s, rec, o.out, out);
-    }
     summary["seconds"] = {{"bake_sum_over_shards", bake_seconds}, {"merge", seconds_since(t0)}};
     out.add(join_path(o.out, "bake.json"),
             dump_json(summary, {{"plan", 2}, {"outputs", 2}}) + "\n");
