@@ -172,6 +172,10 @@ sphbasis_bake_test(gltf_cpca_texels "gltf-cpca-texels-ok"
   "rm -rf bake_gct && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:16 --quantities transfer --bands 2 --rays 8 --out bake_gct --format gltf --export pca:2 && test -s bake_gct/floor.cpca_cluster.png && test -s bake_gct/floor.cpca_w1.png && grep -q '\"textures\"' bake_gct/cpca.json && echo gltf-cpca-texels-ok")
 sphbasis_bake_test(gltf_merge "gltf-merge-ok"
   "rm -rf bake_gm1 bake_gm2 bake_gms && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:16 --quantities ao,irradiance --rays 8 --out bake_gm1 --format gltf && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:16 --quantities ao,irradiance --rays 8 --out bake_gms --shard 0/2 && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:16 --quantities ao,irradiance --rays 8 --out bake_gms --shard 1/2 && \"${_bake}\" bake-merge bake_gms/bake.shard-0-of-2.bin bake_gms/bake.shard-1-of-2.bin --out bake_gm2 --format gltf && cmp bake_gm1/scene.glb bake_gm2/scene.glb && cmp bake_gm1/floor.sh8.png bake_gm2/floor.sh8.png && cmp bake_gm1/lightmaps.json bake_gm2/lightmaps.json && echo gltf-merge-ok")
+# A texel bake on a glTF's second UV set (check_two_uv_bake.py writes the file): TEXCOORD_1 in the
+# export, the lightmaps on texCoord 1, the AO lightmap covering set 1's rectangle only.
+sphbasis_bake_test(gltf_two_uv "two-uv-ok 256"
+  "rm -rf bake_g2uv bake_g2uv_out && python3 ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_two_uv_bake.py write bake_g2uv && \"${_bake}\" bake bake_g2uv/scene.json --target texels:32 --quantities ao --rays 16 --out bake_g2uv_out --format gltf && python3 ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_two_uv_bake.py check bake_g2uv_out 32")
 sphbasis_bake_bad(merge_format_unknown "--format: expected native or gltf, got 'fbx'" bake-merge nothing.bin --format fbx)
 # High to low (render/high_to_low.hpp; scenes/high_to_low.json: a quad over a disk with a
 # hemispherical pit): ambient occlusion 1/2 in the pit and 1 on the disk, the pit's normals in
