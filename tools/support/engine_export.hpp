@@ -87,7 +87,9 @@ enum class EngineTarget { vertices, texels, probes };
 /// `--export cpca:C:M` (or `pca:M` = cpca:1:M): the baked transfer vectors compressed by CPCA
 /// (ops/compression.hpp: k-means, per-cluster PCA, reclassification; Sloan, Lehtinen and Kautz,
 /// "Precomputed Radiance Transfer: Theory and Practice", SIGGRAPH 2005 course) with 8-bit
-/// weights, written as cpca.json (the layout) and cpca.bin (docs/export-format.md).
+/// weights, written as cpca.json (the layout) and cpca.bin (docs/export-format.md); a texel bake
+/// also as images on the lightmap UV set: <mesh>.cpca_cluster.png (ids, 8- or 16-bit) and
+/// <mesh>.cpca_w<j>.<ext> (the weights, range-compressed).
 /// `--export toksvig:S`: Toksvig's 2D specular table for shininess S (shading/toksvig.hpp:
 /// eq. 9, 256 x 256, Na.H along columns, Na.Na along rows) as toksvig.json and an image.
 /// `--export lxh:K[:N[:RES]]`: the L x H table of the scene's distant lighting (ops/
