@@ -160,6 +160,23 @@ sphbasis_bake_bad(export_without_transfer "--export: compresses transfer vectors
 sphbasis_bake_bad(export_without_gltf "--export: needs --format gltf" bake ${_scenes}/lone_sphere.json --export pca:2)
 sphbasis_bake_test(gltf_toksvig "gltf-toksvig-ok"
   "rm -rf bake_gk && \"${_bake}\" bake ${_scenes}/lone_sphere.json --rays 8 --out bake_gk --format gltf --export toksvig:32 && test -s bake_gk/toksvig.png && grep -q '\"shininess\":32' bake_gk/toksvig.json && echo gltf-toksvig-ok")
+# The L x H table and the SVD normal basis (cube-map faces side by side; one image per function),
+# the CPCA of a texel bake as lightmap-UV textures, and bake-merge writing the same engine files
+# as one unsharded bake (records bit for bit: the files compare equal).
+sphbasis_bake_test(gltf_lxh_svd "gltf-lxh-svd-ok"
+  "rm -rf bake_gx && \"${_bake}\" bake ${_scenes}/lone_sphere.json --rays 8 --out bake_gx --format gltf --export lxh:3:2:8,svd:4:16 && test -s bake_gx/lxh.k8.png && ! test -e bake_gx/lxh.k9.png && test -s bake_gx/svd.b3.png && grep -q '\"face_size\":8' bake_gx/lxh.json && grep -q '\"kind\":\"normal basis\"' bake_gx/bake.json && echo gltf-lxh-svd-ok")
+sphbasis_bake_bad(export_lxh_malformed "--export: expected lxh:K" bake ${_scenes}/lone_sphere.json --format gltf --export lxh:17)
+sphbasis_bake_bad(export_svd_malformed "--export: expected svd:M" bake ${_scenes}/lone_sphere.json --format gltf --export svd:4:x)
+sphbasis_bake_bad(export_lxh_without_gltf "--export: needs --format gltf" bake ${_scenes}/lone_sphere.json --export lxh:3)
+sphbasis_bake_test(gltf_cpca_texels "gltf-cpca-texels-ok"
+  "rm -rf bake_gct && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:16 --quantities transfer --bands 2 --rays 8 --out bake_gct --format gltf --export pca:2 && test -s bake_gct/floor.cpca_cluster.png && test -s bake_gct/floor.cpca_w1.png && grep -q '\"textures\"' bake_gct/cpca.json && echo gltf-cpca-texels-ok")
+sphbasis_bake_test(gltf_merge "gltf-merge-ok"
+  "rm -rf bake_gm1 bake_gm2 bake_gms && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:16 --quantities ao,irradiance --rays 8 --out bake_gm1 --format gltf && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:16 --quantities ao,irradiance --rays 8 --out bake_gms --shard 0/2 && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:16 --quantities ao,irradiance --rays 8 --out bake_gms --shard 1/2 && \"${_bake}\" bake-merge bake_gms/bake.shard-0-of-2.bin bake_gms/bake.shard-1-of-2.bin --out bake_gm2 --format gltf && cmp bake_gm1/scene.glb bake_gm2/scene.glb && cmp bake_gm1/floor.sh8.png bake_gm2/floor.sh8.png && cmp bake_gm1/lightmaps.json bake_gm2/lightmaps.json && echo gltf-merge-ok")
+# A texel bake on a glTF's second UV set (check_two_uv_bake.py writes the file): TEXCOORD_1 in the
+# export, the lightmaps on texCoord 1, the AO lightmap covering set 1's rectangle only.
+sphbasis_bake_test(gltf_two_uv "two-uv-ok 256"
+  "rm -rf bake_g2uv bake_g2uv_out && python3 ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_two_uv_bake.py write bake_g2uv && \"${_bake}\" bake bake_g2uv/scene.json --target texels:32 --quantities ao --rays 16 --out bake_g2uv_out --format gltf && python3 ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_two_uv_bake.py check bake_g2uv_out 32")
+sphbasis_bake_bad(merge_format_unknown "--format: expected native or gltf, got 'fbx'" bake-merge nothing.bin --format fbx)
 # High to low (render/high_to_low.hpp; scenes/high_to_low.json: a quad over a disk with a
 # hemispherical pit): ambient occlusion 1/2 in the pit and 1 on the disk, the pit's normals in
 # the normal map, misses off the disk (check_high_to_low.py); the texel bake's channels and the

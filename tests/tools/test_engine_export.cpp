@@ -23,7 +23,11 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <sphbasis/basis/sh.hpp>
+#include <sphbasis/core/clamped_cosine.hpp>
 #include <sphbasis/ops/compression.hpp>
+#include <sphbasis/ops/lxh_table.hpp>
+#include <sphbasis/param/cubemap.hpp>
 #include <sphbasis/render/bake_points.hpp>
 #include <sphbasis/render/lightmap.hpp>
 #include <sstream>
@@ -33,6 +37,7 @@
 #include "support/engine_export.hpp"
 #include "support/exr.hpp"
 #include "support/gltf.hpp"
+#include "support/gltf_export.hpp"
 #include "support/scene_file.hpp"
 
 using namespace sphbasis;
@@ -577,4 +582,390 @@ TEST_CASE("engine export: CPCA of the transfer vectors, decoded from cpca.bin", 
     CHECK(std::fabs(t[0] - 1.0 / 33) <= 1.0 / 131070 + 1e-7);  // Na.Na = 0: 1 / (1 + s)
     CHECK_THROWS_WITH(parse_compression_export("toksvig:0"),
                       "--export: expected toksvig:S with 0 < S <= 1e6, got 'toksvig:0'");
+}
+
+namespace {
+/// The decoded value bias + scale * t of every sample of an image entry of a table export
+/// (lxh.json, svd.json), from `files`; width and height as read.
+std::vector<double> decode_entry(const std::vector<EngineFile>& files, const nlohmann::json& e,
+                                 ImageEncoding enc, std::size_t ch, int& w, int& h,
+                                 std::vector<ChannelRange>& ranges) {
+    std::string bytes;
+    for (const EngineFile& f : files)
+        if (f.name == e.at("file").get<std::string>()) bytes = f.bytes;
+    REQUIRE(!bytes.empty());
+    TempDir tmp;
+    std::vector<double> v = decode_t(bytes, enc, ch, w, h, tmp.path);
+    ranges.clear();
+    for (std::size_t c = 0; c < ch; ++c)
+        ranges.push_back({e.at("scale")[c].get<double>(), e.at("bias")[c].get<double>()});
+    for (std::size_t i = 0; i < v.size(); ++i)
+        v[i] = ranges[i % ch].bias + ranges[i % ch].scale * v[i];
+    return v;
+}
+
+const EngineFile& find_file(const std::vector<EngineFile>& files, const std::string& name) {
+    for (const EngineFile& f : files)
+        if (f.name == name) return f;
+    FAIL("no " << name);
+    return files.front();
+}
+}  // namespace
+
+TEST_CASE("engine export: the L x H table as cube-map images, against the closed form", "[tool]") {
+    // A constant environment of radiance c per channel: L = c sqrt(4 pi) y_00 only, so
+    // (L x H)(n) has coefficient 0 = c pi y_00 = c sqrt(pi) / 2 and coefficients 1..3 =
+    // c (2 pi / 3) y_1m(n) (Funk-Hecke, a_1 = 2/3), whatever the lighting bands.
+    const double c[3] = {1.0, 0.5, 0.25};
+    const int K = 2, N = 2, R = 6;
+    std::vector<SceneMesh> none;
+    const std::vector<std::size_t> begin{0};
+    const std::vector<double> rec;
+    for (ImageEncoding enc : {ImageEncoding::png16, ImageEncoding::float32}) {
+        INFO(image_encoding_name(enc));
+        EngineInput in;
+        in.target = EngineTarget::vertices;
+        in.meshes = &none;
+        in.mesh_begin = &begin;
+        in.records = &rec;
+        in.stride = 1;
+        in.encoding = enc;
+        in.compression = parse_compression_export("lxh:2:2:6");
+        REQUIRE(in.compression.lxh_visibility_bands == K);
+        in.lighting.assign(3 * std::size_t(N * N), 0.0);
+        for (int ch = 0; ch < 3; ++ch)
+            in.lighting[std::size_t(ch)] = c[ch] * std::sqrt(4 * constants::pi);
+        Json outputs = Json::array();
+        const std::vector<EngineFile> files = export_engine(in, outputs);
+        std::vector<std::string> names, declared = engine_file_names(in);
+        for (const EngineFile& f : files) names.push_back(f.name);
+        std::sort(names.begin(), names.end());
+        std::sort(declared.begin(), declared.end());
+        CHECK(names == declared);
+        const nlohmann::json doc = nlohmann::json::parse(find_file(files, "lxh.json").bytes);
+        CHECK(doc.at("face_size") == R);
+        REQUIRE(doc.at("images").size() == std::size_t(K * K));
+        // The library's table, as the renderer builds it.
+        using Param = param::CubeMap<float>;
+        const LxhTable<Param> lib = build_lxh_table(Param(R), lxh_matrix(N, in.lighting.data(), K),
+                                                    LxhConstruction::symmetric);
+        const param::CubeMap<double> dirs(R);
+        const double y1 = std::sqrt(3 / (4 * constants::pi));
+        for (int k = 0; k < K * K; ++k) {
+            int w = 0, h = 0;
+            std::vector<ChannelRange> r;
+            const std::vector<double> v =
+                decode_entry(files, doc.at("images")[std::size_t(k)], enc, 3, w, h, r);
+            REQUIRE(w == 6 * R);
+            REQUIRE(h == R);
+            for (int f = 0; f < 6; ++f)
+                for (int row = 0; row < R; ++row)
+                    for (int col = 0; col < R; ++col) {
+                        const vec3<double> n = dirs.texel_direction(f, col, row);
+                        const double ylm[4] = {0.5 / std::sqrt(constants::pi), y1 * n.y, y1 * n.z,
+                                               y1 * n.x};
+                        for (std::size_t ch = 0; ch < 3; ++ch) {
+                            const double got =
+                                v[(std::size_t(row) * std::size_t(w) + std::size_t(f * R + col)) *
+                                      3 +
+                                  ch];
+                            const double lib_v =
+                                lib.data[(lib.param.texel_index(f, col, row) * 4 + std::size_t(k)) *
+                                             3 +
+                                         ch];
+                            REQUIRE(std::fabs(got - lib_v) <= bound(r[ch], enc));
+                            const double closed =
+                                c[ch] * constants::pi * (k == 0 ? 1.0 : 2.0 / 3.0) * ylm[k];
+                            REQUIRE(std::fabs(got - closed) <= bound(r[ch], enc) + 1e-6);
+                        }
+                    }
+        }
+    }
+    CHECK_THROWS_WITH(parse_compression_export("lxh:0"),
+                      Catch::StartsWith("--export: expected lxh:K[:N[:RES]]"));
+    CHECK_THROWS_WITH(parse_compression_export("lxh:3:3:32:1"),
+                      Catch::StartsWith("--export: expected lxh:K[:N[:RES]]"));
+    CHECK(parse_compression_export("lxh:3").lxh_lighting_bands == 3);
+    CHECK(parse_compression_export("lxh:3").lxh_resolution == 32);
+}
+
+TEST_CASE("engine export: the SVD normal basis as images, against the clamped cosine's SH",
+          "[tool]") {
+    // With all 9 functions, sum_k b_k(n) v[j][k] = A_j(n) = pi a_l y_j(n) (V orthogonal): the
+    // decoded images and svd.json's V give back the closed form at every texel's normal.
+    const int R = 8;
+    std::vector<SceneMesh> none;
+    const std::vector<std::size_t> begin{0};
+    const std::vector<double> rec;
+    EngineInput in;
+    in.meshes = &none;
+    in.mesh_begin = &begin;
+    in.records = &rec;
+    in.stride = 1;
+    in.encoding = ImageEncoding::png16;
+    in.compression = parse_compression_export("svd:9:8");
+    Json outputs = Json::array();
+    const std::vector<EngineFile> files = export_engine(in, outputs);
+    const nlohmann::json doc = nlohmann::json::parse(find_file(files, "svd.json").bytes);
+    REQUIRE(doc.at("images").size() == 9);
+    // Cosine-weighted, unclamped: 4 functions keep 96.29 % (ops/normal_basis.hpp).
+    CHECK(doc.at("energy_percent")[3].get<double>() == Approx(96.29).margin(0.01));
+    std::vector<std::vector<double>> b;
+    std::vector<double> err(9);
+    for (std::size_t k = 0; k < 9; ++k) {
+        int w = 0, h = 0;
+        std::vector<ChannelRange> r;
+        b.push_back(decode_entry(files, doc.at("images")[k], in.encoding, 1, w, h, r));
+        REQUIRE(w == R);
+        REQUIRE(h == R);
+        err[k] = bound(r[0], in.encoding);
+    }
+    double a[3];
+    clamped_cosine_factors(3, a);
+    int inside = 0;
+    for (int row = 0; row < R; ++row)
+        for (int col = 0; col < R; ++col) {
+            double x = 2 * (col + 0.5) / R - 1, y = 2 * (row + 0.5) / R - 1;
+            const double r2 = x * x + y * y;
+            if (r2 > 1) {
+                x /= std::sqrt(r2);
+                y /= std::sqrt(r2);
+            } else {
+                ++inside;
+            }
+            const double z = std::sqrt(std::max(0.0, 1 - x * x - y * y));
+            double ys[9];
+            sh::eval(3, x, y, z, ys);
+            for (int j = 0; j < 9; ++j) {
+                const int l = j == 0 ? 0 : j < 4 ? 1 : 2;
+                double got = 0, tol = 1e-6;
+                for (std::size_t k = 0; k < 9; ++k) {
+                    const double vjk = doc.at("v")[std::size_t(j)][k].get<double>();
+                    got += b[k][std::size_t(row * R + col)] * vjk;
+                    tol += std::fabs(vjk) * err[k];
+                }
+                REQUIRE(std::fabs(got - constants::pi * a[l] * ys[j]) <= tol);
+            }
+        }
+    CHECK(inside == 52);  // the 8 x 8 texels whose centres lie in the unit disk
+    CHECK_THROWS_WITH(parse_compression_export("svd:10"),
+                      Catch::StartsWith("--export: expected svd:M[:RES]"));
+    CHECK_THROWS_WITH(parse_compression_export("svd:4:1"),
+                      Catch::StartsWith("--export: expected svd:M[:RES]"));
+}
+
+TEST_CASE("engine export: CPCA cluster ids and weights as lightmap-UV textures", "[tool]") {
+    const SceneFile scene =
+        load_scene(std::string(SPHBASIS_TEST_DATA_DIR) + "/scenes/quad_obj.json");
+    const render::SceneDesc desc = scene.scene_desc();
+    const int res = 16;
+    const std::size_t n = 9, stride = n;
+    std::vector<render::LightmapLayout> layouts;
+    std::vector<std::size_t> begin{0};
+    for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
+        layouts.push_back(render::texel_layout(desc.meshes, k, res));
+        begin.push_back(begin.back() + layouts.back().samples.size());
+    }
+    const std::size_t P = begin.back();
+    std::vector<std::pair<std::string, std::size_t>> cols;
+    for (std::size_t k = 0; k < n; ++k) cols.emplace_back("transfer_" + std::to_string(k), k);
+    std::vector<double> rec(P * stride);
+    for (std::size_t k = 0; k < layouts.size(); ++k)
+        for (std::size_t i = 0; i < layouts[k].samples.size(); ++i) {
+            const vec3<double>& p = layouts[k].samples[i].point.p;
+            const double side = p.x > 0 ? 1.0 : -2.0;
+            for (std::size_t j = 0; j < n; ++j)
+                rec[(begin[k] + i) * stride + j] =
+                    side * (1 + 0.1 * double(j)) + p.y * std::cos(double(j)) + 0.3 * p.z;
+        }
+    compress::MatrixX<double> x(static_cast<Eigen::Index>(P), static_cast<Eigen::Index>(n));
+    for (std::size_t p = 0; p < P; ++p)
+        for (std::size_t k = 0; k < n; ++k)
+            x(Eigen::Index(p), Eigen::Index(k)) = rec[p * stride + k];
+    compress::CpcaSettings cs;
+    cs.clusters = 3;
+    cs.vectors = 2;
+    cs.seed = 5;
+    const compress::Cpca<double> model = compress::cpca_iterative(x, cs);
+    const compress::QuantizedWeights<double> q = compress::quantize(model, 8);
+    for (ImageEncoding e : {ImageEncoding::png8, ImageEncoding::half}) {
+        INFO(image_encoding_name(e));
+        EngineInput in;
+        in.target = EngineTarget::texels;
+        in.meshes = &scene.meshes;
+        in.mesh_begin = &begin;
+        in.layouts = &layouts;
+        in.columns = cols;
+        in.records = &rec;
+        in.stride = stride;
+        in.encoding = e;
+        in.compression = parse_compression_export("cpca:3:2");
+        in.seed = 5;
+        Json outputs = Json::array();
+        const std::vector<EngineFile> files = export_engine(in, outputs);
+        std::vector<std::string> names, declared = engine_file_names(in);
+        for (const EngineFile& f : files) names.push_back(f.name);
+        std::sort(names.begin(), names.end());
+        std::sort(declared.begin(), declared.end());
+        CHECK(names == declared);
+        const nlohmann::json doc = nlohmann::json::parse(find_file(files, "cpca.json").bytes);
+        const nlohmann::json& tex = doc.at("textures").at("meshes");
+        REQUIRE(tex.size() == scene.meshes.size());
+        for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
+            const nlohmann::json& mj = tex[k];
+            CHECK(mj.at("cluster").at("bits") == 8);
+            const std::string& png = find_file(files, mj.at("cluster").at("file")).bytes;
+            int w = 0, h = 0, c = 0;
+            unsigned char* ids = stbi_load_from_memory(
+                reinterpret_cast<const unsigned char*>(png.data()), int(png.size()), &w, &h, &c, 0);
+            REQUIRE(ids != nullptr);
+            REQUIRE(c == 1);
+            REQUIRE(w == res);
+            std::vector<int> id(ids, ids + w * h);
+            stbi_image_free(ids);
+            std::vector<std::vector<double>> wt(2);
+            std::vector<double> err(2);
+            for (std::size_t j = 0; j < 2; ++j) {
+                std::vector<ChannelRange> r;
+                int ww = 0, hh = 0;
+                wt[j] = decode_entry(files, mj.at("weights")[j], e, 1, ww, hh, r);
+                REQUIRE(ww == res);
+                err[j] = bound(r[0], e);
+            }
+            std::vector<char> covered(std::size_t(w * h), 0);
+            for (std::size_t i = 0; i < layouts[k].samples.size(); ++i) {
+                const std::size_t p = begin[k] + i;
+                const std::size_t t =
+                    std::size_t(layouts[k].samples[i].y * w + layouts[k].samples[i].x);
+                covered[t] = 1;
+                const int cl = model.cluster[p];
+                REQUIRE(id[t] == cl);
+                for (std::size_t j = 0; j < 2; ++j) {
+                    const double want = float(q.codes[p * 2 + j] / double(q.levels()) *
+                                              q.scales(Eigen::Index(cl), Eigen::Index(j)));
+                    REQUIRE(std::fabs(wt[j][t] - want) <= err[j]);
+                }
+            }
+            // A gutter texel next to a chart copies one covered neighbour: its id and weights.
+            for (int y = 0; y < h; ++y)
+                for (int xx = 0; xx < w; ++xx) {
+                    const std::size_t t = std::size_t(y * w + xx);
+                    if (covered[t]) continue;
+                    int next = 0, same = 0;
+                    for (int d = 0; d < 9; ++d) {
+                        const int nx = xx + d % 3 - 1, ny = y + d / 3 - 1;
+                        if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+                        const std::size_t u = std::size_t(ny * w + nx);
+                        if (!covered[u]) continue;
+                        ++next;
+                        same += id[u] == id[t] && wt[0][u] == wt[0][t] && wt[1][u] == wt[1][t];
+                    }
+                    if (next > 0) REQUIRE(same > 0);
+                }
+        }
+    }
+}
+
+TEST_CASE("engine export: a second UV set as the lightmap set (scene loader, bake, glTF)",
+          "[tool]") {
+    // A quad whose set 0 spans [0, 1]^2 and whose set 1 (the lightmap set) maps it into
+    // [0.25, 0.75] x [0.1, 0.6], written as glTF by the exporter and read by the scene loader
+    // through Assimp (a .glb fixture made here: OBJ holds one UV set).
+    render::Mesh q;
+    q.positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    q.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    q.uvs = {0, 0, 1, 0, 1, 1, 0, 1};
+    q.indices = {0, 1, 2, 0, 2, 3};
+    const std::vector<float> uv1 = {0.25f, 0.1f, 0.75f, 0.1f, 0.75f, 0.6f, 0.25f, 0.6f};
+    GltfMesh gm;
+    gm.name = "q";
+    gm.mesh = &q;
+    gm.normals.assign(q.normals.begin(), q.normals.end());
+    gm.lightmap_uvs = &uv1;
+    TempDir tmp;
+    {
+        const std::string glb = encode_glb({gm}, Json::object());
+        std::ofstream(tmp.path + "/two_uv.glb", std::ios::binary)
+            .write(glb.data(), std::streamsize(glb.size()));
+    }
+    auto scene_with = [&](const std::string& extra) {
+        const std::string f = tmp.path + "/scene.json";
+        std::ofstream(f) << "{\"meshes\": [{\"name\": \"q\", \"file\": \"two_uv.glb\"" << extra
+                         << "}], \"environment\": {\"constant\": [1, 1, 1]}}";
+        return load_scene(f);
+    };
+    const SceneFile scene = scene_with("");
+    const SceneMesh& sm = scene.meshes.at(0);
+    REQUIRE(sm.mesh.vertex_count() == 4);
+    REQUIRE(sm.uvs1.size() == 8);
+    CHECK(sm.lightmap_uv == 1);            // the default when the file has a second set
+    for (std::size_t v = 0; v < 4; ++v) {  // matched by position (the importer may reorder)
+        std::size_t o = 0;
+        while (o < 4 && !(q.positions[3 * o] == sm.mesh.positions[3 * v] &&
+                          q.positions[3 * o + 1] == sm.mesh.positions[3 * v + 1]))
+            ++o;
+        REQUIRE(o < 4);
+        for (std::size_t c = 0; c < 2; ++c) {
+            CHECK(sm.mesh.uvs[2 * v + c] == Approx(q.uvs[2 * o + c]).margin(1e-6));
+            CHECK(sm.uvs1[2 * v + c] == Approx(uv1[2 * o + c]).margin(1e-6));
+        }
+    }
+    CHECK(scene.lightmap_desc().meshes[0].uvs == sm.uvs1.data());
+    CHECK(scene.scene_desc().meshes[0].uvs == sm.mesh.uvs.data());
+    const SceneFile set0 = scene_with(", \"lightmap_uv\": 0");
+    CHECK(set0.meshes[0].lightmap_uv == 0);
+    CHECK(set0.lightmap_desc().meshes[0].uvs == set0.meshes[0].mesh.uvs.data());
+    CHECK_THROWS_WITH(scene_with(", \"lightmap_uv\": 2"),
+                      Catch::Contains("expected the UV set 0 or 1 of the mesh file, got 2"));
+
+    // A texel bake's layout on set 1: every sample's texel lies in set 1's rectangle.
+    const int res = 32;
+    const render::SceneDesc desc = scene.lightmap_desc();
+    std::vector<render::LightmapLayout> layouts{render::texel_layout(desc.meshes, 0, res)};
+    REQUIRE(!layouts[0].samples.empty());
+    for (const render::LightmapSample& s : layouts[0].samples) {
+        const double u = (s.x + 0.5) / res, v = 1 - (s.y + 0.5) / res;  // rows from the top
+        REQUIRE(u >= 0.25 - 1.0 / res);
+        REQUIRE(u <= 0.75 + 1.0 / res);
+        REQUIRE(v >= 0.1 - 1.0 / res);
+        REQUIRE(v <= 0.6 + 1.0 / res);
+    }
+    const std::vector<std::size_t> begin{0, layouts[0].samples.size()};
+    const std::vector<std::pair<std::string, std::size_t>> cols{{"ao", 0}};
+    const std::vector<double> rec(layouts[0].samples.size(), 0.75);
+    EngineInput in;
+    in.target = EngineTarget::texels;
+    in.meshes = &scene.meshes;
+    in.mesh_begin = &begin;
+    in.layouts = &layouts;
+    in.columns = cols;
+    in.records = &rec;
+    in.stride = 1;
+    Json outputs = Json::array();
+    const std::vector<EngineFile> files = export_engine(in, outputs);
+    TempDir out;
+    out.write(files);
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    std::string err, warn;
+    REQUIRE(loader.LoadBinaryFromFile(&model, &err, &warn, out.path + "/scene.glb"));
+    const tinygltf::Primitive& prim = model.meshes.at(0).primitives.at(0);
+    CHECK(prim.attributes.count("TEXCOORD_0") == 1);
+    CHECK(prim.attributes.count("TEXCOORD_1") == 1);
+    CHECK(prim.extras.Get("sphbasis_lightmaps").Get("_AO").Get("texCoord").GetNumberAsInt() == 1);
+    CHECK(model.materials.at(0).occlusionTexture.texCoord == 1);
+    const nlohmann::json lm = nlohmann::json::parse(find_file(files, "lightmaps.json").bytes);
+    CHECK(lm.at("meshes")[0].at("texCoord") == 1);
+    // Assimp reads the exported TEXCOORD_1 back as channel 1 (v flipped back).
+    Assimp::Importer importer;
+    const aiScene* as = importer.ReadFile(out.path + "/scene.glb", 0);
+    REQUIRE(as != nullptr);
+    REQUIRE(as->mMeshes[0]->HasTextureCoords(1));
+    for (unsigned v = 0; v < as->mMeshes[0]->mNumVertices; ++v) {
+        const aiVector3D& t = as->mMeshes[0]->mTextureCoords[1][v];
+        CHECK(t.x >= 0.25f - 1e-6f);
+        CHECK(t.x <= 0.75f + 1e-6f);
+        CHECK(t.y >= 0.1f - 1e-6f);
+        CHECK(t.y <= 0.6f + 1e-6f);
+    }
 }

@@ -238,10 +238,10 @@ Work vertex_work(const SceneFile& scene) {
 
 Work texel_work(const SceneFile& scene, int res) {
     Work w;
-    const render::SceneDesc desc = scene.scene_desc();
+    const render::SceneDesc desc = scene.lightmap_desc();  // "lightmap_uv": set 0 or 1
     for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
         const SceneMesh& sm = scene.meshes[k];
-        if (sm.mesh.uvs.empty())
+        if (sm.lightmap_uvs().empty())
             throw std::runtime_error(scene.path + ": meshes[" + std::to_string(k) + "] ('" +
                                      sm.name +
                                      "'): a texel bake needs a UV set, and this mesh has none");
@@ -732,7 +732,23 @@ EngineInput engine_input(const SceneFile& scene, const Work& w, const render::Ba
     in.encoding = encoding;
     in.compression = compression;
     in.seed = s.seed + 1;  // k-means++ seeding: any fixed stream of the bake's seed
+    if (compression.lxh_visibility_bands > 0 && rec != nullptr)
+        in.lighting = distant_lighting_sh(scene, compression.lxh_lighting_bands);
     return in;
+}
+
+/// The engine files of `in` (and bake.json) declared in `out` before the bake.
+void declare_engine_files(OutputFiles& out, const std::string& dir, const EngineInput& in) {
+    for (const std::string& f : engine_file_names(in)) out.declare_in(dir, f);
+    out.declare_in(dir, "bake.json");
+}
+
+/// The engine files of a complete bake added to `out`, listed in summary["outputs"].
+void add_engine_files(OutputFiles& out, const std::string& dir, const EngineInput& in,
+                      Json& summary) {
+    summary["outputs"] = Json::array();
+    for (EngineFile& f : export_engine(in, summary["outputs"]))
+        out.add(join_path(dir, f.name), f.bytes);
 }
 
 void print_points(const Work& w, const render::BakeSettings& s, const std::vector<double>& rec,
@@ -1019,12 +1035,12 @@ int run_bake(const BakeOptions& o) {
     const bool gltf = o.format == "gltf";
     const ImageEncoding encoding = parse_image_encoding(o.encoding);
     const CompressionExport compression = parse_compression_export(o.exports);
-    if (compression.clusters > 0 && !gltf) throw UsageError("--export: needs --format gltf");
+    if (compression.any() && !gltf) throw UsageError("--export: needs --format gltf");
     if (o.format != "native" && !gltf)
         throw UsageError("--format: expected native or gltf, got '" + quote_input(o.format) + "'");
     if (gltf && (points_mode || shard.count > 1))
         throw UsageError(
-            "--format gltf: not with --points or --shard (bake-merge writes native files)");
+            "--format gltf: not with --points or --shard (give --format gltf to bake-merge)");
 
     const SceneFile scene = load_scene(o.scene);
     check_gl_engine(o.gl, s,
@@ -1078,10 +1094,8 @@ int run_bake(const BakeOptions& o) {
         if (sharded) {
             out.declare_in(o.out, shard_file);
         } else if (gltf) {
-            for (const std::string& f :
-                 engine_file_names(engine_input(scene, w, s, nullptr, encoding, compression)))
-                out.declare_in(o.out, f);
-            out.declare_in(o.out, "bake.json");
+            declare_engine_files(out, o.out,
+                                 engine_input(scene, w, s, nullptr, encoding, compression));
         } else {
             declare_outputs(out, o.out, scene, w.target,
                             points_mode ? "bake-points.json" : "bake.json");
@@ -1171,18 +1185,19 @@ int run_bake(const BakeOptions& o) {
             out.add(join_path(o.out, shard_file), std::string(bytes.begin(), bytes.end()));
         } else {
             if (gltf) {
-                summary["outputs"] = Json::array();
-                for (EngineFile& f :
-                     export_engine(engine_input(scene, w, s, &rec, encoding, compression),
-                                   summary["outputs"]))
-                    out.add(join_path(o.out, f.name), f.bytes);
+                add_engine_files(out, o.out, engine_input(scene, w, s, &rec, encoding, compression),
+                                 summary);
             } else if (!points_mode) {
                 summary["outputs"] = write_outputs(scene, w, s, rec, o.out, out);
             }
-            // A high-to-low bake's points and an adaptive bake's sample counts are not the
-            // render's (it bakes a fixed count on the scene's own surfaces): nothing to reuse.
+            // A high-to-low bake's points, an adaptive bake's sample counts and texels on a
+            // second UV set are not the render's (it bakes a fixed count on the scene's own
+            // surfaces, texels on set 0): nothing to reuse.
+            const bool uv1 = w.target.kind == TargetKind::texels &&
+                             std::any_of(scene.meshes.begin(), scene.meshes.end(),
+                                         [](const SceneMesh& m) { return m.lightmap_uv == 1; });
             if (!points_mode && !o.no_cache && baker && high_to_low_targets(scene).empty() &&
-                !s.adaptive.enabled())
+                !s.adaptive.enabled() && !uv1)
                 summary["render_cache"] = store_for_render(desc, scene, w, baker_settings(s),
                                                            results, plan, t_bake, rays, o.out);
             summary["seconds"] = {{"load", t_load},
@@ -1201,11 +1216,17 @@ int run_bake(const BakeOptions& o) {
 
 struct MergeOptions {
     std::vector<std::string> shards;
-    std::string out = ".";
+    std::string out = ".", format = "native", encoding = "png8", exports;
 };
 
 int run_merge(const MergeOptions& o) {
     const auto t0 = Clock::now();
+    const bool gltf = o.format == "gltf";
+    if (o.format != "native" && !gltf)
+        throw UsageError("--format: expected native or gltf, got '" + quote_input(o.format) + "'");
+    const ImageEncoding encoding = parse_image_encoding(o.encoding);
+    const CompressionExport compression = parse_compression_export(o.exports);
+    if (compression.any() && !gltf) throw UsageError("--export: needs --format gltf");
     std::vector<ShardData> parts;
     for (const std::string& f : o.shards) parts.push_back(read_shard(f));
     const Json& h0 = parts.front().header;
@@ -1308,7 +1329,10 @@ int run_merge(const MergeOptions& o) {
         throw std::runtime_error("the shards hold " + std::to_string(rec.size() / L.stride) +
                                  " points, the scene has " + std::to_string(w.points.size()));
     OutputFiles out(o.out);
-    declare_outputs(out, o.out, scene, w.target, "bake.json");
+    if (gltf)
+        declare_engine_files(out, o.out, engine_input(scene, w, s, nullptr, encoding, compression));
+    else
+        declare_outputs(out, o.out, scene, w.target, "bake.json");
     out.prepare();
     Json summary = {
         {"tool", "sphbasis bake"},
@@ -1322,7 +1346,11 @@ int run_merge(const MergeOptions& o) {
         {"rays_per_second", bake_seconds > 0 ? static_cast<double>(rays) / bake_seconds : 0.0},
         {"shards", count}};
     if (s.adaptive.enabled()) summary["adaptive"] = adaptive_json(s, adaptive);
-    summary["outputs"] = write_outputs(scene, w, s, rec, o.out, out);
+    if (gltf)
+        add_engine_files(out, o.out, engine_input(scene, w, s, &rec, encoding, compression),
+                         summary);
+    else
+        summary["outputs"] = write_outputs(scene, w, s, rec, o.out, out);
     summary["seconds"] = {{"bake_sum_over_shards", bake_seconds}, {"merge", seconds_since(t0)}};
     out.add(join_path(o.out, "bake.json"),
             dump_json(summary, {{"plan", 2}, {"outputs", 2}}) + "\n");
@@ -1384,7 +1412,8 @@ Run setup_bake(CLI::App& app) {
         ->capture_default_str();
     app.add_option("--export", o->exports,
                    "--format gltf: transfer by PCA or CPCA (pca:M, cpca:C:M), Toksvig's table "
-                   "(toksvig:S)")
+                   "(toksvig:S), the L x H table (lxh:K[:N[:RES]]), the SVD normal basis "
+                   "(svd:M[:RES])")
         ->type_name("LIST");
     app.add_flag("--no-cache", o->no_cache,
                  "do not also store the results in OUT/cache for `sphbasis render` to reuse");
@@ -1408,6 +1437,14 @@ Run setup_bake_merge(CLI::App& app) {
     add_path(app, "--out", o->out, "output directory (created if missing)")
         ->type_name("DIR")
         ->capture_default_str();
+    app.add_option("--format", o->format, "as for bake: native or gltf (docs/export-format.md)")
+        ->type_name("native|gltf")
+        ->capture_default_str();
+    app.add_option("--encoding", o->encoding, "as for bake: --format gltf's images")
+        ->type_name("png8|png16|half|float")
+        ->capture_default_str();
+    app.add_option("--export", o->exports, "as for bake: --format gltf's extra files")
+        ->type_name("LIST");
     return [o] { return run_merge(*o); };
 }
 

@@ -11,8 +11,12 @@
 #include <cstring>
 #include <map>
 #include <sphbasis/ops/compression.hpp>
+#include <sphbasis/ops/lxh_table.hpp>
+#include <sphbasis/ops/normal_basis.hpp>
+#include <sphbasis/param/cubemap.hpp>
 #include <sphbasis/render/bake_file.hpp>
 #include <sphbasis/render/bake_points.hpp>
+#include <sphbasis/render/lighting.hpp>
 #include <sphbasis/shading/toksvig.hpp>
 #include <stdexcept>
 #include <type_traits>
@@ -163,6 +167,26 @@ std::vector<float> gather(const EngineInput& in, const EngineAttribute& a, std::
     return v;
 }
 
+/// Appends a file to `files`; its name and XXH3-64 as JSON.
+Json add_file(std::vector<EngineFile>& files, const std::string& name, std::string bytes) {
+    const std::string hash = hex64(render::InputHash().str(bytes).value());
+    files.push_back({name, std::move(bytes)});
+    return {{"file", name}, {"xxh3", hash}};
+}
+
+/// An image of the table exports: its channels fitted per channel, encoded, added; its JSON
+/// entry (attribute, channels, scale, bias, max_error, file, xxh3).
+Json add_table_image(std::vector<EngineFile>& files, const std::string& file,
+                     const EngineAttribute& a, const std::vector<float>& img, int w, int h,
+                     ImageEncoding e) {
+    const std::size_t ch = a.channels.size();
+    std::vector<ChannelRange> r;
+    for (std::size_t c = 0; c < ch; ++c) r.push_back(fit_range(img, ch, c));
+    Json j = range_json(a, r, e);
+    j.update(add_file(files, file, encode_compressed(img, w, h, ch, r, e)));
+    return j;
+}
+
 void check_input(const EngineInput& in, bool need_records) {
     const char* fn = "sphbasis::cli::export_engine(): ";
     if (in.meshes == nullptr) throw std::invalid_argument(std::string(fn) + "expected meshes");
@@ -194,6 +218,90 @@ void append_le(std::string& out, T v) {
     unsigned char b[sizeof(T)];
     std::memcpy(b, &v, sizeof(T));
     out.append(reinterpret_cast<const char*>(b), sizeof(T));  // x86-64 and ARM: little-endian
+}
+
+/// A texel bake's CPCA as images on the lightmap UV set (docs/export-format.md): per mesh the
+/// cluster ids (8-bit grey PNG for at most 256 clusters, else 16-bit) and one grey image per
+/// weight, the dequantized weights range-compressed. Gutters: lightmap_gutter rings, each
+/// texel copying id and weights of its first covered neighbour (ids cannot be averaged); 0
+/// farther away. Returns the "textures" entry of cpca.json.
+Json export_cpca_textures(const EngineInput& in, const compress::QuantizedWeights<double>& q,
+                          std::vector<EngineFile>& files) {
+    const std::size_t M = std::size_t(q.vectors);
+    const double levels = q.levels();
+    Json meshes = Json::array();
+    for (std::size_t k = 0; k < in.meshes->size(); ++k) {
+        const render::LightmapLayout& lay = (*in.layouts)[k];
+        const std::size_t first = (*in.mesh_begin)[k], w = std::size_t(lay.width),
+                          n = w * std::size_t(lay.height);
+        std::vector<int> id(n, -1);
+        std::vector<float> wt(n * M, 0.f);
+        for (std::size_t i = 0; i < lay.samples.size(); ++i) {
+            const std::size_t t = std::size_t(lay.samples[i].y) * w + std::size_t(lay.samples[i].x),
+                              p = first + i;
+            const int c = q.cluster[p];
+            id[t] = c;
+            for (std::size_t j = 0; j < M; ++j)
+                wt[t * M + j] = static_cast<float>(q.codes[p * M + j] / levels *
+                                                   q.scales(Eigen::Index(c), Eigen::Index(j)));
+        }
+        for (int ring = 0; ring < render::lightmap_gutter; ++ring) {
+            std::vector<int> from(n, -1);
+            for (std::size_t t = 0; t < n; ++t) {
+                if (id[t] >= 0) continue;
+                const long x = long(t % w), y = long(t / w);
+                for (int d = 0; d < 9 && from[t] < 0; ++d) {
+                    const long nx = x + d % 3 - 1, ny = y + d / 3 - 1;
+                    if (nx < 0 || ny < 0 || nx >= long(w) || ny >= long(lay.height)) continue;
+                    const std::size_t u = std::size_t(ny) * w + std::size_t(nx);
+                    if (id[u] >= 0) from[t] = int(u);
+                }
+            }
+            for (std::size_t t = 0; t < n; ++t)
+                if (from[t] >= 0) {
+                    id[t] = id[std::size_t(from[t])];
+                    std::copy_n(wt.begin() + std::ptrdiff_t(std::size_t(from[t]) * M), M,
+                                wt.begin() + std::ptrdiff_t(t * M));
+                }
+        }
+        const SceneMesh& sm = (*in.meshes)[k];
+        const bool wide = q.scales.rows() > 256;
+        std::string png;
+        if (wide) {
+            std::vector<std::uint16_t> px(n);
+            for (std::size_t t = 0; t < n; ++t)
+                px[t] = static_cast<std::uint16_t>(std::max(id[t], 0));
+            png = encode_png16(px, lay.width, lay.height, 1);
+        } else {
+            std::vector<std::uint8_t> px(n);
+            for (std::size_t t = 0; t < n; ++t)
+                px[t] = static_cast<std::uint8_t>(std::max(id[t], 0));
+            png = encode_png(px, lay.width, lay.height, 1);
+        }
+        Json cluster = add_file(files, sm.name + ".cpca_cluster.png", std::move(png));
+        cluster["bits"] = wide ? 16 : 8;
+        Json weights = Json::array();
+        for (std::size_t j = 0; j < M; ++j) {
+            std::vector<float> img(n);
+            for (std::size_t t = 0; t < n; ++t) img[t] = wt[t * M + j];
+            const std::string i = std::to_string(j);
+            const EngineAttribute a{"_CPCA_W" + i, {}, {"weight_" + i}, false, {}};
+            weights.push_back(add_table_image(files,
+                                              sm.name + ".cpca_w" + i + extension(in.encoding), a,
+                                              img, lay.width, lay.height, in.encoding));
+        }
+        meshes.push_back({{"mesh", sm.name},
+                          {"width", lay.width},
+                          {"height", lay.height},
+                          {"cluster", cluster},
+                          {"weights", weights}});
+    }
+    return {{"uv_set", "the lightmaps' (lightmaps.json)"},
+            {"encoding", image_encoding_name(in.encoding)},
+            {"decode",
+             "c = the cluster image's integer texel (nearest filtering); w_j = bias + scale * t "
+             "of weight image j; x = means[c] + sum_j w_j basis[c][j]"},
+            {"meshes", meshes}};
 }
 
 /// cpca.json and cpca.bin (see docs/export-format.md).
@@ -252,6 +360,8 @@ void export_cpca(const EngineInput& in, const std::vector<EngineAttribute>& attr
             }
         texels = {{"type", "uint16"}, {"shape", {points, 3}}};
     }
+    const Json textures =
+        in.target == EngineTarget::texels ? export_cpca_textures(in, q, files) : Json();
     const double err = compress::squared_error(x, model.reconstruct());
     const double qerr = compress::squared_error(x, compress::with_weights(model, q).reconstruct());
     std::size_t off = 0;
@@ -268,34 +378,176 @@ void export_cpca(const EngineInput& in, const std::vector<EngineAttribute>& attr
     sections.push_back(section("codes", "int8", points * M, {points, M}));
     if (!texels.is_null()) sections.push_back(section("texel", "uint16", 6 * points, {points, 3}));
     const std::string hash = hex64(render::InputHash().str(bin).value());
-    const Json doc = {
-        {"format", "sphbasis cpca"},
-        {"version", 1},
-        {"clusters", C},
-        {"vectors", M},
-        {"coefficients", n},
-        {"points", points},
-        {"bits", in.compression.bits},
-        {"levels", q.levels()},
-        {"columns", columns},
-        {"points_order", in.target == EngineTarget::vertices
-                             ? "global vertex index (meshes in scene order)"
-                             : "texel samples, meshes in scene order (section texel)"},
-        {"decode",
-         "x[p] = means[c] + sum_j codes[p][j] / levels * scales[c][j] * basis[c][j], c = "
-         "cluster[p]; shading with light L: x[p] . L"},
-        {"squared_error", {{"model", err}, {"quantized", qerr}}},
-        {"file", "cpca.bin"},
-        {"bytes", bin.size()},
-        {"xxh3", hash},
-        {"sections", sections}};
-    files.push_back({"cpca.json", dump_json(doc, {{"sections", 2}}) + "\n"});
+    Json doc = {{"format", "sphbasis cpca"},
+                {"version", 1},
+                {"clusters", C},
+                {"vectors", M},
+                {"coefficients", n},
+                {"points", points},
+                {"bits", in.compression.bits},
+                {"levels", q.levels()},
+                {"columns", columns},
+                {"points_order", in.target == EngineTarget::vertices
+                                     ? "global vertex index (meshes in scene order)"
+                                     : "texel samples, meshes in scene order (section texel)"},
+                {"decode",
+                 "x[p] = means[c] + sum_j codes[p][j] / levels * scales[c][j] * basis[c][j], c = "
+                 "cluster[p]; shading with light L: x[p] . L"},
+                {"squared_error", {{"model", err}, {"quantized", qerr}}},
+                {"file", "cpca.bin"},
+                {"bytes", bin.size()},
+                {"xxh3", hash},
+                {"sections", sections}};
+    if (!textures.is_null()) doc["textures"] = textures;
+    files.push_back({"cpca.json", dump_json(doc, {{"sections", 2}, {"meshes", 3}}) + "\n"});
     files.push_back({"cpca.bin", std::move(bin)});
     outputs.push_back({{"file", "cpca.json"},
                        {"kind", "cpca"},
                        {"clusters", C},
                        {"vectors", M},
                        {"squared_error", qerr}});
+}
+
+/// lxh.json and lxh.k<k>.<ext> (docs/export-format.md).
+void export_lxh(const EngineInput& in, std::vector<EngineFile>& files, Json& outputs) {
+    const int K = in.compression.lxh_visibility_bands, N = in.compression.lxh_lighting_bands,
+              R = in.compression.lxh_resolution;
+    if (in.lighting.size() != 3 * std::size_t(N) * std::size_t(N))
+        throw std::invalid_argument(
+            "sphbasis::cli::export_engine(): expected 3 N^2 lighting coefficients for lxh");
+    // The renderer's table (render/representations/lxh.hpp): a float cube map, seamless
+    // filtering, the symmetric construction, exact H (C = N + K - 1).
+    using Param = param::CubeMap<float>;
+    const LxhTable<Param> t =
+        build_lxh_table(Param(R), lxh_matrix(N, in.lighting.data(), K), LxhConstruction::symmetric);
+    const char* ext = extension(in.encoding);
+    const std::size_t kk = std::size_t(K) * std::size_t(K), w = 6 * std::size_t(R);
+    Json images = Json::array();
+    for (std::size_t k = 0; k < kk; ++k) {
+        const std::string i = std::to_string(k);
+        const EngineAttribute a{
+            "_LXH" + i, {}, {"lxh_r_" + i, "lxh_g_" + i, "lxh_b_" + i}, false, {}};
+        std::vector<float> img(w * std::size_t(R) * 3);
+        for (int f = 0; f < 6; ++f)
+            for (int row = 0; row < R; ++row)
+                for (int col = 0; col < R; ++col)
+                    for (std::size_t c = 0; c < 3; ++c)
+                        img[(std::size_t(row) * w + std::size_t(f * R + col)) * 3 + c] =
+                            t.data[(t.param.texel_index(f, col, row) * kk + k) * 3 + c];
+        Json e = add_table_image(files, "lxh.k" + i + ext, a, img, int(w), R, in.encoding);
+        e["coefficient"] = k;
+        images.push_back(e);
+    }
+    Json lighting = Json::array();
+    for (double v : in.lighting) lighting.push_back(v);
+    const Json doc = {
+        {"format", "sphbasis lxh table"},
+        {"version", 1},
+        {"visibility_bands", K},
+        {"lighting_bands", N},
+        {"cosine_bands", t.cosine_bands},
+        {"face_size", R},
+        {"lighting", lighting},
+        {"layout",
+         "image k holds RGB coefficient k (ACN) of (L x H)(n); the six faces +X, -X, +Y, -Y, "
+         "+Z, -Z side by side, face f in columns [f * face_size, (f + 1) * face_size); within a "
+         "face, column c and row r (from the top) are the texel at face coordinates "
+         "(sc, tc) = (2 (c + 0.5) / face_size - 1, 2 (r + 0.5) / face_size - 1) of the OpenGL "
+         "cube map's face selection (+X: (1, -tc, -sc), -X: (-1, -tc, sc), +Y: (sc, 1, tc), "
+         "-Y: (sc, -1, -tc), +Z: (sc, -tc, 1), -Z: (-sc, -tc, -1)): uploaded face by face, "
+         "row 0 first, it is a samplerCube / TextureCube"},
+        {"encoding", image_encoding_name(in.encoding)},
+        {"decode", "v = bias[c] + scale[c] * t, t the stored value in [0, 1]"},
+        {"shade",
+         "I(n) = sum_k V_k T_k(n) per channel, V the K^2 SH visibility of the point, T_k the "
+         "decoded image k at the normal n; a white Lambertian surface reflects I / pi"},
+        {"quantization_step", quantization_step(in.encoding)},
+        {"images", images}};
+    files.push_back({"lxh.json", dump_json(doc, {{"images", 2}}) + "\n"});
+    outputs.push_back({{"file", "lxh.json"},
+                       {"kind", "lxh table"},
+                       {"visibility_bands", K},
+                       {"lighting_bands", N},
+                       {"face_size", R}});
+}
+
+/// svd.json and svd.b<k>.<ext> (docs/export-format.md).
+void export_svd(const EngineInput& in, std::vector<EngineFile>& files, Json& outputs) {
+    const int M = in.compression.svd_vectors, R = in.compression.svd_resolution;
+    NormalBasisSettings nbs;  // the renderer's (render/representations/prt_normalmap.hpp)
+    nbs.bands = 3;
+    nbs.clamped = false;
+    nbs.weighting = NormalWeighting::cosine;
+    const NormalBasis nb = normal_basis(nbs);
+    const int nc = nbs.bands * nbs.bands;
+    const std::size_t texels = std::size_t(R) * std::size_t(R);
+    std::vector<double> a(texels * std::size_t(nc));
+    for (int row = 0; row < R; ++row)
+        for (int col = 0; col < R; ++col) {
+            double x = 2 * (col + 0.5) / R - 1, y = 2 * (row + 0.5) / R - 1;
+            const double r2 = x * x + y * y;
+            if (r2 > 1) {  // outside the disk of normals: the rim's value
+                x /= std::sqrt(r2);
+                y /= std::sqrt(r2);
+            }
+            const double z = std::sqrt(std::max(0.0, 1 - x * x - y * y));
+            convolved_lighting_columns(
+                nbs.bands, nbs.clamped, x, y, z,
+                a.data() +
+                    (std::size_t(row) * std::size_t(R) + std::size_t(col)) * std::size_t(nc));
+        }
+    const char* ext = extension(in.encoding);
+    Json images = Json::array();
+    for (int k = 0; k < M; ++k) {
+        const std::string i = std::to_string(k);
+        std::vector<float> img(texels);
+        for (std::size_t p = 0; p < texels; ++p) {
+            double b = 0;
+            for (int j = 0; j < nc; ++j) b += a[p * std::size_t(nc) + std::size_t(j)] * nb.v(j, k);
+            img[p] = static_cast<float>(b);
+        }
+        const EngineAttribute attr{"_SVD" + i, {}, {"b_" + i}, false, {}};
+        Json e = add_table_image(files, "svd.b" + i + ext, attr, img, R, R, in.encoding);
+        e["function"] = k;
+        images.push_back(e);
+    }
+    Json v = Json::array(), s = Json::array(), energy = Json::array();
+    for (int j = 0; j < nc; ++j) {
+        Json row = Json::array();
+        for (int k = 0; k < nc; ++k) row.push_back(nb.v(j, k));
+        v.push_back(row);
+        s.push_back(nb.singular_values(j));
+        energy.push_back(nb.energy_percent[std::size_t(j)]);
+    }
+    const Json doc = {
+        {"format", "sphbasis normal basis"},
+        {"version", 1},
+        {"bands", nbs.bands},
+        {"clamped", nbs.clamped},
+        {"weighting", "cosine"},
+        {"vectors", M},
+        {"size", R},
+        {"singular_values", s},
+        {"energy_percent", energy},
+        {"v", v},
+        {"layout",
+         "image k holds b_k(n) = sum_j A_j(n) v[j][k], A_j(n) = pi a_l y_j(n) (the clamped "
+         "cosine's SH at the tangent-space normal n, ACN); column c and row r (from the top) "
+         "are the normal with (x, y) = (2 (c + 0.5) / size - 1, 2 (r + 0.5) / size - 1), z = "
+         "sqrt(1 - x^2 - y^2); texels outside the unit disk hold the value at (x, y) / |(x, y)|. "
+         "A shader samples at uv = (n.xy + 1) / 2 (v = 0 the top row, as glTF)"},
+        {"encoding", image_encoding_name(in.encoding)},
+        {"decode", "v = bias[c] + scale[c] * t, t the stored value in [0, 1]"},
+        {"shade",
+         "e(n) ~ sum_{k < vectors} b_k(n) g_k, g = v^T l', l' the 9 SH coefficients of the "
+         "transferred incident radiance in the tangent frame (exact with all 9)"},
+        {"quantization_step", quantization_step(in.encoding)},
+        {"images", images}};
+    files.push_back({"svd.json", dump_json(doc, {{"images", 2}, {"v", 2}}) + "\n"});
+    outputs.push_back({{"file", "svd.json"},
+                       {"kind", "normal basis"},
+                       {"vectors", M},
+                       {"energy_percent", nb.energy_percent[std::size_t(M - 1)]}});
 }
 
 }  // namespace
@@ -377,13 +629,7 @@ std::string encode_compressed(const std::vector<float>& values, int width, int h
 }
 
 namespace {
-/// One "pca:M" or "cpca:C:M" item of --export.
-CompressionExport parse_cpca_item(const std::string& s) {
-    CompressionExport e;
-    const std::string what =
-        "--export: expected pca:M or cpca:C:M (1 <= C <= 65535 clusters, 1 <= M <= 64 "
-        "vectors) or toksvig:S, got '" +
-        quote_input(s) + "'";
+std::vector<std::string> split_colons(const std::string& s) {
     std::vector<std::string> parts;
     std::size_t start = 0;
     for (std::size_t k = 0; k <= s.size(); ++k)
@@ -391,6 +637,55 @@ CompressionExport parse_cpca_item(const std::string& s) {
             parts.push_back(s.substr(start, k - start));
             start = k + 1;
         }
+    return parts;
+}
+
+/// parts[1..] as integers within [lo[i], hi[i]] (missing trailing ones keep `out`'s values);
+/// false when malformed.
+bool parse_ints(const std::vector<std::string>& parts, std::size_t required,
+                const std::vector<long long>& lo, const std::vector<long long>& hi,
+                std::vector<long long>& out) {
+    if (parts.size() < 1 + required || parts.size() > 1 + lo.size()) return false;
+    for (std::size_t i = 1; i < parts.size(); ++i)
+        if (!parse_integer(parts[i], out[i - 1]) || out[i - 1] < lo[i - 1] ||
+            out[i - 1] > hi[i - 1])
+            return false;
+    return true;
+}
+
+/// One "lxh:K[:N[:RES]]" or "svd:M[:RES]" item of --export into e.
+void parse_table_item(const std::vector<std::string>& parts, const std::string& s,
+                      CompressionExport& e) {
+    if (parts[0] == "lxh") {
+        std::vector<long long> v{0, 0, 32};
+        if (!parse_ints(parts, 1, {1, 1, 1}, {max_lxh_bands, max_lxh_bands, 1024}, v))
+            throw UsageError(
+                "--export: expected lxh:K[:N[:RES]] (1 <= K, N <= 16 visibility and lighting "
+                "bands, 1 <= RES <= 1024 texels a cube face edge), got '" +
+                quote_input(s) + "'");
+        e.lxh_visibility_bands = int(v[0]);
+        e.lxh_lighting_bands = int(v[1] > 0 ? v[1] : v[0]);
+        e.lxh_resolution = int(v[2]);
+        return;
+    }
+    std::vector<long long> v{0, 64};
+    if (!parse_ints(parts, 1, {1, 2}, {9, 4096}, v))
+        throw UsageError(
+            "--export: expected svd:M[:RES] (1 <= M <= 9 normal-basis functions, 2 <= RES <= "
+            "4096 texels a side), got '" +
+            quote_input(s) + "'");
+    e.svd_vectors = int(v[0]);
+    e.svd_resolution = int(v[1]);
+}
+
+/// One "pca:M" or "cpca:C:M" item of --export.
+CompressionExport parse_cpca_item(const std::string& s) {
+    CompressionExport e;
+    const std::string what =
+        "--export: expected pca:M or cpca:C:M (1 <= C <= 65535 clusters, 1 <= M <= 64 "
+        "vectors), lxh:K[:N[:RES]], svd:M[:RES] or toksvig:S, got '" +
+        quote_input(s) + "'";
+    const std::vector<std::string> parts = split_colons(s);
     long long c = 1, m = 0;
     const bool ok = (parts.size() == 2 && parts[0] == "pca" && parse_integer(parts[1], m)) ||
                     (parts.size() == 3 && parts[0] == "cpca" && parse_integer(parts[1], c) &&
@@ -418,11 +713,41 @@ CompressionExport parse_compression_export(const std::string& list) {
             e.toksvig_shininess = v;
             continue;
         }
+        const std::vector<std::string> parts = split_colons(s);
+        if (parts[0] == "lxh" || parts[0] == "svd") {
+            parse_table_item(parts, s, e);
+            continue;
+        }
         const CompressionExport c = parse_cpca_item(s);
         e.clusters = c.clusters;
         e.vectors = c.vectors;
     }
     return e;
+}
+
+std::vector<double> distant_lighting_sh(const SceneFile& scene, int bands) {
+    vec3<double> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    for (const SceneMesh& m : scene.meshes)
+        for (std::size_t i = 0; i + 2 < m.mesh.positions.size(); i += 3) {
+            lo = {std::min(lo.x, double(m.mesh.positions[i])),
+                  std::min(lo.y, double(m.mesh.positions[i + 1])),
+                  std::min(lo.z, double(m.mesh.positions[i + 2]))};
+            hi = {std::max(hi.x, double(m.mesh.positions[i])),
+                  std::max(hi.y, double(m.mesh.positions[i + 1])),
+                  std::max(hi.z, double(m.mesh.positions[i + 2]))};
+        }
+    const vec3<double> centre =
+        lo.x <= hi.x ? vec3<double>{0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), 0.5 * (lo.z + hi.z)}
+                     : vec3<double>{0, 0, 0};
+    std::vector<render::RGB> L = render::project_sh(scene.environment, bands);
+    for (const render::Light& l : scene.lights) {
+        const std::vector<render::RGB> s = render::project_sh(l, bands, centre);
+        for (std::size_t k = 0; k < L.size(); ++k)
+            for (std::size_t c = 0; c < 3; ++c) L[k][c] += s[k][c];
+    }
+    std::vector<double> out;
+    for (const render::RGB& v : L) out.insert(out.end(), {v[0], v[1], v[2]});
+    return out;
 }
 
 std::vector<EngineAttribute> engine_attributes(
@@ -499,10 +824,27 @@ std::vector<std::string> engine_file_names(const EngineInput& in) {
             throw UsageError("--export: compresses transfer vectors; give --quantities transfer");
         f.push_back("cpca.json");
         f.push_back("cpca.bin");
+        if (in.target == EngineTarget::texels)
+            for (const SceneMesh& m : *in.meshes) {
+                f.push_back(m.name + ".cpca_cluster.png");
+                for (int j = 0; j < in.compression.vectors; ++j)
+                    f.push_back(m.name + ".cpca_w" + std::to_string(j) + ext);
+            }
     }
     if (in.compression.toksvig_shininess > 0) {
         f.push_back("toksvig.json");
         f.push_back(std::string("toksvig") + ext);
+    }
+    if (in.compression.lxh_visibility_bands > 0) {
+        f.push_back("lxh.json");
+        for (int k = 0;
+             k < in.compression.lxh_visibility_bands * in.compression.lxh_visibility_bands; ++k)
+            f.push_back("lxh.k" + std::to_string(k) + ext);
+    }
+    if (in.compression.svd_vectors > 0) {
+        f.push_back("svd.json");
+        for (int k = 0; k < in.compression.svd_vectors; ++k)
+            f.push_back("svd.b" + std::to_string(k) + ext);
     }
     if (in.target == EngineTarget::probes) {
         for (const EngineAttribute& a : attrs)
@@ -527,10 +869,8 @@ std::vector<EngineFile> export_engine(const EngineInput& in, Json& outputs) {
     const char* ext = extension(in.encoding);
     const double q = quantization_step(in.encoding);
     std::vector<EngineFile> files;
-    auto add = [&](const std::string& name, std::string bytes) -> Json {
-        const std::string hash = hex64(render::InputHash().str(bytes).value());
-        files.push_back({name, std::move(bytes)});
-        return {{"file", name}, {"xxh3", hash}};
+    auto add = [&](const std::string& name, std::string bytes) {
+        return add_file(files, name, std::move(bytes));
     };
     Json attr_names = Json::array();
     for (const EngineAttribute& a : attrs) attr_names.push_back(a.name);
@@ -562,6 +902,9 @@ std::vector<EngineFile> export_engine(const EngineInput& in, Json& outputs) {
         files.push_back({"toksvig.json", dump_json(doc) + "\n"});
         outputs.push_back({{"file", "toksvig.json"}, {"kind", "toksvig"}, {"image", file}});
     }
+
+    if (in.compression.lxh_visibility_bands > 0) export_lxh(in, files, outputs);
+    if (in.compression.svd_vectors > 0) export_svd(in, files, outputs);
 
     if (in.target == EngineTarget::probes) {
         const render::ProbeGrid& g = *in.probes;
@@ -621,6 +964,7 @@ std::vector<EngineFile> export_engine(const EngineInput& in, Json& outputs) {
         gm.name = sm.name;
         gm.mesh = &sm.mesh;
         gm.normals = render::vertex_normals(sm.mesh.view());
+        if (sm.lightmap_uv == 1) gm.lightmap_uvs = &sm.uvs1;
         const std::size_t first = (*in.mesh_begin)[k], count = (*in.mesh_begin)[k + 1] - first;
         if (in.target == EngineTarget::vertices) {
             if (count != sm.mesh.vertex_count())
@@ -654,6 +998,7 @@ std::vector<EngineFile> export_engine(const EngineInput& in, Json& outputs) {
                 gm.lightmaps.push_back({a.name, file, ext[1] == 'p', gx});
             }
             lm_meshes.push_back({{"mesh", sm.name},
+                                 {"texCoord", sm.lightmap_uv},
                                  {"width", lay.width},
                                  {"height", lay.height},
                                  {"images", images}});
@@ -677,9 +1022,9 @@ std::vector<EngineFile> export_engine(const EngineInput& in, Json& outputs) {
                           {"version", 1},
                           {"encoding", image_encoding_name(in.encoding)},
                           {"uv_set",
-                           "the meshes' UV set (glTF TEXCOORD_0 = (u, 1 - v)); image rows from "
-                           "the top, texel (x, y) covers uv [x, x + 1] / width, [y, y + 1] / "
-                           "height in glTF's convention"},
+                           "each mesh's lightmap UV set (glTF TEXCOORD_<texCoord> = (u, 1 - v) "
+                           "of the scene's set); image rows from the top, texel (x, y) covers "
+                           "uv [x, x + 1] / width, [y, y + 1] / height in glTF's convention"},
                           {"gutter", render::lightmap_gutter},
                           {"decode", "v = bias[c] + scale[c] * t, t the stored value in [0, 1]"},
                           {"quantization_step", q},

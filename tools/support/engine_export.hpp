@@ -87,19 +87,45 @@ enum class EngineTarget { vertices, texels, probes };
 /// `--export cpca:C:M` (or `pca:M` = cpca:1:M): the baked transfer vectors compressed by CPCA
 /// (ops/compression.hpp: k-means, per-cluster PCA, reclassification; Sloan, Lehtinen and Kautz,
 /// "Precomputed Radiance Transfer: Theory and Practice", SIGGRAPH 2005 course) with 8-bit
-/// weights, written as cpca.json (the layout) and cpca.bin (docs/export-format.md).
+/// weights, written as cpca.json (the layout) and cpca.bin (docs/export-format.md); a texel bake
+/// also as images on the lightmap UV set: <mesh>.cpca_cluster.png (ids, 8- or 16-bit) and
+/// <mesh>.cpca_w<j>.<ext> (the weights, range-compressed).
 /// `--export toksvig:S`: Toksvig's 2D specular table for shininess S (shading/toksvig.hpp:
 /// eq. 9, 256 x 256, Na.H along columns, Na.Na along rows) as toksvig.json and an image.
+/// `--export lxh:K[:N[:RES]]`: the L x H table of the scene's distant lighting (ops/
+/// lxh_table.hpp; Iwanicki and Sloan, "Normal Mapping with Low-Frequency Precomputed
+/// Visibility", JGT 2009, sec. 3) for visibility of K bands, lighting of N bands (default K), over
+/// a cube map of RES texels a face edge (default 32), as the renderer's lxh-unc* builds it: K^2
+/// RGB images lxh.k<k>.<ext> (the six faces side by side) and lxh.json.
+/// `--export svd:M[:RES]`: the first M SVD normal-basis functions (ops/normal_basis.hpp; Sloan,
+/// Lehtinen and Kautz 2005, normal mapping for PRT; 3 bands, unclamped, cosine-weighted as the
+/// renderer's prt-normalmap-svd*) over the tangent-space normal's (x, y), RES x RES (default 64):
+/// grey images svd.b<k>.<ext> and svd.json.
 struct CompressionExport {
     int clusters = 0;  // 0: none
     int vectors = 0;
     int bits = 8;
     double toksvig_shininess = 0;  // 0: none
+    int lxh_visibility_bands = 0;  // 0: none
+    int lxh_lighting_bands = 0;
+    int lxh_resolution = 32;
+    int svd_vectors = 0;  // 0: none
+    int svd_resolution = 64;
+    bool any() const noexcept {
+        return clusters > 0 || toksvig_shininess > 0 || lxh_visibility_bands > 0 || svd_vectors > 0;
+    }
 };
 
-/// A comma-separated list of "pca:M" or "cpca:C:M" (1 <= C <= 65535, 1 <= M <= 64) and
-/// "toksvig:S" (0 < S <= 1e6), or "" (none); UsageError "--export: expected ..." otherwise.
+/// A comma-separated list of "pca:M" or "cpca:C:M" (1 <= C <= 65535, 1 <= M <= 64),
+/// "toksvig:S" (0 < S <= 1e6), "lxh:K[:N[:RES]]" (1 <= K, N <= 16, 1 <= RES <= 1024) and
+/// "svd:M[:RES]" (1 <= M <= 9, 2 <= RES <= 4096), or "" (none); UsageError "--export: expected
+/// ..." otherwise.
 CompressionExport parse_compression_export(const std::string& s);
+
+/// The SH of the scene's distant lighting on `bands` bands, interleaved (coefficient i, channel c
+/// at [3 i + c]): the environment's plus every light's seen from the centre of the meshes'
+/// bounding box, not rotated (as the renderer's representations project it).
+std::vector<double> distant_lighting_sh(const SceneFile& scene, int bands);
 
 /// Everything an engine export reads. Pointers are borrowed for the call.
 struct EngineInput {
@@ -114,7 +140,8 @@ struct EngineInput {
     std::string basis = "sh";
     ImageEncoding encoding = ImageEncoding::png8;
     CompressionExport compression;
-    std::uint64_t seed = 1;  // k-means++ seeding of the CPCA
+    std::uint64_t seed = 1;        // k-means++ seeding of the CPCA
+    std::vector<double> lighting;  // lxh: distant_lighting_sh() on the lxh lighting bands
 };
 
 struct EngineFile {
@@ -126,7 +153,8 @@ struct EngineFile {
 /// bake. vertices: scene.glb; texels: scene.glb, <mesh>.<attr>.<png|exr> per mesh and
 /// attribute, lightmaps.json; probes: probes.<attr>.z<k>.<png|exr> per attribute and slice,
 /// probes.grid.json; with a compression export also cpca.json and cpca.bin (UsageError when the
-/// bake has no transfer or the target is probes).
+/// bake has no transfer or the target is probes); lxh.json and lxh.k<k>.<ext>, svd.json and
+/// svd.b<k>.<ext> with those exports.
 std::vector<std::string> engine_file_names(const EngineInput& in);
 
 /// The files and the "outputs" entries of bake.json. Throws std::invalid_argument when the

@@ -104,10 +104,16 @@ std::string encode_glb(const std::vector<GltfMesh>& meshes, const Json& asset_ex
         prim.attributes["POSITION"] = add_float_accessor(m, mesh.positions, 3, true);
         prim.attributes["NORMAL"] = add_float_accessor(
             m, std::vector<float>(gm.normals.begin(), gm.normals.end()), 3, false);
-        if (mesh.uvs.size() == 2 * nv) {
-            std::vector<float> uv(mesh.uvs);
+        int set = 0;  // the lightmaps' texCoord
+        for (const std::vector<float>* uvs : {&mesh.uvs, gm.lightmap_uvs}) {
+            if (uvs == nullptr || uvs->size() != 2 * nv) continue;
+            if (uvs == gm.lightmap_uvs && mesh.uvs.size() != 2 * nv)
+                throw std::invalid_argument(fn + "a second UV set needs a first");
+            std::vector<float> uv(*uvs);
             for (std::size_t i = 1; i < uv.size(); i += 2) uv[i] = 1.0f - uv[i];
-            prim.attributes["TEXCOORD_0"] = add_float_accessor(m, uv, 2, false);
+            set = uvs == gm.lightmap_uvs ? 1 : 0;
+            prim.attributes["TEXCOORD_" + std::to_string(set)] =
+                add_float_accessor(m, uv, 2, false);
         }
         for (const GltfAttribute& a : gm.attributes) {
             if (a.name.empty() || a.name[0] != '_' || (a.components != 1 && a.components != 3) ||
@@ -135,7 +141,7 @@ std::string encode_glb(const std::vector<GltfMesh>& meshes, const Json& asset_ex
         for (const GltfLightmap& lm : gm.lightmaps) {
             Json e = lm.extras;
             e["file"] = lm.uri;
-            e["texCoord"] = 0;
+            e["texCoord"] = set;
             e["texture"] = -1;
             if (lm.png) {
                 if (!sampler) {
@@ -156,7 +162,7 @@ std::string encode_glb(const std::vector<GltfMesh>& meshes, const Json& asset_ex
                 e["texture"] = t;
                 if (lm.attribute == "_AO") {
                     mat.occlusionTexture.index = t;
-                    mat.occlusionTexture.texCoord = 0;
+                    mat.occlusionTexture.texCoord = set;
                     mat.occlusionTexture.strength = 1.0;
                 }
             }

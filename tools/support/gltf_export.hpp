@@ -7,7 +7,8 @@
 //   per-vertex results as application-specific FLOAT attributes (names starting with '_', as
 //   glTF requires: "_AO", "_BENT", "_SH0", ...);
 //   lightmaps as images referenced by URI (the PNG files beside the .glb) and textures with a
-//   linear, clamp-to-edge sampler, on TEXCOORD_0 (the UV set the bake laid them out in); the
+//   linear, clamp-to-edge sampler, on the UV set the bake laid them out in (TEXCOORD_0, or
+//   TEXCOORD_1 = (u, 1 - v) of the mesh's second UV set when that is its lightmap set); the
 //   "_AO" lightmap is also the material's occlusionTexture (stored with scale 1, bias 0). Every
 //   lightmap is listed in the primitive's extras.sphbasis_lightmaps with its texture index (or
 //   -1 and its file for EXR, which core glTF cannot reference), texCoord, channels and the
@@ -41,6 +42,9 @@ struct GltfMesh {
     std::string name;
     const render::Mesh* mesh = nullptr;
     std::vector<double> normals;  // 3 per vertex
+    /// The lightmap UV set when it is not the material set (mesh->uvs): written as TEXCOORD_1,
+    /// and the lightmaps reference texCoord 1; null: the lightmaps are on TEXCOORD_0.
+    const std::vector<float>* lightmap_uvs = nullptr;
     std::vector<GltfAttribute> attributes;
     std::vector<GltfLightmap> lightmaps;
 };

@@ -449,8 +449,9 @@ class RecordingIO : public Assimp::DefaultIOSystem {
     std::vector<std::string>* files_;
 };
 
+/// The file's meshes joined; UV channel 1 into *uvs1 when every part has channels 0 and 1.
 render::Mesh load_mesh_file(const Ctx& c, const std::string& where, const std::string& path,
-                            double smoothing_angle_deg) {
+                            double smoothing_angle_deg, std::vector<float>* uvs1) {
     {
         std::ifstream probe(path, std::ios::binary);
         if (!probe) c.fail(where, "cannot open mesh file '" + path + "'");
@@ -467,11 +468,12 @@ render::Mesh load_mesh_file(const Ctx& c, const std::string& where, const std::s
         c.fail(where, "cannot load mesh '" + path + "': " + importer.GetErrorString());
     render::Mesh m;
     std::vector<char> generate;  // per triangle: its part of the file has no normals
-    bool all_uvs = true, all_tangents = true;
+    bool all_uvs = true, all_uvs1 = true, all_tangents = true;
     for (unsigned k = 0; k < s->mNumMeshes; ++k) {
         const aiMesh* a = s->mMeshes[k];
         if ((a->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) == 0) continue;
         all_uvs = all_uvs && a->HasTextureCoords(0);
+        all_uvs1 = all_uvs1 && a->HasTextureCoords(0) && a->HasTextureCoords(1);
         all_tangents = all_tangents && a->HasTangentsAndBitangents() && a->HasNormals();
     }
     for (unsigned k = 0; k < s->mNumMeshes; ++k) {
@@ -486,6 +488,10 @@ render::Mesh load_mesh_file(const Ctx& c, const std::string& where, const std::s
             if (all_uvs) {
                 const aiVector3D& t = a->mTextureCoords[0][i];
                 m.uvs.insert(m.uvs.end(), {t.x, t.y});
+            }
+            if (all_uvs1) {
+                const aiVector3D& t = a->mTextureCoords[1][i];
+                uvs1->insert(uvs1->end(), {t.x, t.y});
             }
             if (all_tangents) {
                 const aiVector3D& t = a->mTangents[i];
@@ -522,7 +528,7 @@ render::Mesh load_mesh_file(const Ctx& c, const std::string& where, const std::s
 
 /// Removes the vertices no triangle uses (those of dropped triangles: a vertex bake would bake
 /// them, and files give them no usable normal), renumbering the indices.
-void drop_unreferenced(render::Mesh& m) {
+void drop_unreferenced(render::Mesh& m, std::vector<float>& uvs1) {
     const std::size_t n = m.vertex_count();
     std::vector<std::uint32_t> remap(n, std::numeric_limits<std::uint32_t>::max());
     for (std::uint32_t i : m.indices) remap[i] = 0;
@@ -541,13 +547,14 @@ void drop_unreferenced(render::Mesh& m) {
     compact(m.positions, 3);
     compact(m.normals, 3);
     compact(m.uvs, 2);
+    compact(uvs1, 2);
     compact(m.tangents, 4);
     for (std::uint32_t& i : m.indices) i = remap[i];
 }
 
 /// Removes triangles with a zero-area or non-finite position (and then the vertices only they
 /// used); returns how many triangles.
-std::size_t drop_degenerate(render::Mesh& m) {
+std::size_t drop_degenerate(render::Mesh& m, std::vector<float>& uvs1) {
     std::vector<std::uint32_t> kept;
     kept.reserve(m.indices.size());
     std::size_t dropped = 0;
@@ -576,7 +583,7 @@ std::size_t drop_degenerate(render::Mesh& m) {
             ++dropped;
     }
     m.indices = std::move(kept);
-    if (dropped > 0) drop_unreferenced(m);
+    if (dropped > 0) drop_unreferenced(m, uvs1);
     return dropped;
 }
 
@@ -596,7 +603,10 @@ void check_attributes(const Ctx& c, const std::string& where, const SceneMesh& s
                               in + " outside [-1e15, 1e15] (after the transform)");
     }
     const std::pair<const std::vector<float>*, std::pair<const char*, std::size_t>> arrays[] = {
-        {&m.normals, {"normal", 3}}, {&m.uvs, {"UV", 2}}, {&m.tangents, {"tangent", 4}}};
+        {&m.normals, {"normal", 3}},
+        {&m.uvs, {"UV", 2}},
+        {&sm.uvs1, {"UV (set 1)", 2}},
+        {&m.tangents, {"tangent", 4}}};
     for (const auto& [a, info] : arrays)
         for (std::size_t i = 0; i < a->size(); ++i)
             if (!std::isfinite((*a)[i]))
@@ -724,8 +734,8 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
     if (!j.is_object()) c.fail(where, "expected an object, got " + type_name(j));
     const bool has_file = j.contains("file"), has_shape = j.contains("shape");
     if (has_file == has_shape) c.fail(where, "expected exactly one of \"file\" or \"shape\"");
-    std::vector<std::string> keys = {"name",       "transform", "albedo",  "albedo_map",
-                                     "normal_map", "shininess", "specular"};
+    std::vector<std::string> keys = {"name",       "transform", "albedo",   "albedo_map",
+                                     "normal_map", "shininess", "specular", "lightmap_uv"};
     if (!is_cage) keys.insert(keys.end(), {"source", "cage", "max_ray_distance"});
     std::string kind;
     if (has_file) {
@@ -767,7 +777,7 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
         }
         sm.source = file_path(c, j["file"], sub(where, "file"), "mesh file");
         check_mesh_header(c, sub(where, "file"), sm.source);
-        sm.mesh = load_mesh_file(c, sub(where, "file"), sm.source, angle);
+        sm.mesh = load_mesh_file(c, sub(where, "file"), sm.source, angle, &sm.uvs1);
     } else {
         sm.source = "shape:" + kind;
         try {
@@ -780,7 +790,17 @@ SceneMesh load_mesh(const Ctx& c, const json& j, const std::string& where, std::
         apply(c, sub(where, "transform"), transform(c, j["transform"], sub(where, "transform")),
               sm.mesh);
     check_attributes(c, where, sm);
-    sm.dropped_triangles = drop_degenerate(sm.mesh);
+    sm.dropped_triangles = drop_degenerate(sm.mesh, sm.uvs1);
+    sm.lightmap_uv = sm.uvs1.empty() ? 0 : 1;
+    if (j.contains("lightmap_uv")) {
+        const double u = number(c, j["lightmap_uv"], sub(where, "lightmap_uv"));
+        if (u != 0 && u != 1)
+            c.fail(sub(where, "lightmap_uv"),
+                   "expected the UV set 0 or 1 of the mesh file, got " + number_text(u));
+        if (u == 1 && sm.uvs1.empty())
+            c.fail(sub(where, "lightmap_uv"), "the mesh has no second UV set");
+        sm.lightmap_uv = int(u);
+    }
     if (sm.mesh.triangle_count() == 0)
         c.fail(where, "empty mesh (no triangles with non-zero area)");
     if (j.contains("albedo")) {
@@ -1037,6 +1057,14 @@ render::SceneDesc SceneFile::scene_desc() const {
     for (const SceneMesh& m : meshes) d.meshes.push_back(m.mesh.view());
     d.environment = environment;
     d.lights = lights;
+    return d;
+}
+
+render::SceneDesc SceneFile::lightmap_desc() const {
+    render::SceneDesc d = scene_desc();
+    for (std::size_t k = 0; k < meshes.size(); ++k)
+        d.meshes[k].uvs =
+            meshes[k].lightmap_uvs().empty() ? nullptr : meshes[k].lightmap_uvs().data();
     return d;
 }
 

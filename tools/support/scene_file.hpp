@@ -46,6 +46,14 @@ struct SceneMesh {
     /// "max_ray_distance" (infinite: none).
     std::string source_mesh;
     long bake_source = -1;
+    /// The mesh file's second UV set (Assimp channel 1, 2 per vertex; empty: none) and the set
+    /// lightmaps are laid out in ("lightmap_uv": 0 or 1; default 1 when the file has one). The
+    /// renderer's arrays (mesh.uvs) keep set 0, the material UVs.
+    std::vector<float> uvs1;
+    int lightmap_uv = 0;
+    const std::vector<float>& lightmap_uvs() const noexcept {
+        return lightmap_uv == 1 ? uvs1 : mesh.uvs;
+    }
     std::shared_ptr<const std::vector<float>> cage;
     double max_ray_distance = std::numeric_limits<double>::infinity();
 };
@@ -86,6 +94,8 @@ struct SceneFile {
 
     /// Views of the meshes and the lighting for render::Baker (valid while *this lives).
     render::SceneDesc scene_desc() const;
+    /// scene_desc() with each mesh's UVs its lightmap set (what texel bakes lay out).
+    render::SceneDesc lightmap_desc() const;
 };
 
 /// Loads a scene file (see the file comment). Throws std::runtime_error with one line.
