@@ -291,8 +291,11 @@ TEST_CASE("ambient-dice-bezier: least-squares fits on the sphere and the upper h
           "[ambient-dice][ambient-dice-bezier]") {
     // Samples of an expansion in the span: the fit recovers its coefficients (the Gram matrix is
     // regular on the domain: 36 on the sphere, 30 on z >= 0).
-    for (const auto& [n, rule] :
-         {std::pair<int, DirectionalRule>{36, sphere_rule(40)}, {30, hemisphere_rule(40)}}) {
+    const std::vector<std::pair<int, DirectionalRule>> cases = {{36, sphere_rule(40)},
+                                                                {30, hemisphere_rule(40)}};
+    for (const auto& p : cases) {
+        const int n = p.first;
+        const DirectionalRule& rule = p.second;
         const BasisFunctions f = find_basis("ambient-dice-bezier").functions(n);
         Eigen::VectorXd c(n);
         for (int k = 0; k < n; ++k) c(k) = std::cos(1.3 * k);
