@@ -53,6 +53,28 @@ TEST_CASE("ambient-dice: partition of unity, vertex values, 6 non-zero per direc
     CHECK(neighbours == 5);
 }
 
+TEST_CASE("ambient-dice: cos^2 and cos^4 on the vertex hemispheres are each a partition of unity",
+          "[ambient-dice]") {
+    // The paper's premise ("the partition of unity formed by cos^2 and cos^4 restricted to a
+    // hemisphere oriented along the directions of the icosahedron vertices"): over the 12
+    // vertices, each direction in the hemisphere of 6 of them, sum c^2 = 2 and sum c^4 = 6/5, so
+    // c^2/2 and 5 c^4/6 each sum to 1 and any blend w c^2/2 + (1 - w) 5 c^4/6 does; the library's
+    // w = 0.7 (w2 = 0.35, w4 = 0.25) is one such blend.
+    const double a = ambient_dice::axis_a, b = ambient_dice::axis_b;
+    const double axes[6][3] = {{a, b, 0}, {-a, b, 0}, {0, a, b}, {0, -a, b}, {b, 0, a}, {b, 0, -a}};
+    for (const auto& d : test::random_dirs(500, 9, false)) {
+        double s2 = 0, s4 = 0;
+        for (const auto& ax : axes) {
+            const double c = ax[0] * d[0] + ax[1] * d[1] + ax[2] * d[2];
+            s2 += c * c / 2;
+            s4 += 5 * c * c * c * c / 6;
+        }
+        CHECK(s2 == Approx(1).epsilon(4e-15));
+        CHECK(s4 == Approx(1).epsilon(4e-15));
+    }
+    CHECK(ambient_dice::w2 * 2 + ambient_dice::w4 * 6 / 5 == Approx(1).epsilon(1e-15));
+}
+
 TEST_CASE("ambient-dice: batch equals scalar, float near double, registry", "[ambient-dice]") {
     const auto dirs = test::random_dirs(37, 10, false);
     const auto inf = test::scaled_inputs<float>(dirs, 0.5);

@@ -229,11 +229,13 @@ TEST_CASE("fixed-seed runs are stable", "[imse]") {
 
 TEST_CASE("the benchmark's rows are the table's rows", "[imse]") {
     const std::vector<imse::Row> rows = imse::paper_rows();
-    REQUIRE(rows.size() == 23);
+    REQUIRE(rows.size() == 25);
     CHECK(rows.front().basis == "sh");
     CHECK(rows.front().n == 4);
-    CHECK(rows.back().basis == "sg");
-    CHECK(rows.back().n == 12);
+    CHECK(rows[22].basis == "sg");
+    CHECK(rows[22].n == 12);
+    CHECK(rows.back().basis == "ambient-dice-linear");
+    CHECK(rows.back().n == 10);
     const std::vector<imse::Row> hdri = imse::hdri_rows();
     REQUIRE(hdri.size() == rows.size());
     for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -294,10 +296,16 @@ TEST_CASE("hemispherical SH Gram, truncation bound and ShFits against direct qua
         const double direct = fit.imse(samples)(0);
         // Not polynomials, so neither rule integrates them exactly: the ambient bases' kinks
         // (see above) and the SG lobes' exponentials (measured 7e-5 and 7e-4 for sg 9 and 12).
+        // Ambient Dice's face variants have C0 kinks along the icosahedron's edges (the cube's
+        // and the SRBF lobes are C1), so at this small rule the two differ by a few per cent
+        // (measured 6.0e-2 for bezier 30, 4.1e-2 for linear 10).
         const std::string name = infos[r]->name;
+        const bool faces = name == "ambient-dice-bezier" || name == "ambient-dice-linear";
         const bool inexact = name.rfind("ambient-", 0) == 0 || name == "sg";
         CHECK(energy - fitted(static_cast<Eigen::Index>(r), 0) ==
-              Approx(direct).epsilon(inexact ? 2e-3 : 1e-9));
+              Approx(direct).epsilon(faces     ? 8e-2
+                                     : inexact ? 2e-3
+                                               : 1e-9));
     }
 
     // Truncation: dropping bands >= 4 of an irradiance changes the relative IMSE by no more

@@ -51,6 +51,8 @@ COLOURS = {
     "hl2": "#e377c2",
     "ambient-cube": "#7f7f7f",
     "ambient-dice": "#bcbd22",
+    "ambient-dice-bezier": "#8c6d31",
+    "ambient-dice-linear": "#e7ba52",
     "sg": "#17becf",
     "sh-l1-nonlinear": "#000000",
     "zh3-hallucinate": "#aec7e8",

@@ -5,12 +5,13 @@
 // 2017 (Experimental Ideas & Implementations). The paper gives three variants, all storing
 // coefficients at the 12 vertices of an icosahedron: values plus directional derivatives
 // interpolated by hybrid cubic Bezier triangles (36 coefficients, 9 per direction), the same
-// with linear chromaticity in YCoCg, and the one implemented here, which "exploits the partition
-// of unity formed by cos^2 and cos^4 restricted to a hemisphere oriented along the directions of
-// the icosahedron vertices" (12 coefficients, 6 read per direction). The blend of the two
-// partitions, 0.7 cos^2/2 + 0.3 (5/6) cos^4, is the one of Probulator (Y. O'Donnell et al.,
-// github.com/kayru/Probulator, Source/Probulator/ExperimentAmbientDice.cpp, srbfWeights); the
-// paper itself was not at hand to check the weights against.
+// with linear chromaticity in YCoCg (both in basis/ambient_dice_bezier.hpp), and the one
+// implemented here, which "exploits the partition of unity formed by cos^2 and cos^4 restricted
+// to a hemisphere oriented along the directions of the icosahedron vertices" (12 coefficients, 6
+// read per direction). Each of c^2/2 and 5 c^4/6 alone is such a partition (below), so any blend
+// w c^2/2 + (1 - w) 5 c^4/6 is; w = 0.7 is the blend of Probulator (Y. O'Donnell et al.,
+// github.com/kayru/Probulator, Source/Probulator/ExperimentAmbientDice.cpp, srbfWeights). The
+// paper's body was not at hand (only its abstract): w is not checked against it.
 //
 // Definition. t = (sqrt(5) - 1)/2 (the golden ratio's inverse); the 6 axes, each the unit vector
 // of an icosahedron vertex (one of each antipodal pair),

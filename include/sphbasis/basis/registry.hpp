@@ -12,6 +12,7 @@
 #include "../core/error.hpp"
 #include "ambient_cube.hpp"
 #include "ambient_dice.hpp"
+#include "ambient_dice_bezier.hpp"
 #include "basis.hpp"
 #include "hbasis.hpp"
 #include "hl2.hpp"
@@ -113,13 +114,15 @@ const std::vector<BasisInfo>& all_bases() {
         detail::make_info<SphericalGaussian>(detail::no_lm),
         detail::make_info<AmbientCube>(detail::no_lm),
         detail::make_info<AmbientDice>(detail::no_lm),
+        detail::make_info<AmbientDiceBezier>(detail::no_lm),
+        detail::make_info<AmbientDiceLinear>(detail::no_lm),
     };
     return v;
 }
 
 /// The basis called `name` ("sh", "hsh", "makhotkin", "zernike", "hbasis", "hbasis-mod",
-/// "hl2", "sg", "ambient-cube", "ambient-dice"). Throws std::invalid_argument naming the known
-/// bases otherwise.
+/// "hl2", "sg", "ambient-cube", "ambient-dice", "ambient-dice-bezier", "ambient-dice-linear").
+/// Throws std::invalid_argument naming the known bases otherwise.
 template <class = void>
 const BasisInfo& find_basis(std::string_view name) {
     for (const auto& b : all_bases())

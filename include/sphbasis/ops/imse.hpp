@@ -100,17 +100,20 @@ struct Row {
 /// 9, 16; Zernike 3, 6, 10, 15; H-basis 4, 6; modified H-basis 4, 6; HL2 3; ambient cube 5 (its
 /// hemispherical restriction: the -z face is zero on z >= 0); ambient dice 12; SG 9, 12 (the
 /// irradiance fitted in the span of BakingLab's lobes; sg_pipeline_imse() scores BakingLab's own
-/// pipeline, radiance fitted and irradiance by Hill's approximation). The fitted rows
-/// (fitted_rows()) follow them.
+/// pipeline, radiance fitted and irradiance by Hill's approximation); Ambient Dice's face variants,
+/// Bezier 30 and linear 10 (without the 2 vertices that have no support on z >= 0). The fitted
+/// rows (fitted_rows()) follow them.
 inline std::vector<Row> paper_rows() {
-    return {{"sh", 4},         {"sh", 9},           {"sh", 16},
-            {"sh", 25},        {"hsh", 4},          {"hsh", 9},
-            {"hsh", 16},       {"makhotkin", 4},    {"makhotkin", 9},
-            {"makhotkin", 16}, {"zernike", 3},      {"zernike", 6},
-            {"zernike", 10},   {"zernike", 15},     {"hbasis", 4},
-            {"hbasis", 6},     {"hbasis-mod", 4},   {"hbasis-mod", 6},
-            {"hl2", 3},        {"ambient-cube", 5}, {"ambient-dice", 12},
-            {"sg", 9},         {"sg", 12}};
+    std::vector<Row> rows{{"sh", 4},         {"sh", 9},           {"sh", 16},
+                          {"sh", 25},        {"hsh", 4},          {"hsh", 9},
+                          {"hsh", 16},       {"makhotkin", 4},    {"makhotkin", 9},
+                          {"makhotkin", 16}, {"zernike", 3},      {"zernike", 6},
+                          {"zernike", 10},   {"zernike", 15},     {"hbasis", 4},
+                          {"hbasis", 6},     {"hbasis-mod", 4},   {"hbasis-mod", 6},
+                          {"hl2", 3},        {"ambient-cube", 5}, {"ambient-dice", 12},
+                          {"sg", 9},         {"sg", 12}};
+    rows.insert(rows.end(), {{"ambient-dice-bezier", 30}, {"ambient-dice-linear", 10}});
+    return rows;
 }
 
 /// The rows of the HDRI protocol, in table order: the same rows as paper_rows().
