@@ -138,8 +138,8 @@ endforeach()
 set(_scenes ${PROJECT_SOURCE_DIR}/scenes)
 sphbasis_render_test(metrics_cornell "render-report-ok"
   "rm -rf render_m_cornell && \"${_render}\" render ${_scenes}/cornell.json --representations irradiance-sh9,ao,prt-vertex,lightmap-sh9,volume --width 32 --height 32 --spp 16 --rays 16 --lightmap-size 8 --out render_m_cornell 2>/dev/null && python3 ${_check_report} render_m_cornell rows=5 max_metric=rel_mse_floored:10 less_flip=lightmap-sh9:irradiance-sh9")
-# The engine bases (ambient cube and dice, L1 with the Geomerics reconstruction, ZH3): as probes
-# and, the linear ones, as tangent-space lightmaps; every metric finite and in range.
+# The engine bases (ambient cube and dice, SG9, L1 with the Geomerics reconstruction, ZH3): as
+# probes and as tangent-space lightmaps (SG9 by each solver); every metric finite and in range.
 sphbasis_render_test(metrics_engine_bases "render-report-ok"
   "rm -rf render_m_engine && \"${_render}\" render ${_scenes}/cornell.json --representations volume,volume-ambient-cube,volume-ambient-dice,volume-sh-l1-nonlinear,volume-zh3-hallucinate,volume-zh3,volume-sg9,lightmap-ambient-cube5,lightmap-ambient-dice12,lightmap-sg9,lightmap-sg9-nnls,lightmap-sg9-running,lightmap-zh3,lightmap-zh3-hallucinate,lightmap-sh-l1-nonlinear --width 32 --height 32 --spp 16 --rays 16 --lightmap-size 8 --out render_m_engine 2>/dev/null && python3 ${_check_report} render_m_engine rows=15 max_metric=rel_mse_floored:10")
 sphbasis_render_test(metrics_specular_bumps "render-report-ok"
