@@ -85,6 +85,20 @@ sphbasis_bake_test(points_free "\\{\"p\":\\[0,0,5\\],\"radiance\":\\[\\[[-0-9.e,
 # Spherical Gaussians (BakingLab's 9 lobes): the irradiance fitted in their span, 9 numbers a channel.
 sphbasis_bake_test(points_sg9 "\"irradiance\":\\[\\[[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+\\]"
   "printf '0.5 0 0 0 0 1\\n' | \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --points - --quantities irradiance --basis sg --coeffs 9 --rays 64")
+# The engine names: sg9 with NNLS (9 amplitudes, none negative), ZH3 (5 values a channel), the
+# non-linear L1 per texel (4 channels a colour; bake.json says what they hold); bad combinations.
+sphbasis_bake_test(points_sg9_nnls "\"irradiance\":\\[\\[[0-9][0-9.e-]*,[0-9][0-9.e-]*,[0-9][0-9.e-]*,[0-9][0-9.e-]*,[0-9][0-9.e-]*,[0-9][0-9.e-]*,[0-9][0-9.e-]*,[0-9][0-9.e-]*,[0-9][0-9.e-]*\\]"
+  "printf '0.5 0 0 0 0 1\\n' | \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --points - --quantities irradiance --basis sg9 --sg-solver nnls --rays 64")
+sphbasis_bake_test(points_zh3 "\"irradiance\":\\[\\[[-0-9.e]+,[-0-9.e]+,[-0-9.e]+,[-0-9.e]+,[-0-9.e]+\\]"
+  "printf '0.5 0 0 0 0 1\\n' | \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --points - --quantities irradiance --basis zh3 --rays 64")
+sphbasis_bake_test(texels_l1_nonlinear "l1-nonlinear-ok"
+  "rm -rf bake_l1n && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:8 --quantities irradiance --basis sh-l1-nonlinear --rays 16 --out bake_l1n && grep -q '\"storage\": *\"sh-l1-nonlinear\"' bake_l1n/bake.json && grep -a -q irr_r_3 bake_l1n/mesh0.exr && ! grep -a -q irr_r_4 bake_l1n/mesh0.exr && echo l1-nonlinear-ok")
+sphbasis_bake_bad(sg_solver_not_sg "--sg-solver: only for --basis sg5\\|sg6\\|sg9\\|sg12 \\(or sg\\), got 'zh3'"
+  bake ${_scenes}/lone_sphere.json --basis zh3 --sg-solver nnls)
+sphbasis_bake_bad(sg_solver_unknown "--sg-solver: expected ls, nnls or running, got 'svd'"
+  bake ${_scenes}/lone_sphere.json --basis sg9 --sg-solver svd)
+sphbasis_bake_bad(coeffs_zh3 "--coeffs: 'zh3' stores 5 values, got 9"
+  bake ${_scenes}/lone_sphere.json --basis zh3 --coeffs 9)
 # Irradiance and radiance with their standard errors at a surface point: "irradiance" (three
 # lists of --coeffs), "irradiance_stderr" (one list), "radiance", "radiance_stderr", "inside".
 sphbasis_bake_test(points_stderr_keys "\\{\"p\":\\[0.5,0,0\\],\"n\":\\[0,0,1\\],\"irradiance\":\\[\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\]\\],\"irradiance_stderr\":\\[[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+\\],\"radiance\":\\[\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\]\\],\"radiance_stderr\":\\[[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+\\],\"inside\":false\\}"

@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "sphbasis/render/bake.hpp"
@@ -37,7 +38,31 @@ struct WallScene {
         }
         return pts;
     }
+    /// Appends the first `count` points of pts lifted to z = 2e5, above everything (ids id0 + i):
+    /// they see no occluder, report a standard error of 0 and stop after one batch.
+    static void add_open_points(std::vector<BakePoint>& pts, std::size_t count, std::uint64_t id0) {
+        for (std::size_t i = 0; i < count; ++i) {
+            BakePoint p = pts[i];
+            p.p.z = 2e5;
+            p.id = id0 + i;
+            pts.push_back(p);
+        }
+    }
 };
+
+/// Settings baking ao with `rays` rays per batch and `seed`; an adaptive target `target` for ao
+/// up to `batches` batches when target > 0.
+BakeSettings ao_settings(int rays, std::uint64_t seed, double target = 0, int batches = 0) {
+    BakeSettings s;
+    s.quantities = Quantity::ao;
+    s.rays = rays;
+    s.seed = seed;
+    if (target > 0) {
+        s.adaptive[Quantity::ao] = target;
+        s.adaptive.max_rays = rays * batches;
+    }
+    return s;
+}
 
 }  // namespace
 
@@ -70,13 +95,8 @@ TEST_CASE("render::Baker adaptive: one batch is the fixed bake, bit for bit", "[
 TEST_CASE("render::Baker adaptive: each point stops at the first batch that meets its target",
           "[render][bake]") {
     WallScene w;
-    BakeSettings s;
-    s.quantities = Quantity::ao;
-    s.rays = 64;
-    s.seed = 11;
     const double target = 0.02;
-    s.adaptive[Quantity::ao] = target;
-    s.adaptive.max_rays = 64 * 40;
+    const BakeSettings s = ao_settings(64, 11, target, 40);
     const auto pts = WallScene::points(16);
     const auto r = Baker(w.desc(), s).bake(pts);
     for (std::size_t i = 0; i < pts.size(); ++i) {
@@ -111,13 +131,8 @@ TEST_CASE("render::Baker adaptive: the measured ao error meets the target (close
     // point at p = 1/2) would stop a point early. A bake stopped at the first batch (64 rays, a
     // standard error of 0.0625 = 3.1 t) would give a sum near 100 * 9.8 under Monte Carlo.
     WallScene w;
-    BakeSettings s;
-    s.quantities = Quantity::ao;
-    s.rays = 32;
-    s.seed = 5;
     const double t = 0.02;
-    s.adaptive[Quantity::ao] = t;
-    s.adaptive.max_rays = 32 * 100;
+    const BakeSettings s = ao_settings(32, 5, t, 100);
     const auto pts = WallScene::points(100, 7000);
     const auto r = Baker(w.desc(), s).bake(pts);
     double chi = 0;
@@ -144,12 +159,7 @@ TEST_CASE("render::Baker adaptive: same results for any thread count and any sha
     s.adaptive[Quantity::bent] = 0.1;
     s.adaptive.max_rays = 32 * 64;
     auto pts = WallScene::points(20, 500);
-    for (std::size_t i = 0; i < 4; ++i) {  // above everything: converged after one batch
-        BakePoint p = pts[i];
-        p.p.z = 2e5;
-        p.id = 900 + i;
-        pts.push_back(p);
-    }
+    WallScene::add_open_points(pts, 4, 900);  // converged after one batch
     std::vector<PointResult> r1, r2;
     {
         tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
@@ -190,20 +200,10 @@ TEST_CASE("render::Baker adaptive: same results for any thread count and any sha
 TEST_CASE("render::Baker adaptive: the summary counts rays and estimates the fixed count",
           "[render][bake]") {
     WallScene w;
-    BakeSettings s;
-    s.quantities = Quantity::ao;
-    s.rays = 64;
-    s.adaptive[Quantity::ao] = 0.02;
-    s.adaptive.max_rays = 64 * 20;
-    // Points beside the wall and points above everything, facing open sky: those see no
-    // occluder, report a standard error of 0 and stop after one batch.
+    const BakeSettings s = ao_settings(64, 0, 0.02, 20);
+    // Points beside the wall and points above everything, facing open sky.
     auto pts = WallScene::points(8);
-    for (std::size_t i = 0; i < 8; ++i) {
-        BakePoint p = pts[i];
-        p.p = {2 + double(i), 0, 2e5};
-        p.id = 100 + i;
-        pts.push_back(p);
-    }
+    WallScene::add_open_points(pts, 8, 100);
     Baker b(w.desc(), s);
     const auto r = b.bake(pts);
     AdaptiveSummary sum;
@@ -230,10 +230,7 @@ TEST_CASE("render::Baker adaptive: the summary counts rays and estimates the fix
 
 TEST_CASE("render::Baker adaptive: bad settings", "[render][bake]") {
     WallScene w;
-    BakeSettings s;
-    s.quantities = Quantity::ao;
-    s.rays = 64;
-    s.adaptive[Quantity::ao] = 0.01;
+    BakeSettings s = ao_settings(64, 0, 0.01, 1);
     s.adaptive.max_rays = 32;
     CHECK_THROWS_WITH(Baker(w.desc(), s), Catch::Contains("adaptive.max_rays"));
     s.adaptive.max_rays = 0;

@@ -1,6 +1,7 @@
 // Tests of render/representation.hpp: closed forms under constant and analytic lighting, PRT
 // against ao under a constant sky, render-time rotation against re-baking, the bake cache's
 // counters, and the bake record's serialisation.
+#include <Eigen/Dense>
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -10,6 +11,8 @@
 #include <vector>
 
 #include "render_test_support.hpp"
+#include "sphbasis/ops/sg_fit.hpp"
+#include "sphbasis/render/irradiance_fit.hpp"
 #include "sphbasis/render/representation.hpp"
 #include "sphbasis/render/shapes.hpp"
 
@@ -84,6 +87,28 @@ vec3<double> mat_apply(const Mat3<double>& r, const vec3<double>& v) {
             r[6] * v.x + r[7] * v.y + r[8] * v.z};
 }
 
+/// The value at +z of the fit of (1 + z)/2 over the tangent hemisphere in the lobes of
+/// lightmap-sgN[-nnls|-running], by ops/sg_fit.hpp on the bake's fit directions (least squares,
+/// NNLS: hemisphere_rule_sqrt(32, 32); running average: render::sg_running_directions()).
+double sg_fit_factor(const std::string& name) {
+    const bool nnls = name.find("-nnls") != std::string::npos;
+    const bool running = name.find("-running") != std::string::npos;
+    const int lobes = std::stoi(name.substr(std::string("lightmap-sg").size()));
+    const DirectionalRule rule =
+        running ? render::sg_running_directions() : hemisphere_rule_sqrt(32, 32);
+    Eigen::MatrixXd v(Eigen::Index(rule.size()), 1);
+    for (std::size_t i = 0; i < rule.size(); ++i) v(Eigen::Index(i), 0) = 0.5 * (1 + rule.z[i]);
+    const auto set = sg::bakinglab_lobes(lobes);
+    const Eigen::MatrixXd a =
+        sg::fit_function(set, rule, v,
+                         running ? sg::Solver::running_average
+                                 : (nnls ? sg::Solver::nnls : sg::Solver::least_squares));
+    double at_z = 0;
+    for (std::size_t k = 0; k < set.size(); ++k)
+        at_z += a(Eigen::Index(k), 0) * sg::eval(set[k], 0.0, 0.0, 1.0);
+    return at_z;
+}
+
 /// A small lat-long map with a smooth gradient and a bright patch.
 std::vector<float> latlong_texels(int w, int h) {
     return sphbasis_test::rgb_texels(w, h, [h](int x, int y, float* p) {
@@ -103,7 +128,7 @@ TEST_CASE("representations: names, unknown and duplicate names, bad settings", "
     w.build();
     render::RepresentationSettings s;
     const auto& names = render::representation_names();
-    REQUIRE(names.size() == 39);
+    REQUIRE(names.size() == 49);
     // Every lightmap basis exists in the registry.
     for (const char* b : {"sh", "hbasis", "hbasis-mod", "hl2", "hsh"}) CHECK_NOTHROW(find_basis(b));
     CHECK_THROWS_WITH(render::Representations(w.desc, *w.rt, s, {"ao", "nonsense"}),
@@ -426,9 +451,19 @@ TEST_CASE("representations: lightmaps of an unoccluded quad under a constant sky
         // The hemispherical ambient cube spans 1 and z^2 along the normal (alpha (1 - z^2) +
         // beta z^2): the fit of (1 + z)/2 in {1, z^2} with the measure dz has a + b = 17/16 at
         // z = 1. Ambient Dice spans 1 and reproduces it to 0.11% (numerical least squares).
-        const double factor = names[k] == "lightmap-hl2"             ? 1.25
-                              : names[k] == "lightmap-ambient-cube5" ? 17.0 / 16.0
-                                                                     : 1.0;
+        // ZH3 holds E's SH exactly (E is linear in z: band 2 vanishes). Non-linear L1: with
+        // R0 = pi L / 2 and r = |R1| / R0 = 1/2, p = 2, a = 1/3, f(+z) = R0 (a + (1 - a) 3) =
+        // (7/3) R0 = (7/6) E. ZH3 hallucinated: the radiance ratio r = sqrt(3)/2 gives
+        // z = E_00 (0.08 r + 0.6 r^2) / 4, adding 2 z sqrt(5/(16 pi)) = E sqrt(5)/8 (0.08 r +
+        // 0.6 r^2) at +z. SG lobes: their least-squares fit of (1 + z)/2 (sg_fit_factor()).
+        const double rh = std::sqrt(3.0) / 2;
+        const double factor = names[k] == "lightmap-hl2"               ? 1.25
+                              : names[k] == "lightmap-ambient-cube5"   ? 17.0 / 16.0
+                              : names[k] == "lightmap-sh-l1-nonlinear" ? 7.0 / 6.0
+                              : names[k] == "lightmap-zh3-hallucinate"
+                                  ? 1 + std::sqrt(5.0) / 8 * (0.08 * rh + 0.6 * rh * rh)
+                              : names[k].rfind("lightmap-sg", 0) == 0 ? sg_fit_factor(names[k])
+                                                                      : 1.0;
         double worst = 0;
         for (int y = 0; y < 8; ++y)
             for (int x = 0; x < 8; ++x)

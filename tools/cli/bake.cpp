@@ -87,6 +87,8 @@
 #include <sphbasis/render/seams.hpp>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "../support/bake_cache.hpp"
@@ -451,6 +453,37 @@ std::vector<Column> columns(const render::BakeSettings& s, const Layout& L, bool
 
 // ---------------------------------------------------------------------------------------------
 // Settings, plan and summary as JSON
+
+/// bake.json's "irradiance": what the channels irr_r_k, irr_g_k, irr_b_k hold (value k of the
+/// irradiance E(n') = int L max(n' . w, 0) dw over tangent-space normals n', physical units, in
+/// the storage of render::irradiance_storage()) and how a shader evaluates them.
+Json irradiance_json(const render::BakeSettings& s) {
+    const render::IrradianceStorage r = render::irradiance_storage(s.basis, s.coeffs);
+    using K = render::IrradianceStorage::Kind;
+    Json j = {{"storage", s.basis}, {"values", s.coeffs}};
+    if (r.kind == K::fitted) {
+        j["channels"] = {"E_00", "E_1-1", "E_10", "E_11"};
+        if (s.coeffs == 5) j["channels"].push_back("z");
+        j["fit"] = std::string(r.fitted->name) +
+                   ": the first SH coefficients of E (ACN, no Condon-Shortley phase)" +
+                   (s.coeffs == 5 ? " and z, the zonal coefficient along their L1 axis" : "");
+        j["evaluate"] = std::string("basis/registry.hpp find_fitted_basis(\"") + r.fitted->name +
+                        "\")->eval_d(values, n')";
+        return j;
+    }
+    j["channels"] = std::string("coefficient k of basis '") + r.basis->name + "' (" +
+                    std::to_string(s.coeffs) + " functions), E(n') = sum_k c_k B_k(n')";
+    j["fit"] = r.kind == K::sg_nnls ? "non-negative least squares on the fit rule"
+               : r.kind == K::sg_running
+                   ? "Roughton's running average (render::sg_running_directions)"
+                   : "least squares on the fit rule";
+    if (std::string(r.basis->name) == "sg") {
+        Json axes = Json::array();
+        for (const auto& a : sg::bakinglab_axes(s.coeffs)) axes.push_back({a[0], a[1], a[2]});
+        j["lobes"] = {{"axes", axes}, {"sharpness", sg::bakinglab_sharpness(s.coeffs)}};
+    }
+    return j;
+}
 
 Json settings_json(const render::BakeSettings& s) {
     Json q = Json::array();
@@ -964,13 +997,49 @@ Json store_for_render(const render::SceneDesc& desc, const SceneFile& scene, con
 struct BakeOptions {
     std::string scene, quantities = "ao", basis = "sh", target = "vertices", points, out = ".",
                        shard, max_distance, format = "native", encoding = "png8", exports,
-                       target_error;
+                       target_error, sg_solver = "ls";
     bool no_cache = false;
     long long bands = 3, coeffs = 9, rays = 256, bounces = 0, seed = 0, max_rays = 0;
     CLI::Option *target_opt = nullptr, *points_opt = nullptr, *out_opt = nullptr,
-                *maxd_opt = nullptr;
+                *maxd_opt = nullptr, *coeffs_opt = nullptr;
     GlEngine gl;  // --engine gl (bake_gl.hpp)
 };
+
+/// --basis, --coeffs and --sg-solver as render::BakeSettings::basis and coeffs: "sgN" is "sg"
+/// with N lobes; a basis or representation of one size (ambient-dice, zh3, zh3-hallucinate,
+/// sh-l1-nonlinear) and the hemispherical ambient cube (5) take their size without --coeffs;
+/// --sg-solver nnls|running stores "sg-nnls" / "sg-running".
+std::pair<std::string, int> irradiance_basis_of(const BakeOptions& o) {
+    std::string name = o.basis;
+    int coeffs = static_cast<int>(o.coeffs);
+    const bool given = o.coeffs_opt != nullptr && o.coeffs_opt->count() > 0;
+    auto fixed = [&](int n) {
+        if (given && coeffs != n)
+            throw UsageError("--coeffs: '" + quote_input(o.basis) + "' stores " +
+                             std::to_string(n) + " values, got " + std::to_string(coeffs));
+        coeffs = n;
+    };
+    for (int n : {5, 6, 9, 12})
+        if (name == "sg" + std::to_string(n)) {
+            name = "sg";
+            fixed(n);
+        }
+    if (!given) {
+        if (name == "ambient-cube") coeffs = 5;
+        if (name == "ambient-dice") coeffs = 12;
+    }
+    if (const FittedBasisInfo* f = find_fitted_basis(name)) fixed(f->stored);
+    if (o.sg_solver != "ls") {
+        if (o.sg_solver != "nnls" && o.sg_solver != "running")
+            throw UsageError("--sg-solver: expected ls, nnls or running, got '" +
+                             quote_input(o.sg_solver) + "'");
+        if (name != "sg")
+            throw UsageError("--sg-solver: only for --basis sg5|sg6|sg9|sg12 (or sg), got '" +
+                             quote_input(o.basis) + "'");
+        name = "sg-" + o.sg_solver;
+    }
+    return {name, coeffs};
+}
 
 /// Estimated bytes per baked point: its layout (BakePoint), its result (Baker::result_bytes),
 /// the packed record (doubles) and the output's copy of it (floats in PLY/EXR, text in JSON).
@@ -983,17 +1052,18 @@ render::BakeSettings settings_of(const BakeOptions& o) {
     render::BakeSettings s;
     s.quantities = parse_quantities(o.quantities);
     s.bands = static_cast<int>(o.bands);
-    const BasisInfo* b = nullptr;
-    try {
-        b = &find_basis(o.basis);
-    } catch (const std::invalid_argument& e) {
-        throw UsageError(std::string("--basis: ") + e.what());
+    std::tie(s.basis, s.coeffs) = irradiance_basis_of(o);
+    if (find_fitted_basis(s.basis) == nullptr) {  // a fitted one's count is checked above
+        const BasisInfo* b = nullptr;
+        try {
+            b = &find_basis(s.basis == "sg-nnls" || s.basis == "sg-running" ? "sg" : s.basis);
+        } catch (const std::invalid_argument& e) {
+            throw UsageError(std::string("--basis: ") + e.what());
+        }
+        if (!b->valid_count(s.coeffs))
+            throw UsageError(std::string("--coeffs: basis '") + b->name + "' expects " +
+                             b->count_rule() + " functions, got " + std::to_string(s.coeffs));
     }
-    if (!b->valid_count(static_cast<int>(o.coeffs)))
-        throw UsageError(std::string("--coeffs: basis '") + b->name + "' expects " +
-                         b->count_rule() + " functions, got " + std::to_string(o.coeffs));
-    s.basis = b->name;
-    s.coeffs = static_cast<int>(o.coeffs);
     s.rays = static_cast<int>(o.rays);
     s.bounces = static_cast<int>(o.bounces);
     s.seed = static_cast<std::uint64_t>(o.seed);
@@ -1161,6 +1231,7 @@ int run_bake(const BakeOptions& o) {
                     {"rays", rays},
                     {"rays_per_second", t_bake > 0 ? static_cast<double>(rays) / t_bake : 0.0}};
     if (o.gl.gl()) summary["engine"] = gl_record;
+    if (has(s.quantities, render::Quantity::irradiance)) summary["irradiance"] = irradiance_json(s);
     if (shard.count > 1)
         summary["shard"] = {
             {"index", shard.index}, {"count", shard.count}, {"begin", begin}, {"end", end}};
@@ -1346,6 +1417,7 @@ int run_merge(const MergeOptions& o) {
         {"rays_per_second", bake_seconds > 0 ? static_cast<double>(rays) / bake_seconds : 0.0},
         {"shards", count}};
     if (s.adaptive.enabled()) summary["adaptive"] = adaptive_json(s, adaptive);
+    if (has(s.quantities, render::Quantity::irradiance)) summary["irradiance"] = irradiance_json(s);
     if (gltf)
         add_engine_files(out, o.out, engine_input(scene, w, s, &rec, encoding, compression),
                          summary);
@@ -1380,11 +1452,18 @@ Run setup_bake(CLI::App& app) {
     add_integer(app, "--bands", o->bands, 1, 16, "SH bands of visibility, transfer and radiance");
     app.add_option("--basis", o->basis,
                    "basis of irradiance: sh, hbasis, hbasis-mod, hl2, hsh, makhotkin, zernike, "
-                   "sg (BakingLab's lobes: --coeffs 5, 6, 9 or 12), ambient-cube (--coeffs 5), "
-                   "ambient-dice (--coeffs 12)")
+                   "sg5|sg6|sg9|sg12 (BakingLab's lobes; or sg --coeffs N), ambient-cube (5 "
+                   "values), ambient-dice (12); non-linear: zh3 (5 values), zh3-hallucinate (4), "
+                   "sh-l1-nonlinear (4)")
         ->type_name("NAME")
         ->capture_default_str();
-    add_integer(app, "--coeffs", o->coeffs, 1, 1024, "irradiance coefficients");
+    o->coeffs_opt = add_integer(app, "--coeffs", o->coeffs, 1, 1024,
+                                "irradiance coefficients (default 9, or the basis's one size)");
+    app.add_option("--sg-solver", o->sg_solver,
+                   "--basis sgN: least squares (ls), non-negative least squares (nnls) or "
+                   "Roughton's running average (running)")
+        ->type_name("ls|nnls|running")
+        ->capture_default_str();
     add_integer(app, "--rays", o->rays, 1, 1 << 24, "rays per point and pass");
     add_integer(app, "--bounces", o->bounces, 0, 64, "interreflection bounces at most", "B");
     add_integer(app, "--seed", o->seed, 0, std::numeric_limits<long long>::max(), "random seed",

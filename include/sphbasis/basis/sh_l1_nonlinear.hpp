@@ -39,6 +39,7 @@
 #include "../core/scalar.hpp"
 #include "../core/simd.hpp"
 #include "basis.hpp"
+#include "detail/expansion_batch.hpp"
 #include "sh.hpp"
 
 namespace sphbasis::sh_l1_nonlinear {
@@ -120,16 +121,8 @@ T eval(const T* c, T x, T y, T z) {
 /// by lane.
 template <class T>
 void eval_batch(const T* c, std::size_t directions, const T* xs, const T* ys, const T* zs, T* out) {
-    constexpr const char* fn = "sh_l1_nonlinear::eval_batch";
-    for (const T* p : {xs, ys, zs}) sphbasis::detail::check_buffer(fn, "direction", p, directions);
-    sphbasis::detail::check_buffer(fn, "out", out, directions);
-    const Expansion<T> e(c);
-    sphbasis::detail::for_each_direction(
-        directions, xs, ys, zs,
-        [&](const batch<T>& x, const batch<T>& y, const batch<T>& z, std::size_t i) {
-            e(x, y, z).store(out + i);
-        },
-        [&](T x, T y, T z, std::size_t i) { out[i] = e(x, y, z); });
+    sphbasis::detail::eval_expansion_batch<Expansion>("sh_l1_nonlinear::eval_batch", c, directions,
+                                                      xs, ys, zs, out);
 }
 
 /// The SH coefficients (ACN, library convention) of the model of 4 values c, to `bands` bands

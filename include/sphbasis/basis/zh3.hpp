@@ -38,6 +38,7 @@
 #include "../core/scalar.hpp"
 #include "../core/simd.hpp"
 #include "basis.hpp"
+#include "detail/expansion_batch.hpp"
 
 namespace sphbasis::zh3 {
 
@@ -141,16 +142,8 @@ T eval(const T* c, T x, T y, T z) {
 /// f at `directions` directions (SoA, normalised as by eval), SIMD across directions.
 template <class T>
 void eval_batch(const T* c, std::size_t directions, const T* xs, const T* ys, const T* zs, T* out) {
-    constexpr const char* fn = "zh3::eval_batch";
-    for (const T* p : {xs, ys, zs}) sphbasis::detail::check_buffer(fn, "direction", p, directions);
-    sphbasis::detail::check_buffer(fn, "out", out, directions);
-    const Expansion<T> e(c);
-    sphbasis::detail::for_each_direction(
-        directions, xs, ys, zs,
-        [&](const batch<T>& x, const batch<T>& y, const batch<T>& z, std::size_t i) {
-            e(x, y, z).store(out + i);
-        },
-        [&](T x, T y, T z, std::size_t i) { out[i] = e(x, y, z); });
+    sphbasis::detail::eval_expansion_batch<Expansion>("zh3::eval_batch", c, directions, xs, ys, zs,
+                                                      out);
 }
 
 /// The SH coefficients (ACN, library convention) of the ZH3 function of 5 values c, to `bands`

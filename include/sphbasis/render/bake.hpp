@@ -59,6 +59,14 @@
 //                occludes, L_in is integrated by quadrature (hemisphere_rule(48)) instead of
 //                rays: exact for the environment's smooth part, approximate at the edge of a
 //                small cone or sphere light.
+//                What is stored (BakeSettings::basis, render::irradiance_storage()): a basis's
+//                least-squares coefficients as above; "sg-running": BakingLab's SG lobes by
+//                Roughton's running average of E at fixed uniform directions (linear: a projector
+//                like the least squares'); "sg-nnls": the lobes' least squares with amplitudes
+//                >= 0; "zh3", "zh3-hallucinate", "sh-l1-nonlinear": their fit of E's SH (E_lm =
+//                pi a_l L_lm, directional lights' exactly). The bake estimates a linear stage
+//                (the coefficients; the fitted ones: E's first 9 or 4 SH), pooled by adaptive
+//                sampling, and converts it once per point (Baker::finish_point()).
 //                irradiance_stderr (coeffs, max over R, G, B): the Monte Carlo standard error of
 //                that estimator. The fit is linear in the samples: e = M L_lm + (directional
 //                part), M = irr_map (coeffs x 64: least-squares projector times the clamped-cosine
@@ -255,10 +263,14 @@ struct AdaptiveSampling {
 struct BakeSettings {
     Quantity quantities = Quantity::ao;  // a set (|)
     int bands = 3;  // SH bands of visibility, transfer, radiance; transfer_matrix: of the lighting
-    std::string basis = "sh";  // basis of `irradiance` (a name of find_basis())
-    int coeffs = 9;            // its coefficient count
-    int rays = 256;            // rays per point and pass
-    int bounces = 0;           // at most this many interreflection bounces
+    /// What `irradiance` stores (render::irradiance_storage()): a basis of find_basis() ("sh",
+    /// "hbasis", ..., "sg", "ambient-cube", "ambient-dice"), BakingLab's SG lobes fitted by
+    /// non-negative least squares ("sg-nnls") or the running average ("sg-running"), or a
+    /// fitted representation ("zh3", "zh3-hallucinate", "sh-l1-nonlinear").
+    std::string basis = "sh";
+    int coeffs = 9;   // its coefficient count (values per channel)
+    int rays = 256;   // rays per point and pass
+    int bounces = 0;  // at most this many interreflection bounces
     std::uint64_t seed = 0;
     double max_distance =
         std::numeric_limits<double>::infinity();  // ao: farther hits don't occlude
@@ -745,13 +757,8 @@ class Baker {
                 sphbasis::detail::throw_invalid(
                     fn, "adaptive sampling: a target > 0 for at least one requested quantity");
         }
-        if (has(s.quantities, Quantity::irradiance)) {
-            const BasisInfo& b = find_basis(s.basis);
-            if (!b.valid_count(s.coeffs))
-                sphbasis::detail::throw_invalid(fn, std::string("coeffs: ") + b.count_rule() +
-                                                        " functions for basis '" + b.name +
-                                                        "', got " + std::to_string(s.coeffs));
-        }
+        if (has(s.quantities, Quantity::irradiance))
+            (void)irradiance_storage(s.basis, s.coeffs, fn);
         return s;
     }
     static std::unique_ptr<Scene> timed_scene(const std::vector<MeshView>& m, double& seconds) {
@@ -934,27 +941,54 @@ class Baker {
 
     // ---- precomputation -------------------------------------------------------------------
     void prepare_irradiance() {
-        // One fit for every irradiance in the library (render/irradiance_fit.hpp): least squares
-        // over hemisphere_rule_sqrt(32, 32) in the tangent frame, as a projector P (coeffs x M).
-        irr_fit_ = std::make_shared<const IrradianceFit>(settings_.basis, settings_.coeffs,
-                                                         hemisphere_rule_sqrt(32, 32));
-        irr_rule_ = irr_fit_->rule();
-        irr_projector_ = Eigen::Map<
-            const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-            irr_fit_->projector().data(), irr_fit_->coeffs(),
-            static_cast<Eigen::Index>(irr_fit_->directions()));
+        // The linear stage (header comment): irr_map_ (stage x 64) takes L_lm (local, 8 bands) to
+        // the stage's values, irr_projector_ (stage x M) the irradiance on irr_rule_'s M
+        // directions (directional lights) to them.
+        irr_ = irradiance_storage(settings_.basis, settings_.coeffs);
         const int n = irr_bands * irr_bands;
         double a[irr_bands];
         clamped_cosine_factors(irr_bands, a);
-        Eigen::MatrixXd m(static_cast<Eigen::Index>(irr_rule_.size()), n);
-        std::vector<double> y(static_cast<std::size_t>(n));
-        for (std::size_t i = 0; i < irr_rule_.size(); ++i) {
-            sh::eval_unit(irr_bands, irr_rule_.x[i], irr_rule_.y[i], irr_rule_.z[i], y.data());
+        using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+        if (irr_.kind == IrradianceStorage::Kind::fitted) {
+            // The irradiance's SH: E_lm = pi a_l L_lm (directional lights: finish_irradiance()).
+            irr_map_ = Eigen::MatrixXd::Zero(irr_.stage(), n);
             for (int l = 0; l < irr_bands; ++l)
-                for (int k = l * l; k < (l + 1) * (l + 1); ++k)
-                    m(Eigen::Index(i), k) = constants::pi * a[l] * y[std::size_t(k)];
+                for (int k = l * l; k < (l + 1) * (l + 1) && k < irr_.stage(); ++k)
+                    irr_map_(k, k) = constants::pi * a[l];
+        } else {
+            if (irr_.kind == IrradianceStorage::Kind::sg_running) {
+                irr_rule_ = sg_running_directions();
+                irr_projector_ = Eigen::Map<const RowMajor>(
+                    sg_running_projector(settings_.coeffs, irr_rule_).data(), settings_.coeffs,
+                    static_cast<Eigen::Index>(irr_rule_.size()));
+            } else {
+                // One fit for every irradiance in the library (render/irradiance_fit.hpp): least
+                // squares over hemisphere_rule_sqrt(32, 32) in the tangent frame, as a projector
+                // P (coeffs x M).
+                const IrradianceFit fit(irr_.basis->name, settings_.coeffs,
+                                        hemisphere_rule_sqrt(32, 32));
+                irr_rule_ = fit.rule();
+                irr_projector_ =
+                    Eigen::Map<const RowMajor>(fit.projector().data(), fit.coeffs(),
+                                               static_cast<Eigen::Index>(fit.directions()));
+                if (irr_.kind == IrradianceStorage::Kind::sg_nnls) {
+                    // G = Phi^T V Phi on the rule (NNLS in the Gram form: finish_point()).
+                    const BasicLeastSquares<> ls(irr_.basis->functions(settings_.coeffs), false,
+                                                 irr_rule_);
+                    irr_gram_ =
+                        ls.evaluation().transpose() * ls.weights().asDiagonal() * ls.evaluation();
+                }
+            }
+            Eigen::MatrixXd m(static_cast<Eigen::Index>(irr_rule_.size()), n);
+            std::vector<double> y(static_cast<std::size_t>(n));
+            for (std::size_t i = 0; i < irr_rule_.size(); ++i) {
+                sh::eval_unit(irr_bands, irr_rule_.x[i], irr_rule_.y[i], irr_rule_.z[i], y.data());
+                for (int l = 0; l < irr_bands; ++l)
+                    for (int k = l * l; k < (l + 1) * (l + 1); ++k)
+                        m(Eigen::Index(i), k) = constants::pi * a[l] * y[std::size_t(k)];
+            }
+            irr_map_ = irr_projector_ * m;  // coeffs x n: L_lm (local) -> fitted E
         }
-        irr_map_ = irr_projector_ * m;  // coeffs x n: L_lm (local) -> fitted E
         irr_map_rows_.resize(std::size_t(irr_map_.size()));
         for (Eigen::Index k = 0; k < irr_map_.rows(); ++k)
             for (Eigen::Index i = 0; i < n; ++i)
@@ -997,6 +1031,34 @@ class Baker {
             }
         }
         res.rays = local_rays(L) - r0;
+        if (wants(Quantity::irradiance)) finish_point(res);
+    }
+
+    /// The stored irradiance from the linear stage (header comment), after adaptive pooling:
+    /// sg-nnls solves the NNLS of the least-squares amplitudes c (h = G c); a fitted
+    /// representation fits the stage's SH of E, its standard errors those of the SH it copies,
+    /// and ZH3's zonal value z = sqrt(4 pi / 5) sum_m e_2m y_2m(axis) the bound
+    /// sqrt(sum_m stderr_2m^2) (Cauchy-Schwarz: sum_m (sqrt(4 pi / 5) y_2m)^2 = 1; the axis's own
+    /// error left out). The linear kinds are stored as estimated.
+    void finish_point(PointResult& res) const {
+        if (irr_.kind == IrradianceStorage::Kind::sg_nnls) {
+            for (auto& ch : res.irradiance) {
+                Eigen::Map<Eigen::VectorXd> c(ch.data(), Eigen::Index(ch.size()));
+                c = sg::nnls_gram(irr_gram_, irr_gram_ * c).eval();
+            }
+        } else if (irr_.kind == IrradianceStorage::Kind::fitted) {
+            const std::size_t nk = std::size_t(irr_.coeffs);
+            std::vector<double> out(nk);
+            for (auto& ch : res.irradiance) {
+                irr_.fitted->fit(ch.data(), out.data());
+                ch = out;
+            }
+            std::vector<double>& se = res.irradiance_stderr;
+            double z2 = 0;
+            for (std::size_t k = 4; k < se.size(); ++k) z2 += se[k] * se[k];
+            se.resize(nk);
+            if (nk > 4) se[4] = std::sqrt(z2);
+        }
     }
 
     void bake_batch(const BakePoint& bp, std::uint64_t key, PointResult& res, Local& L) const {
@@ -1104,7 +1166,7 @@ class Baker {
                 if (l.type == Light::Type::directional && dot(l.direction, n) > 0)
                     dir.push_back({f.to_local(l.direction), l.color});
             finish_irradiance(Llm, dir, res);
-            res.irradiance_stderr.assign(std::size_t(settings_.coeffs), 0.0);
+            res.irradiance_stderr.assign(std::size_t(irr_map_.rows()), 0.0);
         }
     }
 
@@ -1116,8 +1178,20 @@ class Baker {
         Eigen::MatrixXd lm(n8, 3);
         for (Eigen::Index k = 0; k < n8; ++k)
             for (Eigen::Index c = 0; c < 3; ++c) lm(k, c) = Llm[std::size_t(c)][std::size_t(k)];
-        Eigen::MatrixXd e = irr_map_ * lm;  // coeffs x 3
-        if (!dir.empty()) {
+        Eigen::MatrixXd e = irr_map_ * lm;  // stage x 3
+        if (irr_.kind == IrradianceStorage::Kind::fitted) {
+            // A delta of colour col along d: E_lm = pi a_l col y_lm(d), exact per coefficient.
+            const int nb = irr_.stage() <= 4 ? 2 : 3;
+            double a[3], y[9];
+            clamped_cosine_factors(nb, a);
+            for (const auto& [d, col] : dir) {
+                sh::eval_unit(nb, d.x, d.y, d.z, y);
+                for (Eigen::Index k = 0; k < e.rows(); ++k)
+                    for (Eigen::Index c = 0; c < 3; ++c)
+                        e(k, c) += constants::pi * a[k == 0 ? 0 : (k < 4 ? 1 : 2)] *
+                                   y[std::size_t(k)] * col[std::size_t(c)];
+            }
+        } else if (!dir.empty()) {
             const Eigen::Index R = static_cast<Eigen::Index>(irr_rule_.size());
             Eigen::MatrixXd s = Eigen::MatrixXd::Zero(R, 3);
             for (const auto& [d, col] : dir)
@@ -1755,7 +1829,7 @@ class Baker {
             std::array<std::vector<double>, 3> Llm;
             for (auto& v : Llm) v.assign(n8, 0.0);
             // The basis values of the lit samples are kept (columns of L.irr_y) for the error.
-            const std::size_t nk = std::size_t(settings_.coeffs);
+            const std::size_t nk = std::size_t(irr_map_.rows());
             L.irr_y.resize(n8);
             L.irr_l.resize(3 * N);
             L.irr_g.resize(nk * N);
@@ -1999,8 +2073,8 @@ class Baker {
     double rho_max_ = 0;
     int bounces_ = 0;
     DirectionalRule irr_rule_, hemi_rule_, sphere_rule_;
-    std::shared_ptr<const IrradianceFit> irr_fit_;
-    Eigen::MatrixXd irr_projector_, irr_map_;
+    IrradianceStorage irr_;
+    Eigen::MatrixXd irr_projector_, irr_map_, irr_gram_;
     std::vector<double> irr_map_rows_;  // irr_map_, row-major
     detail::rt::QmcTable qmc_;
 };

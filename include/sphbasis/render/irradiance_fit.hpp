@@ -38,9 +38,12 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -50,7 +53,9 @@
 #include "../config.hpp"
 #include "../core/error.hpp"
 #include "../core/quadrature.hpp"
+#include "../core/sampling.hpp"
 #include "../ops/projection.hpp"
+#include "../ops/sg_fit.hpp"
 
 namespace sphbasis::render {
 
@@ -256,5 +261,131 @@ class IrradianceFit {
     DirectionalRule rule_;
     std::vector<double> projector_;
 };
+
+/// What the bake's `irradiance` stores per channel (render::BakeSettings::basis and coeffs):
+///   linear       the coefficients of a basis of find_basis() ("sh", "hbasis", ..., "sg",
+///                "ambient-cube", "ambient-dice"), the least squares of IrradianceFit;
+///   sg_nnls      "sg-nnls": BakingLab's lobes (basis "sg", 5, 6, 9 or 12), the same least
+///                squares with non-negative amplitudes (sg::nnls_gram on the fit rule's Gram
+///                matrix G = Phi^T V Phi and h = G c, c the least-squares amplitudes);
+///   sg_running   "sg-running": BakingLab's lobes, Roughton's running average (sg::RunningAverage)
+///                over the irradiance at sg_running_directions() in their order. With the
+///                directions fixed it is linear in the values, so the bake applies it as a
+///                projector like the least squares (sg_running_projector());
+///   fitted       a fitted representation of find_fitted_basis() ("zh3" 5 values, "zh3-hallucinate"
+///                4, "sh-l1-nonlinear" 4), its `fit` of the irradiance's first SH coefficients
+///                over the sphere of normals (E_lm = pi a_l L_lm, exact for a radiance known to
+///                8 bands, and for directional lights).
+/// Every kind evaluates to the irradiance at a tangent-space normal (eval()).
+struct IrradianceStorage {
+    enum class Kind { linear, sg_nnls, sg_running, fitted };
+    Kind kind = Kind::linear;
+    std::string name;                         // as given ("sg-nnls", "zh3", ...)
+    const BasisInfo* basis = nullptr;         // linear, sg_nnls, sg_running: the basis
+    const FittedBasisInfo* fitted = nullptr;  // fitted
+    int coeffs = 0;                           // values stored per channel
+    /// Values per channel the bake's linear stage estimates before finish() (and pools over
+    /// adaptive batches): coeffs, or the fitted representation's SH coefficients.
+    int stage() const noexcept { return kind == Kind::fitted ? fitted->sh_coeffs : coeffs; }
+    /// The stored irradiance at a normal (x, y, z) (normalised by the basis), c: coeffs values.
+    double eval(const double* c, double x, double y, double z) const {
+        if (fitted) return fitted->eval_d(c, x, y, z);
+        std::array<double, 64> small;
+        std::vector<double> big;
+        double* v = small.data();
+        if (coeffs > 64) {
+            big.resize(std::size_t(coeffs));
+            v = big.data();
+        }
+        basis->eval_d(coeffs, x, y, z, v);
+        double s = 0;
+        for (int j = 0; j < coeffs; ++j) s += c[j] * v[j];
+        return s;
+    }
+};
+
+/// The storage called `name` with `coeffs` values (IrradianceStorage). Throws
+/// std::invalid_argument naming `fn` for an unknown name or a count the storage does not take.
+inline IrradianceStorage irradiance_storage(std::string_view name, int coeffs,
+                                            const char* fn = "render::irradiance_storage") {
+    IrradianceStorage r;
+    r.name = std::string(name);
+    r.coeffs = coeffs;
+    if (const FittedBasisInfo* f = find_fitted_basis(name)) {
+        r.kind = IrradianceStorage::Kind::fitted;
+        r.fitted = f;
+        if (coeffs != f->stored)
+            sphbasis::detail::throw_invalid(fn, std::string("coeffs: ") +
+                                                    std::to_string(f->stored) + " values for '" +
+                                                    f->name + "', got " + std::to_string(coeffs));
+        return r;
+    }
+    std::string_view b = name;
+    if (name == "sg-nnls" || name == "sg-running") {
+        r.kind = name == "sg-nnls" ? IrradianceStorage::Kind::sg_nnls
+                                   : IrradianceStorage::Kind::sg_running;
+        b = "sg";
+    }
+    try {
+        r.basis = &find_basis(b);
+    } catch (const std::invalid_argument& e) {
+        sphbasis::detail::throw_invalid(
+            fn, std::string("a basis of find_basis(), sg-nnls, sg-running or a fitted "
+                            "representation (zh3, zh3-hallucinate, sh-l1-nonlinear); ") +
+                    e.what());
+    }
+    if (!r.basis->valid_count(coeffs))
+        sphbasis::detail::throw_invalid(fn, std::string("coeffs: ") + r.basis->count_rule() +
+                                                " functions for basis '" + r.basis->name +
+                                                "', got " + std::to_string(coeffs));
+    return r;
+}
+
+/// The sample directions of the "sg-running" irradiance: `count` points of the R2 sequence
+/// (core/sampling.hpp) mapped uniformly onto the tangent hemisphere z >= 0, in sequence order
+/// (low discrepancy at every prefix, so the running average sees the whole hemisphere early),
+/// each with the weight 2 pi / count.
+inline DirectionalRule sg_running_directions(int count = 1024) {
+    sphbasis::detail::check_range("render::sg_running_directions", "count", count, 1, 1 << 20);
+    DirectionalRule r;
+    for (int i = 0; i < count; ++i) {
+        double u, v;
+        r2_sequence(std::uint64_t(i), u, v);
+        const vec3<double> d = square_to_uniform_hemisphere(u, v);
+        r.x.push_back(d.x);
+        r.y.push_back(d.y);
+        r.z.push_back(d.z);
+        r.w.push_back(constants::two_pi / count);
+    }
+    return r;
+}
+
+/// R (lobes x directions, row-major): the amplitudes of sg::RunningAverage (hemisphere lobe set
+/// of `lobes` lobes, not clamped) fed the values f_i at rule's directions in order are R f. The
+/// running average is linear in the values once the directions are fixed (its normalisation
+/// mean(G_k^2) depends on the directions only), so column i is its result for the one-hot
+/// values e_i; computed 64 columns per pass. Cost: directions^2 lobes / 64 * ~10 flops plus
+/// directions^2 / 64 lobes exp (1024 directions, 9 lobes: ~10 ms).
+inline std::vector<double> sg_running_projector(int lobes, const DirectionalRule& rule) {
+    const std::size_t m = rule.size(), k = std::size_t(lobes);
+    const std::vector<sg::Lobe<double>> set = sg::bakinglab_lobes(lobes);
+    std::vector<double> p(k * m, 0.0);
+    constexpr std::size_t chunk = 64;
+    std::vector<double> v(chunk);
+    for (std::size_t c0 = 0; c0 < m; c0 += chunk) {
+        const std::size_t nc = std::min(chunk, m - c0);
+        sg::RunningAverage ra(set, int(nc), sg::Distribution::hemisphere);
+        for (std::size_t i = 0; i < m; ++i) {
+            std::fill(v.begin(), v.end(), 0.0);
+            if (i >= c0 && i < c0 + nc) v[i - c0] = 1;
+            ra.add(rule.x[i], rule.y[i], rule.z[i], v.data());
+        }
+        const Eigen::MatrixXd& a = ra.amplitudes();
+        for (std::size_t j = 0; j < k; ++j)
+            for (std::size_t c = 0; c < nc; ++c)
+                p[j * m + c0 + c] = a(Eigen::Index(j), Eigen::Index(c));
+    }
+    return p;
+}
 
 }  // namespace sphbasis::render

@@ -1,8 +1,13 @@
 // sphbasis render tier: irradiance lightmaps in a directional basis (representations/
 // family.hpp):
 //   lightmap-sh4, -sh9, -hbasis4, -hbasis6, -hbasis-mod6, -hl2, -hsh4, -hsh9,
-//   lightmap-ambient-cube5, -ambient-dice12 (the hemispherical ambient cube: no -z face)
-//                             the bake's `irradiance` in that basis (basis/registry.hpp), per
+//   lightmap-ambient-cube5, -ambient-dice12 (the hemispherical ambient cube: no -z face),
+//   lightmap-sg5, -sg6, -sg9, -sg12 (BakingLab's lobes, least squares), -sg9-nnls (non-negative
+//                             least squares), -sg9-running (Roughton's running average),
+//   lightmap-zh3, -zh3-hallucinate, -sh-l1-nonlinear (the non-linear lightmaps: 5, 4 and 4
+//                             values per channel, fitted from the irradiance's SH)
+//                             the bake's `irradiance` stored that way (render::
+//                             irradiance_storage(), basis/registry.hpp), per
 //                             texel, bilinear, evaluated at the normal-mapped normal in the
 //                             texel's tangent frame (Ishmukhametov, "Irradiance Normal
 //                             Mapping"). Meshes without UVs fall back to irradiance-sh9 (noted).
@@ -36,19 +41,16 @@ class Lightmap : public Representation {
         const char* no_bounce = ctx.settings.bounces > 0 ? "" : "; no interreflection";
         const std::string b = name.substr(9);
         for (const auto& t : table())
-            if (b == t.first) {
-                basis_ = &find_basis(t.second.first);
-                coeffs_ = t.second.second;
-            }
-        if (!basis_)  // the table and accepts() disagree
+            if (b == t.first) storage_ = irradiance_storage(t.second.first, t.second.second);
+        if (storage_.coeffs == 0)  // the table and accepts() disagree
             sphbasis::detail::throw_invalid("render::Representations",
                                             "a lightmap basis, got '" + b + "'");
-        (void)basis_->functions(coeffs_);  // checks the count
         element = "texel";
-        bytes_per_element = 3 * std::size_t(coeffs_) * sizeof(float);
-        cannot_show = std::string("static lighting (ignores the render-time rotation)") +
-                      "; directional detail beyond " + std::to_string(coeffs_) + " " +
-                      basis_->name + " functions" + no_bounce;
+        bytes_per_element = 3 * std::size_t(storage_.coeffs) * sizeof(float);
+        cannot_show =
+            std::string("static lighting (ignores the render-time rotation)") +
+            "; directional detail beyond " + std::to_string(storage_.coeffs) + " " + storage_.name +
+            (storage_.fitted ? " values (non-linear reconstruction)" : " functions") + no_bounce;
         for (const MeshView& m : ctx.scene.meshes)
             if (!has_uvs(m)) {
                 cannot_show += "; meshes without UVs fall back to irradiance-sh9";
@@ -69,8 +71,8 @@ class Lightmap : public Representation {
             q.lightmap_size = ctx.settings.lightmap_size;
             q.lighting_dependent = true;
             q.settings = ctx.base_settings(Quantity::irradiance, ctx.settings.bounces);
-            q.settings.basis = basis_->name;
-            q.settings.coeffs = coeffs_;
+            q.settings.basis = storage_.name;
+            q.settings.coeffs = storage_.coeffs;
             mesh_bake[m] = ctx.add_request(q);
         }
     }
@@ -87,15 +89,11 @@ class Lightmap : public Representation {
         // map) is read at the horizon.
         V3 local{dot(nm, t), dot(nm, bt), std::max(dot(nm, ns), 0.0)};
         local = normalized(local, {0, 0, 1});
-        std::array<double, 16> y;
-        basis_->eval_d(coeffs_, local.x, local.y, local.z, y.data());
-        const std::size_t n = std::size_t(coeffs_);
+        const std::size_t n = std::size_t(storage_.coeffs);
         RGB out{0, 0, 0};
-        for (std::size_t c = 0; c < 3; ++c) {
-            double s = 0;
-            for (std::size_t k = 0; k < n; ++k) s += e[c * n + k] * y[k];
-            out[c] = hit.albedo[c] * s * constants::inv_pi;
-        }
+        for (std::size_t c = 0; c < 3; ++c)
+            out[c] = hit.albedo[c] * storage_.eval(e.data() + c * n, local.x, local.y, local.z) *
+                     constants::inv_pi;
         return out;
     }
 
@@ -112,11 +110,19 @@ class Lightmap : public Representation {
             {"hsh4", {"hsh", 4}},
             {"hsh9", {"hsh", 9}},
             {"ambient-cube5", {"ambient-cube", 5}},
-            {"ambient-dice12", {"ambient-dice", 12}}};
+            {"ambient-dice12", {"ambient-dice", 12}},
+            {"sg5", {"sg", 5}},
+            {"sg6", {"sg", 6}},
+            {"sg9", {"sg", 9}},
+            {"sg12", {"sg", 12}},
+            {"sg9-nnls", {"sg-nnls", 9}},
+            {"sg9-running", {"sg-running", 9}},
+            {"zh3", {"zh3", 5}},
+            {"zh3-hallucinate", {"zh3-hallucinate", 4}},
+            {"sh-l1-nonlinear", {"sh-l1-nonlinear", 4}}};
         return t;
     }
-    const BasisInfo* basis_ = nullptr;
-    int coeffs_ = 0;
+    IrradianceStorage storage_;
 };
 
 }  // namespace sphbasis::render::representations

@@ -15,6 +15,26 @@
 
 namespace sphbasis::render::representations {
 
+/// Plans the bake every volume reads: the 3-band radiance at the probes of RepresentationSettings
+/// (or 4 x 4 x 4 over the scene's bounding box), bounces, lighting-dependent; sets ctx.needs_sh
+/// (the clamped-cosine factors ctx.sh.cosine9). Returns the request's index.
+inline int plan_probe_radiance(Context& ctx) {
+    ctx.needs_sh = true;
+    BakeRequest q;
+    q.where = BakeRequest::Where::probes;
+    q.lighting_dependent = true;
+    q.settings = ctx.base_settings(Quantity::radiance, ctx.settings.bounces);
+    q.settings.bands = 3;
+    if (ctx.settings.has_probes) {
+        q.probes = ctx.settings.probes;
+    } else {
+        q.probes.lo = ctx.rt.bounds_min();
+        q.probes.hi = ctx.rt.bounds_max();
+        q.probes.counts = {4, 4, 4};
+    }
+    return ctx.add_request(q);
+}
+
 class Volume : public Representation {
   public:
     static void list(std::vector<std::string>& out) { out.push_back("volume"); }
@@ -27,22 +47,7 @@ class Volume : public Representation {
             "than the probe spacing; light leaks where probes straddle walls" +
             std::string(ctx.settings.bounces > 0 ? "" : "; no interreflection");
     }
-    void plan(Context& ctx) override {
-        ctx.needs_sh = true;  // the clamped-cosine factors (ctx.sh.cosine9)
-        BakeRequest q;
-        q.where = BakeRequest::Where::probes;
-        q.lighting_dependent = true;
-        q.settings = ctx.base_settings(Quantity::radiance, ctx.settings.bounces);
-        q.settings.bands = 3;
-        if (ctx.settings.has_probes) {
-            q.probes = ctx.settings.probes;
-        } else {
-            q.probes.lo = ctx.rt.bounds_min();
-            q.probes.hi = ctx.rt.bounds_max();
-            q.probes.counts = {4, 4, 4};
-        }
-        probe_bake = ctx.add_request(q);
-    }
+    void plan(Context& ctx) override { probe_bake = plan_probe_radiance(ctx); }
     RGB shade(const Context& ctx, const Hit& hit, const vec3<double>&, double) const override {
         const Field& f = ctx.fields[std::size_t(probe_bake)];
         std::array<double, 27> v;

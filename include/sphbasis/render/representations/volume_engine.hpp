@@ -4,6 +4,10 @@
 //                             probes storing the irradiance in the ambient cube (6 values per
 //                             channel; McTaggart 2004) or Ambient Dice (12; Iwanicki and Sloan
 //                             2017), least-squares fits over the sphere (basis/registry.hpp);
+//   volume-sg9                probes storing the irradiance in BakingLab's world-space set of 9
+//                             spherical Gaussian lobes (sg::bakinglab_lobes(9,
+//                             Distribution::sphere): the lobes cover the whole sphere), a
+//                             least-squares fit over the sphere (Pettineo, "SG Series" part 5);
 //   volume-sh-l1-nonlinear, volume-zh3-hallucinate, volume-zh3
 //                             probes storing a fitted representation (4, 4 and 5 values per
 //                             channel: L1 SH with the Geomerics reconstruction, ZH3 with its
@@ -23,8 +27,10 @@
 #include "../../basis/registry.hpp"
 #include "../../core/quadrature.hpp"
 #include "../../ops/projection.hpp"
+#include "../../ops/sg_fit.hpp"
 #include "family.hpp"
 #include "field.hpp"
+#include "volume.hpp"
 
 namespace sphbasis::render::representations {
 
@@ -41,12 +47,19 @@ class VolumeEngine : public Representation {
     VolumeEngine(const std::string& name, const Context& ctx) : Representation(name) {
         const std::string b = name.substr(7);
         fitted_ = find_fitted_basis(b);
-        if (fitted_ == nullptr) {
-            linear_ = &find_basis(b);  // throws for a name accepts() does not know
-            n_ = linear_->name == std::string("ambient-cube") ? 6 : 12;
-        } else {
-            n_ = fitted_->stored;
+        if (b == "sg9") {
+            // The world-space lobe set: unit-amplitude lobes on the whole sphere.
+            const std::vector<sg::Lobe<double>> lobes =
+                sg::bakinglab_lobes(9, sg::Distribution::sphere);
+            linear_ = {9, [lobes](double x, double y, double z, double* out) {
+                           for (std::size_t k = 0; k < lobes.size(); ++k)
+                               out[k] = sg::eval(lobes[k], x, y, z);
+                       }};
+        } else if (fitted_ == nullptr) {
+            const BasisInfo& info = find_basis(b);  // throws for a name accepts() does not know
+            linear_ = info.functions(info.name == std::string("ambient-cube") ? 6 : 12);
         }
+        n_ = fitted_ != nullptr ? fitted_->stored : linear_.n;
         element = "probe";
         bytes_per_element = 3 * std::size_t(n_) * sizeof(float);
         cannot_show =
@@ -56,29 +69,14 @@ class VolumeEngine : public Representation {
             std::to_string(n_) + " " + b + " values" +
             std::string(ctx.settings.bounces > 0 ? "" : "; no interreflection");
     }
-    void plan(Context& ctx) override {
-        ctx.needs_sh = true;  // the clamped-cosine factors (ctx.sh.cosine9)
-        BakeRequest q;
-        q.where = BakeRequest::Where::probes;
-        q.lighting_dependent = true;
-        q.settings = ctx.base_settings(Quantity::radiance, ctx.settings.bounces);
-        q.settings.bands = 3;
-        if (ctx.settings.has_probes) {
-            q.probes = ctx.settings.probes;
-        } else {
-            q.probes.lo = ctx.rt.bounds_min();
-            q.probes.hi = ctx.rt.bounds_max();
-            q.probes.counts = {4, 4, 4};
-        }
-        probe_bake = ctx.add_request(q);
-    }
+    void plan(Context& ctx) override { probe_bake = plan_probe_radiance(ctx); }
     void build(Context& ctx) override {
         const Field& f = ctx.fields[std::size_t(probe_bake)];
         const std::size_t probes = f.probe_values.size() / 27, n = std::size_t(n_);
         Eigen::MatrixXd t;  // linear: stored = T e (n x 9), the least squares over the sphere
-        if (linear_ != nullptr) {
+        if (linear_.n > 0) {
             const DirectionalRule rule = sphere_rule(40);
-            const BasicLeastSquares<> ls(linear_->functions(n_), false, rule);
+            const BasicLeastSquares<> ls(linear_, false, rule);
             t = ls.conversion(evaluation_matrix(evaluator<SH>(9), rule));
         }
         stored_.assign(probes * 3 * n, 0.0);
@@ -88,7 +86,7 @@ class VolumeEngine : public Representation {
                 for (std::size_t k = 0; k < 9; ++k)
                     e(Eigen::Index(k)) = ctx.sh.cosine9[k] * f.probe_values[27 * p + 9 * c + k];
                 double* out = stored_.data() + (p * 3 + c) * n;
-                if (linear_ != nullptr) {
+                if (linear_.n > 0) {
                     const Eigen::VectorXd s = t * e;
                     for (std::size_t k = 0; k < n; ++k) out[k] = s(Eigen::Index(k));
                 } else {
@@ -103,11 +101,11 @@ class VolumeEngine : public Representation {
         f.grid.interpolate_valid(stored_.data(), 3 * n, f.inside.data(), hit.position, v.data());
         const vec3<double> nm = Scene::normal_mapped(hit);
         std::array<double, 12> y;
-        if (linear_ != nullptr) linear_->eval_d(n_, nm.x, nm.y, nm.z, y.data());
+        if (linear_.n > 0) linear_.eval(nm.x, nm.y, nm.z, y.data());
         RGB out{0, 0, 0};
         for (std::size_t c = 0; c < 3; ++c) {
             double s = 0;
-            if (linear_ != nullptr) {
+            if (linear_.n > 0) {
                 for (std::size_t k = 0; k < n; ++k) s += v[c * n + k] * y[k];
             } else {
                 s = fitted_->eval_d(v.data() + c * n, nm.x, nm.y, nm.z);
@@ -119,11 +117,11 @@ class VolumeEngine : public Representation {
 
   private:
     static const std::vector<const char*>& names() {
-        static const std::vector<const char*> n{"ambient-cube", "ambient-dice", "sh-l1-nonlinear",
-                                                "zh3-hallucinate", "zh3"};
+        static const std::vector<const char*> n{
+            "ambient-cube", "ambient-dice", "sh-l1-nonlinear", "zh3-hallucinate", "zh3", "sg9"};
         return n;
     }
-    const BasisInfo* linear_ = nullptr;
+    BasisFunctions linear_;  // the linear stored functions (n = 0: fitted_)
     const FittedBasisInfo* fitted_ = nullptr;
     int n_ = 0;
     std::vector<double> stored_;  // probes x 3 x n
