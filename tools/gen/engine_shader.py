@@ -194,22 +194,10 @@ def shader_sums(L, sums):
 # Spherical Gaussians.
 
 
-def bakinglab_axes(count):
-    """The hemisphere set's axes (sg::bakinglab_axes), exact."""
-    n = 2 * count
-    golden = mp.pi * (3 - mp.sqrt(5))
-    axes = []
-    for k in range(n):
-        z = mp.mpf(2 * k + 1) / n - 1
-        if z < 0:
-            continue
-        r = mp.sqrt((1 - z) * (1 + z))
-        axes.append((r * mp.cos(k * golden), r * mp.sin(k * golden), z))
-    return axes
 
 
 def shader_sg(L):
-    import gen_sg_reference  # the sharpness construction: tools/gen/gen_sg_reference.py
+    import gen_sg_reference  # the sets' axes and sharpness: tools/gen/gen_sg_reference.py
 
     lang = L.lang
     two_pi = checked(2 * mp.pi, "core/constants.hpp", "two_pi")
@@ -250,7 +238,7 @@ def shader_sg(L):
     w("}")
     w("")
     for count in SG_COUNTS:
-        axes = [tuple(f32_nearest(c) for c in a) for a in bakinglab_axes(count)]
+        axes = [tuple(f32_nearest(c) for c in a) for a in gen_sg_reference.bakinglab_axes(count)]
         lam = f32_nearest(gen_sg_reference.bakinglab_sharpness(count))
         p = "sphbasis_sg%d" % count
         w("/// BakingLab's hemisphere set of %d lobes (Pettineo and Neubelt; sg::bakinglab_axes(%d)," % (

@@ -62,8 +62,9 @@ def checked(p, lam, c):
         return b
 
 
-def bakinglab_sharpness(count):
-    """The sharpness of BakingLab's hemisphere set of count lobes (construction in the header)."""
+def bakinglab_axes(count):
+    """The axes of BakingLab's hemisphere set of count lobes (sg::bakinglab_axes), exact: the
+    golden-angle spiral of 2 count points, those with z >= 0."""
     n = 2 * count
     golden = mp.pi * (3 - mp.sqrt(5))
     axes = []
@@ -73,6 +74,12 @@ def bakinglab_sharpness(count):
             continue
         r = mp.sqrt((1 - z) * (1 + z))
         axes.append((r * mp.cos(k * golden), r * mp.sin(k * golden), z))
+    return axes
+
+
+def bakinglab_sharpness(count):
+    """The sharpness of BakingLab's hemisphere set of count lobes (construction in the header)."""
+    axes = bakinglab_axes(count)
     hmin = mp.mpf(1)
     for a in axes[1:]:
         m = [a[j] + axes[0][j] for j in range(3)]
