@@ -5,16 +5,15 @@
 #include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <fstream>
 #include <sphbasis/basis/ambient_dice_bezier.hpp>
 #include <sphbasis/basis/registry.hpp>
 #include <sphbasis/core/quadrature.hpp>
 #include <sphbasis/ops/projection.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "../support/basis_checks.hpp"
+#include "../support/engine_reference.hpp"
 
 using namespace sphbasis;
 namespace tb = sphbasis::ambient_dice::tables;
@@ -32,19 +31,7 @@ Vec unit3(Vec v) {
 
 /// Lines `tag x y z v...` of tests/data/ambient_dice_bezier_reference.txt.
 std::vector<std::vector<double>> reference(const std::string& tag) {
-    std::ifstream f(std::string(SPHBASIS_TEST_DATA_DIR) + "/ambient_dice_bezier_reference.txt");
-    std::vector<std::vector<double>> rows;
-    std::string line;
-    while (std::getline(f, line)) {
-        std::istringstream s(line);
-        std::string t;
-        if (!(s >> t) || t != tag) continue;
-        std::vector<double> v;
-        double x;
-        while (s >> x) v.push_back(x);
-        rows.push_back(v);
-    }
-    return rows;
+    return sphbasis::test::engine_reference(tag, "ambient_dice_bezier_reference.txt");
 }
 
 /// A smooth test function of the direction (a cubic in x, y, z) and its gradient in R^3.

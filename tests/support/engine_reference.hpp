@@ -1,5 +1,6 @@
-// Reader of tests/data/engine_bases_reference.txt (tools/gen/gen_engine_bases_reference.py):
-// the lines starting with a given tag, as numbers after the tag.
+// Reader of tests/data/engine_bases_reference.txt (tools/gen/gen_engine_bases_reference.py) and
+// the other tagged reference files (ambient_dice_bezier_reference.txt): the lines starting with
+// a given tag, as numbers after the tag.
 #pragma once
 
 #include <fstream>
@@ -10,8 +11,9 @@
 
 namespace sphbasis::test {
 
-inline std::vector<std::vector<double>> engine_reference(const std::string& tag) {
-    std::ifstream f(std::string(SPHBASIS_TEST_DATA_DIR) + "/engine_bases_reference.txt");
+inline std::vector<std::vector<double>> engine_reference(
+    const std::string& tag, const std::string& file = "engine_bases_reference.txt") {
+    std::ifstream f(std::string(SPHBASIS_TEST_DATA_DIR) + "/" + file);
     std::vector<std::vector<double>> rows;
     std::string line;
     while (std::getline(f, line)) {
