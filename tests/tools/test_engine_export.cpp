@@ -131,6 +131,24 @@ void fill_record(double* r, const vec3<double>& p, std::size_t id) {
     r[12] = 0;
 }
 
+/// An export of `records` (stride values per point) of the meshes' points (mesh_begin: the first
+/// point of each mesh and the end) in the named columns; layouts for texels, else nullptr.
+EngineInput engine_input(EngineTarget target, const std::vector<SceneMesh>& meshes,
+                         const std::vector<std::size_t>& mesh_begin,
+                         const std::vector<render::LightmapLayout>* layouts,
+                         std::vector<std::pair<std::string, std::size_t>> columns,
+                         const std::vector<double>& records, std::size_t stride) {
+    EngineInput in;
+    in.target = target;
+    in.meshes = &meshes;
+    in.mesh_begin = &mesh_begin;
+    in.layouts = layouts;
+    in.columns = std::move(columns);
+    in.records = &records;
+    in.stride = stride;
+    return in;
+}
+
 }  // namespace
 
 TEST_CASE("engine export: range compression within scale * q for every encoding", "[tool]") {
@@ -211,13 +229,8 @@ TEST_CASE("engine export: a vertex bake as glTF, read back with tinygltf and Ass
                 rec.data() + id * kStride,
                 {m.mesh.positions[3 * v], m.mesh.positions[3 * v + 1], m.mesh.positions[3 * v + 2]},
                 id);
-    EngineInput in;
-    in.target = EngineTarget::vertices;
-    in.meshes = &scene.meshes;
-    in.mesh_begin = &begin;
-    in.columns = kColumns;
-    in.records = &rec;
-    in.stride = kStride;
+    EngineInput in =
+        engine_input(EngineTarget::vertices, scene.meshes, begin, nullptr, kColumns, rec, kStride);
     Json outputs = Json::array();
     const std::vector<EngineFile> files = export_engine(in, outputs);
     REQUIRE(files.size() == 1);
@@ -311,14 +324,8 @@ TEST_CASE("engine export: texel lightmaps within the stated bound; glTF textures
                         begin[k] + i);
     for (ImageEncoding e : kEncodings) {
         INFO(image_encoding_name(e));
-        EngineInput in;
-        in.target = EngineTarget::texels;
-        in.meshes = &scene.meshes;
-        in.mesh_begin = &begin;
-        in.layouts = &layouts;
-        in.columns = kColumns;
-        in.records = &rec;
-        in.stride = kStride;
+        EngineInput in = engine_input(EngineTarget::texels, scene.meshes, begin, &layouts, kColumns,
+                                      rec, kStride);
         in.encoding = e;
         Json outputs = Json::array();
         const std::vector<EngineFile> files = export_engine(in, outputs);
@@ -493,13 +500,8 @@ TEST_CASE("engine export: CPCA of the transfer vectors, decoded from cpca.bin", 
     for (std::uint32_t v = 0; v + 2 < P; v += 3)
         meshes[0].mesh.indices.insert(meshes[0].mesh.indices.end(), {v, v + 1, v + 2});
     const std::vector<std::size_t> begin{0, P};
-    EngineInput in;
-    in.target = EngineTarget::vertices;
-    in.meshes = &meshes;
-    in.mesh_begin = &begin;
-    in.columns = cols;
-    in.records = &rec;
-    in.stride = stride;
+    EngineInput in =
+        engine_input(EngineTarget::vertices, meshes, begin, nullptr, cols, rec, stride);
     in.compression = parse_compression_export("cpca:2:2");
     in.seed = 11;
     Json outputs = Json::array();
@@ -790,14 +792,8 @@ TEST_CASE("engine export: CPCA cluster ids and weights as lightmap-UV textures",
     const compress::QuantizedWeights<double> q = compress::quantize(model, 8);
     for (ImageEncoding e : {ImageEncoding::png8, ImageEncoding::half}) {
         INFO(image_encoding_name(e));
-        EngineInput in;
-        in.target = EngineTarget::texels;
-        in.meshes = &scene.meshes;
-        in.mesh_begin = &begin;
-        in.layouts = &layouts;
-        in.columns = cols;
-        in.records = &rec;
-        in.stride = stride;
+        EngineInput in =
+            engine_input(EngineTarget::texels, scene.meshes, begin, &layouts, cols, rec, stride);
         in.encoding = e;
         in.compression = parse_compression_export("cpca:3:2");
         in.seed = 5;
@@ -933,14 +929,8 @@ TEST_CASE("engine export: a second UV set as the lightmap set (scene loader, bak
     const std::vector<std::size_t> begin{0, layouts[0].samples.size()};
     const std::vector<std::pair<std::string, std::size_t>> cols{{"ao", 0}};
     const std::vector<double> rec(layouts[0].samples.size(), 0.75);
-    EngineInput in;
-    in.target = EngineTarget::texels;
-    in.meshes = &scene.meshes;
-    in.mesh_begin = &begin;
-    in.layouts = &layouts;
-    in.columns = cols;
-    in.records = &rec;
-    in.stride = 1;
+    EngineInput in =
+        engine_input(EngineTarget::texels, scene.meshes, begin, &layouts, cols, rec, 1);
     Json outputs = Json::array();
     const std::vector<EngineFile> files = export_engine(in, outputs);
     TempDir out;
