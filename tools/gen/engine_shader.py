@@ -15,29 +15,15 @@ that the shader's tables equal the C++ floats bit for bit.
 """
 import os
 import re
-import struct
 
 import mpmath as mp
+
+from gen_sh_fixed import _f32, _f32_step as _step  # float rounding: tools/gen/gen_sh_fixed.py
 
 mp.mp.dps = 50
 
 _ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 SG_COUNTS = (5, 6, 9, 12)
-
-
-def _f32(d):
-    return struct.unpack("<f", struct.pack("<f", float(d)))[0]
-
-
-def _step(f, up):
-    bits = struct.unpack("<I", struct.pack("<f", f))[0]
-    if f == 0:
-        bits = 1 if up else 0x80000001
-    elif (f > 0) == up:
-        bits += 1
-    else:
-        bits -= 1
-    return struct.unpack("<f", struct.pack("<I", bits))[0]
 
 
 def f32_nearest(v):
