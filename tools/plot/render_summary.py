@@ -2,7 +2,7 @@
 """The committed scenes' verdict: tables of the reports of `sphbasis render` on several scenes.
 
     /usr/bin/python3 tools/plot/render_summary.py out/render/*/report.json    # markdown on stdout
-    /usr/bin/python3 tools/plot/render_summary.py --save RUN.json REPORT.json...
+    /usr/bin/python3 tools/plot/render_summary.py --save RUN.json --md SUMMARY.md REPORT.json...
     /usr/bin/python3 tools/plot/render_summary.py --update README.md --update docs/rendering.md RUN.json
     /usr/bin/python3 tools/plot/render_summary.py --check README.md --check docs/rendering.md RUN.json
 
@@ -287,6 +287,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("inputs", nargs="+", help="report.json files or a run saved by --save")
     ap.add_argument("--save", metavar="RUN.json", help="write the fields the tables read")
+    ap.add_argument("--md", metavar="FILE", help="write the tables to FILE (else to stdout "
+                    "unless --check or --update is given)")
     ap.add_argument("--update", action="append", metavar="FILE", default=[],
                     help="rewrite FILE's marked blocks (repeatable)")
     ap.add_argument("--check", action="append", metavar="FILE", default=[],
@@ -301,9 +303,14 @@ def main():
             seen = sync(path, made, write)
             print("%s: %s %d blocks of %s (%s)" % (TOOL, "wrote" if write else "checked",
                                                    len(seen), path, ", ".join(seen)))
-        if not a.check and not a.update:
-            for name, lines in made.items():
-                print("<!-- render_summary: %s -->\n%s\n%s\n" % (name, "\n".join(lines), END))
+        md = "".join("<!-- render_summary: %s -->\n%s\n%s\n\n" % (name, "\n".join(lines), END)
+                     for name, lines in made.items())
+        if a.md:
+            with open(a.md + ".tmp", "w") as f:
+                f.write(md)
+            os.replace(a.md + ".tmp", a.md)
+        elif not a.check and not a.update:
+            sys.stdout.write(md)
     except InputError as err:
         sys.exit("%s: %s" % (TOOL, err))
 
