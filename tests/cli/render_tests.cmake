@@ -180,3 +180,8 @@ set_tests_properties(render_report_sorts_in_browser PROPERTIES
 set(_summary ${CMAKE_CURRENT_SOURCE_DIR}/../tools/plot/render_summary.py)
 sphbasis_cli_script(render_summary "render-summary-ok"
   "/usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_render_summary.py ${_summary} ${CMAKE_CURRENT_SOURCE_DIR}/data/render_summary_fixture.json render_summary_work")
+# The tables in README.md ("On the committed scenes") and docs/rendering.md are the ones
+# render_summary.py makes of the committed run (tests/data/render_readme_run.json), so their
+# numbers trace to that run.
+sphbasis_cli_script(render_summary_readme "checked [0-9]+ blocks of [^\n]*README.md[^\n]*\n[^\n]*checked [0-9]+ blocks of [^\n]*rendering.md"
+  "/usr/bin/python3 ${_summary} --check ${PROJECT_SOURCE_DIR}/README.md --check ${PROJECT_SOURCE_DIR}/docs/rendering.md ${CMAKE_CURRENT_SOURCE_DIR}/data/render_readme_run.json")

@@ -299,10 +299,6 @@ def main():
         made = blocks(scenes)
         if a.save:
             save(a.save, scenes)
-        for path, write in [(p, False) for p in a.check] + [(p, True) for p in a.update]:
-            seen = sync(path, made, write)
-            print("%s: %s %d blocks of %s (%s)" % (TOOL, "wrote" if write else "checked",
-                                                   len(seen), path, ", ".join(seen)))
         md = "".join("<!-- render_summary: %s -->\n%s\n%s\n\n" % (name, "\n".join(lines), END)
                      for name, lines in made.items())
         if a.md:
@@ -311,6 +307,10 @@ def main():
             os.replace(a.md + ".tmp", a.md)
         elif not a.check and not a.update:
             sys.stdout.write(md)
+        for path, write in [(p, False) for p in a.check] + [(p, True) for p in a.update]:
+            seen = sync(path, made, write)
+            print("%s: %s %d blocks of %s (%s)" % (TOOL, "wrote" if write else "checked",
+                                                   len(seen), path, ", ".join(seen)))
     except InputError as err:
         sys.exit("%s: %s" % (TOOL, err))
 
