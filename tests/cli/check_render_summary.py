@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""Checks tools/plot/render_summary.py on the committed fixture tests/data/render_summary_fixture.json
-(two made-up scenes "a" and "b"; volume and volume-ambient-cube ran on "a" only, prt-texel on "b"
-only; lightmap-ambient-dice-ycocg is a name the tool has no list of).
+"""Checks tools/plot/render_summary.py on the committed fixture
+tests/data/render_summary_fixture.json (two made-up scenes "a" and "b"; volume and
+volume-ambient-cube ran on "a" only, prt-texel on "b" only; lightmap-ambient-dice-ycocg is a name
+the tool has no list of).
 
 Usage: check_render_summary.py TOOL FIXTURE WORKDIR
 The irradiance table must equal the one worked out by hand below: the rows picked by name pattern
@@ -103,9 +104,12 @@ def main():
     # Bad input.
     bad = os.path.join(work, "bad.json")
     with open(bad, "w") as f:
-        f.write('{"tool": "sphbasis render", "scene": "x.json", "representations": '
-                '[{"name": "ao", "flip": NaN}]}')
+        f.write('{"tool": "sphbasis render", "scene": "x.json", "reference": {}, "sampling": {}, '
+                '"representations": [{"name": "ao", "flip": NaN}]}')
     fails("a NaN", "flip: expected a finite number", bad)
+    with open(bad, "w") as f:
+        f.write('{"tool": "sphbasis render", "scene": "x.json", "representations": []}')
+    fails("no reference", 'expected the objects "reference" and "sampling"', bad)
     with open(bad, "w") as f:
         f.write('{"protocol": "paper", "rows": []}')
     fails("not a report", "expected a report.json of `sphbasis render`", bad)

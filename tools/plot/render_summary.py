@@ -1,10 +1,10 @@
 #!/usr/bin/python3
 """The committed scenes' verdict: tables of the reports of `sphbasis render` on several scenes.
 
-    /usr/bin/python3 tools/plot/render_summary.py out/render/*/report.json    # markdown on stdout
-    /usr/bin/python3 tools/plot/render_summary.py --save RUN.json --md SUMMARY.md REPORT.json...
-    /usr/bin/python3 tools/plot/render_summary.py --update README.md --update docs/rendering.md RUN.json
-    /usr/bin/python3 tools/plot/render_summary.py --check README.md --check docs/rendering.md RUN.json
+    tools/plot/render_summary.py out/render/*/report.json    # the tables, markdown on stdout
+    tools/plot/render_summary.py --save RUN.json --md SUMMARY.md REPORT.json...
+    tools/plot/render_summary.py --update README.md --update docs/rendering.md RUN.json
+    tools/plot/render_summary.py --check README.md --check docs/rendering.md RUN.json
 
 Inputs: the report.json of `sphbasis render`, one per scene, or a run saved by --save (the fields
 these tables read, every scene in one small file: tests/data/render_readme_run.json is the run
@@ -12,23 +12,25 @@ behind README.md's "On the committed scenes"). A scene is named by its file's ba
 scenes keep the order given.
 
 Blocks (each printed under a "<!-- render_summary: NAME -->" line):
-  irradiance   the irradiance representations: every name starting with "lightmap-" (bytes per
-               texel) or "volume" (bytes per probe), found by that pattern (a representation
-               added later appears by itself). Per scene "FLIP / rel. MSE": the report's headline
+  irradiance   the irradiance representations: every name starting with "lightmap-" (bytes
+               per texel), "volume-" or equal to "volume" (bytes per probe), found by that
+               pattern (a representation added later appears by itself). Per scene "FLIP / rel. MSE": the report's headline
                metric, FLIP (LDR-FLIP of the tone-mapped images, mean over the covered pixels;
                the reports rank by it), and the floored relative MSE in linear radiance; the mean
                FLIP over the scenes the row ran on; the shading time per pixel sample on one
                thread (the median over the scenes; the camera rays the representations share are
                not in it); the bake seconds summed over the scenes. Rows: lightmaps, then
-               volumes; in each, by bytes, then by mean FLIP. "best per": "byte" where no row of
-               the same kind (texel or probe) has at most its bytes and a lower mean FLIP, or its
-               bytes and a lower mean FLIP at fewer bytes (the Pareto front of bytes against mean
-               FLIP); "ns" likewise for the median shading ns.
+               volumes; in each, by bytes, then by mean FLIP. "best per": "byte" on the Pareto
+               front of bytes against mean FLIP within its kind (texel or probe): no row has at
+               most its bytes and a lower mean FLIP, or fewer bytes and at most its mean FLIP,
+               compared as shown (FLIP to 3 decimals, whole ns: rows shown equal tie); "ns"
+               likewise for the median shading ns.
   others       every other representation (SH irradiance, AO, PRT, L×H, specular), by mean FLIP.
   scene:NAME   one scene's whole table, ranked by FLIP as its report, with its run's settings.
---update FILE... rewrites, in each file, the lines between "<!-- render_summary: NAME -->" and
-"<!-- /render_summary -->" with block NAME; --check fails (exit 1, one line naming the file and
-block) where they differ, so a document's table is the one this tool makes of the committed run.
+--update FILE (repeatable) rewrites, in each file, the lines between
+"<!-- render_summary: NAME -->" and "<!-- /render_summary -->" with block NAME; --check fails
+(exit 1, one line naming the file and block) where they differ, so a document's table is the one
+this tool makes of the committed run.
 Standard library only. Bad input: one line on stderr and exit 1.
 """
 import argparse
@@ -67,8 +69,11 @@ def trim(doc, where):
         raise InputError("%s: expected a report.json of `sphbasis render` (\"tool\": \"sphbasis "
                          "render\" and a list \"representations\")" % where)
     out = {k: doc.get(k) for k in RUN_KEYS}
-    out["reference"] = {k: doc.get("reference", {}).get(k) for k in REFERENCE_KEYS}
-    out["sampling"] = {"camera_ns_per_sample": doc.get("sampling", {}).get("camera_ns_per_sample")}
+    ref, sampling = doc.get("reference"), doc.get("sampling")
+    if not isinstance(ref, dict) or not isinstance(sampling, dict):
+        raise InputError("%s: expected the objects \"reference\" and \"sampling\"" % where)
+    out["reference"] = {k: ref.get(k) for k in REFERENCE_KEYS}
+    out["sampling"] = {"camera_ns_per_sample": sampling.get("camera_ns_per_sample")}
     rows = []
     for r in doc["representations"]:
         if not isinstance(r, dict) or not isinstance(r.get("name"), str):
@@ -130,7 +135,7 @@ def g(x, digits=3):
     return "%.*f" % (digits, x)
 
 
-def e(x):
+def sci(x):
     return "%.1e" % x if x > 0 else "0"
 
 
@@ -176,7 +181,7 @@ def scene_cells(c, names):
     cells = []
     for s in names:
         r = c["rows"].get(s)
-        cells.append("—" if r is None else "%s / %s" % (g(r["flip"]), e(r["rel_mse_floored"])))
+        cells.append("—" if r is None else "%s / %s" % (g(r["flip"]), sci(r["rel_mse_floored"])))
     return cells
 
 
@@ -226,8 +231,8 @@ def scene_block(name, t):
              "representation at the same sample positions), %d representations; shared camera "
              "rays %.0f ns per sample, shown apart; %.1f s wall on %s threads. `%s`"
              % (t["scene"], t["width"], t["height"], ref["spp"], g(ref["relative_noise"]),
-                len(rows), t["sampling"]["camera_ns_per_sample"] or 0, t["seconds"] or 0, t["threads"],
-                t["command"]), "",
+                len(rows), t["sampling"]["camera_ns_per_sample"] or 0, t["seconds"] or 0,
+                t["threads"], t["command"]), "",
              "| representation | FLIP | rel. MSE (floored) | bake s | shading ns/sample | "
              "bytes/element |", "|---|---:|---:|---:|---:|---:|"]
     for r in rows:
