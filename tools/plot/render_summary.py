@@ -12,19 +12,19 @@ behind README.md's "On the committed scenes"). A scene is named by its file's ba
 scenes keep the order given.
 
 Blocks (each printed under a "<!-- render_summary: NAME -->" line):
-  irradiance   the irradiance representations: every name starting with "lightmap-" (bytes
-               per texel), "volume-" or equal to "volume" (bytes per probe), found by that
-               pattern (a representation added later appears by itself). Per scene "FLIP / rel. MSE": the report's headline
-               metric, FLIP (LDR-FLIP of the tone-mapped images, mean over the covered pixels;
-               the reports rank by it), and the floored relative MSE in linear radiance; the mean
-               FLIP over the scenes the row ran on; the shading time per pixel sample on one
-               thread (the median over the scenes; the camera rays the representations share are
-               not in it); the bake seconds summed over the scenes. Rows: lightmaps, then
-               volumes; in each, by bytes, then by mean FLIP. "best per": "byte" on the Pareto
-               front of bytes against mean FLIP within its kind (texel or probe): no row has at
-               most its bytes and a lower mean FLIP, or fewer bytes and at most its mean FLIP,
-               compared as shown (FLIP to 3 decimals, whole ns: rows shown equal tie); "ns"
-               likewise for the median shading ns.
+  irradiance   the irradiance representations: every name starting with "lightmap-" (bytes per
+               texel), "volume-" or equal to "volume" (bytes per probe), found by that pattern (a
+               representation added later appears by itself). Per scene "FLIP / rel. MSE": the
+               report's headline metric, FLIP (LDR-FLIP of the tone-mapped images, mean over the
+               covered pixels; the reports rank by it), and the floored relative MSE in linear
+               radiance; the mean FLIP over the scenes the row ran on; the shading time per pixel
+               sample on one thread (the median over the scenes; the camera rays the representations
+               share are not in it); the bake seconds summed over the scenes. Rows: lightmaps, then
+               volumes; in each, by bytes, then by mean FLIP. "best per": "byte" on the Pareto front
+               of bytes against mean FLIP within its kind (texel or probe): no row has at most its
+               bytes and a lower mean FLIP, or fewer bytes and at most its mean FLIP, compared as
+               shown (FLIP to 3 decimals, whole ns: rows shown equal tie); "ns" likewise for the
+               median shading ns.
   others       every other representation (SH irradiance, AO, PRT, L×H, specular), by mean FLIP.
   scene:NAME   one scene's whole table, ranked by FLIP as its report, with its run's settings.
 --update FILE (repeatable) rewrites, in each file, the lines between
