@@ -174,3 +174,14 @@ sphbasis_render_test(report_sorts_in_browser "browser-sort-ok"
   "rm -rf render_sort && \"${_render}\" render ${_rscenes}/tiny_shiny.json --representations specular-toksvig,specular-aliased,irradiance-sh9 --out render_sort 2>/dev/null && python3 ${_check_sort} render_sort")
 set_tests_properties(render_report_sorts_in_browser PROPERTIES
                      SKIP_REGULAR_EXPRESSION "browser-check-skipped")
+
+# The committed scenes' verdict (tools/plot/render_summary.py, label cli, no rendering): its
+# tables on a hand-made fixture equal the ones worked out by hand (check_render_summary.py).
+set(_summary ${CMAKE_CURRENT_SOURCE_DIR}/../tools/plot/render_summary.py)
+sphbasis_cli_script(render_summary "render-summary-ok"
+  "/usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_render_summary.py ${_summary} ${CMAKE_CURRENT_SOURCE_DIR}/data/render_summary_fixture.json render_summary_work")
+# The tables in README.md ("On the committed scenes") and docs/rendering.md are the ones
+# render_summary.py makes of the committed run (tests/data/render_readme_run.json), so their
+# numbers trace to that run.
+sphbasis_cli_script(render_summary_readme "checked [0-9]+ blocks of [^\n]*README.md[^\n]*\n[^\n]*checked [0-9]+ blocks of [^\n]*rendering.md"
+  "/usr/bin/python3 ${_summary} --check ${PROJECT_SOURCE_DIR}/README.md --check ${PROJECT_SOURCE_DIR}/docs/rendering.md ${CMAKE_CURRENT_SOURCE_DIR}/data/render_readme_run.json")
