@@ -344,6 +344,17 @@ std::vector<std::size_t> high_to_low_targets(const SceneFile& scene) {
     return t;
 }
 
+/// The projection of target mesh k to its source (its "source", "max_ray_distance" and "cage").
+render::HighToLowSettings projection_of(const SceneFile& scene, std::size_t k) {
+    const SceneMesh& m = scene.meshes[k];
+    render::HighToLowSettings hs;
+    hs.target = k;
+    hs.source = static_cast<std::size_t>(m.bake_source);
+    hs.max_ray_distance = m.max_ray_distance;
+    hs.cage_positions = m.cage ? m.cage->data() : nullptr;
+    return hs;
+}
+
 /// Moves the vertex and texel points of every target to its source (w.points, w.h2l); the
 /// "project" pass of the plan (rays 0 and no pass when no mesh has a source).
 render::Pass project_sources(const SceneFile& scene, Work& w) {
@@ -357,11 +368,7 @@ render::Pass project_sources(const SceneFile& scene, Work& w) {
     std::size_t points = 0, hits = 0;
     for (std::size_t k : targets) {
         const SceneMesh& m = scene.meshes[k];
-        render::HighToLowSettings hs;
-        hs.target = k;
-        hs.source = static_cast<std::size_t>(m.bake_source);
-        hs.max_ray_distance = m.max_ray_distance;
-        hs.cage_positions = m.cage ? m.cage->data() : nullptr;
+        const render::HighToLowSettings hs = projection_of(scene, k);
         render::SourceProjector proj(desc.meshes, hs);
         const std::vector<render::ProjectedPoint> pp =
             proj.project(w.target.kind == TargetKind::vertices
@@ -950,17 +957,24 @@ ShardData read_shard(const std::string& file) {
 // also stores its results as the bake-cache entries render reads, OUT/cache/<key>.bin (one per
 // mesh with triangles; probes: one), each under render::bake_key() of the request render makes
 // for the same settings, so `sphbasis render --out OUT` or `--bake OUT` loads them instead of
-// baking. The entries are whole files (support/bake_cache.hpp), written before the outputs are
-// committed; like render's cache they are kept whatever happens after.
+// baking. The key covers adaptive sampling and high-to-low projections (render bakes neither), so
+// such a bake's entries are never taken for render's. The entries are whole files
+// (support/bake_cache.hpp), written before the outputs are committed; like render's cache they are
+// kept whatever happens after.
 
 /// Stores the parts of a complete bake (results of every point, in id order) in OUT/cache and
 /// returns bake.json's "render_cache" entry. Times and rays are shared out by point count.
-Json store_for_render(const render::SceneDesc& desc, const SceneFile& scene, const Work& w,
-                      const render::BakeSettings& s,
+Json store_for_render(const SceneFile& scene, const Work& w, const render::BakeSettings& s,
                       const std::vector<render::PointResult>& results,
                       const std::vector<render::Pass>& plan, double seconds, std::uint64_t rays,
                       const std::string& out_dir) {
     DiskBakeCache cache(join_path(out_dir, "cache"));
+    // Keyed on the whole scene, as render keys its bakes (a high-to-low bake traced without its
+    // targets: high_to_low says so).
+    const render::SceneDesc desc = scene.scene_desc();
+    std::vector<render::HighToLowSettings> projections;
+    for (std::size_t k : high_to_low_targets(scene)) projections.push_back(projection_of(scene, k));
+    const std::uint64_t high_to_low = render::high_to_low_key(desc, projections);
     Json entries = Json::array();
     const bool probes = w.target.kind == TargetKind::probes;
     const std::size_t parts = probes ? 1 : desc.meshes.size();
@@ -970,6 +984,7 @@ Json store_for_render(const render::SceneDesc& desc, const SceneFile& scene, con
         d.request.mesh = probes ? 0 : k;
         d.request.settings = s;
         d.request.lighting_dependent = render::depends_on_lighting(s.quantities);
+        d.request.high_to_low = high_to_low;
         if (probes) {
             d.request.where = render::BakeRequest::Where::probes;
             d.request.probes = scene.probes;
@@ -1275,16 +1290,15 @@ int run_bake(const BakeOptions& o) {
             } else if (!points_mode) {
                 summary["outputs"] = write_outputs(scene, w, s, rec, o.out, out);
             }
-            // A high-to-low bake's points, an adaptive bake's sample counts and texels on a
-            // second UV set are not the render's (it bakes a fixed count on the scene's own
-            // surfaces, texels on set 0): nothing to reuse.
+            // Texels on a second UV set are not the render's (it bakes texels on set 0) and the
+            // key does not say which set: nothing to reuse. Adaptive and high-to-low bakes are
+            // stored under keys of their own (store_for_render()).
             const bool uv1 = w.target.kind == TargetKind::texels &&
                              std::any_of(scene.meshes.begin(), scene.meshes.end(),
                                          [](const SceneMesh& m) { return m.lightmap_uv == 1; });
-            if (!points_mode && !o.no_cache && baker && high_to_low_targets(scene).empty() &&
-                !s.adaptive.enabled() && !uv1)
-                summary["render_cache"] = store_for_render(desc, scene, w, baker_settings(s),
-                                                           results, plan, t_bake, rays, o.out);
+            if (!points_mode && !o.no_cache && baker && !uv1)
+                summary["render_cache"] = store_for_render(scene, w, baker_settings(s), results,
+                                                           plan, t_bake, rays, o.out);
             summary["seconds"] = {{"load", t_load},
                                   {"layout", t_layout},
                                   {"bake", t_bake},
