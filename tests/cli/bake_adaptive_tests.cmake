@@ -11,6 +11,8 @@ sphbasis_bake_bad(target_error_quantity "--target-error: 'irradiance' is not one
                   bake ${_scenes}/lone_sphere.json --target-error irradiance:0.1)
 sphbasis_bake_bad(target_error_zero "--target-error: expected errors > 0, got '0'"
                   bake ${_scenes}/lone_sphere.json --target-error 0)
+sphbasis_bake_bad(target_error_empty "--target-error: expected errors > 0, got ''"
+                  bake ${_scenes}/lone_sphere.json --target-error '')
 sphbasis_bake_bad(max_rays_alone "--max-rays needs --target-error"
                   bake ${_scenes}/lone_sphere.json --max-rays 512)
 sphbasis_bake_bad(max_rays_below_rays "--max-rays: expected at least --rays \\(256\\), got 128"

@@ -15,6 +15,9 @@ sphbasis_bake_bad(gl_target_error "--engine gl: samples a fixed direction set: n
                   bake ${_gl_scene} --engine gl --target-error 0.01)
 sphbasis_bake_bad(gl_rays "--engine gl: samples --gl-directions directions, not --rays"
                   bake ${_gl_scene} --engine gl --rays 64)
+# Given is given: --rays at its default value (256) is refused too.
+sphbasis_bake_bad(gl_rays_default "--engine gl: samples --gl-directions directions, not --rays"
+                  bake ${_gl_scene} --engine gl --rays 256)
 sphbasis_bake_bad(gl_max_distance "--engine gl: a depth map holds the nearest surface to the sky only: no --max-distance"
                   bake ${_gl_scene} --engine gl --max-distance 1)
 sphbasis_bake_bad(gl_shard "--engine gl: bakes in one run: no --shard" bake ${_gl_scene} --engine gl --shard 0/2)

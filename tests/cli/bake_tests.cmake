@@ -55,6 +55,7 @@ sphbasis_bake_bad(probes_without_grid "[^ ]*sphere_over_quad.json: --target prob
 sphbasis_bake_bad(shard_out_of_range "--shard: expected I/N with 0 <= I < N" bake ${_scenes}/lone_sphere.json --shard 2/2)
 sphbasis_bake_bad(shard_malformed "--shard: expected I/N" bake ${_scenes}/lone_sphere.json --shard a/b)
 sphbasis_bake_bad(shard_zero "--shard: expected I/N" bake ${_scenes}/lone_sphere.json --shard 0/0)
+sphbasis_bake_bad(shard_empty "--shard: expected I/N with 0 <= I < N <= 1000000, got ''" bake ${_scenes}/lone_sphere.json --shard '')
 sphbasis_bake_bad(target_unknown "--target: expected vertices, texels:RES or probes, got 'faces'" bake ${_scenes}/lone_sphere.json --target faces)
 sphbasis_bake_bad(target_texels_zero "--target: expected texels:RES with 1 <= RES <= 16384" bake ${_scenes}/lone_sphere.json --target texels:0)
 sphbasis_bake_bad(quantity_unknown "--quantities: unknown quantity 'bnet' \\(did you mean 'bent'\\?\\)" bake ${_scenes}/lone_sphere.json --quantities ao,bnet)
@@ -95,6 +96,12 @@ sphbasis_bake_test(texels_l1_nonlinear "l1-nonlinear-ok"
   "rm -rf bake_l1n && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:8 --quantities irradiance --basis sh-l1-nonlinear --rays 16 --out bake_l1n && grep -q '\"storage\": *\"sh-l1-nonlinear\"' bake_l1n/bake.json && grep -a -q irr_r_3 bake_l1n/mesh0.exr && ! grep -a -q irr_r_4 bake_l1n/mesh0.exr && echo l1-nonlinear-ok")
 sphbasis_bake_bad(sg_solver_not_sg "--sg-solver: only for --basis sg5\\|sg6\\|sg9\\|sg12 \\(or sg\\), got 'zh3'"
   bake ${_scenes}/lone_sphere.json --basis zh3 --sg-solver nnls)
+# An explicit --sg-solver is refused without an SG basis even at its default (ls); with one it
+# bakes what the default does.
+sphbasis_bake_bad(sg_solver_ls_not_sg "--sg-solver: only for --basis sg5\\|sg6\\|sg9\\|sg12 \\(or sg\\), got 'sh'"
+  bake ${_scenes}/lone_sphere.json --sg-solver ls)
+sphbasis_bake_test(sg_solver_ls_explicit "sg-ls-same"
+  "printf '0.5 0 0 0 0 1\\n' | \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --points - --quantities irradiance --basis sg9 --sg-solver ls --rays 16 > bake_sg_ls.txt && printf '0.5 0 0 0 0 1\\n' | \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --points - --quantities irradiance --basis sg9 --rays 16 > bake_sg_default.txt && cmp bake_sg_ls.txt bake_sg_default.txt && echo sg-ls-same")
 sphbasis_bake_bad(sg_solver_unknown "--sg-solver: expected ls, nnls or running, got 'svd'"
   bake ${_scenes}/lone_sphere.json --basis sg9 --sg-solver svd)
 sphbasis_bake_bad(coeffs_zh3 "--coeffs: 'zh3' stores 5 values, got 9"
@@ -182,6 +189,12 @@ sphbasis_bake_test(gltf_lxh_svd "gltf-lxh-svd-ok"
 sphbasis_bake_bad(export_lxh_malformed "--export: expected lxh:K" bake ${_scenes}/lone_sphere.json --format gltf --export lxh:17)
 sphbasis_bake_bad(export_svd_malformed "--export: expected svd:M" bake ${_scenes}/lone_sphere.json --format gltf --export svd:4:x)
 sphbasis_bake_bad(export_lxh_without_gltf "--export: needs --format gltf" bake ${_scenes}/lone_sphere.json --export lxh:3)
+# --encoding and --export shape only glTF files: given without --format gltf (even at the
+# default png8, or an empty list) they are refused, by bake and by bake-merge.
+sphbasis_bake_bad(encoding_without_gltf "--encoding: needs --format gltf" bake ${_scenes}/lone_sphere.json --encoding png8)
+sphbasis_bake_bad(export_empty_without_gltf "--export: needs --format gltf" bake ${_scenes}/lone_sphere.json --export '')
+sphbasis_bake_bad(merge_encoding_without_gltf "--encoding: needs --format gltf" bake-merge nothing.bin --encoding half)
+sphbasis_bake_bad(merge_export_without_gltf "--export: needs --format gltf" bake-merge nothing.bin --export pca:2)
 sphbasis_bake_test(gltf_cpca_texels "gltf-cpca-texels-ok"
   "rm -rf bake_gct && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:16 --quantities transfer --bands 2 --rays 8 --out bake_gct --format gltf --export pca:2 && test -s bake_gct/floor.cpca_cluster.png && test -s bake_gct/floor.cpca_w1.png && grep -q '\"textures\"' bake_gct/cpca.json && echo gltf-cpca-texels-ok")
 sphbasis_bake_test(gltf_merge "gltf-merge-ok"
@@ -204,6 +217,11 @@ sphbasis_bake_test(high_to_low_normal_map_only "h2l-only-ok"
   "rm -rf bake_h2lo && \"${_bake}\" bake ${_h2l} --quantities normal_map --out bake_h2lo >/dev/null 2>&1 && python3 -c \"import json; j=json.load(open('bake_h2lo/bake.json')); assert [p['name'] for p in j['plan']]==['project'], j['plan']; assert j['rays']==j['plan'][0]['rays']; print('h2l-only-ok')\"")
 sphbasis_bake_test(high_to_low_shards "h2l-shards-ok"
   "rm -rf bake_h2ls && \"${_bake}\" bake ${_h2l} --quantities ao,normal_map --rays 32 --out bake_h2ls/one >/dev/null 2>&1 && \"${_bake}\" bake ${_h2l} --quantities ao,normal_map --rays 32 --out bake_h2ls --shard 0/2 2>/dev/null && \"${_bake}\" bake ${_h2l} --quantities ao,normal_map --rays 32 --out bake_h2ls --shard 1/2 2>/dev/null && \"${_bake}\" bake-merge bake_h2ls/bake.shard-0-of-2.bin bake_h2ls/bake.shard-1-of-2.bin --out bake_h2ls/merged 2>/dev/null && cmp bake_h2ls/one/panel.ply bake_h2ls/merged/panel.ply && echo h2l-shards-ok")
+# A high-to-low bake stores render-cache entries under keys of its own: every mesh's differs
+# from that of the same scene without the "source" (where the panel occludes and is baked on its
+# own surface).
+sphbasis_bake_test(high_to_low_cache_keys "h2l-keys-ok"
+  "rm -rf bake_h2lk && mkdir bake_h2lk && python3 -c \"import json; s=json.load(open('${_h2l}')); s['meshes'][0]['file']='${PROJECT_SOURCE_DIR}/scenes/pitted_disk.ply'; del s['meshes'][1]['source'], s['meshes'][1]['max_ray_distance']; json.dump(s, open('bake_h2lk/plain.json', 'w'))\" && \"${_bake}\" bake ${_h2l} --quantities ao --rays 8 --out bake_h2lk/h2l >/dev/null 2>&1 && \"${_bake}\" bake bake_h2lk/plain.json --quantities ao --rays 8 --out bake_h2lk/plain >/dev/null 2>&1 && python3 -c \"import json; k=lambda d: {e['mesh']: e['key'] for e in json.load(open(d + '/bake.json'))['render_cache']}; a=k('bake_h2lk/h2l'); b=k('bake_h2lk/plain'); assert set(a)==set(b)=={'detail','panel'}, (a, b); assert all(a[m]!=b[m] for m in a), (a, b); print('h2l-keys-ok')\"")
 sphbasis_bake_bad(h2l_unknown_source "[^ ]*h2l_unknown_source.json: meshes\\[1\\].source: no mesh named 'detial' \\(did you mean 'detail'\\?\\)"
                   bake ${_scenes}/bad/h2l_unknown_source.json)
 sphbasis_bake_bad(h2l_cage_mismatch "[^ ]*h2l_cage_mismatch.json: meshes\\[1\\].cage: expected a mesh of the same 9 vertices and 8 triangles as the mesh, got 16 vertices and 18 triangles"

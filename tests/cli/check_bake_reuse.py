@@ -62,7 +62,9 @@ def results_span(path):
     start = r.pos
     r.u8(), r.u64()  # where, mesh
     r.u32(), r.u32(), r.take(r.u64()), r.u32(), r.u32(), r.u32(), r.u64(), r.f64(), r.f64(), r.u8()
+    r.take(56), r.u32()  # adaptive sampling: 7 targets, max rays
     r.u32(), r.u8(), r.take(48), r.take(12)  # lightmap size, lighting dependent, grid
+    r.u64()  # high to low
     r.u32(), r.u32()  # layout width, height
     r.take(180 * r.u64())  # samples
     r.take(r.u64())  # covered

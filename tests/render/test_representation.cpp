@@ -595,6 +595,61 @@ TEST_CASE("representations: bake_key depends on exactly what a bake reads", "[re
     qs = q;
     qs.mesh = 1;
     CHECK(render::bake_key(w.desc, qs) != k0);
+    // Adaptive sampling: equal settings, equal keys; any target or the ray cap changed, another.
+    render::BakeRequest qa = q;
+    qa.settings.adaptive[render::Quantity::transfer] = 0.01;
+    qa.settings.adaptive.max_rays = 4096;
+    render::BakeRequest qa2 = q;
+    qa2.settings.adaptive = qa.settings.adaptive;
+    const std::uint64_t ka = render::bake_key(w.desc, qa);
+    CHECK(render::bake_key(w.desc, qa2) == ka);
+    CHECK(ka != k0);
+    qa2.settings.adaptive.max_rays = 2048;
+    CHECK(render::bake_key(w.desc, qa2) != ka);
+    qa2 = qa;
+    qa2.settings.adaptive[render::Quantity::transfer] = 0.02;
+    CHECK(render::bake_key(w.desc, qa2) != ka);
+    qa2 = qa;
+    qa2.settings.adaptive[render::Quantity::ao] = 0.01;  // a quantity it does not bake: still
+    CHECK(render::bake_key(w.desc, qa2) != ka);          // other settings
+    // High to low: the projections (target, source, ray distance, cage) enter the key.
+    render::HighToLowSettings hs;
+    hs.target = 0;
+    hs.source = 1;
+    const std::uint64_t h = render::high_to_low_key(w.desc, {hs});
+    CHECK(render::high_to_low_key(w.desc, {}) == 0);
+    CHECK(h != 0);
+    CHECK(render::high_to_low_key(w.desc, {hs}) == h);
+    render::BakeRequest qh = q;
+    qh.high_to_low = h;
+    const std::uint64_t kh = render::bake_key(w.desc, qh);
+    CHECK(kh != k0);
+    qh.high_to_low = render::high_to_low_key(w.desc, {hs});
+    CHECK(render::bake_key(w.desc, qh) == kh);
+    render::HighToLowSettings other = hs;
+    other.max_ray_distance = 0.5;
+    CHECK(render::high_to_low_key(w.desc, {other}) != h);
+    std::vector<float> cage = w.meshes[0].positions;
+    other = hs;
+    other.cage_positions = cage.data();
+    const std::uint64_t hc = render::high_to_low_key(w.desc, {other});
+    CHECK(hc != h);
+    cage[4] += 1e-3f;
+    CHECK(render::high_to_low_key(w.desc, {other}) != hc);
+    other = hs;
+    other.source = 0;
+    other.target = 1;
+    CHECK(render::high_to_low_key(w.desc, {other}) != h);
+    CHECK(render::high_to_low_key(w.desc, {hs, other}) != h);
+    // Both survive the cache file: the key recomputed from a loaded request is the stored one.
+    render::BakeData d;
+    d.request = qa;
+    d.request.high_to_low = h;
+    const render::BakeData back = render::deserialize(render::serialize(d));
+    CHECK(back.request.settings.adaptive.max_rays == 4096);
+    CHECK(back.request.settings.adaptive[render::Quantity::transfer] == 0.01);
+    CHECK(back.request.high_to_low == h);
+    CHECK(render::bake_key(w.desc, back.request) == render::bake_key(w.desc, d.request));
 }
 
 TEST_CASE("representations: the windowed SH9 irradiance of a sun is non-negative", "[render]") {

@@ -149,6 +149,39 @@ EngineInput engine_input(EngineTarget target, const std::vector<SceneMesh>& mesh
     return in;
 }
 
+/// The export's CPCA input (the records' transfer_k columns, one row a point) and the library's
+/// model of it, fitted as `in` exports it once with_cpca() set cpca:C:M and the seed.
+struct CpcaFit {
+    compress::MatrixX<double> x;
+    compress::Cpca<double> model;
+};
+
+CpcaFit with_cpca(EngineInput& in, int clusters, int vectors, std::uint64_t seed) {
+    in.compression = parse_compression_export("cpca:" + std::to_string(clusters) + ":" +
+                                              std::to_string(vectors));
+    in.seed = seed;
+    std::vector<std::size_t> at;  // record offset of transfer_k
+    for (std::size_t k = 0;; ++k) {
+        const auto c = std::find_if(in.columns.begin(), in.columns.end(), [&](const auto& col) {
+            return col.first == "transfer_" + std::to_string(k);
+        });
+        if (c == in.columns.end()) break;
+        at.push_back(c->second);
+    }
+    const std::size_t P = in.records->size() / in.stride;
+    CpcaFit fit;
+    fit.x.resize(static_cast<Eigen::Index>(P), static_cast<Eigen::Index>(at.size()));
+    for (std::size_t p = 0; p < P; ++p)
+        for (std::size_t k = 0; k < at.size(); ++k)
+            fit.x(Eigen::Index(p), Eigen::Index(k)) = (*in.records)[p * in.stride + at[k]];
+    compress::CpcaSettings cs;
+    cs.clusters = clusters;
+    cs.vectors = vectors;
+    cs.seed = seed;
+    fit.model = compress::cpca_iterative(fit.x, cs);
+    return fit;
+}
+
 }  // namespace
 
 TEST_CASE("engine export: range compression within scale * q for every encoding", "[tool]") {
@@ -502,8 +535,9 @@ TEST_CASE("engine export: CPCA of the transfer vectors, decoded from cpca.bin", 
     const std::vector<std::size_t> begin{0, P};
     EngineInput in =
         engine_input(EngineTarget::vertices, meshes, begin, nullptr, cols, rec, stride);
-    in.compression = parse_compression_export("cpca:2:2");
-    in.seed = 11;
+    const CpcaFit fit = with_cpca(in, 2, 2, 11);
+    const compress::MatrixX<double>& x = fit.x;
+    const compress::Cpca<double>& model = fit.model;
     Json outputs = Json::array();
     const std::vector<EngineFile> files = export_engine(in, outputs);
     const auto find = [&](const std::string& name) {
@@ -528,15 +562,7 @@ TEST_CASE("engine export: CPCA of the transfer vectors, decoded from cpca.bin", 
     };
     const double levels = doc.at("levels");
     // Decoded by the documented layout, against the library's model fitted the same way.
-    compress::MatrixX<double> x(static_cast<Eigen::Index>(P), static_cast<Eigen::Index>(n));
-    for (std::size_t p = 0; p < P; ++p)
-        for (std::size_t k = 0; k < n; ++k)
-            x(Eigen::Index(p), Eigen::Index(k)) = rec[p * stride + k];
-    compress::CpcaSettings cs;
-    cs.clusters = 2;
-    cs.vectors = 2;
-    cs.seed = 11;
-    const compress::Cpca<double> model = compress::cpca_iterative(x, cs);
+    REQUIRE(x.cols() == Eigen::Index(n));
     const compress::MatrixX<double> want =
         compress::with_weights(model, compress::quantize(model, 8)).reconstruct();
     double sq = 0;
@@ -780,23 +806,15 @@ TEST_CASE("engine export: CPCA cluster ids and weights as lightmap-UV textures",
                 rec[(begin[k] + i) * stride + j] =
                     side * (1 + 0.1 * double(j)) + p.y * std::cos(double(j)) + 0.3 * p.z;
         }
-    compress::MatrixX<double> x(static_cast<Eigen::Index>(P), static_cast<Eigen::Index>(n));
-    for (std::size_t p = 0; p < P; ++p)
-        for (std::size_t k = 0; k < n; ++k)
-            x(Eigen::Index(p), Eigen::Index(k)) = rec[p * stride + k];
-    compress::CpcaSettings cs;
-    cs.clusters = 3;
-    cs.vectors = 2;
-    cs.seed = 5;
-    const compress::Cpca<double> model = compress::cpca_iterative(x, cs);
+    EngineInput base =
+        engine_input(EngineTarget::texels, scene.meshes, begin, &layouts, cols, rec, stride);
+    const CpcaFit fit = with_cpca(base, 3, 2, 5);
+    const compress::Cpca<double>& model = fit.model;
     const compress::QuantizedWeights<double> q = compress::quantize(model, 8);
     for (ImageEncoding e : {ImageEncoding::png8, ImageEncoding::half}) {
         INFO(image_encoding_name(e));
-        EngineInput in =
-            engine_input(EngineTarget::texels, scene.meshes, begin, &layouts, cols, rec, stride);
+        EngineInput in = base;
         in.encoding = e;
-        in.compression = parse_compression_export("cpca:3:2");
-        in.seed = 5;
         Json outputs = Json::array();
         const std::vector<EngineFile> files = export_engine(in, outputs);
         std::vector<std::string> names, declared = engine_file_names(in);

@@ -344,6 +344,17 @@ std::vector<std::size_t> high_to_low_targets(const SceneFile& scene) {
     return t;
 }
 
+/// The projection of target mesh k to its source (its "source", "max_ray_distance" and "cage").
+render::HighToLowSettings projection_of(const SceneFile& scene, std::size_t k) {
+    const SceneMesh& m = scene.meshes[k];
+    render::HighToLowSettings hs;
+    hs.target = k;
+    hs.source = static_cast<std::size_t>(m.bake_source);
+    hs.max_ray_distance = m.max_ray_distance;
+    hs.cage_positions = m.cage ? m.cage->data() : nullptr;
+    return hs;
+}
+
 /// Moves the vertex and texel points of every target to its source (w.points, w.h2l); the
 /// "project" pass of the plan (rays 0 and no pass when no mesh has a source).
 render::Pass project_sources(const SceneFile& scene, Work& w) {
@@ -357,11 +368,7 @@ render::Pass project_sources(const SceneFile& scene, Work& w) {
     std::size_t points = 0, hits = 0;
     for (std::size_t k : targets) {
         const SceneMesh& m = scene.meshes[k];
-        render::HighToLowSettings hs;
-        hs.target = k;
-        hs.source = static_cast<std::size_t>(m.bake_source);
-        hs.max_ray_distance = m.max_ray_distance;
-        hs.cage_positions = m.cage ? m.cage->data() : nullptr;
+        const render::HighToLowSettings hs = projection_of(scene, k);
         render::SourceProjector proj(desc.meshes, hs);
         const std::vector<render::ProjectedPoint> pp =
             proj.project(w.target.kind == TargetKind::vertices
@@ -503,13 +510,15 @@ Json settings_json(const render::BakeSettings& s) {
     return j;
 }
 
-/// --target-error: one error for every requested quantity ("0.01") or NAME:ERROR pairs
-/// ("ao:0.01,irradiance:0.02"); --max-rays (default 16 --rays).
-void parse_adaptive(const std::string& spec, long long max_rays, render::BakeSettings& s) {
-    if (spec.empty()) {
+/// --target-error (spec; null when not given): one error for every requested quantity ("0.01")
+/// or NAME:ERROR pairs ("ao:0.01,irradiance:0.02"); --max-rays (default 16 --rays).
+void parse_adaptive(const std::string* given, long long max_rays, render::BakeSettings& s) {
+    if (given == nullptr) {
         if (max_rays > 0) throw UsageError("--max-rays needs --target-error");
         return;
     }
+    const std::string& spec = *given;
+    if (spec.empty()) throw UsageError("--target-error: expected errors > 0, got ''");
     std::stringstream in(spec);
     std::string item;
     while (std::getline(in, item, ',')) {
@@ -948,17 +957,24 @@ ShardData read_shard(const std::string& file) {
 // also stores its results as the bake-cache entries render reads, OUT/cache/<key>.bin (one per
 // mesh with triangles; probes: one), each under render::bake_key() of the request render makes
 // for the same settings, so `sphbasis render --out OUT` or `--bake OUT` loads them instead of
-// baking. The entries are whole files (support/bake_cache.hpp), written before the outputs are
-// committed; like render's cache they are kept whatever happens after.
+// baking. The key covers adaptive sampling and high-to-low projections (render bakes neither), so
+// such a bake's entries are never taken for render's. The entries are whole files
+// (support/bake_cache.hpp), written before the outputs are committed; like render's cache they are
+// kept whatever happens after.
 
 /// Stores the parts of a complete bake (results of every point, in id order) in OUT/cache and
 /// returns bake.json's "render_cache" entry. Times and rays are shared out by point count.
-Json store_for_render(const render::SceneDesc& desc, const SceneFile& scene, const Work& w,
-                      const render::BakeSettings& s,
+Json store_for_render(const SceneFile& scene, const Work& w, const render::BakeSettings& s,
                       const std::vector<render::PointResult>& results,
                       const std::vector<render::Pass>& plan, double seconds, std::uint64_t rays,
                       const std::string& out_dir) {
     DiskBakeCache cache(join_path(out_dir, "cache"));
+    // Keyed on the whole scene, as render keys its bakes (a high-to-low bake traced without its
+    // targets: high_to_low says so).
+    const render::SceneDesc desc = scene.scene_desc();
+    std::vector<render::HighToLowSettings> projections;
+    for (std::size_t k : high_to_low_targets(scene)) projections.push_back(projection_of(scene, k));
+    const std::uint64_t high_to_low = render::high_to_low_key(desc, projections);
     Json entries = Json::array();
     const bool probes = w.target.kind == TargetKind::probes;
     const std::size_t parts = probes ? 1 : desc.meshes.size();
@@ -968,6 +984,7 @@ Json store_for_render(const render::SceneDesc& desc, const SceneFile& scene, con
         d.request.mesh = probes ? 0 : k;
         d.request.settings = s;
         d.request.lighting_dependent = render::depends_on_lighting(s.quantities);
+        d.request.high_to_low = high_to_low;
         if (probes) {
             d.request.where = render::BakeRequest::Where::probes;
             d.request.probes = scene.probes;
@@ -994,14 +1011,26 @@ Json store_for_render(const render::SceneDesc& desc, const SceneFile& scene, con
 
 // ---------------------------------------------------------------------------------------------
 
+/// --encoding and --export (bake and bake-merge) shape only --format gltf's files: given (even
+/// as the default) without it, they are refused.
+void check_gltf_options(bool gltf, const CLI::Option* encoding, const CLI::Option* exports) {
+    if (gltf) return;
+    if (encoding->count() > 0) throw UsageError("--encoding: needs --format gltf");
+    if (exports->count() > 0) throw UsageError("--export: needs --format gltf");
+}
+
 struct BakeOptions {
     std::string scene, quantities = "ao", basis = "sh", target = "vertices", points, out = ".",
                        shard, max_distance, format = "native", encoding = "png8", exports,
                        target_error, sg_solver = "ls";
     bool no_cache = false;
     long long bands = 3, coeffs = 9, rays = 256, bounces = 0, seed = 0, max_rays = 0;
+    // Whether an option was given is its count, never its value against the default (an
+    // explicit default is a request too, refused where it would be ignored).
     CLI::Option *target_opt = nullptr, *points_opt = nullptr, *out_opt = nullptr,
-                *maxd_opt = nullptr, *coeffs_opt = nullptr;
+                *maxd_opt = nullptr, *coeffs_opt = nullptr, *rays_opt = nullptr,
+                *sg_solver_opt = nullptr, *encoding_opt = nullptr, *export_opt = nullptr,
+                *shard_opt = nullptr, *target_error_opt = nullptr;
     GlEngine gl;  // --engine gl (bake_gl.hpp)
 };
 
@@ -1029,14 +1058,14 @@ std::pair<std::string, int> irradiance_basis_of(const BakeOptions& o) {
         if (name == "ambient-dice") coeffs = 12;
     }
     if (const FittedBasisInfo* f = find_fitted_basis(name)) fixed(f->stored);
-    if (o.sg_solver != "ls") {
-        if (o.sg_solver != "nnls" && o.sg_solver != "running")
+    if (o.sg_solver_opt->count() > 0) {
+        if (o.sg_solver != "ls" && o.sg_solver != "nnls" && o.sg_solver != "running")
             throw UsageError("--sg-solver: expected ls, nnls or running, got '" +
                              quote_input(o.sg_solver) + "'");
         if (name != "sg")
             throw UsageError("--sg-solver: only for --basis sg5|sg6|sg9|sg12 (or sg), got '" +
                              quote_input(o.basis) + "'");
-        name = "sg-" + o.sg_solver;
+        if (o.sg_solver != "ls") name = "sg-" + o.sg_solver;
     }
     return {name, coeffs};
 }
@@ -1071,7 +1100,7 @@ render::BakeSettings settings_of(const BakeOptions& o) {
         s.max_distance = to_real(o.max_distance, "--max-distance");
         if (!(s.max_distance > 0)) throw UsageError("--max-distance: expected a positive distance");
     }
-    parse_adaptive(o.target_error, o.max_rays, s);
+    parse_adaptive(o.target_error_opt->count() > 0 ? &o.target_error : nullptr, o.max_rays, s);
     return s;
 }
 
@@ -1100,14 +1129,14 @@ int run_bake(const BakeOptions& o) {
         throw UsageError(
             "--quantities normal_map: the tangent-space normal map is baked per vertex or texel "
             "(--target vertices or texels:RES) of meshes with a \"source\"");
-    const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
+    const Shard shard = o.shard_opt->count() > 0 ? parse_shard(o.shard) : Shard{};
     const bool write_files = !points_mode || o.out_opt->count() > 0;
     const bool gltf = o.format == "gltf";
     const ImageEncoding encoding = parse_image_encoding(o.encoding);
     const CompressionExport compression = parse_compression_export(o.exports);
-    if (compression.any() && !gltf) throw UsageError("--export: needs --format gltf");
     if (o.format != "native" && !gltf)
         throw UsageError("--format: expected native or gltf, got '" + quote_input(o.format) + "'");
+    check_gltf_options(gltf, o.encoding_opt, o.export_opt);
     if (gltf && (points_mode || shard.count > 1))
         throw UsageError(
             "--format gltf: not with --points or --shard (give --format gltf to bake-merge)");
@@ -1115,7 +1144,7 @@ int run_bake(const BakeOptions& o) {
     const SceneFile scene = load_scene(o.scene);
     check_gl_engine(o.gl, s,
                     {shard.count > 1, o.maxd_opt->count() > 0, !high_to_low_targets(scene).empty(),
-                     o.rays != 256});
+                     o.rays_opt->count() > 0});
     for (std::size_t k = 0; k < scene.meshes.size(); ++k)
         if (scene.meshes[k].dropped_triangles > 0)
             std::fprintf(
@@ -1261,16 +1290,15 @@ int run_bake(const BakeOptions& o) {
             } else if (!points_mode) {
                 summary["outputs"] = write_outputs(scene, w, s, rec, o.out, out);
             }
-            // A high-to-low bake's points, an adaptive bake's sample counts and texels on a
-            // second UV set are not the render's (it bakes a fixed count on the scene's own
-            // surfaces, texels on set 0): nothing to reuse.
+            // Texels on a second UV set are not the render's (it bakes texels on set 0) and the
+            // key does not say which set: nothing to reuse. Adaptive and high-to-low bakes are
+            // stored under keys of their own (store_for_render()).
             const bool uv1 = w.target.kind == TargetKind::texels &&
                              std::any_of(scene.meshes.begin(), scene.meshes.end(),
                                          [](const SceneMesh& m) { return m.lightmap_uv == 1; });
-            if (!points_mode && !o.no_cache && baker && high_to_low_targets(scene).empty() &&
-                !s.adaptive.enabled() && !uv1)
-                summary["render_cache"] = store_for_render(desc, scene, w, baker_settings(s),
-                                                           results, plan, t_bake, rays, o.out);
+            if (!points_mode && !o.no_cache && baker && !uv1)
+                summary["render_cache"] = store_for_render(scene, w, baker_settings(s), results,
+                                                           plan, t_bake, rays, o.out);
             summary["seconds"] = {{"load", t_load},
                                   {"layout", t_layout},
                                   {"bake", t_bake},
@@ -1288,6 +1316,7 @@ int run_bake(const BakeOptions& o) {
 struct MergeOptions {
     std::vector<std::string> shards;
     std::string out = ".", format = "native", encoding = "png8", exports;
+    CLI::Option *encoding_opt = nullptr, *export_opt = nullptr;
 };
 
 int run_merge(const MergeOptions& o) {
@@ -1297,7 +1326,7 @@ int run_merge(const MergeOptions& o) {
         throw UsageError("--format: expected native or gltf, got '" + quote_input(o.format) + "'");
     const ImageEncoding encoding = parse_image_encoding(o.encoding);
     const CompressionExport compression = parse_compression_export(o.exports);
-    if (compression.any() && !gltf) throw UsageError("--export: needs --format gltf");
+    check_gltf_options(gltf, o.encoding_opt, o.export_opt);
     std::vector<ShardData> parts;
     for (const std::string& f : o.shards) parts.push_back(read_shard(f));
     const Json& h0 = parts.front().header;
@@ -1459,12 +1488,13 @@ Run setup_bake(CLI::App& app) {
         ->capture_default_str();
     o->coeffs_opt = add_integer(app, "--coeffs", o->coeffs, 1, 1024,
                                 "irradiance coefficients (default 9, or the basis's one size)");
-    app.add_option("--sg-solver", o->sg_solver,
-                   "--basis sgN: least squares (ls), non-negative least squares (nnls) or "
-                   "Roughton's running average (running)")
-        ->type_name("ls|nnls|running")
-        ->capture_default_str();
-    add_integer(app, "--rays", o->rays, 1, 1 << 24, "rays per point and pass");
+    o->sg_solver_opt =
+        app.add_option("--sg-solver", o->sg_solver,
+                       "--basis sgN: least squares (ls), non-negative least squares (nnls) or "
+                       "Roughton's running average (running)")
+            ->type_name("ls|nnls|running")
+            ->capture_default_str();
+    o->rays_opt = add_integer(app, "--rays", o->rays, 1, 1 << 24, "rays per point and pass");
     add_integer(app, "--bounces", o->bounces, 0, 64, "interreflection bounces at most", "B");
     add_integer(app, "--seed", o->seed, 0, std::numeric_limits<long long>::max(), "random seed",
                 "S");
@@ -1481,25 +1511,29 @@ Run setup_bake(CLI::App& app) {
             ->type_name("FILE|-");
     o->out_opt = add_path(app, "--out", o->out, "output directory (created if missing)");
     o->out_opt->type_name("DIR")->capture_default_str();
-    app.add_option("--shard", o->shard, "bake shard I of N (0 <= I < N)")->type_name("I/N");
+    o->shard_opt =
+        app.add_option("--shard", o->shard, "bake shard I of N (0 <= I < N)")->type_name("I/N");
     app.add_option("--format", o->format,
                    "native (PLY, EXR, JSON) or gltf (engine files: docs/export-format.md)")
         ->type_name("native|gltf")
         ->capture_default_str();
-    app.add_option("--encoding", o->encoding, "--format gltf: lightmap and probe images")
-        ->type_name("png8|png16|half|float")
-        ->capture_default_str();
-    app.add_option("--export", o->exports,
-                   "--format gltf: transfer by PCA or CPCA (pca:M, cpca:C:M), Toksvig's table "
-                   "(toksvig:S), the L x H table (lxh:K[:N[:RES]]), the SVD normal basis "
-                   "(svd:M[:RES])")
-        ->type_name("LIST");
+    o->encoding_opt =
+        app.add_option("--encoding", o->encoding, "--format gltf: lightmap and probe images")
+            ->type_name("png8|png16|half|float")
+            ->capture_default_str();
+    o->export_opt =
+        app.add_option("--export", o->exports,
+                       "--format gltf: transfer by PCA or CPCA (pca:M, cpca:C:M), Toksvig's table "
+                       "(toksvig:S), the L x H table (lxh:K[:N[:RES]]), the SVD normal basis "
+                       "(svd:M[:RES])")
+            ->type_name("LIST");
     app.add_flag("--no-cache", o->no_cache,
                  "do not also store the results in OUT/cache for `sphbasis render` to reuse");
-    app.add_option("--target-error", o->target_error,
-                   "adaptive sampling: batches of --rays rays per point until each standard "
-                   "error is at most X (one X for all, or ao:X,irradiance:Y,...)")
-        ->type_name("X|NAME:X,...");
+    o->target_error_opt =
+        app.add_option("--target-error", o->target_error,
+                       "adaptive sampling: batches of --rays rays per point until each standard "
+                       "error is at most X (one X for all, or ao:X,irradiance:Y,...)")
+            ->type_name("X|NAME:X,...");
     add_integer(app, "--max-rays", o->max_rays, 1, 1 << 30,
                 "adaptive sampling: rays per point and pass at most (default 16 --rays)");
     add_gl_engine_options(app, o->gl);
@@ -1519,11 +1553,13 @@ Run setup_bake_merge(CLI::App& app) {
     app.add_option("--format", o->format, "as for bake: native or gltf (docs/export-format.md)")
         ->type_name("native|gltf")
         ->capture_default_str();
-    app.add_option("--encoding", o->encoding, "as for bake: --format gltf's images")
-        ->type_name("png8|png16|half|float")
-        ->capture_default_str();
-    app.add_option("--export", o->exports, "as for bake: --format gltf's extra files")
-        ->type_name("LIST");
+    o->encoding_opt =
+        app.add_option("--encoding", o->encoding, "as for bake: --format gltf's images")
+            ->type_name("png8|png16|half|float")
+            ->capture_default_str();
+    o->export_opt =
+        app.add_option("--export", o->exports, "as for bake: --format gltf's extra files")
+            ->type_name("LIST");
     return [o] { return run_merge(*o); };
 }
 

@@ -169,6 +169,8 @@ std::string request_details(const render::BakeRequest& r) {
     if (r.where == render::BakeRequest::Where::texel)
         d +=
             ", lightmap " + std::to_string(r.lightmap_size) + "x" + std::to_string(r.lightmap_size);
+    if (s.adaptive.enabled()) d += ", adaptive to " + std::to_string(s.adaptive.max_rays) + " rays";
+    if (r.high_to_low != 0) d += ", high to low";
     return d;
 }
 

@@ -2,8 +2,8 @@
 // identity and where they are kept between runs.
 //
 //   BakeRequest       one bake: where (vertices or lightmap texels of a mesh, or the probes of
-//                     a grid), the bake settings, the lightmap size, whether it depends on the
-//                     lighting.
+//                     a grid), the bake settings (adaptive sampling included), the lightmap size,
+//                     whether it depends on the lighting, the high-to-low projections.
 //   BakeData          a bake's results with its lightmap layout, pass plan, time and rays.
 //   bake_key()        a hash of everything a bake depends on: the request, the geometry of
 //                     every mesh (they occlude), the albedos and albedo maps when it has
@@ -30,6 +30,7 @@
 #include "bake.hpp"
 #include "bake_file.hpp"
 #include "detail/rt_math.hpp"
+#include "high_to_low.hpp"
 #include "lighting.hpp"
 #include "lightmap.hpp"
 #include "mesh.hpp"
@@ -52,6 +53,10 @@ struct BakeRequest {
     int lightmap_size = 0;  // texel bakes
     bool lighting_dependent = false;
     ProbeGrid probes;  // probe bakes: the grid (part of the key)
+    /// A bake whose scene has meshes baked from high-poly sources (render/high_to_low.hpp):
+    /// high_to_low_key() of those projections; 0 (no projection, every mesh occludes) for the
+    /// bakes the representations make.
+    std::uint64_t high_to_low = 0;
 };
 
 struct BakeData {
@@ -134,6 +139,8 @@ inline void write_settings(ByteWriter& w, const BakeSettings& s) {
     w.f64(s.max_distance);
     w.f64(s.target_error);
     w.u8(s.force_all_passes ? 1 : 0);
+    for (double t : s.adaptive.target) w.f64(t);
+    put_i32(w, s.adaptive.max_rays);
 }
 inline BakeSettings read_settings(ByteReader& r) {
     BakeSettings s;
@@ -147,6 +154,8 @@ inline BakeSettings read_settings(ByteReader& r) {
     s.max_distance = r.f64();
     s.target_error = r.f64();
     s.force_all_passes = r.u8() != 0;
+    for (double& t : s.adaptive.target) t = r.f64();
+    s.adaptive.max_rays = get_i32(r);
     return s;
 }
 inline void write_request(ByteWriter& w, const BakeRequest& q) {
@@ -158,6 +167,7 @@ inline void write_request(ByteWriter& w, const BakeRequest& q) {
     put_v3(w, q.probes.lo);
     put_v3(w, q.probes.hi);
     for (int c : q.probes.counts) put_i32(w, c);
+    w.u64(q.high_to_low);
 }
 inline BakeRequest read_request(ByteReader& r) {
     BakeRequest q;
@@ -173,6 +183,7 @@ inline BakeRequest read_request(ByteReader& r) {
     q.probes.lo = get_v3(r);
     q.probes.hi = get_v3(r);
     for (int& c : q.probes.counts) c = get_i32(r);
+    q.high_to_low = r.u64();
     return q;
 }
 /// The identity of a request (its bytes), for finding distinct requests.
@@ -189,20 +200,42 @@ inline std::vector<std::uint8_t> settings_bytes(const BakeSettings& s) {
 
 constexpr char magic[8] = {'S', 'P', 'H', 'B', 'B', 'A', 'K', 'E'};
 // 2: transfer_matrix; 3: the standard errors bent_stderr, irradiance_stderr, radiance_stderr,
-// transfer_matrix_stderr (a cache file of version 2 is refused and baked again).
-constexpr std::uint32_t format_version = 3;
+// transfer_matrix_stderr (a cache file of version 2 is refused and baked again); 4: the adaptive
+// sampling settings and BakeRequest::high_to_low.
+constexpr std::uint32_t format_version = 4;
 
 }  // namespace repr_detail
 
+/// BakeRequest::high_to_low of a bake in `scene` whose target meshes are baked from their
+/// sources as `projections` say (one per target): a hash of every target, source, ray distance
+/// and cage (its positions), never 0; 0 when `projections` is empty. Cost: one pass over the
+/// cages.
+inline std::uint64_t high_to_low_key(const SceneDesc& scene,
+                                     const std::vector<HighToLowSettings>& projections) {
+    if (projections.empty()) return 0;
+    repr_detail::Hasher h;
+    h.word(projections.size());
+    for (const HighToLowSettings& p : projections) {
+        h.word(p.target);
+        h.word(p.source);
+        h.f64(p.max_ray_distance);
+        h.array(p.cage_positions,
+                p.target < scene.meshes.size() ? 3 * scene.meshes[p.target].vertex_count : 0);
+    }
+    const std::uint64_t v = h.value();
+    return v != 0 ? v : 1;
+}
+
 /// The hash of everything a bake depends on (header comment): the request (location, mesh,
-/// settings, lightmap size, probe grid), the geometry of every mesh (positions, indices,
-/// normals, UVs, tangents), the albedos and albedo maps when settings.bounces > 0, and the
-/// lighting (environment kind, constant, texels, rotation, scale; every light) only when
-/// request.lighting_dependent. FNV-1a over 64-bit words, mixed by SplitMix64. Cost: one pass over
-/// the arrays.
+/// settings with the adaptive sampling, lightmap size, probe grid, high-to-low projections),
+/// the geometry of every mesh (positions, indices, normals, UVs, tangents), the albedos and
+/// albedo maps when settings.bounces > 0, and the lighting (environment kind, constant, texels,
+/// rotation, scale; every light) only when request.lighting_dependent. FNV-1a over 64-bit words,
+/// mixed by SplitMix64. Cost: one pass over the arrays.
 inline std::uint64_t bake_key(const SceneDesc& scene, const BakeRequest& request) {
     repr_detail::Hasher h;
-    h.str("sphbasis bake key 2");  // 2: the shared point ids (render/bake_points.hpp)
+    // 2: the shared point ids (render/bake_points.hpp); 3: adaptive sampling and high to low.
+    h.str("sphbasis bake key 3");
     const std::vector<std::uint8_t> req = repr_detail::request_bytes(request);
     h.bytes(req.data(), req.size());
     h.word(scene.meshes.size());
