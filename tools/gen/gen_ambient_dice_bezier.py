@@ -492,8 +492,9 @@ for variant in VARIANTS:
 
 
 def cnum(v):
-    """A double literal: the nearest double to v, 17 significant digits."""
-    s = "%.17g" % float(v)
+    """A double literal: the nearest double to v, 17 significant digits (0 for the rounding noise
+    of the 40-digit arithmetic, |v| < 1e-30, in place of exact zeros)."""
+    s = "%.17g" % (float(v) if abs(v) > mp.mpf(10) ** -30 else 0.0)
     return s if ("." in s or "e" in s) else s + ".0"
 
 
