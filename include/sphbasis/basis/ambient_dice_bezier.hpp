@@ -47,7 +47,8 @@
 // Only the 9 (3) functions of the direction's face are non-zero.
 // Cost: the face from the octant's sign bits and 3 plane tests, 3 dot products for b (and a
 // division for the normalised rule), the Bernstein terms and ~40 multiply-adds; the SIMD batch
-// runs the scalar code per lane (the faces differ).
+// does the arithmetic across lanes and gathers each lane's face constants (39 numbers per lane
+// for the Bezier variant, 9 for the linear one).
 #pragma once
 
 #include <type_traits>
@@ -91,39 +92,60 @@ SPHBASIS_FORCEINLINE int locate_face(T x, T y, T z, T b[3]) noexcept {
     return face;
 }
 
+/// The weights w of the Bezier variant's 9 local data (f, g_u, g_w of the face's vertices 0, 1, 2)
+/// from b (locate_face) and the face's constants: edge(e, j) = face_edge[f][e][j] and
+/// interior(m, i) = face_interior(_normalized)[f][m][i], as values of V (a scalar or a batch).
+template <bool Normalized, class V, class Edge, class Interior>
+SPHBASIS_FORCEINLINE void bezier_weights(const V be[3], Edge&& edge, Interior&& interior,
+                                         V w[9]) noexcept {
+    using S = scalar_t<V>;
+    const V edge_value = Normalized ? S(1) : S(tables::edge_cos);  // c_ab's factor of f_a
+    constexpr int edge_from[6] = {0, 0, 1, 1, 2, 2}, edge_to[6] = {1, 2, 0, 2, 0, 1};
+    for (int a = 0; a < 3; ++a) {
+        w[3 * a] = be[a] * be[a] * be[a];
+        w[3 * a + 1] = w[3 * a + 2] = V(S(0));
+    }
+    for (int e = 0; e < 6; ++e) {
+        const int a = edge_from[e];
+        const V c = V(S(3)) * be[a] * be[a] * be[edge_to[e]];
+        w[3 * a] += c * edge_value;
+        w[3 * a + 1] += c * edge(e, 0);
+        w[3 * a + 2] += c * edge(e, 1);
+    }
+    // Interior points: 6 b0 b1 b2 (b_a b_b / den) for the edge (a, b) opposite m; at a vertex
+    // den = 0 and the term is 0.
+    const V den = be[0] * be[1] + be[1] * be[2] + be[2] * be[0];
+    V scale;
+    if constexpr (std::is_arithmetic_v<V>)
+        scale = den > S(0) ? S(6) * be[0] * be[1] * be[2] / den : S(0);
+    else
+        scale = select(den > V(S(0)), V(S(6)) * be[0] * be[1] * be[2] / den, V(S(0)));
+    constexpr int pa[3] = {1, 0, 0}, pb[3] = {2, 2, 1};
+    for (int m = 0; m < 3; ++m) {
+        const V c = scale * be[pa[m]] * be[pb[m]];
+        for (int i = 0; i < 3; ++i) {
+            w[3 * pa[m] + i] += c * interior(m, i);
+            w[3 * pb[m] + i] += c * interior(m, 3 + i);
+        }
+    }
+}
+
+/// The interior-point table of the rule.
+template <bool Normalized>
+SPHBASIS_FORCEINLINE const double (&interior_table(int f) noexcept)[3][6] {
+    return Normalized ? tables::face_interior_normalized[f] : tables::face_interior[f];
+}
+
 /// The 36 Bezier-variant values at a unit direction.
 template <bool Normalized, class T>
 SPHBASIS_FORCEINLINE void bezier_values(T x, T y, T z, T* out) noexcept {
     namespace tb = tables;
-    T be[3];
+    T be[3], w[9];
     const int f = locate_face<Normalized>(x, y, z, be);
-    const T edge_value = Normalized ? T(1) : T(tb::edge_cos);  // c_ab's factor of f_a
-    constexpr int edge_from[6] = {0, 0, 1, 1, 2, 2}, edge_to[6] = {1, 2, 0, 2, 0, 1};
-    T w[9];  // weights of (f, g_u, g_w) of the face's vertices
-    for (int a = 0; a < 3; ++a) {
-        w[3 * a] = be[a] * be[a] * be[a];
-        w[3 * a + 1] = w[3 * a + 2] = T(0);
-    }
-    for (int e = 0; e < 6; ++e) {
-        const int a = edge_from[e];
-        const T c = T(3) * be[a] * be[a] * be[edge_to[e]];
-        w[3 * a] += c * edge_value;
-        w[3 * a + 1] += c * T(tb::face_edge[f][e][0]);
-        w[3 * a + 2] += c * T(tb::face_edge[f][e][1]);
-    }
-    // Interior points: 6 b0 b1 b2 (b_a b_b / den) for the edge (a, b) opposite m; at a vertex
-    // den = 0 and the term is 0.
-    const T den = be[0] * be[1] + be[1] * be[2] + be[2] * be[0];
-    const T scale = den > T(0) ? T(6) * be[0] * be[1] * be[2] / den : T(0);
-    constexpr int pa[3] = {1, 0, 0}, pb[3] = {2, 2, 1};
-    for (int m = 0; m < 3; ++m) {
-        const T c = scale * be[pa[m]] * be[pb[m]];
-        const double* q = Normalized ? tb::face_interior_normalized[f][m] : tb::face_interior[f][m];
-        for (int i = 0; i < 3; ++i) {
-            w[3 * pa[m] + i] += c * T(q[i]);
-            w[3 * pb[m] + i] += c * T(q[3 + i]);
-        }
-    }
+    const auto& q = interior_table<Normalized>(f);
+    bezier_weights<Normalized>(
+        be, [&](int e, int j) { return T(tb::face_edge[f][e][j]); },
+        [&](int m, int i) { return T(q[m][i]); }, w);
     for (int k = 0; k < 36; ++k) out[k] = T(0);
     for (int a = 0; a < 3; ++a)
         for (int i = 0; i < 3; ++i) out[3 * tb::face_vertex[f][a] + i] = w[3 * a + i];
@@ -140,8 +162,8 @@ SPHBASIS_FORCEINLINE void linear_values(T x, T y, T z, T* out) noexcept {
 
 /// A kernel of Ambient Dice over the faces (per vertex: 3 functions for the Bezier variant, 1 for
 /// the linear one; Normalized: the normalised rule) from the scalar evaluator; Hemi drops vertices
-/// 9 and 10, which have no support on z >= 0 (the later vertex 11 moves up to 9). Batches run the
-/// scalar code per lane (each lane has its own face) and store whole batches.
+/// 9 and 10, which have no support on z >= 0 (the later vertex 11 moves up to 9). Batches gather
+/// each lane's face constants and compute across lanes (batch_values).
 template <bool Bezier, bool Normalized, bool Hemi>
 struct FaceKernel {
     static constexpr int per_vertex = Bezier ? 3 : 1;
@@ -160,20 +182,74 @@ struct FaceKernel {
     template <class V, class Store>
     SPHBASIS_FORCEINLINE void operator()(const V& x, const V& y, const V& z,
                                          Store&& store) const noexcept {
-        using S = scalar_t<V>;
         if constexpr (std::is_arithmetic_v<V>) {
-            S v[count];
+            V v[count];
             values(x, y, z, v);
             for (int k = 0; k < count; ++k) store(k, v[k]);
         } else {
-            constexpr int W = V::size;
-            S v[count][W], one[count];
-            for (int i = 0; i < W; ++i) {
-                values(x[i], y[i], z[i], one);
-                for (int k = 0; k < count; ++k) v[k][i] = one[k];
-            }
-            for (int k = 0; k < count; ++k) store(k, V::load(v[k]));
+            batch_values(x, y, z, store);
         }
+    }
+    /// A batch: the face per lane (octant and plane tests, its constants gathered per lane),
+    /// then b and the weights across lanes, scattered into the lanes' functions.
+    template <class V, class Store>
+    static SPHBASIS_FORCEINLINE void batch_values(const V& x, const V& y, const V& z,
+                                                  Store&& store) noexcept {
+        namespace tb = tables;
+        using S = scalar_t<V>;
+        constexpr int W = V::size;
+        const V ax = vabs(x), ay = vabs(y), az = vabs(z);
+        V side[3];
+        for (int e = 0; e < 3; ++e) {
+            const auto& p = tb::locate_plane[e];
+            side[e] = V(S(p[0])) * ax + V(S(p[1])) * ay + V(S(p[2])) * az;
+        }
+        int face[W];
+        S dual[3][3][W];
+        for (int i = 0; i < W; ++i) {
+            const int octant = int(x[i] < S(0)) | int(y[i] < S(0)) << 1 | int(z[i] < S(0)) << 2;
+            int f = tb::locate_face[octant][0];
+            for (int e = 0; e < 3; ++e)
+                if (side[e][i] < S(0)) f = tb::locate_face[octant][1 + e];
+            face[i] = f;
+            for (int a = 0; a < 3; ++a)
+                for (int c = 0; c < 3; ++c) dual[a][c][i] = S(tb::face_dual[f][a][c]);
+        }
+        V be[3];
+        for (int a = 0; a < 3; ++a)
+            be[a] =
+                vmax(V::load(dual[a][0]) * x + V::load(dual[a][1]) * y + V::load(dual[a][2]) * z,
+                     V(S(0)));  // rounding at the face's edges
+        if constexpr (Normalized) {
+            const V inv = V(S(1)) / (be[0] + be[1] + be[2]);
+            for (int a = 0; a < 3; ++a) be[a] *= inv;
+        }
+        V w[3 * per_vertex];
+        if constexpr (Bezier) {
+            S edge[6][2][W], interior[3][6][W];
+            for (int i = 0; i < W; ++i) {
+                const auto& q = interior_table<Normalized>(face[i]);
+                for (int e = 0; e < 6; ++e)
+                    for (int j = 0; j < 2; ++j) edge[e][j][i] = S(tb::face_edge[face[i]][e][j]);
+                for (int m = 0; m < 3; ++m)
+                    for (int j = 0; j < 6; ++j) interior[m][j][i] = S(q[m][j]);
+            }
+            bezier_weights<Normalized>(
+                be, [&](int e, int j) { return V::load(edge[e][j]); },
+                [&](int m, int j) { return V::load(interior[m][j]); }, w);
+        } else {
+            for (int a = 0; a < 3; ++a) w[a] = be[a];
+        }
+        S v[count][W] = {};
+        for (int i = 0; i < W; ++i)
+            for (int a = 0; a < 3; ++a) {
+                int k = tb::face_vertex[face[i]][a];
+                if (Hemi && (k == 9 || k == 10)) continue;  // no support on z >= 0: dropped
+                if (Hemi && k == 11) k = 9;
+                for (int j = 0; j < per_vertex; ++j)
+                    v[per_vertex * k + j][i] = w[per_vertex * a + j][i];
+            }
+        for (int k = 0; k < count; ++k) store(k, V::load(v[k]));
     }
 };
 
