@@ -1,17 +1,19 @@
 // Benchmarks of the hemispherical bases (basis/hsh.hpp, makhotkin.hpp, zernike.hpp, hbasis.hpp,
-// hl2.hpp) in float. Items are directions: items_per_second is directions per second, so ns per
-// direction = 1e9 / items_per_second. The argument is the number of functions n.
+// hl2.hpp) and of Ambient Dice's face variants (basis/ambient_dice_bezier.hpp) in float. Items are
+// directions: items_per_second is directions per second, so ns per direction = 1e9 /
+// items_per_second. The argument is the number of functions n.
 //   one_call:   basis_eval<B>(n, x, y, z, out) once per direction (normalising, run-time n)
 //   batch:      basis_eval_batch<B> over 1M directions (SoA in and out, SIMD across directions)
 //   sum_batch:  basis_eval_sum_batch<B> over 1M directions (sum c_i B_i, the B_i not stored)
 // Sizes: the usual ones (HSH/Makhotkin 2-5 bands = 4..25 functions, Zernike 2-5 bands = 3..15,
 // H-basis 4 and 6, HL2 3), and one high count per recurrence path (64 bands: the row recurrence,
-// 65 bands: the column recurrence) for one_call.
+// 65 bands: the column recurrence) for one_call; Ambient Dice Bezier 30 and 36, linear 10 and 12.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <sphbasis/basis/ambient_dice_bezier.hpp>
 #include <sphbasis/basis/hbasis.hpp>
 #include <sphbasis/basis/hl2.hpp>
 #include <sphbasis/basis/hsh.hpp>
@@ -21,6 +23,9 @@
 
 namespace {
 
+using sphbasis::AmbientDiceBezier;
+using sphbasis::AmbientDiceBezierNormalized;
+using sphbasis::AmbientDiceLinear;
 using sphbasis::HBasis;
 using sphbasis::HBasisMod;
 using sphbasis::HL2;
@@ -152,5 +157,13 @@ BENCHMARK_TEMPLATE(sum_batch, HBasisMod)->Arg(4)->Arg(6)->Unit(benchmark::kMilli
 BENCHMARK_TEMPLATE(one_call, HL2)->Arg(3);
 BENCHMARK_TEMPLATE(batch, HL2)->Arg(3)->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(sum_batch, HL2)->Arg(3)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_TEMPLATE(one_call, AmbientDiceBezier)->Arg(30)->Arg(36);
+BENCHMARK_TEMPLATE(batch, AmbientDiceBezier)->Arg(30)->Arg(36)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(sum_batch, AmbientDiceBezier)->Arg(30)->Arg(36)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(batch, AmbientDiceBezierNormalized)->Arg(36)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(one_call, AmbientDiceLinear)->Arg(10)->Arg(12);
+BENCHMARK_TEMPLATE(batch, AmbientDiceLinear)->Arg(10)->Arg(12)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(sum_batch, AmbientDiceLinear)->Arg(10)->Arg(12)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

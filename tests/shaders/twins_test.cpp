@@ -15,10 +15,12 @@
 //   - trilinear probe-volume interpolation (valid corners renormalised) and the volume's
 //     shading against render::ProbeGrid::interpolate_valid and Volume::shade's arithmetic;
 //   - the engine bases' twins (sphbasis.glsl, tools/gen/engine_shader.py) against the float C++:
-//     the ambient cube (6 and 5) and Ambient Dice values and RGB sums, the SG lobe and the
+//     the ambient cube (6 and 5) and Ambient Dice values and RGB sums (its SRBF variant and the
+//     paper's Bezier and linear face variants), the SG lobe and the
 //     BakingLab sets (their constant tables bit for bit), Hill's fitted irradiance, ZH3, ZH3
 //     hallucinated and L1 SH with the Geomerics reconstruction, on the directions above plus
-//     cube face boundaries (+-0 components), dice vertices and their planes, SG lobe axes.
+//     cube face boundaries (+-0 components), dice vertices, their planes and the faces' edges, SG
+//     lobe axes.
 // Error measure: |gpu - ref| in float ulps of max(|ref|, scale), scale the sum of the terms'
 // magnitudes (a sum's rounding error is relative to it, not to a cancelling result). The C++
 // references of the shading are double: the bound covers the float arithmetic of the shader.
@@ -38,6 +40,7 @@
 #include "gl_harness.hpp"
 #include "sphbasis/basis/ambient_cube.hpp"
 #include "sphbasis/basis/ambient_dice.hpp"
+#include "sphbasis/basis/ambient_dice_bezier.hpp"
 #include "sphbasis/basis/hsh.hpp"
 #include "sphbasis/basis/makhotkin.hpp"
 #include "sphbasis/basis/sh.hpp"
@@ -770,6 +773,17 @@ std::vector<float> engine_directions(const std::vector<float>& base) {
     for (int n : {5, 6, 9, 12})
         for (const auto& v : sphbasis::sg::bakinglab_axes(n))
             push(v[0], v[1], v[2]), push(-v[0], -v[1], -v[2]);
+    // The dice faces' edges (where the face changes): points at 1/4, 1/2, 3/4 of the 30 edges.
+    namespace dt = sphbasis::ambient_dice::tables;
+    for (int i = 0; i < 12; ++i)
+        for (int j = i + 1; j < 12; ++j) {
+            const double* p = dt::vertex[i];
+            const double* q = dt::vertex[j];
+            if (p[0] * q[0] + p[1] * q[1] + p[2] * q[2] < 0.4) continue;  // cos 1/sqrt(5)
+            for (double s : {0.25, 0.5, 0.75})
+                push((1 - s) * p[0] + s * q[0], (1 - s) * p[1] + s * q[1],
+                     (1 - s) * p[2] + s * q[2]);
+        }
     return d;
 }
 
@@ -782,6 +796,12 @@ constexpr double max_ulps_cube = 1.0;
 //    the lobe's multiply-adds by another; the functions are a partition of unity, so the scale
 //    is 1. Bound 4 ulps of 1.
 constexpr double max_ulps_dice = 4.0;
+//  - Ambient Dice's face variants (the paper's rule): the same face from the same float tests
+//    (at an edge another face may win by an ulp; the functions are continuous there), b from
+//    3-term dot products, then products and sums of terms below 1 (values in [-0.4, 1]), with
+//    -ffp-contract=off on both sides: measured 0.5 ulps of 1 (Bezier), bit-identical (linear).
+//    Bound 2 ulps of 1.
+constexpr double max_ulps_dice_faces = 2.0;
 //  - SG values exp(lambda (d - 1)): the dot product's rounding (an ulp of 1) becomes a relative
 //    error of lambda ulps, the argument's own rounding one of |lambda (d - 1)| <= 2 lambda ulps,
 //    and the driver's exp differs from std::exp by a few ulps: scale |value| (1 + 3 lambda),
@@ -1092,7 +1112,7 @@ bool check_engine(const Gl& gl, const std::vector<float>& base) {
     const std::vector<float> dirs = engine_directions(base);
     std::printf(
         "  engine bases: %zu directions (the above, cube face boundaries +-0, dice "
-        "vertices and their planes, SG lobe axes)\n",
+        "vertices, their planes and edges, SG lobe axes)\n",
         dirs.size() / 4);
     bool ok = check_engine_constants(gl);
     ok = check_engine_linear<sphbasis::AmbientCube>(gl, dirs, "ambient_cube", 6, 0.0, 1.0,
@@ -1103,6 +1123,12 @@ bool check_engine(const Gl& gl, const std::vector<float>& base) {
          ok;
     ok = check_engine_linear<sphbasis::AmbientDice>(gl, dirs, "ambient_dice", 12, 1.0, 0.0,
                                                     max_ulps_dice) &&
+         ok;
+    ok = check_engine_linear<sphbasis::AmbientDiceBezier>(gl, dirs, "ambient_dice_bezier", 36, 1.0,
+                                                          0.0, max_ulps_dice_faces) &&
+         ok;
+    ok = check_engine_linear<sphbasis::AmbientDiceLinear>(gl, dirs, "ambient_dice_linear", 12, 1.0,
+                                                          0.0, max_ulps_dice_faces) &&
          ok;
     for (int n : {5, 6, 9, 12}) {
         const double lam = sphbasis::sg::bakinglab_sharpness(n);

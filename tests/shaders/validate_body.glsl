@@ -82,6 +82,10 @@ void main()
     vec3 c5[5]; for (int i = 0; i < 5; ++i) c5[i] = c12[i];
     vec3 k = sphbasis_ambient_cube_eval_sum(c6, d) + sphbasis_ambient_cube5_eval_sum(c5, d)
         + sphbasis_ambient_dice_eval_sum(c12, d);
+    float db[36]; sphbasis_ambient_dice_bezier_eval(d, db);
+    float dl[12]; sphbasis_ambient_dice_linear_eval(d, dl);
+    vec3 c36[36]; for (int i = 0; i < 36; ++i) c36[i] = vec3(db[i], dl[i / 3], 0.5);
+    k += sphbasis_ambient_dice_bezier_eval_sum(c36, d) + sphbasis_ambient_dice_linear_eval_sum(c12, d);
     float g5[5]; sphbasis_sg5_eval(d, g5);
     float g6[6]; sphbasis_sg6_eval(d, g6);
     float g9[9]; sphbasis_sg9_eval(d, g9);

@@ -53,6 +53,8 @@ COLOURS = {
     "ambient-dice": "#bcbd22",
     "ambient-dice-bezier": "#8c6d31",
     "ambient-dice-linear": "#e7ba52",
+    "ambient-dice-bezier-normalized": "#bd9e39",
+    "ambient-dice-linear-normalized": "#e7cb94",
     "sg": "#17becf",
     "sh-l1-nonlinear": "#000000",
     "zh3-hallucinate": "#aec7e8",

@@ -116,12 +116,15 @@ const std::vector<BasisInfo>& all_bases() {
         detail::make_info<AmbientDice>(detail::no_lm),
         detail::make_info<AmbientDiceBezier>(detail::no_lm),
         detail::make_info<AmbientDiceLinear>(detail::no_lm),
+        detail::make_info<AmbientDiceBezierNormalized>(detail::no_lm),
+        detail::make_info<AmbientDiceLinearNormalized>(detail::no_lm),
     };
     return v;
 }
 
 /// The basis called `name` ("sh", "hsh", "makhotkin", "zernike", "hbasis", "hbasis-mod",
-/// "hl2", "sg", "ambient-cube", "ambient-dice", "ambient-dice-bezier", "ambient-dice-linear").
+/// "hl2", "sg", "ambient-cube", "ambient-dice", "ambient-dice-bezier", "ambient-dice-linear",
+/// "ambient-dice-bezier-normalized", "ambient-dice-linear-normalized").
 /// Throws std::invalid_argument naming the known bases otherwise.
 template <class = void>
 const BasisInfo& find_basis(std::string_view name) {

@@ -101,8 +101,8 @@ struct Row {
 /// hemispherical restriction: the -z face is zero on z >= 0); ambient dice 12; SG 9, 12 (the
 /// irradiance fitted in the span of BakingLab's lobes; sg_pipeline_imse() scores BakingLab's own
 /// pipeline, radiance fitted and irradiance by Hill's approximation); Ambient Dice's face variants,
-/// Bezier 30 and linear 10 (without the 2 vertices that have no support on z >= 0). The fitted
-/// rows (fitted_rows()) follow them.
+/// Bezier 30 and linear 10 (without the 2 vertices that have no support on z >= 0), the paper's
+/// rule and then the normalised one. The fitted rows (fitted_rows()) follow them.
 inline std::vector<Row> paper_rows() {
     std::vector<Row> rows{{"sh", 4},         {"sh", 9},           {"sh", 16},
                           {"sh", 25},        {"hsh", 4},          {"hsh", 9},
@@ -112,7 +112,10 @@ inline std::vector<Row> paper_rows() {
                           {"hbasis", 6},     {"hbasis-mod", 4},   {"hbasis-mod", 6},
                           {"hl2", 3},        {"ambient-cube", 5}, {"ambient-dice", 12},
                           {"sg", 9},         {"sg", 12}};
-    rows.insert(rows.end(), {{"ambient-dice-bezier", 30}, {"ambient-dice-linear", 10}});
+    rows.insert(rows.end(), {{"ambient-dice-bezier", 30},
+                             {"ambient-dice-linear", 10},
+                             {"ambient-dice-bezier-normalized", 30},
+                             {"ambient-dice-linear-normalized", 10}});
     return rows;
 }
 
