@@ -125,9 +125,12 @@ TEST_CASE("dice lightmaps: a baked texel is the fit of its exact irradiance", "[
                 }
             }
         }
+        // Measured at 1024 rays: |baked - fit| 0.7% (Bezier) of the largest coefficient, the
+        // standard errors up to 4%.
         INFO("largest |baked - fit| " << worst << ", largest stderr " << worst_se
                                       << " (of the largest coefficient)");
-        CHECK(worst_se < 0.03);
+        CHECK(worst < 0.02);
+        CHECK(worst_se < 0.1);
     }
 }
 
@@ -137,8 +140,10 @@ TEST_CASE("dice lightmaps: the YCoCg lightmap's luma is the Bezier one's, its ch
     // The fits are linear and the shading is linear in the stored values, so at every pixel
     // the luma of lightmap-ambient-dice-ycocg is that of lightmap-ambient-dice-bezier30 and its
     // chroma that of -linear10, up to the float storage, whatever the lighting (a coloured sky
-    // with a bright patch, a coloured ball, one bounce). It reads exactly their two bakes.
+    // with a bright patch, one bounce); grey albedos, so that a pixel is its irradiance times
+    // one number. It reads exactly their two bakes.
     sphbasis_test::World w = sphbasis_test::sphere_on_plane_meshes();
+    w.meshes[0].albedo = {0.6f, 0.6f, 0.6f};
     w.env_texels = sphbasis_test::rgb_texels(8, 4, [](int x, int y, float* p) {
         p[0] = 0.3f + 0.2f * float(y) + (x == 3 && y == 1 ? 4.0f : 0.0f);
         p[1] = 0.5f + 0.1f * float(x % 3);
