@@ -134,9 +134,7 @@ TEST_CASE("dice lightmaps: a baked texel is the fit of its exact irradiance", "[
     }
 }
 
-TEST_CASE("dice lightmaps: the YCoCg lightmap's luma is the Bezier one's, its chroma the linear "
-          "one's",
-          "[render]") {
+TEST_CASE("dice lightmaps: the YCoCg luma is bezier30's, its chroma linear10's", "[render]") {
     // The fits are linear and the shading is linear in the stored values, so at every pixel
     // the luma of lightmap-ambient-dice-ycocg is that of lightmap-ambient-dice-bezier30 and its
     // chroma that of -linear10, up to the float storage, whatever the lighting (a coloured sky
@@ -174,8 +172,8 @@ TEST_CASE("dice lightmaps: the YCoCg lightmap's luma is the Bezier one's, its ch
                                         double(a.data[i + 2]));
         };
         const auto a = ycocg(yc), b = ycocg(bez), c = ycocg(lin);
-        worst = std::max({worst, std::fabs(a[0] - b[0]), std::fabs(a[1] - c[1]),
-                          std::fabs(a[2] - c[2])});
+        worst = std::max(
+            {worst, std::fabs(a[0] - b[0]), std::fabs(a[1] - c[1]), std::fabs(a[2] - c[2])});
     }
     INFO("largest difference " << worst << " of " << m);
     CHECK(worst <= 1e-5 * m);
