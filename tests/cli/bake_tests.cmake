@@ -106,6 +106,16 @@ sphbasis_bake_bad(sg_solver_unknown "--sg-solver: expected ls, nnls or running, 
   bake ${_scenes}/lone_sphere.json --basis sg9 --sg-solver svd)
 sphbasis_bake_bad(coeffs_zh3 "--coeffs: 'zh3' stores 5 values, got 9"
   bake ${_scenes}/lone_sphere.json --basis zh3 --coeffs 9)
+# Ambient Dice over the faces: 30 (Bezier) and 10 (linear) values a channel on the tangent
+# hemisphere without --coeffs; the whole sphere's 36 and 12 and the YCoCg variant refused.
+sphbasis_bake_test(texels_dice_bezier "dice-bezier-ok"
+  "rm -rf bake_dice && \"${_bake}\" bake ${_scenes}/quad_obj.json --target texels:8 --quantities irradiance --basis ambient-dice-bezier --rays 16 --out bake_dice && grep -q '\"basis\": *\"ambient-dice-bezier\"' bake_dice/bake.json && grep -q '\"coeffs\": *30' bake_dice/bake.json && grep -a -q irr_b_29 bake_dice/mesh0.exr && ! grep -a -q irr_r_30 bake_dice/mesh0.exr && echo dice-bezier-ok")
+sphbasis_bake_test(points_dice_linear "\"irradiance\":\\[\\[[-0-9.e]+,[-0-9.e]+,[-0-9.e]+,[-0-9.e]+,[-0-9.e]+,[-0-9.e]+,[-0-9.e]+,[-0-9.e]+,[-0-9.e]+,[-0-9.e]+\\]"
+  "printf '0.5 0 0 0 0 1\\n' | \"${_bake}\" bake ${_scenes}/sphere_over_quad.json --points - --quantities irradiance --basis ambient-dice-linear --rays 64")
+sphbasis_bake_bad(coeffs_dice_full "--coeffs: 'ambient-dice-bezier' stores 30 values on the tangent hemisphere \\(36 is the whole sphere's\\), got 36"
+  bake ${_scenes}/lone_sphere.json --quantities irradiance --basis ambient-dice-bezier --coeffs 36)
+sphbasis_bake_bad(basis_dice_ycocg "--basis: ambient-dice-ycocg stores 30 luma and 10 \\+ 10 chroma values, but a bake stores the same count for R, G and B; bake ambient-dice-bezier and ambient-dice-linear"
+  bake ${_scenes}/lone_sphere.json --quantities irradiance --basis ambient-dice-ycocg)
 # Irradiance and radiance with their standard errors at a surface point: "irradiance" (three
 # lists of --coeffs), "irradiance_stderr" (one list), "radiance", "radiance_stderr", "inside".
 sphbasis_bake_test(points_stderr_keys "\\{\"p\":\\[0.5,0,0\\],\"n\":\\[0,0,1\\],\"irradiance\":\\[\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\]\\],\"irradiance_stderr\":\\[[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+\\],\"radiance\":\\[\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\],\\[[-0-9.e,]*\\]\\],\"radiance_stderr\":\\[[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+\\],\"inside\":false\\}"

@@ -21,6 +21,7 @@ CHECKs:
   less_flip=A:B       A's FLIP is below B's
   max_flip=NAME:X     NAME's FLIP is at most X
   max_metric=KEY:X    every row's metric KEY is at most X (e.g. rel_mse_floored:10)
+  bytes=NAME:N        NAME stores N bytes per element (texel, vertex or probe)
   judged_min=X        every row judged at least a fraction X of its pixels
   counter=NAME:N      the reference's counter NAME equals N (e.g. bounce_rays:0)
   effect~TEXT         some effect of the plan contains TEXT; effect!~TEXT: none does
@@ -176,6 +177,11 @@ def main():
             for row in rows.values():
                 if not row[k] <= float(x):
                     fail("%s: %s = %s > %s" % (row["name"], k, row[k], x))
+        elif c.startswith("bytes="):
+            name, n = c[6:].split(":")
+            if name not in rows or rows[name]["bytes_per_element"] != int(n):
+                fail("%s: %s bytes per element, expected %s"
+                     % (name, rows.get(name, {}).get("bytes_per_element"), n))
         elif c.startswith("judged_min="):
             for row in rows.values():
                 if row["judged_fraction"] < float(c[11:]):

@@ -25,7 +25,7 @@ sphbasis_cli_test(render_help "Usage: sphbasis render.*SCENE.json.*--representat
 sphbasis_cli_test(help_lists_render "Subcommands:.*render" --help)
 
 # Bad options: one line, exit 2, before the scene is read.
-sphbasis_render_bad(unknown_representation "--representations: unknown representation 'sh9'; expected 'all' or a list of: irradiance-sh9 irradiance-sh9-windowed ao bent prt-vertex prt-texel lightmap-sh4 .* volume volume-ambient-cube volume-ambient-dice volume-sh-l1-nonlinear volume-zh3-hallucinate volume-zh3 volume-sg9 specular-toksvig specular-aliased .*prt-cpca-16-4 \\(and lxh-pcaM, M <= 36; prt-cpca-C-M, C <= 4096, M <= 64\\)\n"
+sphbasis_render_bad(unknown_representation "--representations: unknown representation 'sh9'; expected 'all' or a list of: irradiance-sh9 irradiance-sh9-windowed ao bent prt-vertex prt-texel lightmap-sh4 .* volume volume-ambient-cube volume-ambient-dice volume-ambient-dice-bezier volume-sh-l1-nonlinear volume-zh3-hallucinate volume-zh3 volume-sg9 specular-toksvig specular-aliased .*prt-cpca-16-4 \\(and lxh-pcaM, M <= 36; prt-cpca-C-M, C <= 4096, M <= 64\\)\n"
                     ${_rscenes}/tiny_sun.json --representations ao,sh9)
 sphbasis_render_bad(representation_typo "--representations: unknown representation 'prt-vertx' \\(did you mean 'prt-vertex'\\?\\)"
                     ${_rscenes}/tiny_sun.json --representations prt-vertx)
@@ -108,7 +108,7 @@ sphbasis_render_test(no_cache "no-cache-ok"
   "rm -rf render_nocache && \"${_render}\" render ${_rscenes}/tiny_sun.json --representations ao --rays 16 --no-cache --out render_nocache 2>/dev/null && ! test -e render_nocache/cache && echo no-cache-ok")
 # "all" on a scene without a shiny material: the specular comparison is skipped (and said so).
 sphbasis_render_test(all_without_specular "render-report-ok"
-  "rm -rf render_all && \"${_render}\" render ${_rscenes}/tiny_sun.json --rays 16 --lightmap-size 8 --out render_all 2>/dev/null && python3 ${_check_report} render_all rows=47 plan~skipped effect!~specular")
+  "rm -rf render_all && \"${_render}\" render ${_rscenes}/tiny_sun.json --rays 16 --lightmap-size 8 --out render_all 2>/dev/null && python3 ${_check_report} render_all rows=51 plan~skipped effect!~specular")
 # The specular comparison on a bumpy normal map under minification: Toksvig is closer to the
 # supersampled reference than the aliased lobe.
 sphbasis_render_test(specular_toksvig "render-report-ok"
@@ -144,8 +144,10 @@ sphbasis_render_test(metrics_cornell "render-report-ok"
   "rm -rf render_m_cornell && \"${_render}\" render ${_scenes}/cornell.json --representations irradiance-sh9,ao,prt-vertex,lightmap-sh9,volume --width 32 --height 32 --spp 16 --rays 16 --lightmap-size 8 --out render_m_cornell 2>/dev/null && python3 ${_check_report} render_m_cornell rows=5 max_metric=rel_mse_floored:10 less_flip=lightmap-sh9:irradiance-sh9")
 # The engine bases (ambient cube and dice, SG9, L1 with the Geomerics reconstruction, ZH3): as
 # probes and as tangent-space lightmaps (SG9 by each solver); every metric finite and in range.
+# Ambient Dice over the faces: the report's bytes per element (30 and 10 floats a channel, the
+# YCoCg variant's 30 + 10 + 10, the Bezier volume's 36 a channel).
 sphbasis_render_test(metrics_engine_bases "render-report-ok"
-  "rm -rf render_m_engine && \"${_render}\" render ${_scenes}/cornell.json --representations volume,volume-ambient-cube,volume-ambient-dice,volume-sh-l1-nonlinear,volume-zh3-hallucinate,volume-zh3,volume-sg9,lightmap-ambient-cube5,lightmap-ambient-dice12,lightmap-sg9,lightmap-sg9-nnls,lightmap-sg9-running,lightmap-zh3,lightmap-zh3-hallucinate,lightmap-sh-l1-nonlinear --width 32 --height 32 --spp 16 --rays 16 --lightmap-size 8 --out render_m_engine 2>/dev/null && python3 ${_check_report} render_m_engine rows=15 max_metric=rel_mse_floored:10")
+  "rm -rf render_m_engine && \"${_render}\" render ${_scenes}/cornell.json --representations volume,volume-ambient-cube,volume-ambient-dice,volume-sh-l1-nonlinear,volume-zh3-hallucinate,volume-zh3,volume-sg9,lightmap-ambient-cube5,lightmap-ambient-dice12,lightmap-sg9,lightmap-sg9-nnls,lightmap-sg9-running,lightmap-zh3,lightmap-zh3-hallucinate,lightmap-sh-l1-nonlinear,volume-ambient-dice-bezier,lightmap-ambient-dice-bezier30,lightmap-ambient-dice-linear10,lightmap-ambient-dice-ycocg --width 32 --height 32 --spp 16 --rays 16 --lightmap-size 8 --out render_m_engine 2>/dev/null && python3 ${_check_report} render_m_engine rows=19 max_metric=rel_mse_floored:10 bytes=lightmap-ambient-dice-bezier30:360 bytes=lightmap-ambient-dice-linear10:120 bytes=lightmap-ambient-dice-ycocg:200 bytes=volume-ambient-dice-bezier:432")
 sphbasis_render_test(metrics_specular_bumps "render-report-ok"
   "rm -rf render_m_spec && \"${_render}\" render ${_scenes}/specular_bumps.json --representations specular-toksvig,specular-aliased,irradiance-sh9 --width 40 --height 30 --spp 16 --specular-ss 4 --out render_m_spec 2>/dev/null && python3 ${_check_report} render_m_spec rows=3 max_metric=rel_mse_floored:1e3 less_flip=specular-toksvig:specular-aliased")
 # Every committed scene that needs no downloaded data, with all of its representations at a

@@ -105,6 +105,17 @@ inline sphbasis::render::Light sphere_light(sphbasis::vec3<double> position, dou
     return l;
 }
 
+/// The value at +z of the least-squares fit of (1 + z)/2 in `basis` with `coeffs` functions on
+/// `rule` (render::IrradianceFit): per unit pi L, a constant sky's irradiance over a tangent
+/// hemisphere (the bake's rule hemisphere_rule_sqrt(32, 32)) or a probe's over the sphere.
+inline double fit_at_z(const char* basis, int coeffs, const sphbasis::DirectionalRule& rule) {
+    const sphbasis::render::IrradianceFit fit(basis, coeffs, rule);
+    std::vector<double> c(std::size_t(3 * coeffs));
+    fit.fit_function([](double, double, double z) { return 0.5 * (1 + z); }, c.data(),
+                     c.data() + coeffs, c.data() + 2 * coeffs);
+    return fit.evaluate(c.data(), 0, 0, 1);
+}
+
 /// Meshes, the scene description over them and the Embree scene; build() after the meshes and
 /// the description's lighting are set (the views point into `meshes`, so do not copy a World
 /// after build()).

@@ -128,7 +128,7 @@ TEST_CASE("representations: names, unknown and duplicate names, bad settings", "
     w.build();
     render::RepresentationSettings s;
     const auto& names = render::representation_names();
-    REQUIRE(names.size() == 49);
+    REQUIRE(names.size() == 53);
     // Every lightmap basis exists in the registry.
     for (const char* b : {"sh", "hbasis", "hbasis-mod", "hl2", "hsh"}) CHECK_NOTHROW(find_basis(b));
     CHECK_THROWS_WITH(render::Representations(w.desc, *w.rt, s, {"ao", "nonsense"}),
@@ -439,6 +439,9 @@ TEST_CASE("representations: lightmaps of an unoccluded quad under a constant sky
     render::Representations r(w.desc, *w.rt, s, names);
     r.prepare(nullptr);
     const Camera cam = camera_at({0.1, 0.2, 3}, {0, 0, 0}, 8, 8, 25);
+    const DirectionalRule rule = hemisphere_rule_sqrt(32, 32);
+    const double fb = sphbasis_test::fit_at_z("ambient-dice-bezier", 30, rule);
+    const double fl = sphbasis_test::fit_at_z("ambient-dice-linear", 10, rule);
     for (std::size_t k = 0; k < names.size(); ++k) {
         INFO(names[k]);
         const Image img = r.render(k, cam, 1);
@@ -456,6 +459,8 @@ TEST_CASE("representations: lightmaps of an unoccluded quad under a constant sky
         // (7/3) R0 = (7/6) E. ZH3 hallucinated: the radiance ratio r = sqrt(3)/2 gives
         // z = E_00 (0.08 r + 0.6 r^2) / 4, adding 2 z sqrt(5/(16 pi)) = E sqrt(5)/8 (0.08 r +
         // 0.6 r^2) at +z. SG lobes: their least-squares fit of (1 + z)/2 (sg_fit_factor()).
+        // Ambient Dice over the faces (-bezier30, -linear10, and -ycocg's luma and chroma): the
+        // value at +z of their least-squares fit (fb, fl).
         const double rh = std::sqrt(3.0) / 2;
         const double factor = names[k] == "lightmap-hl2"               ? 1.25
                               : names[k] == "lightmap-ambient-cube5"   ? 17.0 / 16.0
@@ -463,14 +468,21 @@ TEST_CASE("representations: lightmaps of an unoccluded quad under a constant sky
                               : names[k] == "lightmap-zh3-hallucinate"
                                   ? 1 + std::sqrt(5.0) / 8 * (0.08 * rh + 0.6 * rh * rh)
                               : names[k].rfind("lightmap-sg", 0) == 0 ? sg_fit_factor(names[k])
-                                                                      : 1.0;
+                              : names[k] == "lightmap-ambient-dice-bezier30" ? fb
+                              : names[k] == "lightmap-ambient-dice-linear10" ? fl
+                                                                             : 1.0;
+        const RGB sky{1.0, 0.5, 0.25};
+        RGB want{0.8 * sky[0] * factor, 0.8 * sky[1] * factor, 0.8 * sky[2] * factor};
+        if (names[k] == "lightmap-ambient-dice-ycocg") {
+            const auto v = render::rgb_to_ycocg(sky[0], sky[1], sky[2]);
+            want = render::ycocg_to_rgb(fb * v[0], fl * v[1], fl * v[2]);
+            for (double& c : want) c *= 0.8;
+        }
         double worst = 0;
         for (int y = 0; y < 8; ++y)
             for (int x = 0; x < 8; ++x)
-                for (std::size_t c = 0; c < 3; ++c) {
-                    const double L = c == 0 ? 1.0 : (c == 1 ? 0.5 : 0.25);
-                    worst = std::max(worst, std::fabs(img.at(x, y)[c] / (0.8 * L * factor) - 1));
-                }
+                for (std::size_t c = 0; c < 3; ++c)
+                    worst = std::max(worst, std::fabs(img.at(x, y)[c] / want[c] - 1));
         CHECK(worst < 0.015);
         CHECK(r.stats(k).element == "texel");
         CHECK(r.stats(k).elements == 16);

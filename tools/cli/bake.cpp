@@ -1036,8 +1036,11 @@ struct BakeOptions {
 
 /// --basis, --coeffs and --sg-solver as render::BakeSettings::basis and coeffs: "sgN" is "sg"
 /// with N lobes; a basis or representation of one size (ambient-dice, zh3, zh3-hallucinate,
-/// sh-l1-nonlinear) and the hemispherical ambient cube (5) take their size without --coeffs;
-/// --sg-solver nnls|running stores "sg-nnls" / "sg-running".
+/// sh-l1-nonlinear) and the hemispherical sizes of the ambient cube (5) and of Ambient Dice over
+/// the faces (ambient-dice-bezier 30, ambient-dice-linear 10: the irradiance is fitted over the
+/// tangent hemisphere) take their size without --coeffs; --sg-solver nnls|running stores
+/// "sg-nnls" / "sg-running". ambient-dice-ycocg (30 luma values, 10 for each chroma channel)
+/// is refused: a bake stores one count for every channel.
 std::pair<std::string, int> irradiance_basis_of(const BakeOptions& o) {
     std::string name = o.basis;
     int coeffs = static_cast<int>(o.coeffs);
@@ -1053,10 +1056,24 @@ std::pair<std::string, int> irradiance_basis_of(const BakeOptions& o) {
             name = "sg";
             fixed(n);
         }
+    if (name == "ambient-dice-ycocg")
+        throw UsageError(
+            "--basis: ambient-dice-ycocg stores 30 luma and 10 + 10 chroma values, but a bake "
+            "stores the same count for R, G and B; bake ambient-dice-bezier and "
+            "ambient-dice-linear (render's lightmap-ambient-dice-ycocg reads both)");
     if (!given) {
         if (name == "ambient-cube") coeffs = 5;
         if (name == "ambient-dice") coeffs = 12;
+        if (name == "ambient-dice-bezier") coeffs = 30;
+        if (name == "ambient-dice-linear") coeffs = 10;
     }
+    // Irradiance is fitted over the tangent hemisphere, where 2 of the 12 vertices of the
+    // full-sphere sizes have no support (a singular fit).
+    const int full = name == "ambient-dice-bezier" ? 36 : (name == "ambient-dice-linear" ? 12 : 0);
+    if (full > 0 && coeffs == full)
+        throw UsageError("--coeffs: '" + name + "' stores " + std::to_string(full / 6 * 5) +
+                         " values on the tangent hemisphere (" + std::to_string(full) +
+                         " is the whole sphere's), got " + std::to_string(full));
     if (const FittedBasisInfo* f = find_fitted_basis(name)) fixed(f->stored);
     if (o.sg_solver_opt->count() > 0) {
         if (o.sg_solver != "ls" && o.sg_solver != "nnls" && o.sg_solver != "running")
@@ -1482,8 +1499,8 @@ Run setup_bake(CLI::App& app) {
     app.add_option("--basis", o->basis,
                    "basis of irradiance: sh, hbasis, hbasis-mod, hl2, hsh, makhotkin, zernike, "
                    "sg5|sg6|sg9|sg12 (BakingLab's lobes; or sg --coeffs N), ambient-cube (5 "
-                   "values), ambient-dice (12); non-linear: zh3 (5 values), zh3-hallucinate (4), "
-                   "sh-l1-nonlinear (4)")
+                   "values), ambient-dice (12), ambient-dice-bezier (30), ambient-dice-linear "
+                   "(10); non-linear: zh3 (5 values), zh3-hallucinate (4), sh-l1-nonlinear (4)")
         ->type_name("NAME")
         ->capture_default_str();
     o->coeffs_opt = add_integer(app, "--coeffs", o->coeffs, 1, 1024,

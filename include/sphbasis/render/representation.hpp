@@ -9,11 +9,13 @@
 //   irradiance.hpp     irradiance-sh9, irradiance-sh9-windowed, ao, bent
 //   prt.hpp            prt-vertex, prt-texel
 //   lightmap.hpp       lightmap-sh4, -sh9, -hbasis4, -hbasis6, -hbasis-mod6, -hl2, -hsh4, -hsh9,
-//                      -ambient-cube5, -ambient-dice12, -sg5, -sg6, -sg9, -sg12, -sg9-nnls,
-//                      -sg9-running, -zh3, -zh3-hallucinate, -sh-l1-nonlinear
+//                      -ambient-cube5, -ambient-dice12, -ambient-dice-bezier30,
+//                      -ambient-dice-linear10, -sg5, -sg6, -sg9, -sg12, -sg9-nnls,
+//                      -sg9-running, -zh3, -zh3-hallucinate, -sh-l1-nonlinear;
+//                      lightmap-ambient-dice-ycocg
 //   volume.hpp         volume
-//   volume_engine.hpp  volume-ambient-cube, -ambient-dice, -sh-l1-nonlinear, -zh3-hallucinate,
-//                      -zh3, -sg9
+//   volume_engine.hpp  volume-ambient-cube, -ambient-dice, -ambient-dice-bezier,
+//                      -sh-l1-nonlinear, -zh3-hallucinate, -zh3, -sg9
 //   specular.hpp       specular-toksvig, specular-aliased (compared with
 //                      render_specular_reference() of render/specular.hpp, not the path tracer)
 //   lxh.hpp            lxh-unc3, -unc4, -unc6, lxh-pcaM (M = 4, 8, 12, 16, 24 listed; 1..36)
@@ -77,10 +79,12 @@
 namespace sphbasis::render {
 
 /// The representation families, in report order (header comment: adding one).
-using RepresentationFamilies = representations::FamilyList<
-    representations::Irradiance, representations::Prt, representations::Lightmap,
-    representations::Volume, representations::VolumeEngine, representations::Specular,
-    representations::Lxh, representations::PrtNormalMap, representations::PrtCpca>;
+using RepresentationFamilies =
+    representations::FamilyList<representations::Irradiance, representations::Prt,
+                                representations::Lightmap, representations::LightmapYCoCg,
+                                representations::Volume, representations::VolumeEngine,
+                                representations::Specular, representations::Lxh,
+                                representations::PrtNormalMap, representations::PrtCpca>;
 
 /// Every representation name, in report order (header comment).
 inline const std::vector<std::string>& representation_names() {

@@ -1,9 +1,11 @@
 // sphbasis render tier: irradiance volumes stored in the engine bases (representations/
 // family.hpp):
-//   volume-ambient-cube, volume-ambient-dice
+//   volume-ambient-cube, volume-ambient-dice, volume-ambient-dice-bezier
 //                             probes storing the irradiance in the ambient cube (6 values per
-//                             channel; McTaggart 2004) or Ambient Dice (12; Iwanicki and Sloan
-//                             2017), least-squares fits over the sphere (basis/registry.hpp);
+//                             channel; McTaggart 2004), Ambient Dice (12; Iwanicki and Sloan
+//                             2017) or its Bezier variant over the icosahedron's faces (36: the
+//                             whole sphere), least-squares fits over the sphere
+//                             (basis/registry.hpp);
 //   volume-sg9                probes storing the irradiance in BakingLab's world-space set of 9
 //                             spherical Gaussian lobes (sg::bakinglab_lobes(9,
 //                             Distribution::sphere): the lobes cover the whole sphere), a
@@ -57,7 +59,8 @@ class VolumeEngine : public Representation {
                        }};
         } else if (fitted_ == nullptr) {
             const BasisInfo& info = find_basis(b);  // throws for a name accepts() does not know
-            linear_ = info.functions(info.name == std::string("ambient-cube") ? 6 : 12);
+            // The whole sphere's count.
+            linear_ = info.functions(b == "ambient-cube" ? 6 : (b == "ambient-dice" ? 12 : 36));
         }
         n_ = fitted_ != nullptr ? fitted_->stored : linear_.n;
         element = "probe";
@@ -97,10 +100,10 @@ class VolumeEngine : public Representation {
     RGB shade(const Context& ctx, const Hit& hit, const vec3<double>&, double) const override {
         const Field& f = ctx.fields[std::size_t(probe_bake)];
         const std::size_t n = std::size_t(n_);
-        std::array<double, 3 * 12> v;
+        std::array<double, 3 * max_values> v;
         f.grid.interpolate_valid(stored_.data(), 3 * n, f.inside.data(), hit.position, v.data());
         const vec3<double> nm = Scene::normal_mapped(hit);
-        std::array<double, 12> y;
+        std::array<double, max_values> y;
         if (linear_.n > 0) linear_.eval(nm.x, nm.y, nm.z, y.data());
         RGB out{0, 0, 0};
         for (std::size_t c = 0; c < 3; ++c) {
@@ -116,9 +119,15 @@ class VolumeEngine : public Representation {
     }
 
   private:
+    static constexpr int max_values = 36;  // values per channel at most (ambient-dice-bezier)
     static const std::vector<const char*>& names() {
-        static const std::vector<const char*> n{
-            "ambient-cube", "ambient-dice", "sh-l1-nonlinear", "zh3-hallucinate", "zh3", "sg9"};
+        static const std::vector<const char*> n{"ambient-cube",
+                                                "ambient-dice",
+                                                "ambient-dice-bezier",
+                                                "sh-l1-nonlinear",
+                                                "zh3-hallucinate",
+                                                "zh3",
+                                                "sg9"};
         return n;
     }
     BasisFunctions linear_;  // the linear stored functions (n = 0: fitted_)
