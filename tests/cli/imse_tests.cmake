@@ -56,3 +56,9 @@ sphbasis_cli_script(imse_plot_labels "plot_imse.py: [0-9]+ labels, none overlaps
                     "/usr/bin/python3 ${_plot_imse} --check ${PROJECT_SOURCE_DIR}/tests/data/imse_readme_run.json imse_plot_readme.png && test -s imse_plot_readme.png && \"$<TARGET_FILE:sphbasis_cli>\" imse --protocol all --signals 16 --json imse_plot.json >/dev/null && /usr/bin/python3 ${_plot_imse} imse_plot.json imse_plot.png && test -s imse_plot.png")
 sphbasis_cli_script(imse_plot_crowded "crowded-refused"
                     "/usr/bin/python3 -c \"import json; rows = [dict(basis='sh', coeffs=i, imse=1e-2 * (1 + 0.02 * i), eval_ns=5 + 0.01 * i, stderr=0) for i in range(40)] + [dict(basis='zernike', coeffs=3, imse=0.1, eval_ns=20, stderr=0)]; json.dump(dict(protocol='paper', signals=10, seed=1, rows=rows), open('imse_crowd.json', 'w'))\" && ! /usr/bin/python3 ${_plot_imse} --check imse_crowd.json imse_crowd.png 2>/dev/null && echo crowded-refused")
+# README's "Which basis?" table is the one tools/plot/imse_readme_table.py makes of the committed
+# run behind it (tests/data/imse_readme_run.json), so its numbers trace to that run; the tool
+# refuses a file that is not such a run.
+set(_imse_table ${CMAKE_CURRENT_SOURCE_DIR}/../tools/plot/imse_readme_table.py)
+sphbasis_cli_script(imse_readme_table "checked the table of [^\n]*README.md[^\n]*\nbad-run-refused"
+                    "/usr/bin/python3 ${_imse_table} ${PROJECT_SOURCE_DIR}/tests/data/imse_readme_run.json --check ${PROJECT_SOURCE_DIR}/README.md && ! /usr/bin/python3 ${_imse_table} ${PROJECT_SOURCE_DIR}/tests/data/render_summary_fixture.json 2>/dev/null && echo bad-run-refused")
