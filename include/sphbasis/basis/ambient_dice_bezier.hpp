@@ -28,12 +28,13 @@
 //   those vertex values and gradients); and, as in Foley and Opitz ("Hybrid cubic Bezier triangle
 //   patches", 1992), one interior point per edge (b, c), c111_a = a0 (f_b + f_c) + a1 (c_bc + c_cb)
 //   + a2 (c_ba + c_ca), blended by b_b b_c / (b_0 b_1 + b_1 b_2 + b_2 b_0); a2 = sqrt5/10,
-//   a0 = (sqrt5 - 5)/40, a1 = (11 sqrt5 - 15)/40. Each face's patch is a homogeneous cubic in d:
+//   a0 = (sqrt5 - 5)/40, a1 = (11 sqrt5 - 15)/40. Each face's patch is homogeneous of degree 3 in d:
 //   vertex values and derivatives are interpolated, the patches meet C1 along every edge, and
-//   linear functions of d (SH band 1) are reproduced exactly; constants are not (sum of the value
-//   functions within about 1.1 of 1, see the tests).
+//   linear functions of d (SH band 1) are reproduced exactly; constants are not (the value
+//   functions sum to 0.938-1 over the sphere; tests/basis/test_ambient_dice_bezier.cpp).
 //   ambient-dice-linear (the paper's rule): function k is b_a where v_k is the face's vertex a
-//   (continuous, piecewise linear in d; linear functions of d exact, constants not).
+//   (continuous, piecewise linear in d; linear functions of d exact, constants not: the
+//   functions sum to 1-1.258, the most at the face centres).
 //   ambient-dice-bezier-normalized, ambient-dice-linear-normalized (this library's construction
 //   from before the paper's rule was known): b divided by its sum (the planar barycentrics of d's
 //   central projection onto the face's plane), edge points c_ab = f_a + (1/3) g_a . v_b, interior
