@@ -28,7 +28,7 @@
 //   those vertex values and gradients); and, as in Foley and Opitz ("Hybrid cubic Bezier triangle
 //   patches", 1992), one interior point per edge (b, c), c111_a = a0 (f_b + f_c) + a1 (c_bc + c_cb)
 //   + a2 (c_ba + c_ca), blended by b_b b_c / (b_0 b_1 + b_1 b_2 + b_2 b_0); a2 = sqrt5/10,
-//   a0 = (sqrt5 - 5)/40, a1 = (11 sqrt5 - 15)/40. Each face's patch is homogeneous of degree 3 in d:
+//   a0 = (sqrt5 - 5)/40, a1 = (11 sqrt5 - 15)/40. Each face's patch is homogeneous in d:
 //   vertex values and derivatives are interpolated, the patches meet C1 along every edge, and
 //   linear functions of d (SH band 1) are reproduced exactly; constants are not (the value
 //   functions sum to 0.938-1 over the sphere; tests/basis/test_ambient_dice_bezier.cpp).
