@@ -395,6 +395,21 @@ for _ in range(40):
     dirs.append([float(c / n) for c in v])
 dirs += [[0.0, 0.0, 1.0], [0.0, 0.0, -1.0], [1.0, 0.0, 0.0], [0.0, -1.0, 0.0]]
 
+
+def cross_jump(f, g, data36, variant, s):
+    """|jump| of the derivative across the shared edge of faces f and g at fraction s of it (the
+    same point from both faces: their local edge orders agree, ascending)."""
+    shared = set(faces[f]) & set(faces[g])
+    mf = [x for x in range(3) if faces[f][x] not in shared][0]
+    mg = [x for x in range(3) if faces[g][x] not in shared][0]
+    cf, cg = face_controls(f, data36, variant), face_controls(g, data36, variant)
+    nf, pf, _, _ = edge_normal_and_point(f, mf, s)
+    ng, pg, _, _ = edge_normal_and_point(g, mg, s)
+    assert max(abs(pf[c] - pg[c]) for c in range(3)) < mp.mpf(10) ** -35
+    sign = 1 if dot(nf, ng) > 0 else -1
+    return abs(cross_derivative(f, cf, mf, variant, s) - sign * cross_derivative(g, cg, mg, variant, s))
+
+
 for variant in VARIANTS:
     worst = 0
     for f in range(20):
@@ -422,16 +437,8 @@ for variant in VARIANTS:
         for s in fractions:
             d = unit([(1 - s) * V[i][c] + s * V[j][c] for c in range(3)])
             worst_c0 = max(worst_c0, abs(patch(f, cf, d, variant) - patch(g, cg, d, variant)))
-        mf = [x for x in range(3) if faces[f][x] not in shared][0]
-        mg = [x for x in range(3) if faces[g][x] not in shared][0]
         for s in (fractions if variant == "paper" else [mp.mpf(1) / 2]):
-            # the same point of the edge from both faces (their local edge orders agree: ascending)
-            nf, pf, _, _ = edge_normal_and_point(f, mf, s)
-            ng, pg, _, _ = edge_normal_and_point(g, mg, s)
-            assert max(abs(pf[c] - pg[c]) for c in range(3)) < mp.mpf(10) ** -35
-            sign = 1 if dot(nf, ng) > 0 else -1
-            worst_c1 = max(worst_c1, abs(cross_derivative(f, cf, mf, variant, s) -
-                                         sign * cross_derivative(g, cg, mg, variant, s)))
+            worst_c1 = max(worst_c1, cross_jump(f, g, data36, variant, s))
     assert worst_c0 < mp.mpf(10) ** -30 and worst_c1 < mp.mpf(10) ** -25, (worst_c0, worst_c1)
     log("%s bezier: value continuous along all 30 edges (max |jump| %s), cross derivative %s "
         "(max |jump| %s)" % (variant, mp.nstr(worst_c0, 3),
@@ -440,31 +447,14 @@ for variant in VARIANTS:
     if variant == "paper":
         # the check above fails for a wrong a0 (a0 + 1/100: C1 broken away from the vertices)
         A0 += mp.mpf(1) / 100
-        f, g = edge_list[0]
-        shared = set(faces[f]) & set(faces[g])
-        mf = [x for x in range(3) if faces[f][x] not in shared][0]
-        mg = [x for x in range(3) if faces[g][x] not in shared][0]
-        cf, cg = face_controls(f, data36, variant), face_controls(g, data36, variant)
-        nf, _, _, _ = edge_normal_and_point(f, mf, mp.mpf(1) / 2)
-        ng, _, _, _ = edge_normal_and_point(g, mg, mp.mpf(1) / 2)
-        sign = 1 if dot(nf, ng) > 0 else -1
-        jump = abs(cross_derivative(f, cf, mf, variant) - sign * cross_derivative(g, cg, mg, variant))
+        jump = cross_jump(*edge_list[0], data36, variant, mp.mpf(1) / 2)
         A0 -= mp.mpf(1) / 100
         assert jump > mp.mpf(10) ** -4
         log("paper bezier: with a0 + 1/100 the cross derivative jumps by %s at the first edge's "
             "midpoint" % mp.nstr(jump, 3))
     if variant == "normalized":
         # the check above at 3/10 of an edge fails for the normalised rule (C0 there)
-        f, g = edge_list[0]
-        shared = set(faces[f]) & set(faces[g])
-        mf = [x for x in range(3) if faces[f][x] not in shared][0]
-        mg = [x for x in range(3) if faces[g][x] not in shared][0]
-        cf, cg = face_controls(f, data36, variant), face_controls(g, data36, variant)
-        nf, _, _, _ = edge_normal_and_point(f, mf, mp.mpf(3) / 10)
-        ng, _, _, _ = edge_normal_and_point(g, mg, mp.mpf(3) / 10)
-        sign = 1 if dot(nf, ng) > 0 else -1
-        jump = abs(cross_derivative(f, cf, mf, variant, mp.mpf(3) / 10) -
-                   sign * cross_derivative(g, cg, mg, variant, mp.mpf(3) / 10))
+        jump = cross_jump(*edge_list[0], data36, variant, mp.mpf(3) / 10)
         assert jump > mp.mpf(10) ** -3
         log("normalized bezier: the cross derivative jumps by %s at 3/10 of the first edge (C0 "
             "there)" % mp.nstr(jump, 3))
