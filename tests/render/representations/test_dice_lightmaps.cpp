@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "../render_test_support.hpp"
+#include "sky_probes_for_tests.hpp"
 #include "sphbasis/core/constants.hpp"
 #include "sphbasis/core/quadrature.hpp"
 #include "sphbasis/render/bake.hpp"
@@ -215,32 +216,11 @@ TEST_CASE("dice lightmaps: under a grey sky lightmap-ambient-dice-ycocg is the B
 
 TEST_CASE("dice volumes: volume-ambient-dice-bezier is the fit of the volume's irradiance",
           "[render]") {
-    // As volume-sg9's test (test_engine_lightmaps.cpp): probes above a wide ground under a
-    // constant sky see E(n)/pi = L (1 + n_z)/2, which `volume` shades; the Bezier volume stores
-    // its least squares over the sphere in the 36 functions, so at n = +z it shows the fit's
-    // value there.
-    sphbasis_test::World w;
-    w.meshes.push_back(sphbasis_test::quad_grid(-100, 100, -100, 100, 0, 1));
-    w.meshes[0].albedo = {0.8f, 0.8f, 0.8f};
-    w.desc.environment = sphbasis_test::constant_environment({1.0, 0.5, 0.25});
-    w.build();
-    render::RepresentationSettings s;
-    s.rays = 512;
-    s.bounces = 0;
-    s.has_probes = true;
-    s.probes.lo = {-1, -1, 0.25};
-    s.probes.hi = {1, 1, 1.25};
-    s.probes.counts = {2, 2, 2};
-    render::Representations r(w.desc, *w.rt, s, {"volume", "volume-ambient-dice-bezier"});
-    r.prepare(nullptr);
-    const render::Camera cam = sphbasis_test::camera_at({0.1, 0.2, 3}, {0, 0, 0}, 8, 8, 25);
-    const render::Image sh = r.render(0, cam, 1), dice = r.render(1, cam, 1);
+    // The Bezier volume stores its least squares over the sphere in the 36 functions.
     const double at_z = sphbasis_test::fit_at_z("ambient-dice-bezier", 36, sphere_rule(40));
     INFO("fit at +z " << at_z);
-    double worst = 0;
-    for (std::size_t i = 0; i < sh.data.size(); ++i)
-        worst = std::max(worst, std::fabs(dice.data[i] / (sh.data[i] * at_z) - 1));
-    CHECK(worst < 0.02);
-    CHECK(r.stats(1).element == "probe");
-    CHECK(r.stats(1).bytes_per_element == 3 * 36 * sizeof(float));
+    const auto vol = sphbasis_test::volume_against_sh("volume-ambient-dice-bezier", at_z);
+    CHECK(vol.worst < 0.02);
+    CHECK(vol.stats.element == "probe");
+    CHECK(vol.stats.bytes_per_element == 3 * 36 * sizeof(float));
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "../render_test_support.hpp"
+#include "sky_probes_for_tests.hpp"
 #include "sphbasis/core/quadrature.hpp"
 #include "sphbasis/ops/sg_fit.hpp"
 #include "sphbasis/render/bake.hpp"
@@ -173,26 +174,8 @@ TEST_CASE("engine irradiance: ZH3 and non-linear L1 of a sun from the SH of E by
 }
 
 TEST_CASE("engine volumes: volume-sg9 is the SG fit of the volume's irradiance", "[render]") {
-    // Probes above a wide dark ground under a constant sky see radiance L over the upper
-    // hemisphere: E(n)/pi = L (1 + n_z)/2 (exactly in 3 SH bands: the step's band 2 vanishes),
-    // which `volume` shades. volume-sg9 stores its least-squares fit over the sphere in
-    // BakingLab's 9 world-space lobes: at n = +z the fit's value, from ops/sg_fit.hpp.
-    sphbasis_test::World w;
-    w.meshes.push_back(sphbasis_test::quad_grid(-100, 100, -100, 100, 0, 1));
-    w.meshes[0].albedo = {0.8f, 0.8f, 0.8f};
-    w.desc.environment = sphbasis_test::constant_environment({1.0, 0.5, 0.25});
-    w.build();
-    render::RepresentationSettings s;
-    s.rays = 512;
-    s.bounces = 0;
-    s.has_probes = true;
-    s.probes.lo = {-1, -1, 0.25};
-    s.probes.hi = {1, 1, 1.25};
-    s.probes.counts = {2, 2, 2};
-    render::Representations r(w.desc, *w.rt, s, {"volume", "volume-sg9"});
-    r.prepare(nullptr);
-    const render::Camera cam = sphbasis_test::camera_at({0.1, 0.2, 3}, {0, 0, 0}, 8, 8, 25);
-    const render::Image sh = r.render(0, cam, 1), sg9 = r.render(1, cam, 1);
+    // volume-sg9 stores the least-squares fit over the sphere in BakingLab's 9 world-space
+    // lobes (sky_probes_for_tests.hpp): at n = +z the fit's value, from ops/sg_fit.hpp.
     const DirectionalRule rule = sphere_rule(40);
     Eigen::MatrixXd v(Eigen::Index(rule.size()), 1);
     for (std::size_t i = 0; i < rule.size(); ++i) v(Eigen::Index(i), 0) = 0.5 * (1 + rule.z[i]);
@@ -202,11 +185,9 @@ TEST_CASE("engine volumes: volume-sg9 is the SG fit of the volume's irradiance",
     for (std::size_t k = 0; k < lobes.size(); ++k)
         at_z += a(Eigen::Index(k), 0) * sg::eval(lobes[k], 0.0, 0.0, 1.0);
     INFO("fit at +z " << at_z);
-    double worst = 0;
-    for (std::size_t i = 0; i < sh.data.size(); ++i)
-        worst = std::max(worst, std::fabs(sg9.data[i] / (sh.data[i] * at_z) - 1));
-    CHECK(worst < 0.02);
-    CHECK(r.stats(1).element == "probe");
-    CHECK(r.stats(1).bytes_per_element == 27 * sizeof(float));
-    CHECK_FALSE(r.stats(1).cannot_show.empty());
+    const auto vol = sphbasis_test::volume_against_sh("volume-sg9", at_z);
+    CHECK(vol.worst < 0.02);
+    CHECK(vol.stats.element == "probe");
+    CHECK(vol.stats.bytes_per_element == 27 * sizeof(float));
+    CHECK_FALSE(vol.stats.cannot_show.empty());
 }
