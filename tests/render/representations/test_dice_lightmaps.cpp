@@ -135,25 +135,35 @@ TEST_CASE("dice lightmaps: a baked texel is the fit of its exact irradiance", "[
     }
 }
 
-TEST_CASE("dice lightmaps: the YCoCg luma is bezier30's, its chroma linear10's", "[render]") {
-    // The fits are linear and the shading is linear in the stored values, so at every pixel
-    // the luma of lightmap-ambient-dice-ycocg is that of lightmap-ambient-dice-bezier30 and its
-    // chroma that of -linear10, up to the float storage, whatever the lighting (a coloured sky
-    // with a bright patch, one bounce); grey albedos, so that a pixel is its irradiance times
-    // one number. It reads exactly their two bakes.
-    sphbasis_test::World w = sphbasis_test::sphere_on_plane_meshes();
+/// The YCoCg tests' scene, built into w: sphere_on_plane_meshes() with a grey ball (0.6) under
+/// the 8 x 4 lat-long sky of texel(x, y, rgb); their settings: 16 rays, one bounce, 8 x 8
+/// lightmaps.
+template <class Texel>
+render::RepresentationSettings ycocg_scene(sphbasis_test::World& w, Texel&& texel) {
+    w = sphbasis_test::sphere_on_plane_meshes();
     w.meshes[0].albedo = {0.6f, 0.6f, 0.6f};
-    w.env_texels = sphbasis_test::rgb_texels(8, 4, [](int x, int y, float* p) {
-        p[0] = 0.3f + 0.2f * float(y) + (x == 3 && y == 1 ? 4.0f : 0.0f);
-        p[1] = 0.5f + 0.1f * float(x % 3);
-        p[2] = 0.8f - 0.15f * float(y);
-    });
+    w.env_texels = sphbasis_test::rgb_texels(8, 4, texel);
     w.desc.environment = sphbasis_test::latlong_environment(w.env_texels, 8, 4);
     w.build();
     render::RepresentationSettings s;
     s.rays = 16;
     s.bounces = 1;
     s.lightmap_size = 8;
+    return s;
+}
+
+TEST_CASE("dice lightmaps: the YCoCg luma is bezier30's, its chroma linear10's", "[render]") {
+    // The fits are linear and the shading is linear in the stored values, so at every pixel
+    // the luma of lightmap-ambient-dice-ycocg is that of lightmap-ambient-dice-bezier30 and its
+    // chroma that of -linear10, up to the float storage, whatever the lighting (a coloured sky
+    // with a bright patch, one bounce); grey albedos, so that a pixel is its irradiance times
+    // one number. It reads exactly their two bakes.
+    sphbasis_test::World w;
+    const render::RepresentationSettings s = ycocg_scene(w, [](int x, int y, float* p) {
+        p[0] = 0.3f + 0.2f * float(y) + (x == 3 && y == 1 ? 4.0f : 0.0f);
+        p[1] = 0.5f + 0.1f * float(x % 3);
+        p[2] = 0.8f - 0.15f * float(y);
+    });
     const std::vector<std::string> names{"lightmap-ambient-dice-bezier30",
                                          "lightmap-ambient-dice-linear10",
                                          "lightmap-ambient-dice-ycocg"};
@@ -192,17 +202,10 @@ TEST_CASE("dice lightmaps: under a grey sky lightmap-ambient-dice-ycocg is the B
           "[render]") {
     // Grey lighting and grey albedos: R = G = B everywhere in the bakes, so chroma is exactly 0
     // and luma is the channels' common value (up to one rounding of R/4 + G/2 + B/4).
-    sphbasis_test::World w = sphbasis_test::sphere_on_plane_meshes();
-    w.meshes[0].albedo = {0.6f, 0.6f, 0.6f};
-    w.env_texels = sphbasis_test::rgb_texels(8, 4, [](int x, int y, float* p) {
+    sphbasis_test::World w;
+    const render::RepresentationSettings s = ycocg_scene(w, [](int x, int y, float* p) {
         p[0] = p[1] = p[2] = 0.2f + 0.2f * float(y) + (x == 3 && y == 1 ? 3.0f : 0.0f);
     });
-    w.desc.environment = sphbasis_test::latlong_environment(w.env_texels, 8, 4);
-    w.build();
-    render::RepresentationSettings s;
-    s.rays = 16;
-    s.bounces = 1;
-    s.lightmap_size = 8;
     render::Representations r(w.desc, *w.rt, s,
                               {"lightmap-ambient-dice-ycocg", "lightmap-ambient-dice-bezier30"});
     r.prepare(nullptr);
